@@ -1,0 +1,28 @@
+// Helpers shared by the pass cores. They only call dnsr_get_* callbacks, never touch a binding.
+#ifndef DNSR_COMMON_GLSL
+#define DNSR_COMMON_GLSL
+
+// Tiles are 8x4 pixels packed into one uint; bit (y % 4) * 8 + (x % 8).
+const ivec2 DNSR_TILE_SIZE = ivec2(8, 4);
+uint dnsr_tile_bit(ivec2 p) { return uint((p.y & 3) * 8 + (p.x & 7)); }
+
+bool dnsr_inside(ivec2 p) { return all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, dnsr_get_extent())); }
+
+// A shadow receiver has geometry: depth strictly between the clear values of both depth conventions.
+// NaN depth fails both comparisons and counts as sky.
+bool dnsr_is_receiver(float depth) { return depth > 0.0 && depth < 1.0; }
+
+// Vulkan NDC: uv (0,0) is the top-left corner and maps to ndc (-1,-1).
+vec2 dnsr_uv_to_ndc(vec2 uv) { return uv * 2.0 - 1.0; }
+vec2 dnsr_pixel_uv(ivec2 p) { return (vec2(p) + 0.5) * dnsr_get_inv_extent(); }
+
+// Distance along the view axis, from the inverse projection. Infinite for an infinite far plane's far depth.
+float dnsr_linear_depth(vec2 ndc, float depth) {
+    vec4 v = dnsr_get_projection_inverse() * vec4(ndc, depth, 1.0);
+    return abs(v.z / v.w);
+}
+
+bool dnsr_finite(float x) { return !isnan(x) && !isinf(x); }
+bool dnsr_finite(vec2 x) { return dnsr_finite(x.x) && dnsr_finite(x.y); }
+
+#endif

@@ -1,0 +1,104 @@
+// filter: one pass of the edge-avoiding a-trous filter (3x3 taps at +-step). The group loads its 8x8 pixels plus
+// a step-wide apron into shared memory once, with depth already linearised and normals decoded, so each tap
+// costs shared-memory reads only.
+#ifndef DNSR_FILTER_GLSL
+#define DNSR_FILTER_GLSL
+
+const int DNSR_SHARED_SIDE = 8 + 2 * int(DNSR_MAX_FILTER_STEP);
+const int DNSR_SHARED_COUNT = DNSR_SHARED_SIDE * DNSR_SHARED_SIDE;
+
+shared real2 s_signal[DNSR_SHARED_COUNT];   // (mean, variance)
+shared float s_depth[DNSR_SHARED_COUNT];    // linear depth; negative = sky or outside the rectangle
+shared real3 s_normal[DNSR_SHARED_COUNT];
+int g_side;
+
+int dnsr_shared_index(ivec2 s) { return s.y * g_side + s.x; }
+
+void dnsr_filter_load(ivec2 region_origin) {
+    int count = g_side * g_side;
+    for (int i = int(gl_LocalInvocationIndex); i < count; i += 64) {
+        ivec2 p = region_origin + ivec2(i % g_side, i / g_side);
+        float depth = dnsr_inside(p) ? dnsr_read_depth(p) : 0.0;
+        bool receiver = dnsr_inside(p) && dnsr_is_receiver(depth);
+        vec2 signal = receiver ? dnsr_read_filter_input(p) : vec2(1.0, 0.0);
+        s_signal[i] = real2(signal);
+        s_depth[i] = receiver ? dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), depth) : -1.0;
+        s_normal[i] = receiver ? real3(dnsr_read_normal(p)) : real3(0.0);
+    }
+}
+
+// 3x3 Gaussian of the variance (center 1/4, cross 1/8, corner 1/16) over receivers only.
+real dnsr_blurred_variance(ivec2 s) {
+    real sum = real(0.0), weight = real(0.0);
+    for (int j = -1; j <= 1; ++j) {
+        for (int i = -1; i <= 1; ++i) {
+            int k = dnsr_shared_index(s + ivec2(i, j));
+            if (s_depth[k] < 0.0) continue;
+            real w = real(1.0 / float(4 << (abs(i) + abs(j))));
+            sum += w * s_signal[k].y;
+            weight += w;
+        }
+    }
+    return sum / weight;
+}
+
+void dnsr_filter(ivec2 gid, ivec2 lid) {
+    int step = dnsr_get_filter_step();
+    g_side = 8 + 2 * step;
+    ivec2 origin = gid * 8;
+    dnsr_filter_load(origin - step);
+    barrier();
+
+    ivec2 p = origin + lid;
+    if (!dnsr_inside(p)) return;
+    ivec2 s = lid + step;
+    int center = dnsr_shared_index(s);
+    uint meta = dnsr_read_tile_meta(p / DNSR_TILE_SIZE);
+
+    vec2 result;
+    if (s_depth[center] < 0.0) {
+        result = vec2(1.0, 0.0);
+    } else if ((meta & DNSR_TILE_CLEARED) != 0u) {
+        result = vec2((meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0, 0.0);
+    } else {
+        vec4 settings = dnsr_get_filter_settings();
+        real kernel[2] = real[2](real(1.0), real(settings.x));
+        real normal_power = real(settings.y);
+        real2 c = s_signal[center];
+        float zc = s_depth[center];
+        real3 nc = s_normal[center];
+        real inv_sigma = real(1.0) / max(sqrt(max(dnsr_blurred_variance(s), real(0.0))), real(settings.w));
+        float inv_depth_sigma = 1.0 / dnsr_get_depth_similarity_sigma();
+
+        real weight_sum = real(1.0);
+        real mean_sum = c.x;
+        real var_sum = c.y;
+        for (int j = -1; j <= 1; ++j) {
+            for (int i = -1; i <= 1; ++i) {
+                if (i == 0 && j == 0) continue;
+                ivec2 q = p + ivec2(i, j) * step;
+                if (!dnsr_inside(q)) continue;
+                int k = dnsr_shared_index(s + ivec2(i, j) * step);
+                float zq = s_depth[k];
+                if (zq < 0.0) continue;
+                real2 n = s_signal[k];
+                real w = kernel[abs(i)] * kernel[abs(j)]
+                       * exp(-abs(c.x - n.x) * inv_sigma)
+                       * real(exp(-abs(zc - zq) * inv_depth_sigma))
+                       * pow(max(dot(nc, s_normal[k]), real(0.0)), normal_power);
+                weight_sum += w;
+                mean_sum += w * n.x;
+                var_sum += w * w * n.y;
+            }
+        }
+        result = vec2(clamp(float(mean_sum / weight_sum), 0.0, 1.0), max(float(var_sum / (weight_sum * weight_sum)), 0.0));
+    }
+
+    if (dnsr_get_write_internal()) dnsr_write_filter_output(p, result);
+#ifdef DNSR_FINAL_PASS
+    float contrast = dnsr_get_filter_settings().z;
+    dnsr_write_output(p, pow(result.x, max(contrast - result.y, 1.0)));
+#endif
+}
+
+#endif

@@ -1,0 +1,31 @@
+// Generated from src/constants.rs by `DNSR_BLESS=1 cargo test generated_glsl`. Do not edit.
+#ifndef DNSR_CONSTANTS_GLSL
+#define DNSR_CONSTANTS_GLSL
+
+struct DnsrFrameConstants {
+    mat4 projection_inverse;
+    mat4 reprojection;
+    mat4 view_projection_inverse;
+    vec4 eye_depth_sigma;
+    vec4 motion_normals;
+    uvec4 rect;
+    uvec4 flags;
+    vec4 inv_extent;
+    vec4 disocclusion;
+    vec4 rejection;
+    vec4 temporal;
+    vec4 filtering;
+};
+
+struct DnsrFilterPush {
+    uvec4 pass;
+};
+
+#define DNSR_FLAG_RESET 1u
+#define DNSR_FLAG_DEPTH_INVERTED 2u
+#define DNSR_PASS_WRITE_INTERNAL 1u
+#define DNSR_TILE_CLEARED 1u
+#define DNSR_TILE_LIT 2u
+#define DNSR_MAX_FILTER_STEP 8u
+
+#endif

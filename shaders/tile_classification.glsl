@@ -1,0 +1,204 @@
+// tile classification: one 8x8 group = two 8x4 tiles. Decides per tile whether temporal work is needed at all
+// (no receiver, or a uniform +-8 px neighbourhood), and for the rest reprojects, tracks temporal moments and
+// blends the clamped history with the current 1-spp sample.
+#ifndef DNSR_TILE_CLASSIFICATION_GLSL
+#define DNSR_TILE_CLASSIFICATION_GLSL
+
+// Local moments use a 17x17 window (radius 8). Not a runtime setting: the shared tile window below is sized
+// for it, and the uniform-tile test looks at exactly this neighbourhood.
+const int DNSR_MOMENT_RADIUS = 8;
+// Tile words around the group: tile columns tx0-1..tx0+1, tile rows ty0-2..ty0+3 (pixel rows y0-8..y0+15).
+const ivec2 DNSR_WINDOW_TILES = ivec2(3, 6);
+const int DNSR_WINDOW_ROWS = 24;
+
+shared uint s_words[6][3];
+// Horizontal pass of the separable Gaussian for the group's 8 columns over its 24 window rows:
+// x = weighted lit count, y = weight of the taps inside the render rectangle.
+shared vec2 s_hsum[DNSR_WINDOW_ROWS][8];
+// Closeness key (smaller = closer to the camera) and velocity of each pixel, for the 2x2 quad vote.
+shared float s_quad_key[8][8];
+shared vec2 s_quad_velocity[8][8];
+shared uint s_tile_has_receiver[2];
+// First tile of the group's window (same for every invocation of the group).
+ivec2 g_window_base;
+
+ivec2 dnsr_tile_count() { return (dnsr_get_extent() + DNSR_TILE_SIZE - 1) / DNSR_TILE_SIZE; }
+
+// Bits of a tile whose pixels lie inside the render rectangle (0 for a tile outside it).
+uint dnsr_tile_valid_bits(ivec2 tile) {
+    if (any(lessThan(tile, ivec2(0))) || any(greaterThanEqual(tile, dnsr_tile_count()))) return 0u;
+    ivec2 n = min(dnsr_get_extent() - tile * DNSR_TILE_SIZE, DNSR_TILE_SIZE);
+    uint row = n.x >= 8 ? 0xFFu : ((1u << uint(n.x)) - 1u);
+    uint bits = 0u;
+    for (int r = 0; r < n.y; ++r) bits |= row << uint(8 * r);
+    return bits;
+}
+
+ivec2 dnsr_window_base_tile(ivec2 group_origin) { return (group_origin / DNSR_TILE_SIZE) - ivec2(1, 2); }
+
+// Lit bit of a pixel in the group's window. The caller ensures the pixel is inside the render rectangle.
+float dnsr_window_lit(ivec2 p, ivec2 base_tile) {
+    ivec2 w = (p >> ivec2(3, 2)) - base_tile;
+    return float((s_words[w.y][w.x] >> dnsr_tile_bit(p)) & 1u);
+}
+
+float dnsr_moment_weight(int i) { return exp(-dnsr_get_temporal_settings().w * float(i * i) / 81.0); }
+
+// Spatial mean and variance of the binary mask around p (normalised over taps inside the rectangle).
+vec2 dnsr_local_moments(ivec2 lid) {
+    vec2 sum = vec2(0.0);
+    for (int j = -DNSR_MOMENT_RADIUS; j <= DNSR_MOMENT_RADIUS; ++j) {
+        sum += dnsr_moment_weight(j) * s_hsum[lid.y + DNSR_MOMENT_RADIUS + j][lid.x];
+    }
+    float mean = sum.x / max(sum.y, 1e-20);
+    return vec2(mean, max(mean - mean * mean, 0.0));
+}
+
+// 0: mixed, 1: every valid bit within +-8 px of the tile is lit, 2: every one is shadowed.
+uint dnsr_uniform_state(int tile_row_in_group) {
+    bool all_lit = true, all_shadow = true;
+    for (int r = 0; r < 5; ++r) {
+        for (int c = 0; c < 3; ++c) {
+            uint word = s_words[tile_row_in_group + r][c];
+            uint valid = dnsr_tile_valid_bits(g_window_base + ivec2(c, tile_row_in_group + r));
+            all_lit = all_lit && (word & valid) == valid;
+            all_shadow = all_shadow && (word & valid) == 0u;
+        }
+    }
+    return all_lit ? 1u : (all_shadow ? 2u : 0u);
+}
+
+// Scales a Welford state (mean kept) to represent `f` times as many samples.
+void dnsr_scale_moments(inout vec3 m, float f) { m.y *= f; m.z *= f; }
+
+void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
+    ivec2 origin = gid * 8;
+    ivec2 p = origin + lid;
+    int thread = lid.y * 8 + lid.x;
+    g_window_base = dnsr_window_base_tile(origin);
+    bool inside = dnsr_inside(p);
+    bool inverted = dnsr_get_is_depth_inverted();
+
+    if (thread < DNSR_WINDOW_TILES.x * DNSR_WINDOW_TILES.y) {
+        ivec2 w = ivec2(thread % 3, thread / 3);
+        ivec2 tile = g_window_base + w;
+        s_words[w.y][w.x] = dnsr_tile_valid_bits(tile) != 0u ? dnsr_read_tile_mask(tile) : 0u;
+    }
+    if (thread < 2) s_tile_has_receiver[thread] = 0u;
+
+    float depth = inside ? dnsr_read_depth(p) : 0.0;
+    bool receiver = inside && dnsr_is_receiver(depth);
+    if (inside) dnsr_write_depth_copy(p, depth);
+    s_quad_key[lid.y][lid.x] = receiver ? (inverted ? -depth : depth) : 1e30;
+    s_quad_velocity[lid.y][lid.x] = receiver ? dnsr_read_velocity(p) : vec2(0.0);
+    barrier();
+    if (receiver) atomicOr(s_tile_has_receiver[lid.y / 4], 1u);
+
+    // Horizontal Gaussian over three window rows per invocation.
+    for (int k = 0; k < 3; ++k) {
+        int row = lid.y + 8 * k;
+        int y = origin.y - DNSR_MOMENT_RADIUS + row;
+        vec2 sum = vec2(0.0);
+        if (y >= 0 && y < dnsr_get_extent().y) {
+            for (int i = -DNSR_MOMENT_RADIUS; i <= DNSR_MOMENT_RADIUS; ++i) {
+                int x = p.x + i;
+                if (x < 0 || x >= dnsr_get_extent().x) continue;
+                float w = dnsr_moment_weight(i);
+                sum += w * vec2(dnsr_window_lit(ivec2(x, y), g_window_base), 1.0);
+            }
+        }
+        s_hsum[row][lid.x] = sum;
+    }
+    barrier();
+    if (!inside) return;
+
+    int tile_row = lid.y / 4;
+    ivec2 tile = p / DNSR_TILE_SIZE;
+    bool tile_writer = lid.x == 0 && (lid.y & 3) == 0;
+    uint uniform_state = s_tile_has_receiver[tile_row] == 0u ? 1u : dnsr_uniform_state(tile_row);
+    float max_samples = dnsr_get_temporal_settings().z;
+
+    if (uniform_state != 0u) {
+        // Cleared tile: the value is known exactly; keep the state of the next frame consistent with it.
+        float value = uniform_state == 1u ? 1.0 : 0.0;
+        if (tile_writer) dnsr_write_tile_meta(tile, DNSR_TILE_CLEARED | (uniform_state == 1u ? DNSR_TILE_LIT : 0u));
+        dnsr_write_reprojection(p, vec2(receiver ? value : 1.0, 0.0));
+        dnsr_write_moments(p, receiver ? vec3(value, 0.0, max_samples) : vec3(0.0));
+        return;
+    }
+    if (tile_writer) dnsr_write_tile_meta(tile, 0u);
+    if (!receiver) {
+        dnsr_write_reprojection(p, vec2(1.0, 0.0));
+        dnsr_write_moments(p, vec3(0.0));
+        return;
+    }
+
+    vec4 disocc = dnsr_get_disocclusion_settings();
+    vec4 reject = dnsr_get_rejection_settings();
+    vec4 temporal = dnsr_get_temporal_settings();
+    vec2 local = dnsr_local_moments(lid);
+    float x = dnsr_window_lit(p, g_window_base);
+
+    // Velocity of the closest receiver of the 2x2 quad: thin foreground keeps its own motion at silhouettes.
+    ivec2 q = lid & ~1;
+    ivec2 best = lid;
+    for (int j = 0; j < 2; ++j) {
+        for (int i = 0; i < 2; ++i) {
+            if (s_quad_key[q.y + j][q.x + i] < s_quad_key[best.y][best.x]) best = q + ivec2(i, j);
+        }
+    }
+    vec2 uv = dnsr_pixel_uv(p);
+    vec2 ndc = dnsr_uv_to_ndc(uv);
+    vec2 history_uv = uv + s_quad_velocity[best.y][best.x];
+
+    // Disocclusion: where the camera motion puts this surface last frame, was the same depth there?
+    vec4 prev_clip = dnsr_get_reprojection_matrix() * vec4(ndc, depth, 1.0);
+    vec3 prev_ndc = prev_clip.xyz / prev_clip.w;
+    vec2 prev_uv = prev_ndc.xy * 0.5 + 0.5;
+    vec4 world = dnsr_get_view_projection_inverse() * vec4(ndc, depth, 1.0);
+    vec3 view_dir = normalize(dnsr_get_eye() - world.xyz / world.w);
+    float n_dot_v = clamp(dot(dnsr_read_normal(p), view_dir), 0.0, 1.0);
+    float threshold = mix(disocc.x, disocc.y, pow(1.0 - n_dot_v, disocc.z));
+    bool on_screen = dnsr_finite(prev_uv) && dnsr_finite(history_uv) && prev_clip.w > 0.0
+        && all(greaterThanEqual(prev_uv, vec2(0.0))) && all(lessThan(prev_uv, vec2(1.0)))
+        && all(greaterThanEqual(history_uv, vec2(0.0))) && all(lessThan(history_uv, vec2(1.0)));
+    bool disoccluded = dnsr_get_is_reset() || !on_screen;
+    if (!disoccluded) {
+        ivec2 prev_p = clamp(ivec2(prev_uv * vec2(dnsr_get_extent())), ivec2(0), dnsr_get_extent() - 1);
+        float previous = dnsr_linear_depth(prev_ndc.xy, dnsr_read_previous_depth(prev_p));
+        float expected = dnsr_linear_depth(prev_ndc.xy, prev_ndc.z);
+        // Written so that NaN or infinite depths count as disoccluded.
+        disoccluded = !(abs(previous - expected) < threshold * expected);
+    }
+
+    // Temporal moments (Welford), restarted on disocclusion, count bounded by max_samples.
+    vec3 m = vec3(0.0);
+    if (!disoccluded) {
+        ivec2 hp = clamp(ivec2(history_uv * vec2(dnsr_get_extent())), ivec2(0), dnsr_get_extent() - 1);
+        m = dnsr_read_previous_moments(hp);
+        if (!(m.z >= 0.0 && m.z <= max_samples && m.y >= 0.0 && m.y < 1e30 && dnsr_finite(m.x))) m = vec3(0.0);
+    }
+    if (m.z > max_samples - 1.0) dnsr_scale_moments(m, (max_samples - 1.0) / m.z);
+    float m_old = m.x;
+    m.z += 1.0;
+    m.x += (x - m_old) / m.z;
+    m.y += (x - m_old) * (x - m.x);
+    float variance = m.z > 1.0 ? m.y / (m.z - 1.0) : 1.0;
+
+    // History clamped to the local distribution; a history far outside it loses its sample count.
+    float sigma = sqrt(local.y);
+    float history = disoccluded ? local.x : dnsr_read_history(history_uv);
+    if (!dnsr_finite(history)) history = local.x;
+    float clamped = clamp(history, local.x - disocc.w * sigma, local.x + disocc.w * sigma);
+    float d = (history - local.x) / max(disocc.w * sigma, reject.y);
+    dnsr_scale_moments(m, exp(-d * d / reject.x));
+
+    if (m.z < reject.z) variance = max(variance, local.y) * max(reject.z - m.z, 1.0);
+    float history_weight = sqrt(max(temporal.x - m.z, 0.0) / temporal.x);
+    float shadow = mix(clamped, x, mix(temporal.y, 1.0, history_weight));
+
+    dnsr_write_moments(p, m);
+    dnsr_write_reprojection(p, vec2(shadow, variance));
+}
+
+#endif

@@ -1,0 +1,115 @@
+//! The data the host hands every pass: one declaration, in Rust, from which the GLSL side is generated.
+//!
+//! `shaders/generated/dnsr_constants.glsl` is written from these definitions (`DNSR_BLESS=1 cargo test
+//! generated_glsl`) and a test fails when the committed file differs, so the shader and host layouts cannot
+//! drift apart. Every member is a 16-byte vector or a matrix, which makes `#[repr(C)]` and std140 agree without
+//! padding rules to remember.
+
+use std::fmt::Write as _;
+
+/// A Rust type with a GLSL spelling of identical std140 / `repr(C)` layout.
+pub(crate) trait GlslType {
+    const GLSL: &'static str;
+}
+impl GlslType for [f32; 4] {
+    const GLSL: &'static str = "vec4";
+}
+impl GlslType for [u32; 4] {
+    const GLSL: &'static str = "uvec4";
+}
+impl GlslType for [[f32; 4]; 4] {
+    const GLSL: &'static str = "mat4";
+}
+
+/// Declares a `#[repr(C)]` Pod struct and the GLSL struct of the same layout.
+macro_rules! gpu_block {
+    ($(#[$m:meta])* pub(crate) struct $name:ident as $glsl:literal {
+        $( $(#[$fm:meta])* $f:ident : $t:ty ),* $(,)?
+    }) => {
+        $(#[$m])*
+        #[repr(C)]
+        #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+        pub(crate) struct $name { $( $(#[$fm])* pub $f: $t ),* }
+        impl $name {
+            /// The GLSL declaration of this block's struct.
+            pub(crate) fn glsl() -> String {
+                let mut s = format!("struct {} {{\n", $glsl);
+                $( let _ = writeln!(s, "    {} {};", <$t as GlslType>::GLSL, stringify!($f)); )*
+                s.push_str("};\n");
+                s
+            }
+        }
+    };
+}
+
+gpu_block! {
+    /// Per-dispatch constants, written with `vkCmdUpdateBuffer` at the start of each recorded frame.
+    pub(crate) struct FrameConstants as "DnsrFrameConstants" {
+        /// Clip (Vulkan NDC + depth) to view space of the current frame.
+        projection_inverse: [[f32; 4]; 4],
+        /// Current clip space to previous clip space (camera motion only).
+        reprojection: [[f32; 4]; 4],
+        /// Current clip space to world space.
+        view_projection_inverse: [[f32; 4]; 4],
+        /// xyz: eye position in world space; w: depth similarity sigma (linear depth units).
+        eye_depth_sigma: [f32; 4],
+        /// xy: motion vector scale; z: normal unpack multiply; w: normal unpack add.
+        motion_normals: [f32; 4],
+        /// xy: render rectangle offset in pixels; zw: render rectangle extent in pixels.
+        rect: [u32; 4],
+        /// x: DNSR_FLAG_* bits; y: frame index (informational only); zw: unused.
+        flags: [u32; 4],
+        /// xy: 1 / rect extent; zw: unused.
+        inv_extent: [f32; 4],
+        /// x: disocclusion threshold at N.V = 1; y: at grazing; z: (1 - N.V) exponent; w: history clamp width in sigmas.
+        disocclusion: [f32; 4],
+        /// x: history rejection falloff; y: rejection sigma floor; z: variance boost below this many samples; w: unused.
+        rejection: [f32; 4],
+        /// x: samples for full history trust; y: minimum current-frame blend; z: max history samples; w: spatial falloff.
+        temporal: [f32; 4],
+        /// x: cross tap weight; y: normal power; z: output contrast; w: shadow sigma floor.
+        filtering: [f32; 4],
+    }
+}
+
+gpu_block! {
+    /// Push constants of one filter pass.
+    pub(crate) struct FilterPush as "DnsrFilterPush" {
+        /// x: tap step in pixels; y: DNSR_PASS_* bits; zw: unused.
+        pass: [u32; 4],
+    }
+}
+
+/// Frame flag: treat every pixel as disoccluded (camera cut, first frame, resize).
+pub(crate) const FLAG_RESET: u32 = 1 << 0;
+/// Frame flag: depth 0 is far, closest-depth means largest depth.
+pub(crate) const FLAG_DEPTH_INVERTED: u32 = 1 << 1;
+/// Filter pass flag: write mean and variance to the internal intermediate image.
+pub(crate) const PASS_WRITE_INTERNAL: u32 = 1 << 0;
+
+/// Binding names shared by shaders and host. The host finds each binding's number through reflection.
+pub(crate) const GLSL_FLAGS: &[(&str, u32)] = &[
+    ("DNSR_FLAG_RESET", FLAG_RESET),
+    ("DNSR_FLAG_DEPTH_INVERTED", FLAG_DEPTH_INVERTED),
+    ("DNSR_PASS_WRITE_INTERNAL", PASS_WRITE_INTERNAL),
+    ("DNSR_TILE_CLEARED", crate::passes::TILE_CLEARED),
+    ("DNSR_TILE_LIT", crate::passes::TILE_LIT),
+    ("DNSR_MAX_FILTER_STEP", crate::passes::filter::MAX_STEP),
+];
+
+/// The complete text of `shaders/generated/dnsr_constants.glsl`.
+pub(crate) fn generated_glsl() -> String {
+    let mut s = String::from(
+        "// Generated from src/constants.rs by `DNSR_BLESS=1 cargo test generated_glsl`. Do not edit.\n\
+         #ifndef DNSR_CONSTANTS_GLSL\n#define DNSR_CONSTANTS_GLSL\n\n",
+    );
+    s += &FrameConstants::glsl();
+    s.push('\n');
+    s += &FilterPush::glsl();
+    s.push('\n');
+    for (name, value) in GLSL_FLAGS {
+        let _ = writeln!(s, "#define {name} {value}u");
+    }
+    s.push_str("\n#endif\n");
+    s
+}

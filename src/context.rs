@@ -1,0 +1,483 @@
+//! The denoiser context: pipelines, internal state per light, and recording into the host's command buffer.
+
+use crate::constants::{FrameConstants, FLAG_DEPTH_INVERTED, FLAG_RESET};
+use crate::create_info::{ContextCreateInfo, EnabledFeatures, Precision};
+use crate::dispatch::{HitMaskConvention, ShadowsDispatch};
+use crate::error::{vk_check, Error, Result};
+use crate::gpu::barrier;
+use crate::gpu::descriptors::Binder;
+use crate::gpu::image::{allocate, check_internal_format, color_range};
+use crate::gpu::loader::Vk;
+use crate::gpu::shader::{variant, Pipeline};
+use crate::passes::bindings::{image, BindingTable};
+use crate::passes::{filter, prepare, tile_classification, FrameViews};
+use crate::settings::{Settings, MAX_FILTER_PASSES};
+use crate::state::{intermediate_format, LightState, DEPTH_FORMAT, MOMENTS_FORMAT, TILE_FORMAT};
+use crate::timestamps::{PassTimings, Timestamps};
+use crate::validate;
+use ash::vk;
+
+/// Lowest Vulkan version dnsr runs on (SPIR-V 1.3, samplerless texel fetches).
+pub const MIN_API_VERSION: u32 = vk::API_VERSION_1_1;
+
+struct Pipelines {
+    prepare: Pipeline,
+    classification: Pipeline,
+    filter: Pipeline,
+    filter_final: Pipeline,
+}
+
+impl Pipelines {
+    fn all_mut(&mut self) -> [&mut Pipeline; 4] {
+        [&mut self.prepare, &mut self.classification, &mut self.filter, &mut self.filter_final]
+    }
+}
+
+/// A shadow denoiser bound to one host device. Not thread-safe: record from one thread at a time.
+pub struct Context {
+    vk: Vk,
+    size: [u32; 2],
+    precision: Precision,
+    output_format: vk::Format,
+    depth_inverted: bool,
+    features: EnabledFeatures,
+    settings: Settings,
+    pipelines: Option<Pipelines>,
+    binder: Option<Binder>,
+    sampler: vk::Sampler,
+    constants_buffer: vk::Buffer,
+    constants_memory: vk::DeviceMemory,
+    lights: Vec<LightState>,
+    light_count: u32,
+    timestamps: Option<Timestamps>,
+    frames_recorded: u64,
+}
+
+fn check_features(vk: &Vk, info: &ContextCreateInfo) -> Result<()> {
+    let props = unsafe { vk.instance.get_physical_device_properties(vk.physical_device) };
+    if info.api_version < MIN_API_VERSION || info.api_version > props.api_version.max(MIN_API_VERSION) {
+        return Err(Error::UnsupportedApiVersion { declared: info.api_version, required: MIN_API_VERSION, device: props.api_version });
+    }
+    if info.precision == Precision::Fp16 {
+        if !info.features.float16 {
+            return Err(Error::MissingFeature("precision Fp16 needs features.float16 (shaderFloat16 + 16-bit storage) enabled"));
+        }
+        let mut f16 = vk::PhysicalDeviceShaderFloat16Int8Features::default();
+        let mut s16 = vk::PhysicalDevice16BitStorageFeatures::default();
+        let mut f2 = vk::PhysicalDeviceFeatures2::default().push_next(&mut f16).push_next(&mut s16);
+        unsafe { vk.instance.get_physical_device_features2(vk.physical_device, &mut f2) };
+        if f16.shader_float16 == 0 || s16.storage_buffer16_bit_access == 0 {
+            return Err(Error::MissingFeature("the device does not support shaderFloat16 and storageBuffer16BitAccess"));
+        }
+    }
+    if !validate::OUTPUT_FORMATS.contains(&info.output_format)
+        || !vk.format_features(info.output_format).contains(vk::FormatFeatureFlags::STORAGE_IMAGE)
+    {
+        return Err(Error::UnsupportedFormat { role: Some(crate::error::ImageRole::Output), format: info.output_format });
+    }
+    for format in [TILE_FORMAT, DEPTH_FORMAT, MOMENTS_FORMAT, intermediate_format(info.precision)] {
+        check_internal_format(vk, format)?;
+    }
+    Ok(())
+}
+
+impl Context {
+    /// Creates pipelines and internal state for `info.width` x `info.height`. Every unsupported combination
+    /// is reported here rather than at the first dispatch.
+    pub fn new(info: &ContextCreateInfo) -> Result<Context> {
+        let vk = Vk::load(info)?;
+        let props = unsafe { vk.instance.get_physical_device_properties(vk.physical_device) };
+        validate::extent("render size", info.width, info.height, props.limits.max_image_dimension2_d)?;
+        if info.light_count == 0 {
+            return Err(Error::InvalidSetting { name: "light_count", range: ">= 1" });
+        }
+        info.settings.validate()?;
+        check_features(&vk, info)?;
+
+        let push = vk.push_descriptor.clone();
+        let mut ctx = Context {
+            vk,
+            size: [info.width, info.height],
+            precision: info.precision,
+            output_format: info.output_format,
+            depth_inverted: info.depth.inverted,
+            features: info.features,
+            settings: info.settings,
+            pipelines: None,
+            binder: None,
+            sampler: vk::Sampler::null(),
+            constants_buffer: vk::Buffer::null(),
+            constants_memory: vk::DeviceMemory::null(),
+            lights: Vec::new(),
+            light_count: info.light_count,
+            timestamps: None,
+            frames_recorded: 0,
+        };
+        // On any error below, dropping `ctx` releases what was created so far.
+        let push_mode = push.is_some();
+        ctx.binder = Some(Binder::new(&ctx.vk.device, push)?);
+        ctx.pipelines = Some(ctx.create_pipelines(push_mode)?);
+        ctx.create_sampler_and_constants()?;
+        if info.enable_timestamps {
+            ctx.timestamps = Some(Timestamps::new(&ctx.vk, info.queue_family_index)?);
+        }
+        ctx.allocate_lights()?;
+        Ok(ctx)
+    }
+
+    fn create_pipelines(&self, push: bool) -> Result<Pipelines> {
+        let d = &self.vk.device;
+        let names = [
+            prepare::SHADER,
+            tile_classification::shader(self.precision),
+            filter::shader(self.precision, None).expect("non-final variant exists"),
+            filter::shader(self.precision, Some(self.output_format)).expect("output format checked"),
+        ];
+        let mut made: Vec<Pipeline> = Vec::with_capacity(4);
+        for name in names {
+            match Pipeline::new(d, variant(name).spirv, push) {
+                Ok(p) => made.push(p),
+                Err(e) => {
+                    made.iter_mut().for_each(|p| p.destroy(d));
+                    return Err(e);
+                }
+            }
+        }
+        let mut it = made.into_iter();
+        let mut next = || it.next().expect("four pipelines");
+        Ok(Pipelines { prepare: next(), classification: next(), filter: next(), filter_final: next() })
+    }
+
+    fn create_sampler_and_constants(&mut self) -> Result<()> {
+        let d = &self.vk.device;
+        let info = vk::SamplerCreateInfo::default()
+            .mag_filter(vk::Filter::LINEAR)
+            .min_filter(vk::Filter::LINEAR)
+            .mipmap_mode(vk::SamplerMipmapMode::NEAREST)
+            .address_mode_u(vk::SamplerAddressMode::CLAMP_TO_EDGE)
+            .address_mode_v(vk::SamplerAddressMode::CLAMP_TO_EDGE)
+            .address_mode_w(vk::SamplerAddressMode::CLAMP_TO_EDGE)
+            .max_lod(0.0);
+        self.sampler = vk_check("vkCreateSampler", unsafe { d.create_sampler(&info, None) })?;
+        let info = vk::BufferCreateInfo::default()
+            .size(std::mem::size_of::<FrameConstants>() as u64)
+            .usage(vk::BufferUsageFlags::UNIFORM_BUFFER | vk::BufferUsageFlags::TRANSFER_DST);
+        self.constants_buffer = vk_check("vkCreateBuffer", unsafe { d.create_buffer(&info, None) })?;
+        let req = unsafe { d.get_buffer_memory_requirements(self.constants_buffer) };
+        self.constants_memory = allocate(&self.vk, req)?;
+        vk_check("vkBindBufferMemory", unsafe { d.bind_buffer_memory(self.constants_buffer, self.constants_memory, 0) })
+    }
+
+    fn allocate_lights(&mut self) -> Result<()> {
+        let with_tmp = self.settings.filter_passes == MAX_FILTER_PASSES;
+        for _ in 0..self.light_count {
+            let light = LightState::new(&self.vk, self.size, self.precision, with_tmp)?;
+            self.lights.push(light);
+        }
+        Ok(())
+    }
+
+    fn destroy_lights(&mut self) {
+        let d = &self.vk.device;
+        self.lights.iter_mut().for_each(|l| l.destroy(d));
+        self.lights.clear();
+    }
+
+    /// Reallocates internal state for a new render size; histories restart. The GPU must have finished every
+    /// command buffer dnsr recorded before (their resources are freed).
+    pub fn resize(&mut self, width: u32, height: u32) -> Result<()> {
+        let props = unsafe { self.vk.instance.get_physical_device_properties(self.vk.physical_device) };
+        validate::extent("render size", width, height, props.limits.max_image_dimension2_d)?;
+        self.destroy_lights();
+        self.size = [width, height];
+        self.binder.as_mut().expect("created").clear(&self.vk.device)?;
+        self.allocate_lights()
+    }
+
+    /// Current render size.
+    pub fn size(&self) -> [u32; 2] {
+        self.size
+    }
+
+    /// Current settings.
+    pub fn settings(&self) -> Settings {
+        self.settings
+    }
+
+    /// Replaces the settings from the next recorded frame on. Going to four filter passes allocates one more
+    /// intermediate image per light; in that case the GPU must have finished earlier frames.
+    pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
+        settings.validate()?;
+        let needs_tmp = settings.filter_passes == MAX_FILTER_PASSES;
+        for light in &mut self.lights {
+            if needs_tmp && light.tmp.is_none() {
+                let img = crate::gpu::image::InternalImage::new(&self.vk, intermediate_format(self.precision), self.size)?;
+                light.tmp = Some(img);
+                light.initialized = false;
+            }
+        }
+        self.settings = settings;
+        Ok(())
+    }
+
+    /// Discards the history of `light_index` before its next frame (same as `ShadowsDispatch::reset`).
+    pub fn reset_history(&mut self, light_index: u32) -> Result<()> {
+        let count = self.light_count;
+        let light = self.lights.get_mut(light_index as usize).ok_or(Error::InvalidLightIndex { index: light_index, count })?;
+        light.pending_reset = true;
+        Ok(())
+    }
+
+    /// Bytes of device memory dnsr allocated (internal images and the constants buffer).
+    pub fn memory_bytes(&self) -> u64 {
+        let constants = std::mem::size_of::<FrameConstants>() as u64;
+        self.lights.iter().map(LightState::bytes).sum::<u64>() + constants
+    }
+
+    /// Features the context was created with.
+    pub fn features(&self) -> EnabledFeatures {
+        self.features
+    }
+
+    /// GPU timings of the most recent recorded frame that has completed, if timestamps are enabled and one has.
+    pub fn timings(&self) -> Result<Option<PassTimings>> {
+        match &self.timestamps {
+            Some(t) => t.latest(&self.vk.device),
+            None => Ok(None),
+        }
+    }
+
+    fn frame_views(&self, d: &ShadowsDispatch) -> FrameViews {
+        let light = &self.lights[d.light_index as usize];
+        let cur = light.parity;
+        let host = |h: &crate::dispatch::HostImage| image(h.view, h.layout);
+        FrameViews {
+            constants: self.constants_buffer,
+            hit_mask: host(&d.hit_mask),
+            depth: host(&d.depth),
+            velocity: host(&d.velocity),
+            normals: host(&d.normals),
+            output: d.output.view,
+            tile_mask: match d.hit_mask_convention {
+                HitMaskConvention::OccludedBits => image(light.tile_mask.view, vk::ImageLayout::GENERAL),
+                HitMaskConvention::LitBits => host(&d.hit_mask),
+            },
+            tile_meta: light.tile_meta.view,
+            reprojection: light.reprojection.view,
+            history: light.history.view,
+            tmp: light.tmp.as_ref().map_or(vk::ImageView::null(), |t| t.view),
+            previous_depth: light.depth[cur ^ 1].view,
+            depth_copy: light.depth[cur].view,
+            previous_moments: light.moments[cur ^ 1].view,
+            moments: light.moments[cur].view,
+        }
+    }
+
+    /// Records the denoiser for one light into `cmd`, which the host is recording (outside a render pass).
+    ///
+    /// Expectations on the host: the input images are in their declared layouts and their writes are available
+    /// to compute-shader reads (pass `HostSync` to have dnsr emit that barrier); the output is not in use by
+    /// the GPU; command buffers are submitted in the order they were recorded; and the context outlives them.
+    /// On error nothing is recorded and no state changes.
+    pub fn record_shadows(&mut self, cmd: vk::CommandBuffer, d: &ShadowsDispatch) -> Result<()> {
+        if cmd == vk::CommandBuffer::null() {
+            return Err(Error::NullHandle("command_buffer"));
+        }
+        let rect = validate::dispatch(&self.vk, d, self.size, self.output_format, self.light_count)?;
+        let extent = [rect.width, rect.height];
+        let passes = self.settings.filter_passes;
+        let views = self.frame_views(d);
+        let run_prepare = d.hit_mask_convention == HitMaskConvention::OccludedBits;
+        let tables: [BindingTable; 2] = [prepare::bindings(&views), tile_classification::bindings(&views)];
+        let filter_tables: [BindingTable; MAX_FILTER_PASSES as usize] =
+            std::array::from_fn(|p| filter::bindings(&views, p as u32, passes));
+
+        // Phase 1: everything that can fail, before any command is recorded.
+        let pipelines = self.pipelines.as_ref().expect("created");
+        let binder = self.binder.as_mut().expect("created");
+        let dev = &self.vk.device;
+        let filter_pipeline = |p: u32| if filter::is_final(p, passes) { &pipelines.filter_final } else { &pipelines.filter };
+        let prepare_set =
+            if run_prepare { binder.prepare(dev, &pipelines.prepare, &tables[0], self.sampler)? } else { vk::DescriptorSet::null() };
+        let classification_set = binder.prepare(dev, &pipelines.classification, &tables[1], self.sampler)?;
+        let mut filter_sets = [vk::DescriptorSet::null(); MAX_FILTER_PASSES as usize];
+        for p in 0..passes {
+            filter_sets[p as usize] = binder.prepare(dev, filter_pipeline(p), &filter_tables[p as usize], self.sampler)?;
+        }
+
+        // Phase 2: record. Nothing below fails.
+        let light = &mut self.lights[d.light_index as usize];
+        let reset = d.reset || light.pending_reset || !light.initialized;
+        let mut c = FrameConstants {
+            projection_inverse: d.projection_inverse.to_cols_array_2d(),
+            reprojection: d.reprojection_matrix.to_cols_array_2d(),
+            view_projection_inverse: d.view_projection_inverse.to_cols_array_2d(),
+            eye_depth_sigma: [d.eye.x, d.eye.y, d.eye.z, d.depth_similarity_sigma],
+            motion_normals: [d.motion_vector_scale.x, d.motion_vector_scale.y, d.normals_unpack_mul, d.normals_unpack_add],
+            rect: [rect.x, rect.y, rect.width, rect.height],
+            flags: [
+                (if reset { FLAG_RESET } else { 0 }) | (if self.depth_inverted { FLAG_DEPTH_INVERTED } else { 0 }),
+                d.frame_index,
+                0,
+                0,
+            ],
+            inv_extent: [1.0 / rect.width as f32, 1.0 / rect.height as f32, 0.0, 0.0],
+            ..Default::default()
+        };
+        self.settings.write_to(&mut c);
+
+        self.frames_recorded += 1;
+        let first_query = self.timestamps.as_mut().map(|t| t.begin(dev, cmd, self.frames_recorded, passes));
+        let pool = self.timestamps.as_ref().map_or(vk::QueryPool::null(), |t| t.pool);
+        let stamp = |index: u32| {
+            if let Some(first) = first_query {
+                unsafe { dev.cmd_write_timestamp(cmd, vk::PipelineStageFlags::BOTTOM_OF_PIPE, pool, first + index) };
+            }
+        };
+
+        let output_transition = d.output.layout != vk::ImageLayout::GENERAL;
+        let to_general = barrier::layout_transition(
+            d.output.image,
+            vk::ImageAspectFlags::COLOR,
+            d.output.layout,
+            vk::ImageLayout::GENERAL,
+            vk::AccessFlags::empty(),
+            vk::AccessFlags::SHADER_WRITE,
+        );
+        let mut images = [vk::ImageMemoryBarrier::default(); 10];
+        let mut count = 0;
+        if output_transition {
+            images[count] = to_general;
+            count += 1;
+        }
+        if !light.initialized {
+            for img in light.images() {
+                images[count] = barrier::layout_transition(
+                    img.image,
+                    vk::ImageAspectFlags::COLOR,
+                    vk::ImageLayout::UNDEFINED,
+                    vk::ImageLayout::GENERAL,
+                    vk::AccessFlags::empty(),
+                    vk::AccessFlags::TRANSFER_WRITE,
+                );
+                count += 1;
+            }
+        }
+        // Earlier frames (dnsr's compute and the constants update), the host's input writes and its earlier use
+        // of the output, all before anything this frame reads or writes.
+        barrier::memory(
+            dev,
+            cmd,
+            vk::PipelineStageFlags::TOP_OF_PIPE
+                | vk::PipelineStageFlags::COMPUTE_SHADER
+                | vk::PipelineStageFlags::TRANSFER
+                | d.sync.input_src_stages
+                | d.sync.output_dst_stages,
+            vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE | d.sync.input_src_access,
+            vk::PipelineStageFlags::COMPUTE_SHADER | vk::PipelineStageFlags::TRANSFER,
+            vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE,
+            &images[..count],
+        );
+        if !light.initialized {
+            // Defined contents from the first frame on: no NaN garbage can be sampled even by a bad reset path.
+            let zero = vk::ClearColorValue { float32: [0.0; 4] };
+            for img in light.images() {
+                unsafe { dev.cmd_clear_color_image(cmd, img.image, vk::ImageLayout::GENERAL, &zero, &[color_range()]) };
+            }
+        }
+        unsafe { dev.cmd_update_buffer(cmd, self.constants_buffer, 0, bytemuck::bytes_of(&c)) };
+        barrier::memory(
+            dev,
+            cmd,
+            vk::PipelineStageFlags::TRANSFER,
+            vk::AccessFlags::TRANSFER_WRITE,
+            vk::PipelineStageFlags::COMPUTE_SHADER,
+            vk::AccessFlags::UNIFORM_READ | vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE,
+            &[],
+        );
+
+        let dispatch = |p: &Pipeline, table: &BindingTable, set: vk::DescriptorSet, groups: [u32; 3]| unsafe {
+            dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, p.pipeline);
+            binder_ref(&self.binder).bind(dev, cmd, p, table, self.sampler, set);
+            dev.cmd_dispatch(cmd, groups[0], groups[1], groups[2]);
+        };
+
+        stamp(0);
+        if run_prepare {
+            dispatch(&pipelines.prepare, &tables[0], prepare_set, prepare::group_count(extent));
+            barrier::compute_to_compute(dev, cmd);
+        }
+        stamp(1);
+        dispatch(&pipelines.classification, &tables[1], classification_set, tile_classification::group_count(extent));
+        stamp(2);
+        for p in 0..passes {
+            barrier::compute_to_compute(dev, cmd);
+            let pipeline = filter_pipeline(p);
+            let push = filter::push_constants(p, passes);
+            unsafe {
+                dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.pipeline);
+                dev.cmd_push_constants(cmd, pipeline.layout, vk::ShaderStageFlags::COMPUTE, 0, bytemuck::bytes_of(&push));
+            }
+            binder_ref(&self.binder).bind(dev, cmd, pipeline, &filter_tables[p as usize], self.sampler, filter_sets[p as usize]);
+            let groups = filter::group_count(extent);
+            unsafe { dev.cmd_dispatch(cmd, groups[0], groups[1], groups[2]) };
+            stamp(3 + p);
+        }
+
+        if output_transition || !d.sync.output_dst_stages.is_empty() {
+            let back = barrier::layout_transition(
+                d.output.image,
+                vk::ImageAspectFlags::COLOR,
+                vk::ImageLayout::GENERAL,
+                d.output.layout,
+                vk::AccessFlags::SHADER_WRITE,
+                d.sync.output_dst_access,
+            );
+            let dst = if d.sync.output_dst_stages.is_empty() {
+                vk::PipelineStageFlags::COMPUTE_SHADER
+            } else {
+                d.sync.output_dst_stages
+            };
+            let transitions: &[vk::ImageMemoryBarrier] = if output_transition { std::slice::from_ref(&back) } else { &[] };
+            barrier::memory(
+                dev,
+                cmd,
+                vk::PipelineStageFlags::COMPUTE_SHADER,
+                vk::AccessFlags::SHADER_WRITE,
+                dst,
+                d.sync.output_dst_access,
+                transitions,
+            );
+        }
+
+        light.parity ^= 1;
+        light.initialized = true;
+        light.pending_reset = false;
+        Ok(())
+    }
+}
+
+fn binder_ref(b: &Option<Binder>) -> &Binder {
+    b.as_ref().expect("created")
+}
+
+impl Drop for Context {
+    fn drop(&mut self) {
+        self.destroy_lights();
+        let d = &self.vk.device;
+        if let Some(mut p) = self.pipelines.take() {
+            p.all_mut().into_iter().for_each(|p| p.destroy(d));
+        }
+        if let Some(mut b) = self.binder.take() {
+            b.destroy(d);
+        }
+        if let Some(t) = self.timestamps.take() {
+            unsafe { d.destroy_query_pool(t.pool, None) };
+        }
+        unsafe {
+            d.destroy_sampler(self.sampler, None);
+            d.destroy_buffer(self.constants_buffer, None);
+            d.free_memory(self.constants_memory, None);
+        }
+    }
+}

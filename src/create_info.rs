@@ -1,0 +1,108 @@
+//! What the host hands dnsr to create a context.
+
+use crate::settings::Settings;
+use ash::vk;
+
+/// Optional device features the host enabled on its `VkDevice`. dnsr uses only what is declared here and
+/// checks at creation that the physical device supports it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct EnabledFeatures {
+    /// `shaderFloat16` (VK 1.2 / VK_KHR_shader_float16_int8) and `storageBuffer16BitAccess`
+    /// (VK 1.1 / VK_KHR_16bit_storage) are enabled. Required for `Precision::Fp16`.
+    pub float16: bool,
+    /// VK_KHR_push_descriptor is enabled. Without it dnsr keeps a cache of descriptor sets per distinct set of
+    /// host image views.
+    pub push_descriptor: bool,
+    /// `subgroupSizeControl` (VK 1.3 / VK_EXT_subgroup_size_control) is enabled. Accepted and recorded; the
+    /// current shaders are subgroup-size agnostic and do not need it.
+    pub subgroup_size_control: bool,
+}
+
+/// Depth conventions of the host's depth buffer.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct DepthFlags {
+    /// Depth 1 is near and 0 is far (reverse-Z).
+    pub inverted: bool,
+    /// The projection has an infinite far plane. Sky is still depth 1 (or 0 when inverted); this flag documents
+    /// that linear depth may be infinite there, which dnsr handles.
+    pub infinite_far: bool,
+}
+
+/// Arithmetic precision of the filter passes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Precision {
+    /// 32-bit floats everywhere.
+    #[default]
+    Fp32,
+    /// float16 filter arithmetic and 16-bit intermediate images; needs `EnabledFeatures::float16`.
+    Fp16,
+}
+
+/// Everything needed to create a `Context`. Vulkan handles are borrowed: they must outlive the context.
+#[derive(Clone, Copy, Debug)]
+pub struct ContextCreateInfo {
+    /// The host's instance. Required.
+    pub instance: vk::Instance,
+    /// The physical device the host's device was created from. Required.
+    pub physical_device: vk::PhysicalDevice,
+    /// The host's device. Required.
+    pub device: vk::Device,
+    /// The host's `vkGetInstanceProcAddr`; dnsr never links the Vulkan loader. Required.
+    pub get_instance_proc_addr: Option<vk::PFN_vkGetInstanceProcAddr>,
+    /// The host's `vkGetDeviceProcAddr`; every device function dnsr calls is loaded through it. Required.
+    pub get_device_proc_addr: Option<vk::PFN_vkGetDeviceProcAddr>,
+    /// The `apiVersion` the host created its instance/device with (`vk::make_api_version`). At least 1.1.
+    pub api_version: u32,
+    /// Queue family of the command buffers dnsr records into (used to check timestamp support).
+    pub queue_family_index: u32,
+    /// Optional features the host enabled.
+    pub features: EnabledFeatures,
+    /// Render width in pixels, 1..=maxImageDimension2D.
+    pub width: u32,
+    /// Render height in pixels, 1..=maxImageDimension2D.
+    pub height: u32,
+    /// Depth conventions.
+    pub depth: DepthFlags,
+    /// Filter precision.
+    pub precision: Precision,
+    /// Format of the output image: R8_UNORM, R16_SFLOAT or R32_SFLOAT (must support storage on the device).
+    pub output_format: vk::Format,
+    /// Number of independently denoised lights (each gets its own history), at least 1.
+    pub light_count: u32,
+    /// Record GPU timestamps around each pass; read them with `Context::timings`.
+    pub enable_timestamps: bool,
+    /// Initial settings.
+    pub settings: Settings,
+}
+
+impl ContextCreateInfo {
+    /// A create info with defaults for everything but the handles and size.
+    pub fn new(
+        instance: vk::Instance,
+        physical_device: vk::PhysicalDevice,
+        device: vk::Device,
+        get_instance_proc_addr: vk::PFN_vkGetInstanceProcAddr,
+        get_device_proc_addr: vk::PFN_vkGetDeviceProcAddr,
+        width: u32,
+        height: u32,
+    ) -> Self {
+        ContextCreateInfo {
+            instance,
+            physical_device,
+            device,
+            get_instance_proc_addr: Some(get_instance_proc_addr),
+            get_device_proc_addr: Some(get_device_proc_addr),
+            api_version: vk::API_VERSION_1_1,
+            queue_family_index: 0,
+            features: EnabledFeatures::default(),
+            width,
+            height,
+            depth: DepthFlags::default(),
+            precision: Precision::Fp32,
+            output_format: vk::Format::R16_SFLOAT,
+            light_count: 1,
+            enable_timestamps: false,
+            settings: Settings::default(),
+        }
+    }
+}

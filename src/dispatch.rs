@@ -1,0 +1,138 @@
+//! Per-frame input, shaped like the FidelityFX dispatch description so integrations port mechanically.
+
+use ash::vk;
+use glam::{Mat4, Vec2, Vec3};
+
+/// One of the host's images. dnsr never changes its layout permanently: an output declared in another layout
+/// than GENERAL is moved to GENERAL for the filter and back to `layout` before the call returns.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct HostImage {
+    /// The image (needed for layout transitions of the output). Required.
+    pub image: vk::Image,
+    /// A 2D view of mip 0, layer 0 (depth aspect only for depth/stencil formats). Required.
+    pub view: vk::ImageView,
+    /// The view's format.
+    pub format: vk::Format,
+    /// The layout the image is in when the recorded commands execute, and is left in.
+    pub layout: vk::ImageLayout,
+    /// Width of mip 0 in pixels.
+    pub width: u32,
+    /// Height of mip 0 in pixels.
+    pub height: u32,
+}
+
+/// The bit convention of the hit mask.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum HitMaskConvention {
+    /// FidelityFX SDK: bit = 1 means the shadow ray hit an occluder. dnsr's prepare pass inverts it.
+    #[default]
+    OccludedBits,
+    /// bit = 1 means lit: dnsr reads the mask directly and skips its prepare pass.
+    LitBits,
+}
+
+/// A pixel rectangle within the render size.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Rect {
+    /// Left edge in pixels; a multiple of 8 (tile width).
+    pub x: u32,
+    /// Top edge in pixels; a multiple of 4 (tile height).
+    pub y: u32,
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+}
+
+/// Pipeline stages and accesses of the host's work around a dispatch. dnsr turns them into one barrier before
+/// its first pass (host writes of the inputs -> dnsr reads) and one after its last (dnsr's output write -> the
+/// host's next use). Leave both zero when the host emits those barriers itself.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct HostSync {
+    /// Stages that wrote the input images (e.g. FRAGMENT_SHADER | LATE_FRAGMENT_TESTS).
+    pub input_src_stages: vk::PipelineStageFlags,
+    /// Accesses that wrote the input images (e.g. COLOR_ATTACHMENT_WRITE | DEPTH_STENCIL_ATTACHMENT_WRITE).
+    pub input_src_access: vk::AccessFlags,
+    /// Stages that will use the output (e.g. FRAGMENT_SHADER).
+    pub output_dst_stages: vk::PipelineStageFlags,
+    /// Accesses that will use the output (e.g. SHADER_READ).
+    pub output_dst_access: vk::AccessFlags,
+}
+
+/// One frame of input for one light.
+///
+/// Conventions: matrices are column-major and map column vectors (glam). Clip space is Vulkan's: NDC xy in
+/// [-1, 1] with uv (0,0) at the top-left corner mapping to NDC (-1,-1), depth in [0, 1]. A host that flips y
+/// through a negative viewport height folds that flip into the matrices it passes.
+#[derive(Clone, Copy, Debug)]
+pub struct ShadowsDispatch {
+    /// Which light's history to use, below `ContextCreateInfo::light_count`.
+    pub light_index: u32,
+    /// Hit mask: R32_UINT, ceil(W/8) x ceil(H/4), bit (y%4)*8 + (x%8) of tile (x/8, y/4). Sampled read.
+    pub hit_mask: HostImage,
+    /// How the hit mask bits are to be read.
+    pub hit_mask_convention: HitMaskConvention,
+    /// Depth, W x H: D32_SFLOAT, D16_UNORM, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT, D32_SFLOAT_S8_UINT,
+    /// R32_SFLOAT, R16_SFLOAT or R16_UNORM. Receivers have 0 < depth < 1.
+    pub depth: HostImage,
+    /// Motion vectors, W x H, two channels (R16G16_SFLOAT, R32G32_SFLOAT, R16G16_SNORM ...).
+    /// `value * motion_vector_scale` is the uv offset from a pixel to where its surface was last frame:
+    /// prev_uv = uv + value * scale (FidelityFX SDK convention). For "current minus previous" vectors in NDC
+    /// use scale (-0.5, -0.5).
+    pub velocity: HostImage,
+    /// World-space normals, W x H, decoded as `rgb * normals_unpack_mul + normals_unpack_add`.
+    pub normals: HostImage,
+    /// Denoised shadow (1 lit, 0 shadowed), W x H, in `ContextCreateInfo::output_format`. Storage write.
+    pub output: HostImage,
+    /// Multiplier from stored motion vectors to uv offsets.
+    pub motion_vector_scale: Vec2,
+    /// Normal decode multiplier (2.0 for UNORM-packed normals).
+    pub normals_unpack_mul: f32,
+    /// Normal decode offset (-1.0 for UNORM-packed normals).
+    pub normals_unpack_add: f32,
+    /// Camera position in world space (the same space `view_projection_inverse` maps to).
+    pub eye: Vec3,
+    /// Frame counter; informational only: nothing in dnsr depends on its value or parity.
+    pub frame_index: u32,
+    /// Current clip space -> view space.
+    pub projection_inverse: Mat4,
+    /// Current clip space -> previous frame's clip space.
+    pub reprojection_matrix: Mat4,
+    /// Current clip space -> world space.
+    pub view_projection_inverse: Mat4,
+    /// Depth edge-stop scale: weight exp(-|z_center - z_tap| / sigma) on linear depth. FFX default 1.0.
+    pub depth_similarity_sigma: f32,
+    /// Camera cut: discard this light's history before this frame.
+    pub reset: bool,
+    /// Region to denoise; `None` = the whole render size. Pixels outside it are not written, and are treated
+    /// as absent by every neighbourhood operation.
+    pub render_rect: Option<Rect>,
+    /// Barriers dnsr should emit on the host's behalf.
+    pub sync: HostSync,
+}
+
+impl Default for ShadowsDispatch {
+    fn default() -> Self {
+        ShadowsDispatch {
+            light_index: 0,
+            hit_mask: HostImage::default(),
+            hit_mask_convention: HitMaskConvention::OccludedBits,
+            depth: HostImage::default(),
+            velocity: HostImage::default(),
+            normals: HostImage::default(),
+            output: HostImage::default(),
+            motion_vector_scale: Vec2::ONE,
+            normals_unpack_mul: 1.0,
+            normals_unpack_add: 0.0,
+            eye: Vec3::ZERO,
+            frame_index: 0,
+            projection_inverse: Mat4::IDENTITY,
+            reprojection_matrix: Mat4::IDENTITY,
+            view_projection_inverse: Mat4::IDENTITY,
+            depth_similarity_sigma: 1.0,
+            reset: false,
+            render_rect: None,
+            sync: HostSync::default(),
+        }
+    }
+}

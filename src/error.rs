@@ -1,0 +1,170 @@
+//! Every way a call can fail, each with enough detail to fix the call.
+
+use ash::vk;
+use std::fmt;
+
+/// Which host-provided image a message is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ImageRole {
+    /// The per-tile hit mask (R32_UINT, one bit per pixel of an 8x4 tile).
+    HitMask,
+    /// Scene depth.
+    Depth,
+    /// Screen-space motion vectors.
+    Velocity,
+    /// World-space normals.
+    Normals,
+    /// The denoised shadow written by dnsr.
+    Output,
+}
+
+/// Failure of a dnsr call. When a recording call fails, nothing was recorded into the command buffer and no
+/// internal state changed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Error {
+    /// A required Vulkan handle or function pointer is null.
+    NullHandle(&'static str),
+    /// The Vulkan API version the host created its device with is too old, or newer than the device supports.
+    UnsupportedApiVersion {
+        /// The version the host declared.
+        declared: u32,
+        /// The lowest version dnsr needs.
+        required: u32,
+        /// What the physical device reports.
+        device: u32,
+    },
+    /// A feature was requested that the host did not declare enabled, or that the device does not support.
+    MissingFeature(&'static str),
+    /// A width or height of zero.
+    ZeroExtent {
+        /// The offending field.
+        what: &'static str,
+    },
+    /// An extent larger than the device can create images for.
+    ExtentTooLarge {
+        /// The offending field.
+        what: &'static str,
+        /// The requested width and height.
+        extent: [u32; 2],
+        /// The device limit (maxImageDimension2D).
+        limit: u32,
+    },
+    /// A host image's extent does not match what dnsr expects for the render size.
+    ImageExtentMismatch {
+        /// The image.
+        role: ImageRole,
+        /// The extent the dispatch declared for it.
+        actual: [u32; 2],
+        /// The extent required.
+        expected: [u32; 2],
+    },
+    /// A format the shaders cannot read (or write) for this image, or one the device cannot use that way.
+    UnsupportedFormat {
+        /// The image (None: an internal image format the device lacks).
+        role: Option<ImageRole>,
+        /// The format.
+        format: vk::Format,
+    },
+    /// A host image layout dnsr cannot use for this image.
+    UnsupportedLayout {
+        /// The image.
+        role: ImageRole,
+        /// The layout declared.
+        layout: vk::ImageLayout,
+    },
+    /// A matrix or vector input contains NaN or infinity.
+    NonFinite(&'static str),
+    /// The render rectangle is empty, misaligned or reaches outside the images.
+    InvalidRenderRect {
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// A setting is outside its valid range.
+    InvalidSetting {
+        /// The setting's name.
+        name: &'static str,
+        /// The valid range, in words.
+        range: &'static str,
+    },
+    /// A light index at or beyond the context's light count.
+    InvalidLightIndex {
+        /// The index given.
+        index: u32,
+        /// The number of lights the context was created for.
+        count: u32,
+    },
+    /// The descriptor-set cache used without push descriptors is full: the host cycles through more distinct
+    /// image views than dnsr keeps sets for. Enable VK_KHR_push_descriptor, or call `resize` (which empties the
+    /// cache) once the GPU no longer uses earlier frames.
+    DescriptorCacheFull,
+    /// Timestamps were requested but the queue family cannot write them.
+    TimestampsUnsupported,
+    /// Reflection of embedded or host-supplied SPIR-V failed or does not match the binding interface.
+    ShaderInterface(String),
+    /// A Vulkan call failed.
+    Vulkan {
+        /// The call.
+        call: &'static str,
+        /// Its result.
+        result: vk::Result,
+    },
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::NullHandle(what) => write!(f, "{what} is null"),
+            Error::UnsupportedApiVersion { declared, required, device } => write!(
+                f,
+                "api_version {}.{} is not usable: dnsr needs at least {}.{} and the device supports {}.{}",
+                vk::api_version_major(*declared),
+                vk::api_version_minor(*declared),
+                vk::api_version_major(*required),
+                vk::api_version_minor(*required),
+                vk::api_version_major(*device),
+                vk::api_version_minor(*device)
+            ),
+            Error::MissingFeature(what) => write!(f, "missing feature: {what}"),
+            Error::ZeroExtent { what } => write!(f, "{what} has a zero width or height"),
+            Error::ExtentTooLarge { what, extent, limit } => {
+                write!(f, "{what} {}x{} exceeds the device limit of {limit} pixels per side", extent[0], extent[1])
+            }
+            Error::ImageExtentMismatch { role, actual, expected } => write!(
+                f,
+                "{role:?} image is {}x{} but must be {}x{} for this render size",
+                actual[0], actual[1], expected[0], expected[1]
+            ),
+            Error::UnsupportedFormat { role: Some(role), format } => {
+                write!(f, "{role:?} image format {format:?} is not supported for this use")
+            }
+            Error::UnsupportedFormat { role: None, format } => {
+                write!(f, "the device cannot use internal format {format:?} as a sampled and storage image")
+            }
+            Error::UnsupportedLayout { role, layout } => write!(f, "{role:?} image layout {layout:?} is not usable here"),
+            Error::NonFinite(what) => write!(f, "{what} contains NaN or infinity"),
+            Error::InvalidRenderRect { reason } => write!(f, "render rect: {reason}"),
+            Error::InvalidSetting { name, range } => write!(f, "setting {name} out of range: {range}"),
+            Error::InvalidLightIndex { index, count } => {
+                write!(f, "light index {index} is out of range: the context has {count} light(s)")
+            }
+            Error::DescriptorCacheFull => write!(
+                f,
+                "descriptor set cache is full (too many distinct host image views without push descriptors); \
+                 enable VK_KHR_push_descriptor or call resize() once earlier frames completed"
+            ),
+            Error::TimestampsUnsupported => write!(f, "the queue family has no timestamp support"),
+            Error::ShaderInterface(msg) => write!(f, "shader interface: {msg}"),
+            Error::Vulkan { call, result } => write!(f, "{call} failed: {result:?}"),
+        }
+    }
+}
+
+impl std::error::Error for Error {}
+
+/// Result of a dnsr call.
+pub type Result<T> = std::result::Result<T, Error>;
+
+/// Wraps a `vk::Result` error with the name of the call that produced it.
+pub(crate) fn vk_check<T>(call: &'static str, r: std::result::Result<T, vk::Result>) -> Result<T> {
+    r.map_err(|result| Error::Vulkan { call, result })
+}

@@ -1,0 +1,59 @@
+//! Loads every Vulkan function dnsr uses through the host's `vkGetInstanceProcAddr` / `vkGetDeviceProcAddr`.
+
+use crate::create_info::ContextCreateInfo;
+use crate::error::{Error, Result};
+use ash::vk;
+use std::ffi::c_void;
+
+/// The host's Vulkan objects with dnsr's function tables.
+pub(crate) struct Vk {
+    pub instance: ash::Instance,
+    pub device: ash::Device,
+    pub physical_device: vk::PhysicalDevice,
+    /// `vkCmdPushDescriptorSetKHR`, when the host enabled VK_KHR_push_descriptor.
+    pub push_descriptor: Option<ash::khr::push_descriptor::DeviceFn>,
+}
+
+impl Vk {
+    pub(crate) fn load(info: &ContextCreateInfo) -> Result<Vk> {
+        if info.instance == vk::Instance::null() {
+            return Err(Error::NullHandle("instance"));
+        }
+        if info.physical_device == vk::PhysicalDevice::null() {
+            return Err(Error::NullHandle("physical_device"));
+        }
+        if info.device == vk::Device::null() {
+            return Err(Error::NullHandle("device"));
+        }
+        let gipa = info.get_instance_proc_addr.ok_or(Error::NullHandle("get_instance_proc_addr"))?;
+        let gdpa = info.get_device_proc_addr.ok_or(Error::NullHandle("get_device_proc_addr"))?;
+        let (vk_instance, vk_device) = (info.instance, info.device);
+        // SAFETY: the host guarantees the handles are valid and the entry points belong to them.
+        let instance = unsafe {
+            ash::Instance::load_with(
+                |name| std::mem::transmute::<vk::PFN_vkVoidFunction, *const c_void>(gipa(vk_instance, name.as_ptr())),
+                vk_instance,
+            )
+        };
+        let load_device = |name: &std::ffi::CStr| unsafe {
+            std::mem::transmute::<vk::PFN_vkVoidFunction, *const c_void>(gdpa(vk_device, name.as_ptr()))
+        };
+        let device = unsafe { ash::Device::load_with(load_device, vk_device) };
+        let push_descriptor = if info.features.push_descriptor {
+            if load_device(c"vkCmdPushDescriptorSetKHR").is_null() {
+                return Err(Error::MissingFeature(
+                    "features.push_descriptor is set but vkCmdPushDescriptorSetKHR is not available on the device",
+                ));
+            }
+            Some(ash::khr::push_descriptor::DeviceFn::load(|name| load_device(name)))
+        } else {
+            None
+        };
+        Ok(Vk { instance, device, physical_device: info.physical_device, push_descriptor })
+    }
+
+    pub(crate) fn format_features(&self, format: vk::Format) -> vk::FormatFeatureFlags {
+        unsafe { self.instance.get_physical_device_format_properties(self.physical_device, format) }
+            .optimal_tiling_features
+    }
+}

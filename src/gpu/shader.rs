@@ -1,0 +1,194 @@
+//! Embedded SPIR-V, the catalog of compiled variants, and pipelines whose layouts come from reflection.
+
+use crate::error::{vk_check, Error, Result};
+use crate::passes::bindings::Resource;
+use ash::vk;
+
+/// One compiled variant of a pass entry file.
+pub(crate) struct ShaderVariant {
+    /// File stem under shaders/spv/.
+    pub name: &'static str,
+    /// Entry file under shaders/.
+    pub source: &'static str,
+    /// Preprocessor definitions passed to glslc.
+    pub defines: &'static [&'static str],
+    pub spirv: &'static [u8],
+}
+
+macro_rules! variant {
+    ($name:literal, $source:literal, [$($d:literal),*]) => {
+        ShaderVariant {
+            name: $name,
+            source: $source,
+            defines: &[$($d),*],
+            spirv: include_bytes!(concat!("../../shaders/spv/", $name, ".spv")),
+        }
+    };
+}
+
+/// Every SPIR-V module dnsr embeds. `cargo test spirv_is_current` recompiles each with glslc and compares.
+pub(crate) const VARIANTS: &[ShaderVariant] = &[
+    variant!("prepare", "prepare.comp", []),
+    variant!("tile_classification", "tile_classification.comp", []),
+    variant!("tile_classification_fp16", "tile_classification.comp", ["DNSR_FP16"]),
+    variant!("filter", "filter.comp", []),
+    variant!("filter_fp16", "filter.comp", ["DNSR_FP16"]),
+    variant!("filter_final_r8", "filter.comp", ["DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r8"]),
+    variant!("filter_final_r16f", "filter.comp", ["DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r16f"]),
+    variant!("filter_final_r32f", "filter.comp", ["DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r32f"]),
+    variant!("filter_final_r8_fp16", "filter.comp", ["DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r8", "DNSR_FP16"]),
+    variant!("filter_final_r16f_fp16", "filter.comp", ["DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r16f", "DNSR_FP16"]),
+    variant!("filter_final_r32f_fp16", "filter.comp", ["DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r32f", "DNSR_FP16"]),
+];
+
+pub(crate) fn variant(name: &str) -> &'static ShaderVariant {
+    VARIANTS.iter().find(|v| v.name == name).expect("shader variant names are compile-time constants")
+}
+
+/// One binding of a pass as reflected from its SPIR-V.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct ReflectedBinding {
+    pub binding: u32,
+    pub resource: Resource,
+    pub descriptor_type: vk::DescriptorType,
+}
+
+/// The binding interface of a SPIR-V module: its descriptor bindings (set 0) and push-constant size.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct Interface {
+    pub bindings: Vec<ReflectedBinding>,
+    pub push_constant_bytes: u32,
+    pub uniform_bytes: Option<u32>,
+}
+
+fn reflected_type(t: spirv_reflect::types::ReflectDescriptorType) -> Option<vk::DescriptorType> {
+    use spirv_reflect::types::ReflectDescriptorType as R;
+    Some(match t {
+        R::SampledImage => vk::DescriptorType::SAMPLED_IMAGE,
+        R::StorageImage => vk::DescriptorType::STORAGE_IMAGE,
+        R::CombinedImageSampler => vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
+        R::UniformBuffer => vk::DescriptorType::UNIFORM_BUFFER,
+        _ => return None,
+    })
+}
+
+/// Reflects a module and checks every binding against the interface dnsr knows.
+pub(crate) fn reflect(spirv: &[u8]) -> Result<Interface> {
+    let module = spirv_reflect::ShaderModule::load_u8_data(spirv).map_err(|e| Error::ShaderInterface(e.to_string()))?;
+    let mut bindings = Vec::new();
+    let mut uniform_bytes = None;
+    for b in module.enumerate_descriptor_bindings(None).map_err(|e| Error::ShaderInterface(e.to_string()))? {
+        let type_name = b.type_description.as_ref().map(|t| t.type_name.as_str()).unwrap_or("");
+        let found = Resource::from_glsl_name(&b.name).or_else(|| Resource::from_glsl_name(type_name));
+        let (resource, expected) =
+            found.ok_or_else(|| Error::ShaderInterface(format!("unknown binding '{}' ({type_name})", b.name)))?;
+        let declared = reflected_type(b.descriptor_type)
+            .ok_or_else(|| Error::ShaderInterface(format!("binding '{}' has unsupported type {:?}", b.name, b.descriptor_type)))?;
+        if declared != expected || b.set != 0 || b.count != 1 {
+            return Err(Error::ShaderInterface(format!(
+                "binding '{}' is set {} binding {} of type {declared:?} x{}; dnsr expects set 0, one {expected:?}",
+                b.name, b.set, b.binding, b.count
+            )));
+        }
+        if resource == Resource::Constants {
+            uniform_bytes = Some(b.block.size);
+        }
+        bindings.push(ReflectedBinding { binding: b.binding, resource, descriptor_type: declared });
+    }
+    bindings.sort_by_key(|b| b.binding);
+    let push_constant_bytes = module
+        .enumerate_push_constant_blocks(None)
+        .map_err(|e| Error::ShaderInterface(e.to_string()))?
+        .iter()
+        .map(|p| p.size)
+        .max()
+        .unwrap_or(0);
+    Ok(Interface { bindings, push_constant_bytes, uniform_bytes })
+}
+
+/// A compute pipeline with its reflected interface.
+pub(crate) struct Pipeline {
+    pub pipeline: vk::Pipeline,
+    pub layout: vk::PipelineLayout,
+    pub set_layout: vk::DescriptorSetLayout,
+    pub interface: Interface,
+}
+
+impl Pipeline {
+    pub(crate) fn new(device: &ash::Device, spirv: &[u8], push_descriptors: bool) -> Result<Pipeline> {
+        let interface = reflect(spirv)?;
+        if let Some(bytes) = interface.uniform_bytes {
+            let expected = std::mem::size_of::<crate::constants::FrameConstants>() as u32;
+            if bytes != expected {
+                return Err(Error::ShaderInterface(format!("constants block is {bytes} bytes, host writes {expected}")));
+            }
+        }
+        let mut p = Pipeline {
+            pipeline: vk::Pipeline::null(),
+            layout: vk::PipelineLayout::null(),
+            set_layout: vk::DescriptorSetLayout::null(),
+            interface,
+        };
+        let result = p.create(device, spirv, push_descriptors);
+        match result {
+            Ok(()) => Ok(p),
+            Err(e) => {
+                p.destroy(device);
+                Err(e)
+            }
+        }
+    }
+
+    fn create(&mut self, device: &ash::Device, spirv: &[u8], push_descriptors: bool) -> Result<()> {
+        let layout_bindings: Vec<_> = self
+            .interface
+            .bindings
+            .iter()
+            .map(|b| {
+                vk::DescriptorSetLayoutBinding::default()
+                    .binding(b.binding)
+                    .descriptor_type(b.descriptor_type)
+                    .descriptor_count(1)
+                    .stage_flags(vk::ShaderStageFlags::COMPUTE)
+            })
+            .collect();
+        let flags = if push_descriptors {
+            vk::DescriptorSetLayoutCreateFlags::PUSH_DESCRIPTOR_KHR
+        } else {
+            vk::DescriptorSetLayoutCreateFlags::empty()
+        };
+        let set_info = vk::DescriptorSetLayoutCreateInfo::default().flags(flags).bindings(&layout_bindings);
+        self.set_layout = vk_check("vkCreateDescriptorSetLayout", unsafe { device.create_descriptor_set_layout(&set_info, None) })?;
+        let range = vk::PushConstantRange::default()
+            .stage_flags(vk::ShaderStageFlags::COMPUTE)
+            .size(self.interface.push_constant_bytes);
+        let ranges = if self.interface.push_constant_bytes > 0 { std::slice::from_ref(&range) } else { &[] };
+        let layout_info =
+            vk::PipelineLayoutCreateInfo::default().set_layouts(std::slice::from_ref(&self.set_layout)).push_constant_ranges(ranges);
+        self.layout = vk_check("vkCreatePipelineLayout", unsafe { device.create_pipeline_layout(&layout_info, None) })?;
+
+        let words: Vec<u32> = spirv.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+        let module_info = vk::ShaderModuleCreateInfo::default().code(&words);
+        let module = vk_check("vkCreateShaderModule", unsafe { device.create_shader_module(&module_info, None) })?;
+        let stage = vk::PipelineShaderStageCreateInfo::default()
+            .stage(vk::ShaderStageFlags::COMPUTE)
+            .module(module)
+            .name(c"main");
+        let info = vk::ComputePipelineCreateInfo::default().stage(stage).layout(self.layout);
+        let created = unsafe { device.create_compute_pipelines(vk::PipelineCache::null(), std::slice::from_ref(&info), None) };
+        unsafe { device.destroy_shader_module(module, None) };
+        self.pipeline = vk_check("vkCreateComputePipelines", created.map_err(|(_, e)| e))?[0];
+        Ok(())
+    }
+
+    pub(crate) fn destroy(&mut self, device: &ash::Device) {
+        unsafe {
+            device.destroy_pipeline(self.pipeline, None);
+            device.destroy_pipeline_layout(self.layout, None);
+            device.destroy_descriptor_set_layout(self.set_layout, None);
+        }
+        self.pipeline = vk::Pipeline::null();
+        self.layout = vk::PipelineLayout::null();
+        self.set_layout = vk::DescriptorSetLayout::null();
+    }
+}

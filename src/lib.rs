@@ -1,0 +1,31 @@
+//! dnsr: a ray-traced soft-shadow denoiser for Vulkan engines.
+//!
+//! The engine traces one jittered shadow ray per pixel, packs hits into 8x4-tile bitmasks, and calls
+//! [`Context::record_shadows`] to record dnsr's compute passes (prepare, tile classification, a-trous filter)
+//! into its own `VkCommandBuffer`. dnsr never submits, waits, or owns a queue, and never links the Vulkan
+//! loader: every function is loaded through the host's `vkGetInstanceProcAddr` / `vkGetDeviceProcAddr`.
+#![deny(missing_docs)]
+
+mod constants;
+mod context;
+mod create_info;
+mod dispatch;
+mod error;
+mod gpu;
+mod passes;
+mod settings;
+mod state;
+mod timestamps;
+mod validate;
+
+pub use ash;
+pub use context::{Context, MIN_API_VERSION};
+pub use create_info::{ContextCreateInfo, DepthFlags, EnabledFeatures, Precision};
+pub use dispatch::{HitMaskConvention, HostImage, HostSync, Rect, ShadowsDispatch};
+pub use error::{Error, ImageRole, Result};
+pub use glam;
+pub use settings::{Settings, MAX_FILTER_PASSES};
+pub use timestamps::PassTimings;
+
+#[cfg(test)]
+mod tests;

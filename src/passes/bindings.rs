@@ -1,0 +1,72 @@
+//! The binding interface between pass shaders and the host: every resource a pass may bind, by its GLSL name.
+//! Binding numbers are not repeated here; they are read from the SPIR-V by reflection.
+
+use ash::vk;
+
+/// A resource a pass shader can declare.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Resource {
+    Constants,
+    HitMask,
+    TileMaskOut,
+    TileMask,
+    Depth,
+    Velocity,
+    Normals,
+    PreviousDepth,
+    DepthCopy,
+    PreviousMoments,
+    Moments,
+    History,
+    Reprojection,
+    TileMetaOut,
+    TileMeta,
+    FilterInput,
+    FilterOutput,
+    Output,
+}
+
+pub(crate) const RESOURCE_COUNT: usize = Resource::Output as usize + 1;
+
+/// (GLSL name, resource, descriptor type the shader must declare it as).
+const TABLE: [(&str, Resource, vk::DescriptorType); RESOURCE_COUNT] = [
+    ("DnsrConstantsBlock", Resource::Constants, vk::DescriptorType::UNIFORM_BUFFER),
+    ("dnsr_hit_mask", Resource::HitMask, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_tile_mask_out", Resource::TileMaskOut, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_tile_mask", Resource::TileMask, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_depth", Resource::Depth, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_velocity", Resource::Velocity, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_normals", Resource::Normals, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_previous_depth", Resource::PreviousDepth, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_depth_copy", Resource::DepthCopy, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_previous_moments", Resource::PreviousMoments, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_moments", Resource::Moments, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_history", Resource::History, vk::DescriptorType::COMBINED_IMAGE_SAMPLER),
+    ("dnsr_reprojection", Resource::Reprojection, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_tile_meta_out", Resource::TileMetaOut, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_tile_meta", Resource::TileMeta, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_filter_input", Resource::FilterInput, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_filter_output", Resource::FilterOutput, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_output", Resource::Output, vk::DescriptorType::STORAGE_IMAGE),
+];
+
+impl Resource {
+    pub(crate) fn from_glsl_name(name: &str) -> Option<(Resource, vk::DescriptorType)> {
+        TABLE.iter().find(|(n, _, _)| *n == name).map(|&(_, r, t)| (r, t))
+    }
+}
+
+/// What one resource is bound to for one dispatch.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Binding {
+    pub view: vk::ImageView,
+    pub layout: vk::ImageLayout,
+    pub buffer: vk::Buffer,
+}
+
+/// Every resource's binding for one pass of one frame; unset entries stay null.
+pub(crate) type BindingTable = [Binding; RESOURCE_COUNT];
+
+pub(crate) fn image(view: vk::ImageView, layout: vk::ImageLayout) -> Binding {
+    Binding { view, layout, buffer: vk::Buffer::null() }
+}

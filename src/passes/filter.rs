@@ -1,0 +1,64 @@
+//! filter: edge-avoiding a-trous passes with steps 1, 2, 4, 8. Shader: shaders/filter.comp (core in
+//! shaders/filter.glsl). Pass 0 writes the history of the next frame; the final pass writes the host output.
+//!
+//! Intermediates: pass 0 reprojection -> history, pass 1 history -> reprojection, pass 2 reprojection -> tmp,
+//! pass 3 tmp -> (output only). The reprojection image is free once pass 0 consumed it, so three passes need no
+//! extra image.
+
+use super::bindings::{BindingTable, Resource};
+use super::{groups, internal, FrameViews};
+use crate::constants::{FilterPush, PASS_WRITE_INTERNAL};
+use crate::create_info::Precision;
+use ash::vk;
+
+/// Tap step of the widest pass; sizes the shader's shared-memory apron.
+pub(crate) const MAX_STEP: u32 = 8;
+
+pub(crate) fn shader(precision: Precision, final_output: Option<vk::Format>) -> Option<&'static str> {
+    let fp16 = precision == Precision::Fp16;
+    Some(match (final_output, fp16) {
+        (None, false) => "filter",
+        (None, true) => "filter_fp16",
+        (Some(vk::Format::R8_UNORM), false) => "filter_final_r8",
+        (Some(vk::Format::R16_SFLOAT), false) => "filter_final_r16f",
+        (Some(vk::Format::R32_SFLOAT), false) => "filter_final_r32f",
+        (Some(vk::Format::R8_UNORM), true) => "filter_final_r8_fp16",
+        (Some(vk::Format::R16_SFLOAT), true) => "filter_final_r16f_fp16",
+        (Some(vk::Format::R32_SFLOAT), true) => "filter_final_r32f_fp16",
+        _ => return None,
+    })
+}
+
+fn input(v: &FrameViews, pass: u32) -> vk::ImageView {
+    [v.reprojection, v.history, v.reprojection, v.tmp][pass as usize]
+}
+
+fn output(v: &FrameViews, pass: u32) -> vk::ImageView {
+    let natural = [v.history, v.reprojection, v.tmp, v.reprojection][pass as usize];
+    // A final third pass writes no intermediate; bind something that is not its input.
+    if natural == vk::ImageView::null() { v.history } else { natural }
+}
+
+pub(crate) fn is_final(pass: u32, passes: u32) -> bool {
+    pass + 1 == passes
+}
+
+pub(crate) fn bindings(v: &FrameViews, pass: u32, passes: u32) -> BindingTable {
+    let mut t = v.base_table();
+    t[Resource::TileMeta as usize] = internal(v.tile_meta);
+    t[Resource::FilterInput as usize] = internal(input(v, pass));
+    t[Resource::FilterOutput as usize] = internal(output(v, pass));
+    if is_final(pass, passes) {
+        t[Resource::Output as usize] = internal(v.output);
+    }
+    t
+}
+
+pub(crate) fn push_constants(pass: u32, passes: u32) -> FilterPush {
+    let write_internal = pass == 0 || !is_final(pass, passes);
+    FilterPush { pass: [1 << pass, if write_internal { PASS_WRITE_INTERNAL } else { 0 }, pass, 0] }
+}
+
+pub(crate) fn group_count(extent: [u32; 2]) -> [u32; 3] {
+    groups(extent, [8, 8])
+}

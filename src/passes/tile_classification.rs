@@ -1,0 +1,32 @@
+//! tile classification: uniform-tile skip, reprojection, disocclusion, temporal moments and the history blend.
+//! Shader: shaders/tile_classification.comp (core in shaders/tile_classification.glsl).
+
+use super::bindings::{BindingTable, Resource};
+use super::{groups, internal, FrameViews};
+use crate::create_info::Precision;
+
+pub(crate) fn shader(precision: Precision) -> &'static str {
+    match precision {
+        Precision::Fp32 => "tile_classification",
+        Precision::Fp16 => "tile_classification_fp16",
+    }
+}
+
+pub(crate) fn bindings(v: &FrameViews) -> BindingTable {
+    let mut t = v.base_table();
+    t[Resource::TileMask as usize] = v.tile_mask;
+    t[Resource::Velocity as usize] = v.velocity;
+    t[Resource::PreviousDepth as usize] = internal(v.previous_depth);
+    t[Resource::DepthCopy as usize] = internal(v.depth_copy);
+    t[Resource::PreviousMoments as usize] = internal(v.previous_moments);
+    t[Resource::Moments as usize] = internal(v.moments);
+    t[Resource::History as usize] = internal(v.history);
+    t[Resource::Reprojection as usize] = internal(v.reprojection);
+    t[Resource::TileMetaOut as usize] = internal(v.tile_meta);
+    t
+}
+
+/// 8x8 pixels per group (two tiles), over the render rectangle: ceil(H/8) rows, not FFX's ceil(H/4).
+pub(crate) fn group_count(extent: [u32; 2]) -> [u32; 3] {
+    groups(extent, [8, 8])
+}

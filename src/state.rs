@@ -1,0 +1,99 @@
+//! Internal state of one light: everything that carries over from frame to frame.
+
+use crate::create_info::Precision;
+use crate::error::Result;
+use crate::gpu::image::InternalImage;
+use crate::gpu::loader::Vk;
+use ash::vk;
+
+pub(crate) const TILE_FORMAT: vk::Format = vk::Format::R32_UINT;
+pub(crate) const DEPTH_FORMAT: vk::Format = vk::Format::R32_SFLOAT;
+pub(crate) const MOMENTS_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
+
+pub(crate) fn intermediate_format(precision: Precision) -> vk::Format {
+    match precision {
+        Precision::Fp32 => vk::Format::R32G32_SFLOAT,
+        Precision::Fp16 => vk::Format::R16G16_SFLOAT,
+    }
+}
+
+pub(crate) struct LightState {
+    pub tile_mask: InternalImage,
+    pub tile_meta: InternalImage,
+    pub reprojection: InternalImage,
+    pub history: InternalImage,
+    pub tmp: Option<InternalImage>,
+    /// Ping-pong pairs indexed by `parity` (current) and `parity ^ 1` (previous frame).
+    pub depth: [InternalImage; 2],
+    pub moments: [InternalImage; 2],
+    /// Flips once per recorded frame of this light: advances with recording, not with frameIndex.
+    pub parity: usize,
+    /// False until the first frame's commands (layout transitions + clears) have been recorded.
+    pub initialized: bool,
+    /// The next frame discards history (reset_history or a new allocation).
+    pub pending_reset: bool,
+}
+
+impl LightState {
+    pub(crate) fn new(vk: &Vk, extent: [u32; 2], precision: Precision, with_tmp: bool) -> Result<LightState> {
+        let tiles = [extent[0].div_ceil(8), extent[1].div_ceil(4)];
+        let mut made: Vec<InternalImage> = Vec::new();
+        let specs = [
+            (TILE_FORMAT, tiles),
+            (TILE_FORMAT, tiles),
+            (intermediate_format(precision), extent),
+            (intermediate_format(precision), extent),
+            (DEPTH_FORMAT, extent),
+            (DEPTH_FORMAT, extent),
+            (MOMENTS_FORMAT, extent),
+            (MOMENTS_FORMAT, extent),
+        ];
+        for (format, size) in specs.into_iter().chain(with_tmp.then_some((intermediate_format(precision), extent))) {
+            match InternalImage::new(vk, format, size) {
+                Ok(img) => made.push(img),
+                Err(e) => {
+                    made.iter_mut().for_each(|i| i.destroy(&vk.device));
+                    return Err(e);
+                }
+            }
+        }
+        let tmp = if with_tmp { made.pop() } else { None };
+        let mut it = made.into_iter();
+        let mut next = || it.next().expect("one image per spec");
+        Ok(LightState {
+            tile_mask: next(),
+            tile_meta: next(),
+            reprojection: next(),
+            history: next(),
+            depth: [next(), next()],
+            moments: [next(), next()],
+            tmp,
+            parity: 0,
+            initialized: false,
+            pending_reset: true,
+        })
+    }
+
+    pub(crate) fn images(&self) -> impl Iterator<Item = &InternalImage> {
+        [&self.tile_mask, &self.tile_meta, &self.reprojection, &self.history]
+            .into_iter()
+            .chain(self.depth.iter())
+            .chain(self.moments.iter())
+            .chain(self.tmp.iter())
+    }
+
+    pub(crate) fn bytes(&self) -> u64 {
+        self.images().map(|i| i.bytes).sum()
+    }
+
+    pub(crate) fn destroy(&mut self, d: &ash::Device) {
+        for img in [&mut self.tile_mask, &mut self.tile_meta, &mut self.reprojection, &mut self.history]
+            .into_iter()
+            .chain(self.depth.iter_mut())
+            .chain(self.moments.iter_mut())
+            .chain(self.tmp.iter_mut())
+        {
+            img.destroy(d);
+        }
+    }
+}

@@ -8,6 +8,7 @@
 use std::fmt::Write as _;
 
 /// A Rust type with a GLSL spelling of identical std140 / `repr(C)` layout.
+#[cfg_attr(not(test), allow(dead_code))]
 pub(crate) trait GlslType {
     const GLSL: &'static str;
 }
@@ -30,6 +31,7 @@ macro_rules! gpu_block {
         #[repr(C)]
         #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
         pub(crate) struct $name { $( $(#[$fm])* pub $f: $t ),* }
+        #[cfg_attr(not(test), allow(dead_code))]
         impl $name {
             /// The GLSL declaration of this block's struct.
             pub(crate) fn glsl() -> String {
@@ -88,6 +90,7 @@ pub(crate) const FLAG_DEPTH_INVERTED: u32 = 1 << 1;
 pub(crate) const PASS_WRITE_INTERNAL: u32 = 1 << 0;
 
 /// Binding names shared by shaders and host. The host finds each binding's number through reflection.
+#[cfg_attr(not(test), allow(dead_code))]
 pub(crate) const GLSL_FLAGS: &[(&str, u32)] = &[
     ("DNSR_FLAG_RESET", FLAG_RESET),
     ("DNSR_FLAG_DEPTH_INVERTED", FLAG_DEPTH_INVERTED),
@@ -98,6 +101,7 @@ pub(crate) const GLSL_FLAGS: &[(&str, u32)] = &[
 ];
 
 /// The complete text of `shaders/generated/dnsr_constants.glsl`.
+#[cfg_attr(not(test), allow(dead_code))]
 pub(crate) fn generated_glsl() -> String {
     let mut s = String::from(
         "// Generated from src/constants.rs by `DNSR_BLESS=1 cargo test generated_glsl`. Do not edit.\n\

@@ -27,5 +27,9 @@ pub use glam;
 pub use settings::{Settings, MAX_FILTER_PASSES};
 pub use timestamps::PassTimings;
 
+#[cfg(any(test, feature = "demo"))]
+#[doc(hidden)]
+pub mod testing;
+
 #[cfg(test)]
 mod tests;

@@ -15,8 +15,6 @@ pub(crate) struct InternalImage {
     pub image: vk::Image,
     pub view: vk::ImageView,
     pub memory: vk::DeviceMemory,
-    pub format: vk::Format,
-    pub extent: [u32; 2],
     /// Bytes of device memory bound to the image.
     pub bytes: u64,
 }
@@ -61,7 +59,7 @@ impl InternalImage {
         let image = vk_check("vkCreateImage", unsafe { d.create_image(&info, None) })?;
         let req = unsafe { d.get_image_memory_requirements(image) };
         let mut out =
-            InternalImage { image, view: vk::ImageView::null(), memory: vk::DeviceMemory::null(), format, extent, bytes: req.size };
+            InternalImage { image, view: vk::ImageView::null(), memory: vk::DeviceMemory::null(), bytes: req.size };
         let result = (|| {
             out.memory = allocate(vk, req)?;
             vk_check("vkBindImageMemory", unsafe { d.bind_image_memory(image, out.memory, 0) })?;

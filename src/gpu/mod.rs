@@ -5,4 +5,5 @@ pub(crate) mod barrier;
 pub(crate) mod descriptors;
 pub(crate) mod image;
 pub(crate) mod loader;
+pub(crate) mod reflect;
 pub(crate) mod shader;

@@ -5,6 +5,7 @@ use crate::passes::bindings::Resource;
 use ash::vk;
 
 /// One compiled variant of a pass entry file.
+#[cfg_attr(not(test), allow(dead_code))]
 pub(crate) struct ShaderVariant {
     /// File stem under shaders/spv/.
     pub name: &'static str,
@@ -61,48 +62,34 @@ pub(crate) struct Interface {
     pub uniform_bytes: Option<u32>,
 }
 
-fn reflected_type(t: spirv_reflect::types::ReflectDescriptorType) -> Option<vk::DescriptorType> {
-    use spirv_reflect::types::ReflectDescriptorType as R;
-    Some(match t {
-        R::SampledImage => vk::DescriptorType::SAMPLED_IMAGE,
-        R::StorageImage => vk::DescriptorType::STORAGE_IMAGE,
-        R::CombinedImageSampler => vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
-        R::UniformBuffer => vk::DescriptorType::UNIFORM_BUFFER,
-        _ => return None,
-    })
-}
-
 /// Reflects a module and checks every binding against the interface dnsr knows.
 pub(crate) fn reflect(spirv: &[u8]) -> Result<Interface> {
-    let module = spirv_reflect::ShaderModule::load_u8_data(spirv).map_err(|e| Error::ShaderInterface(e.to_string()))?;
-    let mut bindings = Vec::new();
+    let (raw, push_constant_bytes) = crate::gpu::reflect::reflect_module(spirv)?;
+    let mut bindings = Vec::with_capacity(raw.len());
     let mut uniform_bytes = None;
-    for b in module.enumerate_descriptor_bindings(None).map_err(|e| Error::ShaderInterface(e.to_string()))? {
-        let type_name = b.type_description.as_ref().map(|t| t.type_name.as_str()).unwrap_or("");
-        let found = Resource::from_glsl_name(&b.name).or_else(|| Resource::from_glsl_name(type_name));
+    for b in raw {
+        let [name, type_name] = &b.names;
+        let found = Resource::from_glsl_name(name).or_else(|| Resource::from_glsl_name(type_name));
         let (resource, expected) =
-            found.ok_or_else(|| Error::ShaderInterface(format!("unknown binding '{}' ({type_name})", b.name)))?;
-        let declared = reflected_type(b.descriptor_type)
-            .ok_or_else(|| Error::ShaderInterface(format!("binding '{}' has unsupported type {:?}", b.name, b.descriptor_type)))?;
-        if declared != expected || b.set != 0 || b.count != 1 {
+            found.ok_or_else(|| Error::ShaderInterface(format!("unknown binding '{name}' ({type_name})")))?;
+        if b.descriptor_type != Some(expected) || b.set != 0 || b.count != 1 {
             return Err(Error::ShaderInterface(format!(
-                "binding '{}' is set {} binding {} of type {declared:?} x{}; dnsr expects set 0, one {expected:?}",
-                b.name, b.set, b.binding, b.count
+                "binding '{name}' is set {} binding {} of type {:?} x{}; dnsr expects set 0, one {expected:?}",
+                b.set, b.binding, b.descriptor_type, b.count
             )));
         }
         if resource == Resource::Constants {
-            uniform_bytes = Some(b.block.size);
+            uniform_bytes = Some(b.block_bytes);
         }
-        bindings.push(ReflectedBinding { binding: b.binding, resource, descriptor_type: declared });
+        if bindings.iter().any(|x: &ReflectedBinding| x.resource == resource || x.binding == b.binding) {
+            return Err(Error::ShaderInterface(format!("binding '{name}' or number {} declared twice", b.binding)));
+        }
+        bindings.push(ReflectedBinding { binding: b.binding, resource, descriptor_type: expected });
+    }
+    if bindings.len() > crate::gpu::descriptors::MAX_BINDINGS {
+        return Err(Error::ShaderInterface(format!("{} bindings; at most {}", bindings.len(), crate::gpu::descriptors::MAX_BINDINGS)));
     }
     bindings.sort_by_key(|b| b.binding);
-    let push_constant_bytes = module
-        .enumerate_push_constant_blocks(None)
-        .map_err(|e| Error::ShaderInterface(e.to_string()))?
-        .iter()
-        .map(|p| p.size)
-        .max()
-        .unwrap_or(0);
     Ok(Interface { bindings, push_constant_bytes, uniform_bytes })
 }
 

@@ -1,0 +1,121 @@
+//! Reflection of descriptor bindings and push constants through SPIRV-Reflect's C API (the `spirv-reflect`
+//! crate's `ffi`). The crate's safe wrapper builds slices from null pointers for empty member lists, which is
+//! undefined behaviour, so only the fields dnsr needs are read here, null-checked.
+//!
+//! SPIRV-Reflect as shipped in the crate asserts (aborts the process) on SPIR-V 1.4+ interface variables and
+//! skips StorageBuffer blocks on 1.3, so dnsr compiles for SPIR-V 1.3 and binds images and uniform blocks only;
+//! anything newer is refused before it reaches the C code.
+
+use crate::error::{Error, Result};
+use ash::vk;
+use spirv_reflect::ffi;
+use std::ffi::CStr;
+
+/// Highest SPIR-V version the bundled SPIRV-Reflect handles safely.
+pub(crate) const MAX_SPIRV_VERSION: u32 = 0x0001_0300;
+const SPIRV_MAGIC: u32 = 0x0723_0203;
+
+/// One descriptor binding as declared in SPIR-V.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct RawBinding {
+    /// Variable name, or the block's type name for an anonymous uniform block.
+    pub names: [String; 2],
+    pub set: u32,
+    pub binding: u32,
+    pub count: u32,
+    pub descriptor_type: Option<vk::DescriptorType>,
+    /// Size of a uniform block in bytes (0 otherwise).
+    pub block_bytes: u32,
+}
+
+fn c_string(p: *const std::os::raw::c_char) -> String {
+    if p.is_null() { String::new() } else { unsafe { CStr::from_ptr(p) }.to_string_lossy().into_owned() }
+}
+
+fn descriptor_type(t: ffi::SpvReflectDescriptorType) -> Option<vk::DescriptorType> {
+    Some(match t {
+        ffi::SpvReflectDescriptorType_SPV_REFLECT_DESCRIPTOR_TYPE_SAMPLED_IMAGE => vk::DescriptorType::SAMPLED_IMAGE,
+        ffi::SpvReflectDescriptorType_SPV_REFLECT_DESCRIPTOR_TYPE_STORAGE_IMAGE => vk::DescriptorType::STORAGE_IMAGE,
+        ffi::SpvReflectDescriptorType_SPV_REFLECT_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER => {
+            vk::DescriptorType::COMBINED_IMAGE_SAMPLER
+        }
+        ffi::SpvReflectDescriptorType_SPV_REFLECT_DESCRIPTOR_TYPE_UNIFORM_BUFFER => vk::DescriptorType::UNIFORM_BUFFER,
+        _ => return None,
+    })
+}
+
+/// Reflects `spirv`: its descriptor bindings and the largest push-constant block size.
+pub(crate) fn reflect_module(spirv: &[u8]) -> Result<(Vec<RawBinding>, u32)> {
+    if spirv.len() < 20 || spirv.len() % 4 != 0 {
+        return Err(Error::ShaderInterface(format!("SPIR-V of {} bytes is not a whole module", spirv.len())));
+    }
+    let word = |i: usize| u32::from_le_bytes([spirv[4 * i], spirv[4 * i + 1], spirv[4 * i + 2], spirv[4 * i + 3]]);
+    if word(0) != SPIRV_MAGIC {
+        return Err(Error::ShaderInterface("not SPIR-V (bad magic number)".into()));
+    }
+    if word(1) > MAX_SPIRV_VERSION {
+        return Err(Error::ShaderInterface(format!(
+            "SPIR-V version {}.{} is newer than 1.3; compile with --target-env=vulkan1.1",
+            word(1) >> 16,
+            (word(1) >> 8) & 0xff
+        )));
+    }
+    // The C code reads the words in place; give it a 4-byte aligned copy.
+    let words: Vec<u32> = (0..spirv.len() / 4).map(word).collect();
+    let mut module = std::mem::MaybeUninit::<ffi::SpvReflectShaderModule>::zeroed();
+    let r = unsafe { ffi::spvReflectCreateShaderModule(spirv.len(), words.as_ptr().cast(), module.as_mut_ptr()) };
+    if r != ffi::SpvReflectResult_SPV_REFLECT_RESULT_SUCCESS {
+        return Err(Error::ShaderInterface(format!("SPIRV-Reflect could not parse the module (code {r})")));
+    }
+    let mut module = unsafe { module.assume_init() };
+    let result = read(&module);
+    unsafe { ffi::spvReflectDestroyShaderModule(&mut module) };
+    result
+}
+
+fn read(module: &ffi::SpvReflectShaderModule) -> Result<(Vec<RawBinding>, u32)> {
+    let fail = |what: &str, r| Error::ShaderInterface(format!("SPIRV-Reflect {what} failed (code {r})"));
+    let mut count = 0u32;
+    let r = unsafe { ffi::spvReflectEnumerateDescriptorBindings(module, &mut count, std::ptr::null_mut()) };
+    if r != ffi::SpvReflectResult_SPV_REFLECT_RESULT_SUCCESS {
+        return Err(fail("binding enumeration", r));
+    }
+    let mut ptrs = vec![std::ptr::null_mut::<ffi::SpvReflectDescriptorBinding>(); count as usize];
+    if count > 0 {
+        let r = unsafe { ffi::spvReflectEnumerateDescriptorBindings(module, &mut count, ptrs.as_mut_ptr()) };
+        if r != ffi::SpvReflectResult_SPV_REFLECT_RESULT_SUCCESS {
+            return Err(fail("binding enumeration", r));
+        }
+    }
+    let mut bindings = Vec::with_capacity(ptrs.len());
+    for p in ptrs {
+        // SAFETY: SPIRV-Reflect returned these pointers into the live module.
+        let b = unsafe { p.as_ref() }.ok_or_else(|| Error::ShaderInterface("null binding".into()))?;
+        let type_name = unsafe { b.type_description.as_ref() }.map(|t| c_string(t.type_name)).unwrap_or_default();
+        let descriptor_type = descriptor_type(b.descriptor_type);
+        let block_bytes = if descriptor_type == Some(vk::DescriptorType::UNIFORM_BUFFER) { b.block.size } else { 0 };
+        bindings.push(RawBinding {
+            names: [c_string(b.name), type_name],
+            set: b.set,
+            binding: b.binding,
+            count: b.count,
+            descriptor_type,
+            block_bytes,
+        });
+    }
+
+    let mut count = 0u32;
+    let r = unsafe { ffi::spvReflectEnumeratePushConstantBlocks(module, &mut count, std::ptr::null_mut()) };
+    if r != ffi::SpvReflectResult_SPV_REFLECT_RESULT_SUCCESS {
+        return Err(fail("push constant enumeration", r));
+    }
+    let mut blocks = vec![std::ptr::null_mut::<ffi::SpvReflectBlockVariable>(); count as usize];
+    if count > 0 {
+        let r = unsafe { ffi::spvReflectEnumeratePushConstantBlocks(module, &mut count, blocks.as_mut_ptr()) };
+        if r != ffi::SpvReflectResult_SPV_REFLECT_RESULT_SUCCESS {
+            return Err(fail("push constant enumeration", r));
+        }
+    }
+    let push_bytes = blocks.iter().filter_map(|&p| unsafe { p.as_ref() }).map(|b| b.size).max().unwrap_or(0);
+    Ok((bindings, push_bytes))
+}

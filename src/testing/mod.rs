@@ -1,0 +1,144 @@
+//! Host-side harness shared by the tests and the demo: a Vulkan device, synthetic truth-known frames, and a
+//! runner that uploads a frame, records dnsr, and reads the output back. Not part of the stable API.
+
+pub mod gpu;
+pub mod scene;
+
+use crate::{Context, ContextCreateInfo, HostSync, ShadowsDispatch};
+use ash::vk;
+use gpu::{full_barrier, Gpu, Staging, TestImage};
+use scene::FrameInputs;
+
+const READ: vk::ImageLayout = vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL;
+
+/// Host images for one render size, plus staging memory.
+pub struct Runner<'g> {
+    /// The host device.
+    pub gpu: &'g Gpu,
+    /// The context under test.
+    pub ctx: Context,
+    /// Hit mask (R32_UINT).
+    pub mask: TestImage,
+    /// Depth (R32_SFLOAT).
+    pub depth: TestImage,
+    /// Velocity (R32G32_SFLOAT).
+    pub velocity: TestImage,
+    /// Normals (R32G32B32A32_SFLOAT).
+    pub normals: TestImage,
+    /// Output (the context's output format).
+    pub output: TestImage,
+    staging: Staging,
+    cmd: vk::CommandBuffer,
+}
+
+/// Converts an IEEE half to f32.
+pub fn f16_to_f32(h: u16) -> f32 {
+    let sign = if h & 0x8000 != 0 { -1.0 } else { 1.0 };
+    let exp = ((h >> 10) & 0x1f) as i32;
+    let mant = (h & 0x3ff) as f32;
+    sign * match exp {
+        0 => mant * 2f32.powi(-24),
+        31 => if mant == 0.0 { f32::INFINITY } else { f32::NAN },
+        e => (1.0 + mant / 1024.0) * 2f32.powi(e - 15),
+    }
+}
+
+impl<'g> Runner<'g> {
+    /// Creates the context and the host images for `info`'s size.
+    pub fn new(gpu: &'g Gpu, info: &ContextCreateInfo) -> crate::Result<Runner<'g>> {
+        let ctx = Context::new(info)?;
+        let (w, h) = (info.width, info.height);
+        let n = (w * h) as u64;
+        Ok(Runner {
+            gpu,
+            ctx,
+            mask: gpu.image(vk::Format::R32_UINT, w.div_ceil(8), h.div_ceil(4), READ),
+            depth: gpu.image(vk::Format::R32_SFLOAT, w, h, READ),
+            velocity: gpu.image(vk::Format::R32G32_SFLOAT, w, h, READ),
+            normals: gpu.image(vk::Format::R32G32B32A32_SFLOAT, w, h, READ),
+            // Resting in TRANSFER_SRC_OPTIMAL exercises dnsr's transition to GENERAL and back.
+            output: gpu.image(info.output_format, w, h, vk::ImageLayout::TRANSFER_SRC_OPTIMAL),
+            staging: gpu.staging(n * 4 * (1 + 1 + 2 + 4 + 1) + 64),
+            cmd: gpu.command_buffer(),
+        })
+    }
+
+    /// A dispatch for `f` over this runner's images (no reset).
+    pub fn dispatch(&self, f: &FrameInputs) -> ShadowsDispatch {
+        ShadowsDispatch {
+            hit_mask: self.mask.host(),
+            depth: self.depth.host(),
+            velocity: self.velocity.host(),
+            normals: self.normals.host(),
+            output: self.output.host(),
+            eye: f.eye,
+            projection_inverse: f.projection_inverse,
+            reprojection_matrix: f.reprojection,
+            view_projection_inverse: f.view_projection_inverse,
+            sync: HostSync {
+                input_src_stages: vk::PipelineStageFlags::TRANSFER,
+                input_src_access: vk::AccessFlags::TRANSFER_WRITE,
+                output_dst_stages: vk::PipelineStageFlags::TRANSFER,
+                output_dst_access: vk::AccessFlags::TRANSFER_READ,
+            },
+            ..Default::default()
+        }
+    }
+
+    /// Uploads `f`, records `dispatch`, reads the output back as floats. Returns the record call's result; on
+    /// error the command buffer still runs (the uploads), so tests can check nothing else happened.
+    pub fn run(&mut self, f: &FrameInputs, dispatch: &ShadowsDispatch) -> crate::Result<Vec<f32>> {
+        let n = (f.width * f.height) as usize;
+        let parts: [&[u8]; 4] = [
+            bytemuck::cast_slice(&f.mask),
+            bytemuck::cast_slice(&f.depth),
+            bytemuck::cast_slice(&f.velocity),
+            bytemuck::cast_slice(&f.normals),
+        ];
+        let mut offsets = [0u64; 5];
+        for (i, p) in parts.iter().enumerate() {
+            self.staging.write(offsets[i] as usize, p);
+            offsets[i + 1] = (offsets[i] + p.len() as u64).next_multiple_of(16);
+        }
+        let out_offset = offsets[4];
+        let gpu = self.gpu;
+        let images = [&self.mask, &self.depth, &self.velocity, &self.normals];
+        let (ctx, staging, output) = (&mut self.ctx, &self.staging, &self.output);
+        let result = gpu.submit_with(self.cmd, |cmd| {
+            full_barrier(&gpu.device, cmd);
+            for (img, off) in images.iter().zip(offsets) {
+                gpu.cmd_copy(cmd, img, staging, off, true);
+            }
+            let r = ctx.record_shadows(cmd, dispatch);
+            gpu.cmd_copy(cmd, output, staging, out_offset, false);
+            full_barrier(&gpu.device, cmd);
+            r
+        });
+        result?;
+        let raw = self.staging.read(out_offset as usize, n * self.output.texel_bytes as usize);
+        Ok(match self.output.format {
+            vk::Format::R32_SFLOAT => bytemuck::cast_slice::<u8, f32>(&raw).to_vec(),
+            vk::Format::R16_SFLOAT => raw.chunks_exact(2).map(|c| f16_to_f32(u16::from_le_bytes([c[0], c[1]]))).collect(),
+            vk::Format::R8_UNORM => raw.iter().map(|&b| b as f32 / 255.0).collect(),
+            other => panic!("no readback for {other:?}"),
+        })
+    }
+
+    /// Runs one frame of `f` with the default dispatch (plus `reset`).
+    pub fn frame(&mut self, f: &FrameInputs, reset: bool) -> Vec<f32> {
+        let d = ShadowsDispatch { reset, ..self.dispatch(f) };
+        self.run(f, &d).expect("record_shadows")
+    }
+}
+
+impl Drop for Runner<'_> {
+    fn drop(&mut self) {
+        let g = self.gpu;
+        unsafe { g.device.device_wait_idle().ok() };
+        g.free_command_buffer(self.cmd);
+        for img in [&self.mask, &self.depth, &self.velocity, &self.normals, &self.output] {
+            g.destroy_image(img);
+        }
+        g.destroy_staging(&self.staging);
+    }
+}

@@ -1,0 +1,175 @@
+//! Truth-known synthetic input: a camera looking down at a ground plane (with sky beyond its edge), a
+//! visibility field v(x, z) on the plane, and a 1-spp hit mask drawn as Bernoulli(v).
+
+use glam::{DMat4, DVec3, DVec4, Mat4, Vec3};
+
+/// Camera above the plane y = 0, looking straight down.
+#[derive(Clone, Copy, Debug)]
+pub struct Camera {
+    /// Position in world space.
+    pub eye: DVec3,
+    /// Vertical field of view in radians.
+    pub fov_y: f64,
+    /// Near plane distance.
+    pub near: f64,
+    /// Far plane distance (ignored when `infinite_far`).
+    pub far: f64,
+    /// Reverse-Z depth.
+    pub inverted: bool,
+    /// Infinite far plane.
+    pub infinite_far: bool,
+}
+
+impl Camera {
+    /// A camera `height` units above (x, z).
+    pub fn above(x: f64, z: f64, height: f64) -> Camera {
+        Camera { eye: DVec3::new(x, height, z), fov_y: 0.9, near: 0.1, far: 100.0, inverted: false, infinite_far: false }
+    }
+
+    fn projection(&self, aspect: f64) -> DMat4 {
+        // Right-handed view space (camera looks down -z), clip depth in [0, 1].
+        let f = 1.0 / (self.fov_y * 0.5).tan();
+        let (n, far) = (self.near, self.far);
+        // z_clip = a * z + b, w_clip = -z.
+        let (a, b) = match (self.inverted, self.infinite_far) {
+            (false, false) => (far / (n - far), far * n / (n - far)),
+            (true, false) => (n / (far - n), far * n / (far - n)),
+            (false, true) => (-1.0, -n),
+            (true, true) => (0.0, n),
+        };
+        DMat4::from_cols(
+            DVec4::new(f / aspect, 0.0, 0.0, 0.0),
+            DVec4::new(0.0, f, 0.0, 0.0),
+            DVec4::new(0.0, 0.0, a, -1.0),
+            DVec4::new(0.0, 0.0, b, 0.0),
+        )
+    }
+
+    /// View matrix, camera-relative when `origin` is the camera position (large-coordinate scenes).
+    fn view(&self, origin: DVec3) -> DMat4 {
+        let eye = self.eye - origin;
+        // Looking straight down -y with -z as screen-up.
+        let (fwd, up) = (DVec3::NEG_Y, DVec3::NEG_Z);
+        let s = fwd.cross(up).normalize();
+        let u = s.cross(fwd);
+        DMat4::from_cols(
+            DVec4::new(s.x, u.x, -fwd.x, 0.0),
+            DVec4::new(s.y, u.y, -fwd.y, 0.0),
+            DVec4::new(s.z, u.z, -fwd.z, 0.0),
+            DVec4::new(-s.dot(eye), -u.dot(eye), fwd.dot(eye), 1.0),
+        )
+    }
+}
+
+/// Visibility field on the plane: world (x, z) -> fraction of the light visible, in [0, 1].
+pub type Visibility<'a> = &'a dyn Fn(f64, f64) -> f64;
+
+/// One frame of G-buffer, mask and truth, plus the matrices dnsr needs.
+pub struct FrameInputs {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Depth per pixel (R32_SFLOAT), 1 (or 0 inverted) for sky.
+    pub depth: Vec<f32>,
+    /// World normal per pixel (RGBA32F, w unused).
+    pub normals: Vec<[f32; 4]>,
+    /// uv offset to the previous frame's position per pixel.
+    pub velocity: Vec<[f32; 2]>,
+    /// Hit mask, FidelityFX convention (bit = 1 occluded), ceil(W/8) x ceil(H/4).
+    pub mask: Vec<u32>,
+    /// True visibility per pixel (1 for sky).
+    pub truth: Vec<f32>,
+    /// Receiver (plane) pixels.
+    pub receiver: Vec<bool>,
+    /// Current clip -> view.
+    pub projection_inverse: Mat4,
+    /// Current clip -> previous clip.
+    pub reprojection: Mat4,
+    /// Current clip -> world (camera-relative world when `relative` was used).
+    pub view_projection_inverse: Mat4,
+    /// Eye in the same space as `view_projection_inverse`.
+    pub eye: Vec3,
+}
+
+/// A deterministic per-pixel random number in [0, 1).
+pub fn hash01(seed: u64, x: u32, y: u32) -> f64 {
+    let mut z = seed ^ ((x as u64) << 32 | y as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^= z >> 31;
+    (z >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// Builds one frame. The plane covers |x - cam.x| < `plane_half_width` around the world origin's x
+/// (beyond it: sky). `seed` draws the mask; `prev` is the previous frame's camera.
+pub fn render(
+    width: u32,
+    height: u32,
+    cam: &Camera,
+    prev: &Camera,
+    plane_half_width: f64,
+    visibility: Visibility,
+    seed: u64,
+) -> FrameInputs {
+    let aspect = width as f64 / height as f64;
+    // Camera-relative matrices: both frames relative to the current eye, so large world coordinates cancel in f64.
+    let origin = cam.eye;
+    let proj = cam.projection(aspect);
+    let vp = proj * cam.view(origin);
+    let vp_prev = prev.projection(aspect) * prev.view(origin);
+    let vp_inv = vp.inverse();
+    let n = (width * height) as usize;
+    let (tw, th) = (width.div_ceil(8), height.div_ceil(4));
+    let mut f = FrameInputs {
+        width,
+        height,
+        depth: vec![0.0; n],
+        normals: vec![[0.0, 1.0, 0.0, 0.0]; n],
+        velocity: vec![[0.0; 2]; n],
+        mask: vec![0; (tw * th) as usize],
+        truth: vec![1.0; n],
+        receiver: vec![false; n],
+        projection_inverse: proj.inverse().as_mat4(),
+        reprojection: (vp_prev * vp_inv).as_mat4(),
+        view_projection_inverse: vp_inv.as_mat4(),
+        eye: (cam.eye - origin).as_vec3(),
+    };
+    let sky_depth = if cam.inverted { 0.0 } else { 1.0 };
+    for y in 0..height {
+        for x in 0..width {
+            let i = (y * width + x) as usize;
+            let uv = [(x as f64 + 0.5) / width as f64, (y as f64 + 0.5) / height as f64];
+            let ndc = [uv[0] * 2.0 - 1.0, uv[1] * 2.0 - 1.0];
+            let unproject = |z: f64| {
+                let p = vp_inv * DVec4::new(ndc[0], ndc[1], z, 1.0);
+                p.truncate() / p.w
+            };
+            let a = unproject(if cam.inverted { 1.0 } else { 0.0 });
+            let b = unproject(0.5);
+            let dir = b - a;
+            let t = -(a.y + origin.y) / dir.y;
+            let hit = a + dir * t;
+            let world = hit + origin;
+            let on_plane = t > 0.0 && (world.x).abs() < plane_half_width;
+            let mut lit = true;
+            if on_plane {
+                let clip = vp * DVec4::new(hit.x, hit.y, hit.z, 1.0);
+                f.depth[i] = (clip.z / clip.w) as f32;
+                let prev_clip = vp_prev * DVec4::new(hit.x, hit.y, hit.z, 1.0);
+                let prev_uv = [prev_clip.x / prev_clip.w * 0.5 + 0.5, prev_clip.y / prev_clip.w * 0.5 + 0.5];
+                f.velocity[i] = [(prev_uv[0] - uv[0]) as f32, (prev_uv[1] - uv[1]) as f32];
+                let v = visibility(world.x, world.z).clamp(0.0, 1.0);
+                f.truth[i] = v as f32;
+                f.receiver[i] = true;
+                lit = hash01(seed, x, y) < v;
+            } else {
+                f.depth[i] = sky_depth;
+            }
+            if !lit {
+                f.mask[((y / 4) * tw + x / 8) as usize] |= 1 << ((y % 4) * 8 + (x % 8));
+            }
+        }
+    }
+    f
+}

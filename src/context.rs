@@ -457,6 +457,21 @@ impl Context {
     }
 }
 
+#[cfg(test)]
+impl Context {
+    /// The moments image written by the last recorded frame of `light` (m, s, n per pixel; RGBA32F, GENERAL).
+    pub(crate) fn last_moments(&self, light: usize) -> vk::Image {
+        let l = &self.lights[light];
+        l.moments[l.parity ^ 1].image
+    }
+
+    /// Frames recorded so far and the parity of `light`: changes exactly when something was recorded.
+    pub(crate) fn recording_state(&self, light: usize) -> (u64, usize, bool) {
+        let l = &self.lights[light];
+        (self.frames_recorded, l.parity, l.initialized)
+    }
+}
+
 fn binder_ref(b: &Option<Binder>) -> &Binder {
     b.as_ref().expect("created")
 }

@@ -84,6 +84,20 @@ pub struct TestImage {
 }
 
 impl TestImage {
+    /// Wraps an image owned elsewhere (e.g. one of dnsr's internal images) for `download`. Never destroy it.
+    pub fn borrowed(image: vk::Image, format: vk::Format, width: u32, height: u32, layout: vk::ImageLayout) -> TestImage {
+        TestImage {
+            image,
+            view: vk::ImageView::null(),
+            memory: vk::DeviceMemory::null(),
+            format,
+            width,
+            height,
+            texel_bytes: texel_bytes(format),
+            layout,
+        }
+    }
+
     /// The image as a dnsr host image in its resting layout.
     pub fn host(&self) -> crate::HostImage {
         crate::HostImage {
@@ -104,6 +118,7 @@ fn texel_bytes(format: vk::Format) -> u32 {
         vk::Format::R32_UINT | vk::Format::R32_SFLOAT | vk::Format::R8G8B8A8_UNORM | vk::Format::D32_SFLOAT => 4,
         vk::Format::R32G32_SFLOAT | vk::Format::R16G16B16A16_SFLOAT => 8,
         vk::Format::R32G32B32A32_SFLOAT => 16,
+        vk::Format::R16G16_SFLOAT => 4,
         other => panic!("test harness has no texel size for {other:?}"),
     }
 }

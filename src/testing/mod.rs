@@ -58,7 +58,7 @@ impl<'g> Runner<'g> {
             normals: gpu.image(vk::Format::R32G32B32A32_SFLOAT, w, h, READ),
             // Resting in TRANSFER_SRC_OPTIMAL exercises dnsr's transition to GENERAL and back.
             output: gpu.image(info.output_format, w, h, vk::ImageLayout::TRANSFER_SRC_OPTIMAL),
-            staging: gpu.staging(n * 4 * (1 + 1 + 2 + 4 + 1) + 64),
+            staging: gpu.staging(n * 4 * 9 + 64),
             cmd: gpu.command_buffer(),
         })
     }
@@ -85,9 +85,15 @@ impl<'g> Runner<'g> {
         }
     }
 
-    /// Uploads `f`, records `dispatch`, reads the output back as floats. Returns the record call's result; on
-    /// error the command buffer still runs (the uploads), so tests can check nothing else happened.
+    /// Uploads `f`, records `dispatch`, reads the output back as floats.
     pub fn run(&mut self, f: &FrameInputs, dispatch: &ShadowsDispatch) -> crate::Result<Vec<f32>> {
+        let (result, out) = self.run_raw(f, dispatch);
+        result.map(|()| out)
+    }
+
+    /// Like `run`, but reads the output back even when recording failed: the command buffer still runs the
+    /// uploads and the readback, so a test can check that a refused dispatch changed nothing.
+    pub fn run_raw(&mut self, f: &FrameInputs, dispatch: &ShadowsDispatch) -> (crate::Result<()>, Vec<f32>) {
         let n = (f.width * f.height) as usize;
         let parts: [&[u8]; 4] = [
             bytemuck::cast_slice(&f.mask),
@@ -114,14 +120,34 @@ impl<'g> Runner<'g> {
             full_barrier(&gpu.device, cmd);
             r
         });
-        result?;
         let raw = self.staging.read(out_offset as usize, n * self.output.texel_bytes as usize);
-        Ok(match self.output.format {
+        let out = match self.output.format {
             vk::Format::R32_SFLOAT => bytemuck::cast_slice::<u8, f32>(&raw).to_vec(),
             vk::Format::R16_SFLOAT => raw.chunks_exact(2).map(|c| f16_to_f32(u16::from_le_bytes([c[0], c[1]]))).collect(),
             vk::Format::R8_UNORM => raw.iter().map(|&b| b as f32 / 255.0).collect(),
             other => panic!("no readback for {other:?}"),
-        })
+        };
+        (result, out)
+    }
+
+    /// Resizes the context and recreates the host images for the new size.
+    pub fn resize(&mut self, width: u32, height: u32) -> crate::Result<()> {
+        let g = self.gpu;
+        unsafe { g.device.device_wait_idle().ok() };
+        self.ctx.resize(width, height)?;
+        let format = self.output.format;
+        for img in [&self.mask, &self.depth, &self.velocity, &self.normals, &self.output] {
+            g.destroy_image(img);
+        }
+        g.destroy_staging(&self.staging);
+        let (w, h) = (width, height);
+        self.mask = g.image(vk::Format::R32_UINT, w.div_ceil(8), h.div_ceil(4), READ);
+        self.depth = g.image(vk::Format::R32_SFLOAT, w, h, READ);
+        self.velocity = g.image(vk::Format::R32G32_SFLOAT, w, h, READ);
+        self.normals = g.image(vk::Format::R32G32B32A32_SFLOAT, w, h, READ);
+        self.output = g.image(format, w, h, vk::ImageLayout::TRANSFER_SRC_OPTIMAL);
+        self.staging = g.staging((w * h) as u64 * 4 * 9 + 64);
+        Ok(())
     }
 
     /// Runs one frame of `f` with the default dispatch (plus `reset`).

@@ -1,0 +1,105 @@
+//! The shader/host contract: committed SPIR-V and generated GLSL are current, and reflection sees exactly the
+//! interface the host binds. `DNSR_BLESS=1 cargo test bless_` rewrites the committed files instead of comparing.
+
+use crate::constants::{generated_glsl, FilterPush, FrameConstants};
+use crate::gpu::reflect::reflect_module;
+use crate::gpu::shader::{reflect, VARIANTS};
+use crate::passes::bindings::Resource;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn bless() -> bool {
+    std::env::var("DNSR_BLESS").is_ok_and(|v| v == "1")
+}
+
+fn compare_or_bless(path: &Path, fresh: &[u8]) {
+    if bless() {
+        std::fs::write(path, fresh).unwrap();
+        return;
+    }
+    let committed = std::fs::read(path).unwrap_or_default();
+    assert!(committed == fresh, "{} is stale: run `make shaders` (DNSR_BLESS=1 cargo test bless_)", path.display());
+}
+
+#[test]
+fn bless_generated_glsl_is_current() {
+    compare_or_bless(&root().join("shaders/generated/dnsr_constants.glsl"), generated_glsl().as_bytes());
+}
+
+/// The exact glslc command line for a variant; `make shaders` and this test share it.
+fn compile(source: &str, defines: &[&str], out: &Path) {
+    let mut cmd = Command::new("glslc");
+    cmd.current_dir(root()).args(["--target-env=vulkan1.1", "-Ishaders"]);
+    for d in defines {
+        cmd.arg(format!("-D{d}"));
+    }
+    cmd.arg(format!("shaders/{source}")).arg("-o").arg(out);
+    let output = cmd.output().expect("glslc not found: install the Debian package glslc (make test does)");
+    assert!(output.status.success(), "glslc {source} {defines:?}:\n{}", String::from_utf8_lossy(&output.stderr));
+}
+
+#[test]
+fn bless_spirv_matches_glslc() {
+    // Generated GLSL first, so blessing both in one run compiles against the fresh header.
+    if bless() {
+        bless_generated_glsl_is_current();
+    }
+    let dir = std::env::temp_dir().join(format!("dnsr-spv-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for v in VARIANTS {
+        let out = dir.join(format!("{}.spv", v.name));
+        compile(v.source, v.defines, &out);
+        let fresh = std::fs::read(&out).unwrap();
+        let committed = root().join(format!("shaders/spv/{}.spv", v.name));
+        compare_or_bless(&committed, &fresh);
+        if !bless() {
+            assert_eq!(v.spirv, &fresh[..], "embedded {} differs from glslc output: rebuild the crate", v.name);
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn reflected_interfaces_match_what_the_host_binds() {
+    use Resource::*;
+    let expect: &[(&str, &[Resource], u32)] = &[
+        ("prepare", &[Constants, HitMask, TileMaskOut], 0),
+        (
+            "tile_classification",
+            &[Constants, TileMask, Depth, Velocity, Normals, PreviousDepth, DepthCopy, PreviousMoments, Moments, History, Reprojection, TileMetaOut],
+            0,
+        ),
+        ("filter", &[Constants, Depth, Normals, TileMeta, FilterInput, FilterOutput], 16),
+        ("filter_final_r16f_fp16", &[Constants, Depth, Normals, TileMeta, FilterInput, FilterOutput, Output], 16),
+    ];
+    for (name, resources, push) in expect {
+        let v = VARIANTS.iter().find(|v| v.name == *name).unwrap();
+        let iface = reflect(v.spirv).unwrap();
+        let mut got: Vec<Resource> = iface.bindings.iter().map(|b| b.resource).collect();
+        let mut want = resources.to_vec();
+        got.sort_by_key(|r| *r as usize);
+        want.sort_by_key(|r| *r as usize);
+        assert_eq!(got, want, "{name}");
+        assert_eq!(iface.push_constant_bytes, *push, "{name} push constants");
+        assert_eq!(iface.uniform_bytes, Some(std::mem::size_of::<FrameConstants>() as u32), "{name} constants block");
+    }
+    assert_eq!(std::mem::size_of::<FilterPush>(), 16);
+    // Every variant reflects cleanly.
+    for v in VARIANTS {
+        reflect(v.spirv).unwrap_or_else(|e| panic!("{}: {e}", v.name));
+    }
+}
+
+#[test]
+fn reflection_refuses_what_it_cannot_handle() {
+    assert!(reflect_module(&[0u8; 3]).is_err());
+    assert!(reflect_module(&[0u8; 64]).is_err(), "bad magic");
+    let mut spv = VARIANTS[0].spirv.to_vec();
+    spv[4..8].copy_from_slice(&0x0001_0500u32.to_le_bytes());
+    let err = reflect_module(&spv).unwrap_err().to_string();
+    assert!(err.contains("1.5"), "{err}");
+}

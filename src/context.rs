@@ -20,6 +20,14 @@ use ash::vk;
 /// Lowest Vulkan version dnsr runs on (SPIR-V 1.3, samplerless texel fetches).
 pub const MIN_API_VERSION: u32 = vk::API_VERSION_1_1;
 
+/// Everything a frame binds, resolved before recording.
+struct FrameBindings {
+    tables: [BindingTable; 2],
+    filter_tables: [BindingTable; MAX_FILTER_PASSES as usize],
+    sets: [vk::DescriptorSet; 2],
+    filter_sets: [vk::DescriptorSet; MAX_FILTER_PASSES as usize],
+}
+
 struct Pipelines {
     prepare: Pipeline,
     classification: Pipeline,
@@ -247,9 +255,8 @@ impl Context {
         }
     }
 
-    fn frame_views(&self, d: &ShadowsDispatch) -> FrameViews {
+    fn frame_views(&self, d: &ShadowsDispatch, cur: usize) -> FrameViews {
         let light = &self.lights[d.light_index as usize];
-        let cur = light.parity;
         let host = |h: &crate::dispatch::HostImage| image(h.view, h.layout);
         FrameViews {
             constants: self.constants_buffer,
@@ -273,6 +280,29 @@ impl Context {
         }
     }
 
+    /// Binding tables of every pass of a frame with the given ping-pong parity, and their descriptor sets
+    /// (null with push descriptors).
+    fn bind_frame(&mut self, d: &ShadowsDispatch, parity: usize, run_prepare: bool) -> Result<FrameBindings> {
+        let passes = self.settings.filter_passes;
+        let views = self.frame_views(d, parity);
+        let tables = [prepare::bindings(&views), tile_classification::bindings(&views)];
+        let filter_tables = std::array::from_fn(|p| filter::bindings(&views, p as u32, passes));
+        let pipelines = self.pipelines.as_ref().expect("created");
+        let binder = self.binder.as_mut().expect("created");
+        let dev = &self.vk.device;
+        let mut sets = [vk::DescriptorSet::null(); 2];
+        if run_prepare {
+            sets[0] = binder.prepare(dev, &pipelines.prepare, &tables[0], self.sampler)?;
+        }
+        sets[1] = binder.prepare(dev, &pipelines.classification, &tables[1], self.sampler)?;
+        let mut filter_sets = [vk::DescriptorSet::null(); MAX_FILTER_PASSES as usize];
+        for p in 0..passes {
+            let pipeline = if filter::is_final(p, passes) { &pipelines.filter_final } else { &pipelines.filter };
+            filter_sets[p as usize] = binder.prepare(dev, pipeline, &filter_tables[p as usize], self.sampler)?;
+        }
+        Ok(FrameBindings { tables, filter_tables, sets, filter_sets })
+    }
+
     /// Records the denoiser for one light into `cmd`, which the host is recording (outside a render pass).
     ///
     /// Expectations on the host: the input images are in their declared layouts and their writes are available
@@ -286,24 +316,20 @@ impl Context {
         let rect = validate::dispatch(&self.vk, d, self.size, self.output_format, self.light_count)?;
         let extent = [rect.width, rect.height];
         let passes = self.settings.filter_passes;
-        let views = self.frame_views(d);
         let run_prepare = d.hit_mask_convention == HitMaskConvention::OccludedBits;
-        let tables: [BindingTable; 2] = [prepare::bindings(&views), tile_classification::bindings(&views)];
-        let filter_tables: [BindingTable; MAX_FILTER_PASSES as usize] =
-            std::array::from_fn(|p| filter::bindings(&views, p as u32, passes));
 
-        // Phase 1: everything that can fail, before any command is recorded.
+        // Phase 1: everything that can fail, before any command is recorded. With a descriptor-set cache, the
+        // sets of the other ping-pong parity are made now too, so the next frame allocates nothing.
+        let parity = self.lights[d.light_index as usize].parity;
+        let bound = self.bind_frame(d, parity, run_prepare)?;
+        if matches!(self.binder, Some(Binder::Cache(_))) {
+            self.bind_frame(d, parity ^ 1, run_prepare)?;
+        }
+        let FrameBindings { tables, filter_tables, sets, filter_sets } = bound;
         let pipelines = self.pipelines.as_ref().expect("created");
-        let binder = self.binder.as_mut().expect("created");
         let dev = &self.vk.device;
         let filter_pipeline = |p: u32| if filter::is_final(p, passes) { &pipelines.filter_final } else { &pipelines.filter };
-        let prepare_set =
-            if run_prepare { binder.prepare(dev, &pipelines.prepare, &tables[0], self.sampler)? } else { vk::DescriptorSet::null() };
-        let classification_set = binder.prepare(dev, &pipelines.classification, &tables[1], self.sampler)?;
-        let mut filter_sets = [vk::DescriptorSet::null(); MAX_FILTER_PASSES as usize];
-        for p in 0..passes {
-            filter_sets[p as usize] = binder.prepare(dev, filter_pipeline(p), &filter_tables[p as usize], self.sampler)?;
-        }
+        let [prepare_set, classification_set] = sets;
 
         // Phase 2: record. Nothing below fails.
         let light = &mut self.lights[d.light_index as usize];

@@ -41,7 +41,7 @@ struct Args {
 }
 
 impl Args {
-    /// Parses the arguments; `Err` carries the message to print above the usage text.
+    /// Parses the arguments: `Ok(None)` for --help, `Err` with the message to print above the usage text.
     fn parse(mut args: impl Iterator<Item = String>) -> Result<Option<Args>, String> {
         let mut parsed = Args { frames: 48, width: 320, height: 192, out: PathBuf::from("out/demo"), validate: false };
         while let Some(arg) = args.next() {
@@ -141,7 +141,7 @@ impl Scene {
         v *= 1.0 - soft_box(x, z, [0.0, 4.6], [-4.0, -0.8], 3.0);
         // Bottom left: a contact shadow. Its left edge, where the occluder touches the plane, is hard; its
         // sides soften with distance from the contact line.
-        if x >= -7.5 && x <= -4.0 {
+        if (-7.5..=-4.0).contains(&x) {
             let width = 0.05 + 0.4 * (x + 7.5);
             v *= 1.0 - band(z, [0.8, 4.0], width);
         }

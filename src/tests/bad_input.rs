@@ -1,0 +1,210 @@
+//! Misuse gets a specific error and records nothing: after each refused call the context's recording state is
+//! unchanged, the output image still holds the previous frame, and the validation layer saw nothing.
+
+use super::{gpu, static_frame};
+use crate::error::{Error, ImageRole};
+use crate::testing::Runner;
+use crate::{Context, ContextCreateInfo, HostImage, Precision, Rect, ShadowsDispatch};
+use ash::vk;
+use glam::{Mat4, Vec2, Vec3};
+
+#[test]
+fn bad_create_infos_are_refused_with_specific_errors() {
+    let g = gpu();
+    let good = g.create_info(32, 16);
+    Context::new(&good).unwrap();
+    type Edit = fn(&mut ContextCreateInfo);
+    let cases: &[(&str, Edit, fn(&Error) -> bool)] = &[
+        ("null instance", |i| i.instance = vk::Instance::null(), |e| *e == Error::NullHandle("instance")),
+        ("null physical device", |i| i.physical_device = vk::PhysicalDevice::null(), |e| *e == Error::NullHandle("physical_device")),
+        ("null device", |i| i.device = vk::Device::null(), |e| *e == Error::NullHandle("device")),
+        ("no vkGetInstanceProcAddr", |i| i.get_instance_proc_addr = None, |e| *e == Error::NullHandle("get_instance_proc_addr")),
+        ("no vkGetDeviceProcAddr", |i| i.get_device_proc_addr = None, |e| *e == Error::NullHandle("get_device_proc_addr")),
+        ("api 1.0", |i| i.api_version = vk::API_VERSION_1_0, |e| matches!(e, Error::UnsupportedApiVersion { .. })),
+        ("zero width", |i| i.width = 0, |e| matches!(e, Error::ZeroExtent { .. })),
+        ("zero height", |i| i.height = 0, |e| matches!(e, Error::ZeroExtent { .. })),
+        ("oversized", |i| i.width = 1 << 20, |e| matches!(e, Error::ExtentTooLarge { .. })),
+        ("no lights", |i| i.light_count = 0, |e| matches!(e, Error::InvalidSetting { name: "light_count", .. })),
+        (
+            "fp16 without the feature",
+            |i| {
+                i.precision = Precision::Fp16;
+                i.features.float16 = false;
+            },
+            |e| matches!(e, Error::MissingFeature(_)),
+        ),
+        (
+            "RGBA8 output",
+            |i| i.output_format = vk::Format::R8G8B8A8_UNORM,
+            |e| matches!(e, Error::UnsupportedFormat { role: Some(ImageRole::Output), .. }),
+        ),
+        ("0 filter passes", |i| i.settings.filter_passes = 0, |e| matches!(e, Error::InvalidSetting { name: "filter_passes", .. })),
+        ("5 filter passes", |i| i.settings.filter_passes = 5, |e| matches!(e, Error::InvalidSetting { name: "filter_passes", .. })),
+        (
+            "NaN threshold",
+            |i| i.settings.disocclusion_threshold_facing = f32::NAN,
+            |e| matches!(e, Error::InvalidSetting { name: "disocclusion_threshold_facing", .. }),
+        ),
+        (
+            "zero blend",
+            |i| i.settings.min_current_weight = 0.0,
+            |e| matches!(e, Error::InvalidSetting { name: "min_current_weight", .. }),
+        ),
+        (
+            "timestamps on a missing queue family",
+            |i| {
+                i.enable_timestamps = true;
+                i.queue_family_index = 99;
+            },
+            |e| *e == Error::TimestampsUnsupported,
+        ),
+    ];
+    for (name, edit, check) in cases {
+        let mut info = good;
+        edit(&mut info);
+        match Context::new(&info) {
+            Ok(_) => panic!("{name}: accepted"),
+            Err(e) => {
+                assert!(check(&e), "{name}: unexpected error {e:?}");
+                assert!(!e.to_string().is_empty());
+            }
+        }
+    }
+    g.assert_clean();
+}
+
+#[test]
+fn bad_dispatches_record_nothing() {
+    let g = gpu();
+    let (w, h) = (32, 16);
+    let mut info = g.create_info(w, h);
+    info.output_format = vk::Format::R32_SFLOAT;
+    let mut r = Runner::new(&g, &info).unwrap();
+    let f = static_frame(w, h, &|_, _| 1.0, 1);
+    let lit = r.frame(&f, false);
+    assert!(lit.iter().all(|&o| o == 1.0));
+    // The refused frames would write 0 everywhere if anything ran.
+    let shadow = static_frame(w, h, &|_, _| 0.0, 2);
+    let good = r.dispatch(&shadow);
+
+    type Edit = fn(&mut ShadowsDispatch);
+    fn null_view(i: &mut HostImage) {
+        i.view = vk::ImageView::null();
+    }
+    fn wrong_size(i: &mut HostImage) {
+        i.width += 1;
+    }
+    let cases: &[(&str, Edit, fn(&Error) -> bool)] = &[
+        ("null hit mask view", |d| null_view(&mut d.hit_mask), |e| *e == Error::NullHandle("hit_mask.view")),
+        ("null depth view", |d| null_view(&mut d.depth), |e| *e == Error::NullHandle("depth.view")),
+        ("null velocity view", |d| null_view(&mut d.velocity), |e| *e == Error::NullHandle("velocity.view")),
+        ("null normals view", |d| null_view(&mut d.normals), |e| *e == Error::NullHandle("normals.view")),
+        ("null output view", |d| null_view(&mut d.output), |e| *e == Error::NullHandle("output.view")),
+        ("null output image", |d| d.output.image = vk::Image::null(), |e| *e == Error::NullHandle("output.image")),
+        ("null depth image", |d| d.depth.image = vk::Image::null(), |e| *e == Error::NullHandle("depth.image")),
+        (
+            "float hit mask",
+            |d| d.hit_mask.format = vk::Format::R32_SFLOAT,
+            |e| matches!(e, Error::UnsupportedFormat { role: Some(ImageRole::HitMask), .. }),
+        ),
+        (
+            "RGBA8 depth",
+            |d| d.depth.format = vk::Format::R8G8B8A8_UNORM,
+            |e| matches!(e, Error::UnsupportedFormat { role: Some(ImageRole::Depth), .. }),
+        ),
+        (
+            "one-channel velocity",
+            |d| d.velocity.format = vk::Format::R32_SFLOAT,
+            |e| matches!(e, Error::UnsupportedFormat { role: Some(ImageRole::Velocity), .. }),
+        ),
+        (
+            "integer normals",
+            |d| d.normals.format = vk::Format::R32G32B32A32_UINT,
+            |e| matches!(e, Error::UnsupportedFormat { role: Some(ImageRole::Normals), .. }),
+        ),
+        (
+            "output format differs from creation",
+            |d| d.output.format = vk::Format::R16_SFLOAT,
+            |e| matches!(e, Error::UnsupportedFormat { role: Some(ImageRole::Output), .. }),
+        ),
+        (
+            "undefined depth layout",
+            |d| d.depth.layout = vk::ImageLayout::UNDEFINED,
+            |e| matches!(e, Error::UnsupportedLayout { role: ImageRole::Depth, .. }),
+        ),
+        (
+            "output in attachment layout",
+            |d| d.output.layout = vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+            |e| matches!(e, Error::UnsupportedLayout { role: ImageRole::Output, .. }),
+        ),
+        ("hit mask size", |d| wrong_size(&mut d.hit_mask), |e| matches!(e, Error::ImageExtentMismatch { role: ImageRole::HitMask, .. })),
+        ("depth size", |d| wrong_size(&mut d.depth), |e| matches!(e, Error::ImageExtentMismatch { role: ImageRole::Depth, .. })),
+        ("velocity size", |d| wrong_size(&mut d.velocity), |e| matches!(e, Error::ImageExtentMismatch { role: ImageRole::Velocity, .. })),
+        ("normals size", |d| wrong_size(&mut d.normals), |e| matches!(e, Error::ImageExtentMismatch { role: ImageRole::Normals, .. })),
+        ("output size", |d| d.output.height = 0, |e| matches!(e, Error::ImageExtentMismatch { role: ImageRole::Output, .. })),
+        (
+            "NaN projection inverse",
+            |d| d.projection_inverse = Mat4::from_cols_array(&[f32::NAN; 16]),
+            |e| *e == Error::NonFinite("projection_inverse"),
+        ),
+        (
+            "Inf reprojection",
+            |d| d.reprojection_matrix.x_axis.x = f32::INFINITY,
+            |e| *e == Error::NonFinite("reprojection_matrix"),
+        ),
+        (
+            "NaN view-projection inverse",
+            |d| d.view_projection_inverse.w_axis.z = f32::NAN,
+            |e| *e == Error::NonFinite("view_projection_inverse"),
+        ),
+        ("Inf eye", |d| d.eye = Vec3::new(0.0, f32::INFINITY, 0.0), |e| *e == Error::NonFinite("eye")),
+        ("NaN motion scale", |d| d.motion_vector_scale = Vec2::new(f32::NAN, 1.0), |e| *e == Error::NonFinite("motion_vector_scale")),
+        ("NaN normal unpack", |d| d.normals_unpack_mul = f32::NAN, |e| *e == Error::NonFinite("normals_unpack_mul/add")),
+        (
+            "zero depth sigma",
+            |d| d.depth_similarity_sigma = 0.0,
+            |e| matches!(e, Error::InvalidSetting { name: "depth_similarity_sigma", .. }),
+        ),
+        (
+            "empty render rect",
+            |d| d.render_rect = Some(Rect { x: 0, y: 0, width: 0, height: 4 }),
+            |e| matches!(e, Error::InvalidRenderRect { .. }),
+        ),
+        (
+            "misaligned render rect",
+            |d| d.render_rect = Some(Rect { x: 3, y: 0, width: 8, height: 4 }),
+            |e| matches!(e, Error::InvalidRenderRect { .. }),
+        ),
+        (
+            "render rect outside",
+            |d| d.render_rect = Some(Rect { x: 8, y: 4, width: 32, height: 4 }),
+            |e| matches!(e, Error::InvalidRenderRect { .. }),
+        ),
+        ("light index", |d| d.light_index = 1, |e| matches!(e, Error::InvalidLightIndex { index: 1, count: 1 })),
+    ];
+    for (name, edit, check) in cases {
+        let mut d = good;
+        edit(&mut d);
+        let before = r.ctx.recording_state(0);
+        let (result, out) = r.run_raw(&shadow, &d);
+        let e = result.expect_err(name);
+        assert!(check(&e), "{name}: unexpected error {e:?}");
+        assert!(!e.to_string().is_empty());
+        assert_eq!(r.ctx.recording_state(0), before, "{name}: state changed");
+        assert!(out.iter().all(|&o| o == 1.0), "{name}: something ran");
+        g.assert_clean();
+    }
+    // A null command buffer.
+    assert_eq!(r.ctx.record_shadows(vk::CommandBuffer::null(), &good), Err(Error::NullHandle("command_buffer")));
+    // Settings are validated too, and a refused change keeps the old settings.
+    let mut s = r.ctx.settings();
+    s.normal_power = -1.0;
+    assert!(matches!(r.ctx.set_settings(s), Err(Error::InvalidSetting { name: "normal_power", .. })));
+    assert_eq!(r.ctx.settings(), crate::Settings::default());
+    assert!(matches!(r.ctx.reset_history(3), Err(Error::InvalidLightIndex { .. })));
+    assert!(matches!(r.ctx.resize(0, 5), Err(Error::ZeroExtent { .. })));
+    // After all that, the context still works.
+    let out = r.run(&shadow, &good).unwrap();
+    assert!(out.iter().all(|&o| o == 0.0));
+    g.assert_clean();
+}

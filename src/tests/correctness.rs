@@ -313,3 +313,40 @@ fn every_output_format_and_filter_pass_count_works() {
     }
     g.assert_clean();
 }
+
+#[test]
+fn frame_index_does_not_matter_and_lights_are_independent() {
+    let g = gpu();
+    let (w, h) = (32, 24);
+    let stripes = |x: f64, _z: f64| 0.5 + 0.45 * (x * 1.3).sin();
+    // frameIndex constant, counting, or wrapping past u32::MAX: identical output, bit for bit.
+    let mut outputs = Vec::new();
+    for index in [|_: u32| 0u32, |i: u32| i, |i: u32| i.wrapping_add(u32::MAX - 2)] {
+        let mut r = runner(&g, w, h, Precision::Fp32);
+        let mut last = Vec::new();
+        for frame in 0..6u32 {
+            let f = static_frame(w, h, &smooth, frame as u64 + 1);
+            last = r.run(&f, &crate::ShadowsDispatch { frame_index: index(frame), ..r.dispatch(&f) }).unwrap();
+        }
+        outputs.push(last);
+    }
+    assert_eq!(outputs[0], outputs[1]);
+    assert_eq!(outputs[0], outputs[2]);
+
+    // Two lights in one context, interleaved, equal two single-light contexts.
+    let mut info = g.create_info(w, h);
+    info.output_format = vk::Format::R32_SFLOAT;
+    info.light_count = 2;
+    let mut both = Runner::new(&g, &info).unwrap();
+    let mut a = runner(&g, w, h, Precision::Fp32);
+    let mut b = runner(&g, w, h, Precision::Fp32);
+    for frame in 0..5 {
+        let fa = static_frame(w, h, &smooth, frame + 1);
+        let fb = static_frame(w, h, &stripes, frame + 50);
+        let out_a = both.run(&fa, &both.dispatch(&fa)).unwrap();
+        let out_b = both.run(&fb, &crate::ShadowsDispatch { light_index: 1, ..both.dispatch(&fb) }).unwrap();
+        assert_eq!(out_a, a.frame(&fa, false), "light 0, frame {frame}");
+        assert_eq!(out_b, b.frame(&fb, false), "light 1, frame {frame}");
+    }
+    g.assert_clean();
+}

@@ -10,7 +10,9 @@ use crate::testing::gpu::{Gpu, GpuOptions};
 use crate::testing::scene::{render, Camera, FrameInputs};
 
 pub(crate) fn gpu() -> Gpu {
-    Gpu::new(GpuOptions::default())
+    let g = Gpu::new(GpuOptions::default());
+    eprintln!("device: {} (push descriptors {}, float16 {})", g.device_name, g.features.push_descriptor, g.features.float16);
+    g
 }
 
 /// A static view of the plane (no sky: the plane is wider than the view) with visibility `v`.

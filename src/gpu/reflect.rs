@@ -73,20 +73,30 @@ pub(crate) fn reflect_module(spirv: &[u8]) -> Result<(Vec<RawBinding>, u32)> {
     result
 }
 
-fn read(module: &ffi::SpvReflectShaderModule) -> Result<(Vec<RawBinding>, u32)> {
-    let fail = |what: &str, r| Error::ShaderInterface(format!("SPIRV-Reflect {what} failed (code {r})"));
+/// SPIRV-Reflect's two-call enumeration: ask for the count, then fill that many pointers.
+fn enumerate<T>(
+    what: &str,
+    module: &ffi::SpvReflectShaderModule,
+    f: unsafe extern "C" fn(*const ffi::SpvReflectShaderModule, *mut u32, *mut *mut T) -> ffi::SpvReflectResult,
+) -> Result<Vec<*mut T>> {
+    let fail = |r| Error::ShaderInterface(format!("SPIRV-Reflect {what} enumeration failed (code {r})"));
     let mut count = 0u32;
-    let r = unsafe { ffi::spvReflectEnumerateDescriptorBindings(module, &mut count, std::ptr::null_mut()) };
+    let r = unsafe { f(module, &mut count, std::ptr::null_mut()) };
     if r != ffi::SpvReflectResult_SPV_REFLECT_RESULT_SUCCESS {
-        return Err(fail("binding enumeration", r));
+        return Err(fail(r));
     }
-    let mut ptrs = vec![std::ptr::null_mut::<ffi::SpvReflectDescriptorBinding>(); count as usize];
+    let mut ptrs = vec![std::ptr::null_mut::<T>(); count as usize];
     if count > 0 {
-        let r = unsafe { ffi::spvReflectEnumerateDescriptorBindings(module, &mut count, ptrs.as_mut_ptr()) };
+        let r = unsafe { f(module, &mut count, ptrs.as_mut_ptr()) };
         if r != ffi::SpvReflectResult_SPV_REFLECT_RESULT_SUCCESS {
-            return Err(fail("binding enumeration", r));
+            return Err(fail(r));
         }
     }
+    Ok(ptrs)
+}
+
+fn read(module: &ffi::SpvReflectShaderModule) -> Result<(Vec<RawBinding>, u32)> {
+    let ptrs = enumerate("binding", module, ffi::spvReflectEnumerateDescriptorBindings)?;
     let mut bindings = Vec::with_capacity(ptrs.len());
     for p in ptrs {
         // SAFETY: SPIRV-Reflect returned these pointers into the live module.
@@ -103,19 +113,7 @@ fn read(module: &ffi::SpvReflectShaderModule) -> Result<(Vec<RawBinding>, u32)> 
             block_bytes,
         });
     }
-
-    let mut count = 0u32;
-    let r = unsafe { ffi::spvReflectEnumeratePushConstantBlocks(module, &mut count, std::ptr::null_mut()) };
-    if r != ffi::SpvReflectResult_SPV_REFLECT_RESULT_SUCCESS {
-        return Err(fail("push constant enumeration", r));
-    }
-    let mut blocks = vec![std::ptr::null_mut::<ffi::SpvReflectBlockVariable>(); count as usize];
-    if count > 0 {
-        let r = unsafe { ffi::spvReflectEnumeratePushConstantBlocks(module, &mut count, blocks.as_mut_ptr()) };
-        if r != ffi::SpvReflectResult_SPV_REFLECT_RESULT_SUCCESS {
-            return Err(fail("push constant enumeration", r));
-        }
-    }
+    let blocks = enumerate("push constant", module, ffi::spvReflectEnumeratePushConstantBlocks)?;
     let push_bytes = blocks.iter().filter_map(|&p| unsafe { p.as_ref() }).map(|b| b.size).max().unwrap_or(0);
     Ok((bindings, push_bytes))
 }

@@ -11,6 +11,23 @@ use scene::FrameInputs;
 
 const READ: vk::ImageLayout = vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL;
 
+/// Mask, depth, velocity, normals and output images for one render size.
+fn host_images(gpu: &Gpu, w: u32, h: u32, output_format: vk::Format) -> [TestImage; 5] {
+    [
+        gpu.image(vk::Format::R32_UINT, w.div_ceil(8), h.div_ceil(4), READ),
+        gpu.image(vk::Format::R32_SFLOAT, w, h, READ),
+        gpu.image(vk::Format::R32G32_SFLOAT, w, h, READ),
+        gpu.image(vk::Format::R32G32B32A32_SFLOAT, w, h, READ),
+        // Resting in TRANSFER_SRC_OPTIMAL exercises dnsr's transition to GENERAL and back.
+        gpu.image(output_format, w, h, vk::ImageLayout::TRANSFER_SRC_OPTIMAL),
+    ]
+}
+
+/// Staging for one frame: mask, depth, velocity (2), normals (4), output, in 4-byte words per pixel.
+fn staging_bytes(w: u32, h: u32) -> u64 {
+    (w * h) as u64 * 4 * 9 + 64
+}
+
 /// Host images for one render size, plus staging memory.
 pub struct Runner<'g> {
     /// The host device.
@@ -47,20 +64,9 @@ impl<'g> Runner<'g> {
     /// Creates the context and the host images for `info`'s size.
     pub fn new(gpu: &'g Gpu, info: &ContextCreateInfo) -> crate::Result<Runner<'g>> {
         let ctx = Context::new(info)?;
-        let (w, h) = (info.width, info.height);
-        let n = (w * h) as u64;
-        Ok(Runner {
-            gpu,
-            ctx,
-            mask: gpu.image(vk::Format::R32_UINT, w.div_ceil(8), h.div_ceil(4), READ),
-            depth: gpu.image(vk::Format::R32_SFLOAT, w, h, READ),
-            velocity: gpu.image(vk::Format::R32G32_SFLOAT, w, h, READ),
-            normals: gpu.image(vk::Format::R32G32B32A32_SFLOAT, w, h, READ),
-            // Resting in TRANSFER_SRC_OPTIMAL exercises dnsr's transition to GENERAL and back.
-            output: gpu.image(info.output_format, w, h, vk::ImageLayout::TRANSFER_SRC_OPTIMAL),
-            staging: gpu.staging(n * 4 * 9 + 64),
-            cmd: gpu.command_buffer(),
-        })
+        let [mask, depth, velocity, normals, output] = host_images(gpu, info.width, info.height, info.output_format);
+        let staging = gpu.staging(staging_bytes(info.width, info.height));
+        Ok(Runner { gpu, ctx, mask, depth, velocity, normals, output, staging, cmd: gpu.command_buffer() })
     }
 
     /// A dispatch for `f` over this runner's images (no reset).
@@ -140,13 +146,8 @@ impl<'g> Runner<'g> {
             g.destroy_image(img);
         }
         g.destroy_staging(&self.staging);
-        let (w, h) = (width, height);
-        self.mask = g.image(vk::Format::R32_UINT, w.div_ceil(8), h.div_ceil(4), READ);
-        self.depth = g.image(vk::Format::R32_SFLOAT, w, h, READ);
-        self.velocity = g.image(vk::Format::R32G32_SFLOAT, w, h, READ);
-        self.normals = g.image(vk::Format::R32G32B32A32_SFLOAT, w, h, READ);
-        self.output = g.image(format, w, h, vk::ImageLayout::TRANSFER_SRC_OPTIMAL);
-        self.staging = g.staging((w * h) as u64 * 4 * 9 + 64);
+        [self.mask, self.depth, self.velocity, self.normals, self.output] = host_images(g, width, height, format);
+        self.staging = g.staging(staging_bytes(width, height));
         Ok(())
     }
 

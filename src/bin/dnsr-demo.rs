@@ -119,7 +119,7 @@ struct Scene {
 
 impl Scene {
     fn new(width: u32, height: u32) -> Scene {
-        let cam = Camera::above(0.0, 0.0, CAMERA_HEIGHT);
+        let cam = Camera::above(0.0, 0.0, CAMERA_HEIGHT); // for its field of view
         let half_height = CAMERA_HEIGHT * (cam.fov_y * 0.5).tan();
         let half_width = half_height * width as f64 / height as f64;
         // Put the plane's left edge SKY_FRACTION of the view in from the view's left border.
@@ -132,20 +132,21 @@ impl Scene {
     }
 
     /// True fraction of the light visible at world (x, z) on the plane in `frame`. Independent occluders
-    /// multiply. The view spans about x in [-10, 6] and z in [-4.8, 4.8] at the default size.
+    /// multiply. At the default size the view spans about x in [-10, 6] (x = -8 is the plane's edge) and
+    /// z in [-4.8, 4.8].
     fn visibility(&self, frame: u32, x: f64, z: f64) -> f64 {
         let mut v = 1.0;
-        // Top half: three soft boxes with penumbrae 0.2, 1 and 3 units wide.
+        // Lower row of the image (z < 0): three soft boxes with penumbrae 0.2, 1 and 3 units wide.
         v *= 1.0 - soft_box(x, z, [-7.6, -5.8], [-4.0, -0.8], 0.2);
         v *= 1.0 - soft_box(x, z, [-4.8, -2.2], [-4.0, -0.8], 1.0);
         v *= 1.0 - soft_box(x, z, [0.0, 4.6], [-4.0, -0.8], 3.0);
-        // Bottom left: a contact shadow. Its left edge, where the occluder touches the plane, is hard; its
+        // Upper row, left: a contact shadow. Its left edge, where the occluder touches the plane, is hard; its
         // sides soften with distance from the contact line.
         if (-7.5..=-4.0).contains(&x) {
             let width = 0.05 + 0.4 * (x + 7.5);
             v *= 1.0 - band(z, [0.8, 4.0], width);
         }
-        // Bottom middle: thin lines, 1, 1.5 and 2 pixels wide, and a 1-pixel diagonal.
+        // Upper row, middle: thin lines, 1, 1.5 and 2 pixels wide, and a 1-pixel diagonal.
         for (i, px) in [1.0, 1.5, 2.0].into_iter().enumerate() {
             let center = -3.0 + 0.6 * i as f64;
             if (z > 0.8 && z < 4.0) && (x - center).abs() < 0.5 * px * self.pixel {
@@ -156,7 +157,7 @@ impl Scene {
         if z > 0.8 && z < 4.0 && distance_to_diagonal < 0.5 * self.pixel {
             v = 0.0;
         }
-        // Bottom right: the shadow of a disc swinging left and right (up to ~1.6 px per frame at the default
+        // Upper row, right: the shadow of a disc swinging left and right (up to ~1.6 px per frame at the default
         // size). Its motion is not in the velocity buffer, which only describes the camera's motion.
         let phase = std::f64::consts::TAU * frame as f64 / 96.0;
         let (cx, cz) = (2.8 + 1.2 * phase.sin(), 2.4);
@@ -332,7 +333,7 @@ fn report(args: &Args, device: &str, memory: u64, errors: &[(u32, f64, f64)], ti
         memory as f64 / (w as f64 * h as f64)
     );
 
-    let _ = writeln!(r, "\n## Error against truth (RMSE over receiver pixels)\n");
+    let _ = writeln!(r, "\n## Error against truth (RMSE over receiver pixels, frames counted from 1)\n");
     let _ = writeln!(r, "| frame | noisy 1-spp | denoised |");
     let _ = writeln!(r, "|---:|---:|---:|");
     for &(frame, noisy, denoised) in errors {

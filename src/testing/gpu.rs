@@ -261,6 +261,9 @@ impl Gpu {
         if feats.contains(vk::FormatFeatureFlags::STORAGE_IMAGE) {
             usage |= vk::ImageUsageFlags::STORAGE;
         }
+        if depth {
+            usage |= vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT;
+        }
         let info = vk::ImageCreateInfo::default()
             .image_type(vk::ImageType::TYPE_2D)
             .format(format)

@@ -101,12 +101,15 @@ impl<'g> Runner<'g> {
     /// uploads and the readback, so a test can check that a refused dispatch changed nothing.
     pub fn run_raw(&mut self, f: &FrameInputs, dispatch: &ShadowsDispatch) -> (crate::Result<()>, Vec<f32>) {
         let n = (f.width * f.height) as usize;
-        let parts: [&[u8]; 4] = [
-            bytemuck::cast_slice(&f.mask),
-            bytemuck::cast_slice(&f.depth),
-            bytemuck::cast_slice(&f.velocity),
-            bytemuck::cast_slice(&f.normals),
-        ];
+        // RGBA8 normals are stored as n * 0.5 + 0.5 (decode with unpack mul 2, add -1).
+        let packed: Vec<[u8; 4]> = if self.normals.format == vk::Format::R8G8B8A8_UNORM {
+            f.normals.iter().map(|v| v.map(|c| ((c * 0.5 + 0.5).clamp(0.0, 1.0) * 255.0).round() as u8)).collect()
+        } else {
+            Vec::new()
+        };
+        let normals: &[u8] = if packed.is_empty() { bytemuck::cast_slice(&f.normals) } else { bytemuck::cast_slice(&packed) };
+        let parts: [&[u8]; 4] =
+            [bytemuck::cast_slice(&f.mask), bytemuck::cast_slice(&f.depth), bytemuck::cast_slice(&f.velocity), normals];
         let mut offsets = [0u64; 5];
         for (i, p) in parts.iter().enumerate() {
             self.staging.write(offsets[i] as usize, p);
@@ -134,6 +137,18 @@ impl<'g> Runner<'g> {
             other => panic!("no readback for {other:?}"),
         };
         (result, out)
+    }
+
+    /// Replaces the depth and normal images with other formats (D32_SFLOAT depth rests in
+    /// DEPTH_STENCIL_READ_ONLY_OPTIMAL; R8G8B8A8_UNORM normals are uploaded packed).
+    pub fn set_gbuffer_formats(&mut self, depth: vk::Format, normals: vk::Format) {
+        let g = self.gpu;
+        let (w, h) = (self.depth.width, self.depth.height);
+        let depth_layout = if depth == vk::Format::D32_SFLOAT { vk::ImageLayout::DEPTH_STENCIL_READ_ONLY_OPTIMAL } else { READ };
+        g.destroy_image(&self.depth);
+        g.destroy_image(&self.normals);
+        self.depth = g.image(depth, w, h, depth_layout);
+        self.normals = g.image(normals, w, h, READ);
     }
 
     /// Resizes the context and recreates the host images for the new size.

@@ -42,6 +42,9 @@ impl Pipelines {
 }
 
 /// A shadow denoiser bound to one host device. Not thread-safe: record from one thread at a time.
+///
+/// Dropping the context destroys its Vulkan objects at once: the GPU must have finished every command buffer
+/// it recorded into (the same holds for `resize`, which frees the previous internal images).
 pub struct Context {
     vk: Vk,
     size: [u32; 2],

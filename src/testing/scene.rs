@@ -3,7 +3,7 @@
 
 use glam::{DMat4, DVec3, DVec4, Mat4, Vec3};
 
-/// Camera above the plane y = 0, looking straight down.
+/// Camera above the plane y = 0, looking straight down; world -z maps towards NDC -y, the top of the image.
 #[derive(Clone, Copy, Debug)]
 pub struct Camera {
     /// Position in world space.
@@ -101,8 +101,8 @@ pub fn hash01(seed: u64, x: u32, y: u32) -> f64 {
     (z >> 11) as f64 / (1u64 << 53) as f64
 }
 
-/// Builds one frame. The plane covers |x - cam.x| < `plane_half_width` around the world origin's x
-/// (beyond it: sky). `seed` draws the mask; `prev` is the previous frame's camera.
+/// Builds one frame. The plane covers world |x| < `plane_half_width` (beyond it: sky). `seed` draws the mask;
+/// `prev` is the previous frame's camera.
 pub fn render(
     width: u32,
     height: u32,

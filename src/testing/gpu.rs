@@ -385,26 +385,10 @@ impl Gpu {
             .image_subresource(vk::ImageSubresourceLayers { aspect_mask: aspect, mip_level: 0, base_array_layer: 0, layer_count: 1 })
             .image_extent(vk::Extent3D { width: img.width, height: img.height, depth: 1 });
         let transfer = if to_image { vk::ImageLayout::TRANSFER_DST_OPTIMAL } else { vk::ImageLayout::TRANSFER_SRC_OPTIMAL };
-        let range = vk::ImageSubresourceRange { aspect_mask: aspect, base_mip_level: 0, level_count: 1, base_array_layer: 0, layer_count: 1 };
         let transition = |old, new| {
-            let b = vk::ImageMemoryBarrier::default()
-                .image(img.image)
-                .old_layout(old)
-                .new_layout(new)
-                .src_access_mask(vk::AccessFlags::MEMORY_WRITE)
-                .dst_access_mask(vk::AccessFlags::MEMORY_READ | vk::AccessFlags::MEMORY_WRITE)
-                .subresource_range(range);
-            unsafe {
-                d.cmd_pipeline_barrier(
-                    cmd,
-                    vk::PipelineStageFlags::ALL_COMMANDS,
-                    vk::PipelineStageFlags::ALL_COMMANDS,
-                    vk::DependencyFlags::empty(),
-                    &[],
-                    &[],
-                    &[b],
-                )
-            };
+            let (write, read) = (vk::AccessFlags::MEMORY_WRITE, vk::AccessFlags::MEMORY_READ);
+            let b = crate::gpu::barrier::layout_transition(img.image, aspect, old, new, write, read | write);
+            full_barrier_with(d, cmd, &[b]);
         };
         if img.layout != transfer {
             transition(img.layout, transfer);
@@ -449,20 +433,13 @@ impl Gpu {
 
 /// An all-commands memory barrier (test plumbing only).
 pub fn full_barrier(d: &ash::Device, cmd: vk::CommandBuffer) {
-    let b = vk::MemoryBarrier::default()
-        .src_access_mask(vk::AccessFlags::MEMORY_WRITE)
-        .dst_access_mask(vk::AccessFlags::MEMORY_READ | vk::AccessFlags::MEMORY_WRITE);
-    unsafe {
-        d.cmd_pipeline_barrier(
-            cmd,
-            vk::PipelineStageFlags::ALL_COMMANDS,
-            vk::PipelineStageFlags::ALL_COMMANDS,
-            vk::DependencyFlags::empty(),
-            &[b],
-            &[],
-            &[],
-        )
-    };
+    full_barrier_with(d, cmd, &[]);
+}
+
+fn full_barrier_with(d: &ash::Device, cmd: vk::CommandBuffer, images: &[vk::ImageMemoryBarrier]) {
+    let all = vk::PipelineStageFlags::ALL_COMMANDS;
+    let (write, read) = (vk::AccessFlags::MEMORY_WRITE, vk::AccessFlags::MEMORY_READ);
+    crate::gpu::barrier::memory(d, cmd, all, write, all, read | write, images);
 }
 
 /// A mapped host-visible buffer.

@@ -6,7 +6,9 @@ use crate::dispatch::{HitMaskConvention, ShadowsDispatch};
 use crate::error::{vk_check, Error, Result};
 use crate::gpu::barrier;
 use crate::gpu::descriptors::Binder;
-use crate::gpu::image::{allocate, check_internal_format, color_range};
+use crate::gpu::image::{check_internal_format, color_range, InternalImage};
+use crate::gpu::memory::{self, Memory};
+use crate::host::ResourceKind;
 use crate::gpu::loader::Vk;
 use crate::gpu::shader::{variant, Pipeline};
 use crate::passes::bindings::{image, BindingTable};
@@ -57,7 +59,7 @@ pub struct Context {
     binder: Option<Binder>,
     sampler: vk::Sampler,
     constants_buffer: vk::Buffer,
-    constants_memory: vk::DeviceMemory,
+    constants_memory: Memory,
     lights: Vec<LightState>,
     light_count: u32,
     timestamps: Option<Timestamps>,
@@ -118,7 +120,7 @@ impl Context {
             binder: None,
             sampler: vk::Sampler::null(),
             constants_buffer: vk::Buffer::null(),
-            constants_memory: vk::DeviceMemory::null(),
+            constants_memory: Memory::default(),
             lights: Vec::new(),
             light_count: info.light_count,
             timestamps: None,
@@ -126,7 +128,7 @@ impl Context {
         };
         // On any error below, dropping `ctx` releases what was created so far.
         let push_mode = push.is_some();
-        ctx.binder = Some(Binder::new(&ctx.vk.device, push)?);
+        ctx.binder = Some(Binder::new(&ctx.vk, push)?);
         ctx.pipelines = Some(ctx.create_pipelines(push_mode)?);
         ctx.create_sampler_and_constants()?;
         if info.enable_timestamps {
@@ -137,7 +139,6 @@ impl Context {
     }
 
     fn create_pipelines(&self, push: bool) -> Result<Pipelines> {
-        let d = &self.vk.device;
         let names = [
             prepare::SHADER,
             tile_classification::shader(self.precision),
@@ -146,10 +147,10 @@ impl Context {
         ];
         let mut made: Vec<Pipeline> = Vec::with_capacity(4);
         for name in names {
-            match Pipeline::new(d, variant(name).spirv, push) {
+            match Pipeline::new(&self.vk, name, variant(name).spirv, push) {
                 Ok(p) => made.push(p),
                 Err(e) => {
-                    made.iter_mut().for_each(|p| p.destroy(d));
+                    made.iter_mut().for_each(|p| p.destroy(&self.vk));
                     return Err(e);
                 }
             }
@@ -161,6 +162,7 @@ impl Context {
 
     fn create_sampler_and_constants(&mut self) -> Result<()> {
         let d = &self.vk.device;
+        let alloc = self.vk.alloc();
         let info = vk::SamplerCreateInfo::default()
             .mag_filter(vk::Filter::LINEAR)
             .min_filter(vk::Filter::LINEAR)
@@ -169,28 +171,31 @@ impl Context {
             .address_mode_v(vk::SamplerAddressMode::CLAMP_TO_EDGE)
             .address_mode_w(vk::SamplerAddressMode::CLAMP_TO_EDGE)
             .max_lod(0.0);
-        self.sampler = vk_check("vkCreateSampler", unsafe { d.create_sampler(&info, None) })?;
+        self.sampler = vk_check("vkCreateSampler", unsafe { d.create_sampler(&info, alloc) })?;
+        self.vk.name(self.sampler, "dnsr.history_sampler");
         let info = vk::BufferCreateInfo::default()
             .size(std::mem::size_of::<FrameConstants>() as u64)
             .usage(vk::BufferUsageFlags::UNIFORM_BUFFER | vk::BufferUsageFlags::TRANSFER_DST);
-        self.constants_buffer = vk_check("vkCreateBuffer", unsafe { d.create_buffer(&info, None) })?;
+        self.constants_buffer = vk_check("vkCreateBuffer", unsafe { d.create_buffer(&info, alloc) })?;
+        self.vk.name(self.constants_buffer, "dnsr.constants");
         let req = unsafe { d.get_buffer_memory_requirements(self.constants_buffer) };
-        self.constants_memory = allocate(&self.vk, req)?;
-        vk_check("vkBindBufferMemory", unsafe { d.bind_buffer_memory(self.constants_buffer, self.constants_memory, 0) })
+        self.constants_memory = memory::allocate(&self.vk, req, ResourceKind::Buffer)?;
+        let m = self.constants_memory;
+        vk_check("vkBindBufferMemory", unsafe { d.bind_buffer_memory(self.constants_buffer, m.memory, m.offset) })
     }
 
     fn allocate_lights(&mut self) -> Result<()> {
         let with_tmp = self.settings.filter_passes == MAX_FILTER_PASSES;
-        for _ in 0..self.light_count {
-            let light = LightState::new(&self.vk, self.size, self.precision, with_tmp)?;
+        for index in 0..self.light_count {
+            let light = LightState::new(&self.vk, index, self.size, self.precision, with_tmp)?;
             self.lights.push(light);
         }
         Ok(())
     }
 
     fn destroy_lights(&mut self) {
-        let d = &self.vk.device;
-        self.lights.iter_mut().for_each(|l| l.destroy(d));
+        let vk = &self.vk;
+        self.lights.iter_mut().for_each(|l| l.destroy(vk));
         self.lights.clear();
     }
 
@@ -220,9 +225,10 @@ impl Context {
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
         settings.validate()?;
         let needs_tmp = settings.filter_passes == MAX_FILTER_PASSES;
-        for light in &mut self.lights {
+        for (index, light) in self.lights.iter_mut().enumerate() {
             if needs_tmp && light.tmp.is_none() {
-                let img = crate::gpu::image::InternalImage::new(&self.vk, intermediate_format(self.precision), self.size)?;
+                let name = format!("dnsr.light{index}.filter_tmp");
+                let img = InternalImage::new(&self.vk, intermediate_format(self.precision), self.size, &name)?;
                 light.tmp = Some(img);
                 light.initialized = false;
             }
@@ -508,20 +514,21 @@ fn binder_ref(b: &Option<Binder>) -> &Binder {
 impl Drop for Context {
     fn drop(&mut self) {
         self.destroy_lights();
-        let d = &self.vk.device;
+        let vk = &self.vk;
+        let (d, alloc) = (&vk.device, vk.alloc());
         if let Some(mut p) = self.pipelines.take() {
-            p.all_mut().into_iter().for_each(|p| p.destroy(d));
+            p.all_mut().into_iter().for_each(|p| p.destroy(vk));
         }
         if let Some(mut b) = self.binder.take() {
-            b.destroy(d);
+            b.destroy(vk);
         }
         if let Some(t) = self.timestamps.take() {
-            unsafe { d.destroy_query_pool(t.pool, None) };
+            unsafe { d.destroy_query_pool(t.pool, alloc) };
         }
         unsafe {
-            d.destroy_sampler(self.sampler, None);
-            d.destroy_buffer(self.constants_buffer, None);
-            d.free_memory(self.constants_memory, None);
+            d.destroy_sampler(self.sampler, alloc);
+            d.destroy_buffer(self.constants_buffer, alloc);
         }
+        memory::free(vk, &mut self.constants_memory);
     }
 }

@@ -1,5 +1,6 @@
 //! What the host hands dnsr to create a context.
 
+use crate::host::HostHooks;
 use crate::settings::Settings;
 use ash::vk;
 
@@ -39,7 +40,7 @@ pub enum Precision {
 }
 
 /// Everything needed to create a `Context`. Vulkan handles are borrowed: they must outlive the context.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct ContextCreateInfo {
     /// The host's instance. Required.
     pub instance: vk::Instance,
@@ -73,6 +74,8 @@ pub struct ContextCreateInfo {
     pub enable_timestamps: bool,
     /// Initial settings.
     pub settings: Settings,
+    /// Host allocators and debug names (all optional).
+    pub hooks: HostHooks,
 }
 
 impl ContextCreateInfo {
@@ -103,6 +106,7 @@ impl ContextCreateInfo {
             light_count: 1,
             enable_timestamps: false,
             settings: Settings::default(),
+            hooks: HostHooks::default(),
         }
     }
 }

@@ -12,6 +12,7 @@ mod create_info;
 mod dispatch;
 mod error;
 mod gpu;
+mod host;
 mod passes;
 mod settings;
 mod state;
@@ -24,6 +25,7 @@ pub use create_info::{ContextCreateInfo, DepthFlags, EnabledFeatures, Precision}
 pub use dispatch::{HitMaskConvention, HostImage, HostSync, Rect, ShadowsDispatch};
 pub use error::{Error, ImageRole, Result};
 pub use glam;
+pub use host::{DebugNamer, GpuAllocation, GpuMemoryAllocator, HostHooks, ResourceKind};
 pub use settings::{Settings, MAX_FILTER_PASSES};
 pub use timestamps::PassTimings;
 

@@ -35,24 +35,25 @@ pub(crate) struct LightState {
 }
 
 impl LightState {
-    pub(crate) fn new(vk: &Vk, extent: [u32; 2], precision: Precision, with_tmp: bool) -> Result<LightState> {
+    pub(crate) fn new(vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, with_tmp: bool) -> Result<LightState> {
         let tiles = [extent[0].div_ceil(8), extent[1].div_ceil(4)];
         let mut made: Vec<InternalImage> = Vec::new();
         let specs = [
-            (TILE_FORMAT, tiles),
-            (TILE_FORMAT, tiles),
-            (intermediate_format(precision), extent),
-            (intermediate_format(precision), extent),
-            (DEPTH_FORMAT, extent),
-            (DEPTH_FORMAT, extent),
-            (MOMENTS_FORMAT, extent),
-            (MOMENTS_FORMAT, extent),
+            (TILE_FORMAT, tiles, "tile_mask"),
+            (TILE_FORMAT, tiles, "tile_meta"),
+            (intermediate_format(precision), extent, "reprojection"),
+            (intermediate_format(precision), extent, "history"),
+            (DEPTH_FORMAT, extent, "depth_copy_0"),
+            (DEPTH_FORMAT, extent, "depth_copy_1"),
+            (MOMENTS_FORMAT, extent, "moments_0"),
+            (MOMENTS_FORMAT, extent, "moments_1"),
         ];
-        for (format, size) in specs.into_iter().chain(with_tmp.then_some((intermediate_format(precision), extent))) {
-            match InternalImage::new(vk, format, size) {
+        let tmp = (intermediate_format(precision), extent, "filter_tmp");
+        for (format, size, name) in specs.into_iter().chain(with_tmp.then_some(tmp)) {
+            match InternalImage::new(vk, format, size, &format!("dnsr.light{light}.{name}")) {
                 Ok(img) => made.push(img),
                 Err(e) => {
-                    made.iter_mut().for_each(|i| i.destroy(&vk.device));
+                    made.iter_mut().for_each(|i| i.destroy(vk));
                     return Err(e);
                 }
             }
@@ -86,14 +87,14 @@ impl LightState {
         self.images().map(|i| i.bytes).sum()
     }
 
-    pub(crate) fn destroy(&mut self, d: &ash::Device) {
+    pub(crate) fn destroy(&mut self, vk: &Vk) {
         for img in [&mut self.tile_mask, &mut self.tile_meta, &mut self.reprojection, &mut self.history]
             .into_iter()
             .chain(self.depth.iter_mut())
             .chain(self.moments.iter_mut())
             .chain(self.tmp.iter_mut())
         {
-            img.destroy(d);
+            img.destroy(vk);
         }
     }
 }

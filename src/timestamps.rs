@@ -46,7 +46,7 @@ impl Timestamps {
         let info = vk::QueryPoolCreateInfo::default()
             .query_type(vk::QueryType::TIMESTAMP)
             .query_count(QUERIES_PER_FRAME * FRAME_SLOTS);
-        let pool = vk_check("vkCreateQueryPool", unsafe { vk.device.create_query_pool(&info, None) })?;
+        let pool = vk_check("vkCreateQueryPool", unsafe { vk.device.create_query_pool(&info, vk.alloc()) })?;
         Ok(Timestamps {
             pool,
             period_ns: props.limits.timestamp_period as f64,

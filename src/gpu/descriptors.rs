@@ -3,6 +3,7 @@
 //! it can never be changed under a command buffer still in flight).
 
 use crate::error::{vk_check, Error, Result};
+use crate::gpu::loader::Vk;
 use crate::gpu::shader::Pipeline;
 use crate::passes::bindings::{Binding, BindingTable, Resource};
 use ash::vk;
@@ -61,7 +62,7 @@ fn with_writes<R>(pipeline: &Pipeline, table: &BindingTable, sampler: vk::Sample
 }
 
 impl Binder {
-    pub(crate) fn new(device: &ash::Device, push: Option<ash::khr::push_descriptor::DeviceFn>) -> Result<Binder> {
+    pub(crate) fn new(vk: &Vk, push: Option<ash::khr::push_descriptor::DeviceFn>) -> Result<Binder> {
         if let Some(push) = push {
             return Ok(Binder::Push(push));
         }
@@ -73,7 +74,8 @@ impl Binder {
         ]
         .map(|(ty, per_set)| vk::DescriptorPoolSize { ty, descriptor_count: per_set * CACHE_CAPACITY });
         let info = vk::DescriptorPoolCreateInfo::default().max_sets(CACHE_CAPACITY).pool_sizes(&sizes);
-        let pool = vk_check("vkCreateDescriptorPool", unsafe { device.create_descriptor_pool(&info, None) })?;
+        let pool = vk_check("vkCreateDescriptorPool", unsafe { vk.device.create_descriptor_pool(&info, vk.alloc()) })?;
+        vk.name(pool, "dnsr.descriptor_cache");
         Ok(Binder::Cache(Cache { pool, entries: Vec::with_capacity(CACHE_CAPACITY as usize) }))
     }
 
@@ -153,9 +155,9 @@ impl Binder {
         Ok(())
     }
 
-    pub(crate) fn destroy(&mut self, device: &ash::Device) {
+    pub(crate) fn destroy(&mut self, vk: &Vk) {
         if let Binder::Cache(cache) = self {
-            unsafe { device.destroy_descriptor_pool(cache.pool, None) };
+            unsafe { vk.device.destroy_descriptor_pool(cache.pool, vk.alloc()) };
             cache.pool = vk::DescriptorPool::null();
         }
     }

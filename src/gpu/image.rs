@@ -1,6 +1,8 @@
 //! dnsr's internal images: device-local, one allocation each, always in GENERAL layout once initialised.
 
 use crate::error::{vk_check, Error, Result};
+use crate::gpu::memory::{self, Memory};
+use crate::host::ResourceKind;
 use crate::gpu::loader::Vk;
 use ash::vk;
 
@@ -14,7 +16,7 @@ pub(crate) const INTERNAL_USAGE: vk::ImageUsageFlags = vk::ImageUsageFlags::from
 pub(crate) struct InternalImage {
     pub image: vk::Image,
     pub view: vk::ImageView,
-    pub memory: vk::DeviceMemory,
+    pub memory: Memory,
     /// Bytes of device memory bound to the image.
     pub bytes: u64,
 }
@@ -25,26 +27,8 @@ pub(crate) fn check_internal_format(vk: &Vk, format: vk::Format) -> Result<()> {
     if vk.format_features(format).contains(need) { Ok(()) } else { Err(Error::UnsupportedFormat { role: None, format }) }
 }
 
-fn memory_type(vk: &Vk, type_bits: u32) -> Result<u32> {
-    let props = unsafe { vk.instance.get_physical_device_memory_properties(vk.physical_device) };
-    let types = &props.memory_types[..props.memory_type_count as usize];
-    let pick = |flags: vk::MemoryPropertyFlags| {
-        types.iter().enumerate().position(|(i, t)| type_bits & (1 << i) != 0 && t.property_flags.contains(flags))
-    };
-    pick(vk::MemoryPropertyFlags::DEVICE_LOCAL)
-        .or_else(|| pick(vk::MemoryPropertyFlags::empty()))
-        .map(|i| i as u32)
-        .ok_or(Error::Vulkan { call: "memory type selection", result: vk::Result::ERROR_OUT_OF_DEVICE_MEMORY })
-}
-
-/// Allocates and binds device-local memory for a buffer or image with these requirements.
-pub(crate) fn allocate(vk: &Vk, req: vk::MemoryRequirements) -> Result<vk::DeviceMemory> {
-    let info = vk::MemoryAllocateInfo::default().allocation_size(req.size).memory_type_index(memory_type(vk, req.memory_type_bits)?);
-    vk_check("vkAllocateMemory", unsafe { vk.device.allocate_memory(&info, None) })
-}
-
 impl InternalImage {
-    pub(crate) fn new(vk: &Vk, format: vk::Format, extent: [u32; 2]) -> Result<InternalImage> {
+    pub(crate) fn new(vk: &Vk, format: vk::Format, extent: [u32; 2], name: &str) -> Result<InternalImage> {
         let d = &vk.device;
         let info = vk::ImageCreateInfo::default()
             .image_type(vk::ImageType::TYPE_2D)
@@ -56,39 +40,42 @@ impl InternalImage {
             .tiling(vk::ImageTiling::OPTIMAL)
             .usage(INTERNAL_USAGE)
             .initial_layout(vk::ImageLayout::UNDEFINED);
-        let image = vk_check("vkCreateImage", unsafe { d.create_image(&info, None) })?;
+        let image = vk_check("vkCreateImage", unsafe { d.create_image(&info, vk.alloc()) })?;
         let req = unsafe { d.get_image_memory_requirements(image) };
         let mut out =
-            InternalImage { image, view: vk::ImageView::null(), memory: vk::DeviceMemory::null(), bytes: req.size };
+            InternalImage { image, view: vk::ImageView::null(), memory: Memory::default(), bytes: req.size };
         let result = (|| {
-            out.memory = allocate(vk, req)?;
-            vk_check("vkBindImageMemory", unsafe { d.bind_image_memory(image, out.memory, 0) })?;
+            out.memory = memory::allocate(vk, req, ResourceKind::Image)?;
+            vk_check("vkBindImageMemory", unsafe { d.bind_image_memory(image, out.memory.memory, out.memory.offset) })?;
             let view_info = vk::ImageViewCreateInfo::default()
                 .image(image)
                 .view_type(vk::ImageViewType::TYPE_2D)
                 .format(format)
                 .subresource_range(color_range());
-            out.view = vk_check("vkCreateImageView", unsafe { d.create_image_view(&view_info, None) })?;
+            out.view = vk_check("vkCreateImageView", unsafe { d.create_image_view(&view_info, vk.alloc()) })?;
             Ok(())
         })();
         match result {
-            Ok(()) => Ok(out),
+            Ok(()) => {
+                vk.name(out.image, name);
+                vk.name(out.view, name);
+                Ok(out)
+            }
             Err(e) => {
-                out.destroy(d);
+                out.destroy(vk);
                 Err(e)
             }
         }
     }
 
-    pub(crate) fn destroy(&mut self, d: &ash::Device) {
+    pub(crate) fn destroy(&mut self, vk: &Vk) {
         unsafe {
-            d.destroy_image_view(self.view, None);
-            d.destroy_image(self.image, None);
-            d.free_memory(self.memory, None);
+            vk.device.destroy_image_view(self.view, vk.alloc());
+            vk.device.destroy_image(self.image, vk.alloc());
         }
+        memory::free(vk, &mut self.memory);
         self.view = vk::ImageView::null();
         self.image = vk::Image::null();
-        self.memory = vk::DeviceMemory::null();
     }
 }
 

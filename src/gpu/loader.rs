@@ -2,6 +2,7 @@
 
 use crate::create_info::ContextCreateInfo;
 use crate::error::{Error, Result};
+use crate::host::HostHooks;
 use ash::vk;
 use std::ffi::c_void;
 
@@ -12,6 +13,7 @@ pub(crate) struct Vk {
     pub physical_device: vk::PhysicalDevice,
     /// `vkCmdPushDescriptorSetKHR`, when the host enabled VK_KHR_push_descriptor.
     pub push_descriptor: Option<ash::khr::push_descriptor::DeviceFn>,
+    pub hooks: HostHooks,
 }
 
 impl Vk {
@@ -49,7 +51,21 @@ impl Vk {
         } else {
             None
         };
-        Ok(Vk { instance, device, physical_device: info.physical_device, push_descriptor })
+        Ok(Vk { instance, device, physical_device: info.physical_device, push_descriptor, hooks: info.hooks.clone() })
+    }
+
+    /// The host's CPU allocation callbacks, for every create/destroy call.
+    pub(crate) fn alloc(&self) -> Option<&vk::AllocationCallbacks<'static>> {
+        self.hooks.allocation_callbacks.as_ref()
+    }
+
+    /// Hands `name` to the host's debug-name hook (creation time only).
+    pub(crate) fn name<H: vk::Handle>(&self, handle: H, name: &str) {
+        if let Some(namer) = &self.hooks.debug_names {
+            if let Ok(c) = std::ffi::CString::new(name) {
+                namer(H::TYPE, handle.as_raw(), &c);
+            }
+        }
     }
 
     pub(crate) fn format_features(&self, format: vk::Format) -> vk::FormatFeatureFlags {

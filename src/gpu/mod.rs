@@ -5,5 +5,6 @@ pub(crate) mod barrier;
 pub(crate) mod descriptors;
 pub(crate) mod image;
 pub(crate) mod loader;
+pub(crate) mod memory;
 pub(crate) mod reflect;
 pub(crate) mod shader;

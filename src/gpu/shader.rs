@@ -1,6 +1,7 @@
 //! Embedded SPIR-V, the catalog of compiled variants, and pipelines whose layouts come from reflection.
 
 use crate::error::{vk_check, Error, Result};
+use crate::gpu::loader::Vk;
 use crate::passes::bindings::Resource;
 use ash::vk;
 
@@ -102,7 +103,7 @@ pub(crate) struct Pipeline {
 }
 
 impl Pipeline {
-    pub(crate) fn new(device: &ash::Device, spirv: &[u8], push_descriptors: bool) -> Result<Pipeline> {
+    pub(crate) fn new(vk: &Vk, name: &str, spirv: &[u8], push_descriptors: bool) -> Result<Pipeline> {
         let interface = reflect(spirv)?;
         if let Some(bytes) = interface.uniform_bytes {
             let expected = std::mem::size_of::<crate::constants::FrameConstants>() as u32;
@@ -116,17 +117,23 @@ impl Pipeline {
             set_layout: vk::DescriptorSetLayout::null(),
             interface,
         };
-        let result = p.create(device, spirv, push_descriptors);
+        let result = p.create(vk, spirv, push_descriptors);
         match result {
-            Ok(()) => Ok(p),
+            Ok(()) => {
+                vk.name(p.pipeline, &format!("dnsr.{name}"));
+                vk.name(p.layout, &format!("dnsr.{name}"));
+                vk.name(p.set_layout, &format!("dnsr.{name}"));
+                Ok(p)
+            }
             Err(e) => {
-                p.destroy(device);
+                p.destroy(vk);
                 Err(e)
             }
         }
     }
 
-    fn create(&mut self, device: &ash::Device, spirv: &[u8], push_descriptors: bool) -> Result<()> {
+    fn create(&mut self, vk: &Vk, spirv: &[u8], push_descriptors: bool) -> Result<()> {
+        let (device, alloc) = (&vk.device, vk.alloc());
         let layout_bindings: Vec<_> = self
             .interface
             .bindings
@@ -145,34 +152,35 @@ impl Pipeline {
             vk::DescriptorSetLayoutCreateFlags::empty()
         };
         let set_info = vk::DescriptorSetLayoutCreateInfo::default().flags(flags).bindings(&layout_bindings);
-        self.set_layout = vk_check("vkCreateDescriptorSetLayout", unsafe { device.create_descriptor_set_layout(&set_info, None) })?;
+        self.set_layout = vk_check("vkCreateDescriptorSetLayout", unsafe { device.create_descriptor_set_layout(&set_info, alloc) })?;
         let range = vk::PushConstantRange::default()
             .stage_flags(vk::ShaderStageFlags::COMPUTE)
             .size(self.interface.push_constant_bytes);
         let ranges = if self.interface.push_constant_bytes > 0 { std::slice::from_ref(&range) } else { &[] };
         let layout_info =
             vk::PipelineLayoutCreateInfo::default().set_layouts(std::slice::from_ref(&self.set_layout)).push_constant_ranges(ranges);
-        self.layout = vk_check("vkCreatePipelineLayout", unsafe { device.create_pipeline_layout(&layout_info, None) })?;
+        self.layout = vk_check("vkCreatePipelineLayout", unsafe { device.create_pipeline_layout(&layout_info, alloc) })?;
 
         let words: Vec<u32> = spirv.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
         let module_info = vk::ShaderModuleCreateInfo::default().code(&words);
-        let module = vk_check("vkCreateShaderModule", unsafe { device.create_shader_module(&module_info, None) })?;
+        let module = vk_check("vkCreateShaderModule", unsafe { device.create_shader_module(&module_info, alloc) })?;
         let stage = vk::PipelineShaderStageCreateInfo::default()
             .stage(vk::ShaderStageFlags::COMPUTE)
             .module(module)
             .name(c"main");
         let info = vk::ComputePipelineCreateInfo::default().stage(stage).layout(self.layout);
-        let created = unsafe { device.create_compute_pipelines(vk::PipelineCache::null(), std::slice::from_ref(&info), None) };
-        unsafe { device.destroy_shader_module(module, None) };
+        let created = unsafe { device.create_compute_pipelines(vk::PipelineCache::null(), std::slice::from_ref(&info), alloc) };
+        unsafe { device.destroy_shader_module(module, alloc) };
         self.pipeline = vk_check("vkCreateComputePipelines", created.map_err(|(_, e)| e))?[0];
         Ok(())
     }
 
-    pub(crate) fn destroy(&mut self, device: &ash::Device) {
+    pub(crate) fn destroy(&mut self, vk: &Vk) {
+        let (device, alloc) = (&vk.device, vk.alloc());
         unsafe {
-            device.destroy_pipeline(self.pipeline, None);
-            device.destroy_pipeline_layout(self.layout, None);
-            device.destroy_descriptor_set_layout(self.set_layout, None);
+            device.destroy_pipeline(self.pipeline, alloc);
+            device.destroy_pipeline_layout(self.layout, alloc);
+            device.destroy_descriptor_set_layout(self.set_layout, alloc);
         }
         self.pipeline = vk::Pipeline::null();
         self.layout = vk::PipelineLayout::null();

@@ -60,7 +60,7 @@ fn bad_create_infos_are_refused_with_specific_errors() {
         ),
     ];
     for (name, edit, check) in cases {
-        let mut info = good;
+        let mut info = good.clone();
         edit(&mut info);
         match Context::new(&info) {
             Ok(_) => panic!("{name}: accepted"),

@@ -106,3 +106,131 @@ fn timestamps_and_memory_are_reported() {
     drop(r);
     g.assert_clean();
 }
+
+mod hooks {
+    use super::super::{gpu, static_frame};
+    use crate::testing::Runner;
+    use crate::{GpuAllocation, GpuMemoryAllocator, ResourceKind};
+    use ash::vk;
+    use std::ffi::c_void;
+    use std::sync::atomic::{AtomicI64, AtomicU64, Ordering};
+    use std::sync::{Arc, Mutex};
+
+    /// Live CPU allocations made through the callbacks, and the total count.
+    #[derive(Default)]
+    struct CpuCounts {
+        live: AtomicI64,
+        total: AtomicU64,
+    }
+
+    unsafe extern "system" fn alloc(user: *mut c_void, size: usize, align: usize, _: vk::SystemAllocationScope) -> *mut c_void {
+        let c = unsafe { &*(user as *const CpuCounts) };
+        c.live.fetch_add(1, Ordering::SeqCst);
+        c.total.fetch_add(1, Ordering::SeqCst);
+        let mut p = std::ptr::null_mut();
+        unsafe { libc::posix_memalign(&mut p, align.max(8), size.max(1)) };
+        p
+    }
+    unsafe extern "system" fn realloc(
+        user: *mut c_void,
+        old: *mut c_void,
+        size: usize,
+        align: usize,
+        scope: vk::SystemAllocationScope,
+    ) -> *mut c_void {
+        if old.is_null() {
+            return unsafe { alloc(user, size, align, scope) };
+        }
+        // Aligned realloc: a fresh block (the old size is unknown here, so copy conservatively via libc).
+        let p = unsafe { libc::realloc(old, size) };
+        if (p as usize) % align.max(8) == 0 {
+            return p;
+        }
+        let q = unsafe { alloc(user, size, align, scope) };
+        unsafe { std::ptr::copy_nonoverlapping(p as *const u8, q as *mut u8, size) };
+        unsafe { free(user, p) };
+        q
+    }
+    unsafe extern "system" fn free(user: *mut c_void, p: *mut c_void) {
+        if p.is_null() {
+            return;
+        }
+        let c = unsafe { &*(user as *const CpuCounts) };
+        c.live.fetch_sub(1, Ordering::SeqCst);
+        unsafe { libc::free(p) };
+    }
+
+    /// A GPU allocator that carves every request out of its own vkAllocateMemory and records what it saw.
+    struct HostGpuAllocator {
+        device: ash::Device,
+        memory_type: u32,
+        log: Mutex<Vec<(ResourceKind, bool)>>,
+        live: AtomicI64,
+    }
+
+    impl GpuMemoryAllocator for HostGpuAllocator {
+        fn allocate(&self, req: &vk::MemoryRequirements, kind: ResourceKind) -> Result<GpuAllocation, vk::Result> {
+            assert!(req.memory_type_bits & (1 << self.memory_type) != 0);
+            // Place the resource at a non-zero aligned offset to check dnsr binds at the offset it is given.
+            let offset = req.alignment.max(1) * 4;
+            let info = vk::MemoryAllocateInfo::default().allocation_size(req.size + offset).memory_type_index(self.memory_type);
+            let memory = unsafe { self.device.allocate_memory(&info, None) }?;
+            self.log.lock().unwrap().push((kind, true));
+            self.live.fetch_add(1, Ordering::SeqCst);
+            Ok(GpuAllocation { memory, offset, user_handle: 7 })
+        }
+        fn free(&self, a: &GpuAllocation) {
+            assert_eq!(a.user_handle, 7);
+            unsafe { self.device.free_memory(a.memory, None) };
+            self.live.fetch_sub(1, Ordering::SeqCst);
+        }
+    }
+
+    #[test]
+    fn host_allocators_and_debug_names_are_used_for_everything() {
+        let g = gpu();
+        let cpu = Box::new(CpuCounts::default());
+        let callbacks = vk::AllocationCallbacks::default()
+            .user_data(&*cpu as *const CpuCounts as *mut c_void)
+            .pfn_allocation(Some(alloc))
+            .pfn_reallocation(Some(realloc))
+            .pfn_free(Some(free));
+        let props = unsafe { g.instance.get_physical_device_memory_properties(g.physical_device) };
+        let memory_type = (0..props.memory_type_count)
+            .find(|&i| props.memory_types[i as usize].property_flags.contains(vk::MemoryPropertyFlags::DEVICE_LOCAL))
+            .unwrap();
+        let gpu_alloc =
+            Arc::new(HostGpuAllocator { device: g.device.clone(), memory_type, log: Mutex::new(Vec::new()), live: AtomicI64::new(0) });
+        let names: Arc<Mutex<Vec<(vk::ObjectType, String)>>> = Arc::default();
+        let sink = names.clone();
+
+        let (w, h) = (24, 16);
+        let mut info = g.create_info(w, h);
+        info.output_format = vk::Format::R32_SFLOAT;
+        info.hooks.allocation_callbacks = Some(callbacks);
+        info.hooks.gpu_memory = Some(gpu_alloc.clone());
+        info.hooks.debug_names =
+            Some(Arc::new(move |t, _, n| sink.lock().unwrap().push((t, n.to_string_lossy().into_owned()))));
+        {
+            let mut r = Runner::new(&g, &info).unwrap();
+            for frame in 0..3 {
+                let out = r.frame(&static_frame(w, h, &|_, _| 1.0, frame), false);
+                assert!(out.iter().all(|&o| o == 1.0));
+            }
+            r.resize(16, 8).unwrap();
+            r.frame(&static_frame(16, 8, &|_, _| 0.0, 9), false);
+        }
+        assert!(cpu.total.load(Ordering::SeqCst) > 0, "VkAllocationCallbacks never called");
+        assert_eq!(cpu.live.load(Ordering::SeqCst), 0, "CPU allocations leaked through the callbacks");
+        let log = gpu_alloc.log.lock().unwrap();
+        assert!(log.iter().filter(|(k, _)| *k == ResourceKind::Image).count() >= 16, "images: {log:?}");
+        assert!(log.iter().any(|(k, _)| *k == ResourceKind::Buffer));
+        assert_eq!(gpu_alloc.live.load(Ordering::SeqCst), 0, "GPU allocations leaked");
+        let names = names.lock().unwrap();
+        for expect in ["dnsr.light0.history", "dnsr.light0.moments_1", "dnsr.tile_classification", "dnsr.constants"] {
+            assert!(names.iter().any(|(_, n)| n == expect), "no object named {expect}: {names:?}");
+        }
+        assert!(names.iter().any(|(t, _)| *t == vk::ObjectType::PIPELINE));
+        g.assert_clean();
+    }
+}

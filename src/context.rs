@@ -19,6 +19,17 @@ use crate::timestamps::{PassTimings, Timestamps};
 use crate::validate;
 use ash::vk;
 
+/// Bytes of device memory a context with these parameters allocates, before driver padding and alignment
+/// (which `Context::memory_bytes` includes). Needs no device.
+pub fn memory_requirements(width: u32, height: u32, precision: Precision, filter_passes: u32, light_count: u32) -> Result<u64> {
+    validate::extent("render size", width, height, u32::MAX)?;
+    if !(1..=MAX_FILTER_PASSES).contains(&filter_passes) {
+        return Err(Error::InvalidSetting { name: "filter_passes", range: "1..=4" });
+    }
+    let per_light = crate::state::texel_bytes([width, height], precision, filter_passes == MAX_FILTER_PASSES);
+    Ok(per_light * light_count as u64 + std::mem::size_of::<FrameConstants>() as u64)
+}
+
 /// Lowest Vulkan version dnsr runs on (SPIR-V 1.3, samplerless texel fetches).
 pub const MIN_API_VERSION: u32 = vk::API_VERSION_1_1;
 

@@ -6,6 +6,7 @@
 //! loader: every function is loaded through the host's `vkGetInstanceProcAddr` / `vkGetDeviceProcAddr`.
 #![deny(missing_docs)]
 
+pub mod capi;
 mod constants;
 mod context;
 mod create_info;
@@ -20,7 +21,7 @@ mod timestamps;
 mod validate;
 
 pub use ash;
-pub use context::{Context, MIN_API_VERSION};
+pub use context::{memory_requirements, Context, MIN_API_VERSION};
 pub use create_info::{ContextCreateInfo, DepthFlags, EnabledFeatures, Precision};
 pub use dispatch::{HitMaskConvention, HostImage, HostSync, Rect, ShadowsDispatch};
 pub use error::{Error, ImageRole, Result};

@@ -17,6 +17,39 @@ pub(crate) fn intermediate_format(precision: Precision) -> vk::Format {
     }
 }
 
+/// Every internal image of one light, in the order `LightState::new` consumes them (the optional fourth-pass
+/// intermediate last).
+fn image_specs(extent: [u32; 2], precision: Precision, with_tmp: bool) -> impl Iterator<Item = (vk::Format, [u32; 2], &'static str)> {
+    let tiles = [extent[0].div_ceil(8), extent[1].div_ceil(4)];
+    let rg = intermediate_format(precision);
+    [
+        (TILE_FORMAT, tiles, "tile_mask"),
+        (TILE_FORMAT, tiles, "tile_meta"),
+        (rg, extent, "reprojection"),
+        (rg, extent, "history"),
+        (DEPTH_FORMAT, extent, "depth_copy_0"),
+        (DEPTH_FORMAT, extent, "depth_copy_1"),
+        (MOMENTS_FORMAT, extent, "moments_0"),
+        (MOMENTS_FORMAT, extent, "moments_1"),
+    ]
+    .into_iter()
+    .chain(with_tmp.then_some((rg, extent, "filter_tmp")))
+}
+
+/// Texel bytes of the internal images of one light, before any driver padding or alignment.
+pub(crate) fn texel_bytes(extent: [u32; 2], precision: Precision, with_tmp: bool) -> u64 {
+    image_specs(extent, precision, with_tmp)
+        .map(|(format, [w, h], _)| {
+            let texel = match format {
+                vk::Format::R32G32B32A32_SFLOAT => 16,
+                vk::Format::R32G32_SFLOAT => 8,
+                _ => 4, // R32_UINT, R32_SFLOAT, R16G16_SFLOAT
+            };
+            texel * w as u64 * h as u64
+        })
+        .sum()
+}
+
 pub(crate) struct LightState {
     pub tile_mask: InternalImage,
     pub tile_meta: InternalImage,
@@ -36,20 +69,8 @@ pub(crate) struct LightState {
 
 impl LightState {
     pub(crate) fn new(vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, with_tmp: bool) -> Result<LightState> {
-        let tiles = [extent[0].div_ceil(8), extent[1].div_ceil(4)];
         let mut made: Vec<InternalImage> = Vec::new();
-        let specs = [
-            (TILE_FORMAT, tiles, "tile_mask"),
-            (TILE_FORMAT, tiles, "tile_meta"),
-            (intermediate_format(precision), extent, "reprojection"),
-            (intermediate_format(precision), extent, "history"),
-            (DEPTH_FORMAT, extent, "depth_copy_0"),
-            (DEPTH_FORMAT, extent, "depth_copy_1"),
-            (MOMENTS_FORMAT, extent, "moments_0"),
-            (MOMENTS_FORMAT, extent, "moments_1"),
-        ];
-        let tmp = (intermediate_format(precision), extent, "filter_tmp");
-        for (format, size, name) in specs.into_iter().chain(with_tmp.then_some(tmp)) {
+        for (format, size, name) in image_specs(extent, precision, with_tmp) {
             match InternalImage::new(vk, format, size, &format!("dnsr.light{light}.{name}")) {
                 Ok(img) => made.push(img),
                 Err(e) => {

@@ -103,3 +103,21 @@ fn reflection_refuses_what_it_cannot_handle() {
     let err = reflect_module(&spv).unwrap_err().to_string();
     assert!(err.contains("1.5"), "{err}");
 }
+
+/// include/dnsr.h as cbindgen generates it from src/capi with cbindgen.toml.
+pub(crate) fn generated_header() -> Vec<u8> {
+    let config = cbindgen::Config::from_file(root().join("cbindgen.toml")).expect("cbindgen.toml");
+    let mut out = Vec::new();
+    cbindgen::Builder::new()
+        .with_crate(root())
+        .with_config(config)
+        .generate()
+        .expect("cbindgen could not generate the header")
+        .write(&mut out);
+    out
+}
+
+#[test]
+fn bless_header_is_current() {
+    compare_or_bless(&root().join("include/dnsr.h"), &generated_header());
+}

@@ -103,6 +103,8 @@ fn timestamps_and_memory_are_reported() {
     let minimum = px * (8 + 8 + 4 + 4 + 16 + 16) + 2 * 4 * (w.div_ceil(8) * h.div_ceil(4)) as u64;
     let bytes = r.ctx.memory_bytes();
     assert!(bytes >= minimum && bytes < minimum * 2 + 65536, "memory_bytes {bytes}, expected about {minimum}");
+    let estimate = crate::memory_requirements(w, h, crate::Precision::Fp32, 3, 1).unwrap();
+    assert!(estimate >= minimum && estimate <= bytes, "memory_requirements {estimate}, allocated {bytes}");
     drop(r);
     g.assert_clean();
 }

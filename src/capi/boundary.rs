@@ -1,0 +1,136 @@
+//! The one panic boundary every export goes through, the thread-local last error, and error -> code mapping.
+
+use super::types::{DnsrLogCallback, DnsrResult, DNSR_LOG_LEVEL_ERROR};
+use crate::error::Error;
+use std::cell::RefCell;
+use std::ffi::c_char;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+/// Why a C call failed: a core error, or a problem with the C arguments themselves.
+pub(crate) enum CallError {
+    Core(Error),
+    InvalidArgument(String),
+    InvalidStructure(String),
+    InvalidHandle(&'static str),
+    Internal(String),
+}
+
+impl From<Error> for CallError {
+    fn from(e: Error) -> Self {
+        CallError::Core(e)
+    }
+}
+
+fn code(e: &Error) -> DnsrResult {
+    use DnsrResult::*;
+    match e {
+        Error::NullHandle(_) => DNSR_ERROR_NULL_HANDLE,
+        Error::UnsupportedApiVersion { .. } => DNSR_ERROR_UNSUPPORTED_API_VERSION,
+        Error::MissingFeature(_) => DNSR_ERROR_MISSING_FEATURE,
+        Error::ZeroExtent { .. } | Error::ExtentTooLarge { .. } => DNSR_ERROR_INVALID_EXTENT,
+        Error::ImageExtentMismatch { .. } => DNSR_ERROR_IMAGE_EXTENT_MISMATCH,
+        Error::UnsupportedFormat { .. } => DNSR_ERROR_UNSUPPORTED_FORMAT,
+        Error::UnsupportedLayout { .. } => DNSR_ERROR_UNSUPPORTED_LAYOUT,
+        Error::NonFinite(_) => DNSR_ERROR_NON_FINITE,
+        Error::InvalidRenderRect { .. } => DNSR_ERROR_INVALID_RENDER_RECT,
+        Error::InvalidSetting { .. } => DNSR_ERROR_INVALID_SETTING,
+        Error::InvalidLightIndex { .. } => DNSR_ERROR_INVALID_LIGHT_INDEX,
+        Error::DescriptorCacheFull => DNSR_ERROR_DESCRIPTOR_CACHE_FULL,
+        Error::TimestampsUnsupported => DNSR_ERROR_TIMESTAMPS_UNSUPPORTED,
+        Error::ShaderInterface(_) => DNSR_ERROR_SHADER_INTERFACE,
+        Error::Vulkan { .. } => DNSR_ERROR_VULKAN,
+    }
+}
+
+thread_local! {
+    /// NUL-terminated message of this thread's most recent dnsr call (empty after a success). Kept as a byte
+    /// vector so that clearing it on the recording path does not allocate.
+    static LAST_ERROR: RefCell<Vec<u8>> = RefCell::new(vec![0]);
+}
+
+fn set_last_error(message: &str) {
+    LAST_ERROR.with(|m| {
+        let mut m = m.borrow_mut();
+        m.clear();
+        m.extend(message.bytes().filter(|&b| b != 0));
+        m.push(0);
+    });
+}
+
+/// Pointer to this thread's last error message (valid until this thread's next dnsr call).
+pub(crate) fn last_error_ptr() -> *const c_char {
+    LAST_ERROR.with(|m| m.borrow().as_ptr() as *const c_char)
+}
+
+/// A log sink captured from a create info or a live context.
+#[derive(Clone, Copy)]
+pub(crate) struct LogSink(pub DnsrLogCallback);
+// SAFETY: the host promises its callback and user data may be used from the threads it calls dnsr on.
+unsafe impl Send for LogSink {}
+unsafe impl Sync for LogSink {}
+
+impl LogSink {
+    pub(crate) fn log(&self, level: u32, message: &[u8]) {
+        if let Some(f) = self.0.log {
+            // `message` is NUL-terminated (LAST_ERROR's storage).
+            unsafe { f(self.0.user_data, level, message.as_ptr() as *const c_char) };
+        }
+    }
+}
+
+/// Runs `f` behind the panic boundary. `f` may name a log sink (once it knows the context) through its argument;
+/// failures are stored as this thread's last error and sent to that sink.
+pub(crate) fn guard(f: impl FnOnce(&mut Option<LogSink>) -> Result<DnsrResult, CallError>) -> DnsrResult {
+    let mut sink = None;
+    let outcome = catch_unwind(AssertUnwindSafe(|| f(&mut sink)));
+    let (result, message) = match outcome {
+        Ok(Ok(r)) => {
+            set_last_error("");
+            return r;
+        }
+        Ok(Err(CallError::Core(e))) => (code(&e), e.to_string()),
+        Ok(Err(CallError::InvalidArgument(m))) => (DnsrResult::DNSR_ERROR_INVALID_ARGUMENT, m),
+        Ok(Err(CallError::InvalidStructure(m))) => (DnsrResult::DNSR_ERROR_INVALID_STRUCTURE, m),
+        Ok(Err(CallError::InvalidHandle(what))) => {
+            (DnsrResult::DNSR_ERROR_INVALID_HANDLE, format!("{what} is not a live DnsrContext (never created, or destroyed)"))
+        }
+        Ok(Err(CallError::Internal(m))) => (DnsrResult::DNSR_ERROR_INTERNAL, m),
+        Err(panic) => {
+            let text = panic
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| panic.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown panic".into());
+            (DnsrResult::DNSR_ERROR_INTERNAL, format!("internal error (please report): {text}"))
+        }
+    };
+    set_last_error(&message);
+    if let Some(sink) = sink {
+        LAST_ERROR.with(|m| sink.log(DNSR_LOG_LEVEL_ERROR, &m.borrow()));
+    }
+    result
+}
+
+/// Checks a required pointer argument and borrows it.
+pub(crate) fn required<'a, T>(p: *const T, name: &str) -> Result<&'a T, CallError> {
+    // SAFETY: the C caller guarantees a non-null pointer points at a valid, aligned object for the call.
+    unsafe { p.as_ref() }.ok_or_else(|| CallError::InvalidArgument(format!("{name} is NULL")))
+}
+
+/// Checks a structure's sType.
+pub(crate) fn check_type(actual: u32, expected: u32, expected_name: &str, what: &str) -> Result<(), CallError> {
+    if actual == expected {
+        Ok(())
+    } else {
+        Err(CallError::InvalidStructure(format!("{what}->sType is {actual}, expected {expected_name} ({expected})")))
+    }
+}
+
+/// Checks that an extension-chain pointer is NULL (no extension structures exist yet).
+pub(crate) fn check_no_next(p_next: *const std::ffi::c_void, what: &str) -> Result<(), CallError> {
+    if p_next.is_null() {
+        Ok(())
+    } else {
+        Err(CallError::InvalidStructure(format!("{what}->pNext must be NULL (this dnsr version defines no extension structures)")))
+    }
+}

@@ -1,0 +1,227 @@
+//! C structures -> Rust API values, with a specific message for each malformed field.
+
+use super::boundary::{check_no_next, check_type, CallError, LogSink};
+use super::types::*;
+use crate::create_info::{ContextCreateInfo, DepthFlags, EnabledFeatures, Precision};
+use crate::dispatch::{HitMaskConvention, HostImage, HostSync, Rect, ShadowsDispatch};
+use crate::host::{GpuAllocation, GpuMemoryAllocator, HostHooks, ResourceKind};
+use crate::settings::Settings;
+use ash::vk;
+use glam::{Mat4, Vec2, Vec3};
+use std::sync::Arc;
+
+pub(crate) fn settings_from_c(s: &DnsrSettings, what: &str) -> Result<Settings, CallError> {
+    check_type(s.s_type, DNSR_STRUCTURE_TYPE_SETTINGS, "DNSR_STRUCTURE_TYPE_SETTINGS", what)?;
+    check_no_next(s.p_next, what)?;
+    Ok(Settings {
+        filter_passes: s.filter_passes,
+        disocclusion_threshold_facing: s.disocclusion_threshold_facing,
+        disocclusion_threshold_grazing: s.disocclusion_threshold_grazing,
+        disocclusion_angle_exponent: s.disocclusion_angle_exponent,
+        spatial_falloff: s.spatial_falloff,
+        history_clamp_sigmas: s.history_clamp_sigmas,
+        history_rejection_falloff: s.history_rejection_falloff,
+        history_rejection_min_sigma: s.history_rejection_min_sigma,
+        variance_boost_samples: s.variance_boost_samples,
+        full_history_samples: s.full_history_samples,
+        min_current_weight: s.min_current_weight,
+        max_history_samples: s.max_history_samples,
+        kernel_cross_weight: s.kernel_cross_weight,
+        normal_power: s.normal_power,
+        output_contrast: s.output_contrast,
+        min_shadow_sigma: s.min_shadow_sigma,
+    })
+}
+
+pub(crate) fn settings_to_c(s: &Settings) -> DnsrSettings {
+    DnsrSettings {
+        s_type: DNSR_STRUCTURE_TYPE_SETTINGS,
+        p_next: std::ptr::null(),
+        filter_passes: s.filter_passes,
+        disocclusion_threshold_facing: s.disocclusion_threshold_facing,
+        disocclusion_threshold_grazing: s.disocclusion_threshold_grazing,
+        disocclusion_angle_exponent: s.disocclusion_angle_exponent,
+        spatial_falloff: s.spatial_falloff,
+        history_clamp_sigmas: s.history_clamp_sigmas,
+        history_rejection_falloff: s.history_rejection_falloff,
+        history_rejection_min_sigma: s.history_rejection_min_sigma,
+        variance_boost_samples: s.variance_boost_samples,
+        full_history_samples: s.full_history_samples,
+        min_current_weight: s.min_current_weight,
+        max_history_samples: s.max_history_samples,
+        kernel_cross_weight: s.kernel_cross_weight,
+        normal_power: s.normal_power,
+        output_contrast: s.output_contrast,
+        min_shadow_sigma: s.min_shadow_sigma,
+    }
+}
+
+pub(crate) fn precision_from_c(p: DnsrPrecision) -> Result<Precision, CallError> {
+    match p {
+        DNSR_PRECISION_FP32 => Ok(Precision::Fp32),
+        DNSR_PRECISION_FP16 => Ok(Precision::Fp16),
+        other => Err(CallError::InvalidArgument(format!("precision {other} is not a DnsrPrecision value"))),
+    }
+}
+
+/// The host's GPU memory callbacks as a `GpuMemoryAllocator`.
+struct CGpuMemory(DnsrGpuMemoryCallbacks);
+// SAFETY: the host promises its callbacks and user data may be used from the threads it calls dnsr on.
+unsafe impl Send for CGpuMemory {}
+unsafe impl Sync for CGpuMemory {}
+
+impl GpuMemoryAllocator for CGpuMemory {
+    fn allocate(&self, requirements: &vk::MemoryRequirements, kind: ResourceKind) -> Result<GpuAllocation, vk::Result> {
+        let kind = match kind {
+            ResourceKind::Image => DNSR_RESOURCE_KIND_IMAGE,
+            ResourceKind::Buffer => DNSR_RESOURCE_KIND_BUFFER,
+        };
+        let mut out = DnsrGpuAllocation::default();
+        let allocate = self.0.allocate.expect("checked at creation");
+        match unsafe { allocate(self.0.user_data, requirements, kind, &mut out) } {
+            vk::Result::SUCCESS => Ok(GpuAllocation { memory: out.memory, offset: out.offset, user_handle: out.user_handle }),
+            error => Err(error),
+        }
+    }
+
+    fn free(&self, a: &GpuAllocation) {
+        let c = DnsrGpuAllocation { memory: a.memory, offset: a.offset, user_handle: a.user_handle };
+        let free = self.0.free.expect("checked at creation");
+        unsafe { free(self.0.user_data, &c) };
+    }
+}
+
+struct CNamer(DnsrDebugNameCallback);
+// SAFETY: as for CGpuMemory.
+unsafe impl Send for CNamer {}
+unsafe impl Sync for CNamer {}
+
+impl CNamer {
+    fn set_name(&self, object_type: vk::ObjectType, handle: u64, name: &std::ffi::CStr) {
+        if let Some(f) = self.0.set_name {
+            unsafe { f(self.0.user_data, object_type, handle, name.as_ptr()) };
+        }
+    }
+}
+
+/// Converts a create info; also returns its log sink.
+pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo) -> Result<(ContextCreateInfo, Option<LogSink>), CallError> {
+    const WHAT: &str = "pCreateInfo";
+    check_type(c.s_type, DNSR_STRUCTURE_TYPE_CONTEXT_CREATE_INFO, "DNSR_STRUCTURE_TYPE_CONTEXT_CREATE_INFO", WHAT)?;
+    check_no_next(c.p_next, WHAT)?;
+    let known_features = DNSR_FEATURE_FLOAT16 | DNSR_FEATURE_PUSH_DESCRIPTOR | DNSR_FEATURE_SUBGROUP_SIZE_CONTROL;
+    if c.enabled_features & !known_features != 0 {
+        return Err(CallError::InvalidArgument(format!("pCreateInfo->enabledFeatures has unknown bits {:#x}", c.enabled_features)));
+    }
+    let known_flags = DNSR_CONTEXT_CREATE_DEPTH_INVERTED | DNSR_CONTEXT_CREATE_INFINITE_FAR | DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS;
+    if c.flags & !known_flags != 0 {
+        return Err(CallError::InvalidArgument(format!("pCreateInfo->flags has unknown bits {:#x}", c.flags)));
+    }
+    let settings = match unsafe { c.p_settings.as_ref() } {
+        Some(s) => settings_from_c(s, "pCreateInfo->pSettings")?,
+        None => Settings::default(),
+    };
+    let mut hooks = HostHooks::default();
+    if let Some(a) = unsafe { c.p_allocation_callbacks.as_ref() } {
+        if a.pfn_allocation.is_none() || a.pfn_reallocation.is_none() || a.pfn_free.is_none() {
+            return Err(CallError::InvalidArgument(
+                "pCreateInfo->pAllocationCallbacks needs pfnAllocation, pfnReallocation and pfnFree".into(),
+            ));
+        }
+        hooks.allocation_callbacks = Some(*a);
+    }
+    if let Some(m) = unsafe { c.p_gpu_memory_callbacks.as_ref() } {
+        if m.allocate.is_none() || m.free.is_none() {
+            return Err(CallError::InvalidArgument("pCreateInfo->pGpuMemoryCallbacks needs both allocate and free".into()));
+        }
+        hooks.gpu_memory = Some(Arc::new(CGpuMemory(*m)));
+    }
+    if let Some(n) = unsafe { c.p_debug_name_callback.as_ref() } {
+        if n.set_name.is_none() {
+            return Err(CallError::InvalidArgument("pCreateInfo->pDebugNameCallback->setName is NULL".into()));
+        }
+        let namer = CNamer(*n);
+        hooks.debug_names = Some(Arc::new(move |t, handle, name| namer.set_name(t, handle, name)));
+    }
+    let log = match unsafe { c.p_log_callback.as_ref() } {
+        Some(l) if l.log.is_none() => {
+            return Err(CallError::InvalidArgument("pCreateInfo->pLogCallback->log is NULL".into()));
+        }
+        Some(l) => Some(LogSink(*l)),
+        None => None,
+    };
+    let info = ContextCreateInfo {
+        instance: c.instance,
+        physical_device: c.physical_device,
+        device: c.device,
+        get_instance_proc_addr: c.vulkan_functions.vk_get_instance_proc_addr,
+        get_device_proc_addr: c.vulkan_functions.vk_get_device_proc_addr,
+        api_version: c.api_version,
+        queue_family_index: c.queue_family_index,
+        features: EnabledFeatures {
+            float16: c.enabled_features & DNSR_FEATURE_FLOAT16 != 0,
+            push_descriptor: c.enabled_features & DNSR_FEATURE_PUSH_DESCRIPTOR != 0,
+            subgroup_size_control: c.enabled_features & DNSR_FEATURE_SUBGROUP_SIZE_CONTROL != 0,
+        },
+        width: c.width,
+        height: c.height,
+        depth: DepthFlags {
+            inverted: c.flags & DNSR_CONTEXT_CREATE_DEPTH_INVERTED != 0,
+            infinite_far: c.flags & DNSR_CONTEXT_CREATE_INFINITE_FAR != 0,
+        },
+        precision: precision_from_c(c.precision)?,
+        output_format: c.output_format,
+        light_count: c.light_count,
+        enable_timestamps: c.flags & DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS != 0,
+        settings,
+        hooks,
+    };
+    Ok((info, log))
+}
+
+fn image(i: &DnsrHostImage) -> HostImage {
+    HostImage { image: i.image, view: i.view, format: i.format, layout: i.layout, width: i.width, height: i.height }
+}
+
+/// Converts a dispatch; returns the command buffer and the Rust dispatch.
+pub(crate) fn dispatch_from_c(c: &DnsrShadowsDispatch) -> Result<(vk::CommandBuffer, ShadowsDispatch), CallError> {
+    const WHAT: &str = "pDispatch";
+    check_type(c.s_type, DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH, "DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH", WHAT)?;
+    check_no_next(c.p_next, WHAT)?;
+    if c.flags & !(DNSR_DISPATCH_RESET | DNSR_DISPATCH_USE_RENDER_RECT) != 0 {
+        return Err(CallError::InvalidArgument(format!("pDispatch->flags has unknown bits {:#x}", c.flags)));
+    }
+    let hit_mask_convention = match c.hit_mask_convention {
+        DNSR_HIT_MASK_OCCLUDED_BITS => HitMaskConvention::OccludedBits,
+        DNSR_HIT_MASK_LIT_BITS => HitMaskConvention::LitBits,
+        other => return Err(CallError::InvalidArgument(format!("pDispatch->hitMaskConvention {other} is not a DnsrHitMaskConvention"))),
+    };
+    let r = c.render_rect;
+    let d = ShadowsDispatch {
+        light_index: c.light_index,
+        hit_mask: image(&c.hit_mask),
+        hit_mask_convention,
+        depth: image(&c.depth),
+        velocity: image(&c.velocity),
+        normals: image(&c.normals),
+        output: image(&c.output),
+        motion_vector_scale: Vec2::from_array(c.motion_vector_scale),
+        normals_unpack_mul: c.normals_unpack_mul,
+        normals_unpack_add: c.normals_unpack_add,
+        eye: Vec3::from_array(c.eye),
+        frame_index: c.frame_index,
+        projection_inverse: Mat4::from_cols_array(&c.projection_inverse),
+        reprojection_matrix: Mat4::from_cols_array(&c.reprojection_matrix),
+        view_projection_inverse: Mat4::from_cols_array(&c.view_projection_inverse),
+        depth_similarity_sigma: c.depth_similarity_sigma,
+        reset: c.flags & DNSR_DISPATCH_RESET != 0,
+        render_rect: (c.flags & DNSR_DISPATCH_USE_RENDER_RECT != 0).then_some(Rect { x: r.x, y: r.y, width: r.width, height: r.height }),
+        sync: HostSync {
+            input_src_stages: c.sync.input_src_stages,
+            input_src_access: c.sync.input_src_access,
+            output_dst_stages: c.sync.output_dst_stages,
+            output_dst_access: c.sync.output_dst_access,
+        },
+    };
+    Ok((c.command_buffer, d))
+}

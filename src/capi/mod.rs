@@ -1,0 +1,262 @@
+//! The C ABI (include/dnsr.h is generated from this module by cbindgen). Validation and conversion only: every
+//! export runs behind `boundary::guard`, so no panic unwinds into the host and every failure has a code and a
+//! message (`dnsr_last_error_message`). On any error nothing is recorded into the command buffer.
+//!
+//! Conventions follow VMA: create-info + out handle + result code; destroy accepts NULL; required pointers are
+//! checked; structures that may grow carry sType/pNext.
+
+mod boundary;
+mod convert;
+mod handles;
+pub mod types;
+
+use boundary::{check_type, guard, last_error_ptr, required, CallError};
+use convert::{create_info_from_c, dispatch_from_c, precision_from_c, settings_from_c, settings_to_c};
+use std::ffi::c_char;
+use types::*;
+
+/// Major version of this dnsr build.
+pub const DNSR_VERSION_MAJOR: u32 = 0;
+/// Minor version of this dnsr build.
+pub const DNSR_VERSION_MINOR: u32 = 1;
+/// Patch version of this dnsr build.
+pub const DNSR_VERSION_PATCH: u32 = 0;
+
+/// The version of the loaded library, as DNSR_MAKE_VERSION(major, minor, patch). Compare with DNSR_VERSION
+/// (the header's) to detect a header/library mismatch.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_version() -> u32 {
+    (DNSR_VERSION_MAJOR << 22) | (DNSR_VERSION_MINOR << 12) | DNSR_VERSION_PATCH
+}
+
+/// Creates a context. On success writes the handle to `*pContext`; on failure writes NULL (when `pContext` is
+/// not NULL) and creates nothing.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_context_create(p_create_info: *const DnsrContextCreateInfo, p_context: *mut DnsrContext) -> DnsrResult {
+    guard(|sink| {
+        let out = unsafe { p_context.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pContext is NULL".into()))?;
+        *out = std::ptr::null_mut();
+        let c = required(p_create_info, "pCreateInfo")?;
+        let (info, log) = create_info_from_c(c)?;
+        *sink = log;
+        let context = crate::Context::new(&info)?;
+        *out = handles::insert(context, log);
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// Destroys a context and everything it created. NULL is accepted (DNSR_SUCCESS); a handle that is not live
+/// (e.g. destroyed twice) gives DNSR_ERROR_INVALID_HANDLE. The GPU must have finished every command buffer the
+/// context recorded into.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_context_destroy(context: DnsrContext) -> DnsrResult {
+    guard(|_| {
+        if context.is_null() {
+            return Ok(DnsrResult::DNSR_SUCCESS);
+        }
+        drop(handles::remove(context)?);
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// Records prepare, tile classification and the filter passes into `pDispatch->commandBuffer`. On error nothing
+/// is recorded and the context's state is unchanged.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_shadows_record(context: DnsrContext, p_dispatch: *const DnsrShadowsDispatch) -> DnsrResult {
+    guard(|sink| {
+        let entry = handles::get(context)?;
+        *sink = entry.log;
+        let (cmd, dispatch) = dispatch_from_c(required(p_dispatch, "pDispatch")?)?;
+        entry.lock()?.record_shadows(cmd, &dispatch)?;
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// Reallocates the internal state for a new render size; histories restart. The GPU must have finished every
+/// command buffer the context recorded into.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_context_resize(context: DnsrContext, width: u32, height: u32) -> DnsrResult {
+    guard(|sink| {
+        let entry = handles::get(context)?;
+        *sink = entry.log;
+        entry.lock()?.resize(width, height)?;
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// Discards the history of one light before its next frame (like DNSR_DISPATCH_RESET).
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_context_reset_history(context: DnsrContext, light_index: u32) -> DnsrResult {
+    guard(|sink| {
+        let entry = handles::get(context)?;
+        *sink = entry.log;
+        entry.lock()?.reset_history(light_index)?;
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// Fills `*pSettings` with the FidelityFX defaults (sType included).
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_settings_init_default(p_settings: *mut DnsrSettings) -> DnsrResult {
+    guard(|_| {
+        let out = unsafe { p_settings.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pSettings is NULL".into()))?;
+        *out = settings_to_c(&crate::Settings::default());
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// Writes the context's current settings to `*pSettings`.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_context_get_settings(context: DnsrContext, p_settings: *mut DnsrSettings) -> DnsrResult {
+    guard(|sink| {
+        let entry = handles::get(context)?;
+        *sink = entry.log;
+        let out = unsafe { p_settings.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pSettings is NULL".into()))?;
+        *out = settings_to_c(&entry.lock()?.settings());
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// Replaces the settings from the next recorded frame on; a refused change keeps the old settings. Going to 4
+/// filter passes allocates an image per light (the GPU must have finished earlier frames).
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_context_set_settings(context: DnsrContext, p_settings: *const DnsrSettings) -> DnsrResult {
+    guard(|sink| {
+        let entry = handles::get(context)?;
+        *sink = entry.log;
+        let settings = settings_from_c(required(p_settings, "pSettings")?, "pSettings")?;
+        entry.lock()?.set_settings(settings)?;
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// Per-pass GPU times of the most recent completed frame (needs DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS).
+/// Returns DNSR_NOT_READY when no recorded frame has completed yet (or timestamps are off).
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_context_get_timings(context: DnsrContext, p_timings: *mut DnsrPassTimings) -> DnsrResult {
+    guard(|sink| {
+        let entry = handles::get(context)?;
+        *sink = entry.log;
+        let out = unsafe { p_timings.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pTimings is NULL".into()))?;
+        check_type(out.s_type, DNSR_STRUCTURE_TYPE_PASS_TIMINGS, "DNSR_STRUCTURE_TYPE_PASS_TIMINGS", "pTimings")?;
+        let Some(t) = entry.lock()?.timings()? else { return Ok(DnsrResult::DNSR_NOT_READY) };
+        out.frame = t.frame;
+        out.prepare_ms = t.prepare_ms;
+        out.tile_classification_ms = t.tile_classification_ms;
+        out.filter_ms = t.filter_ms;
+        out.filter_passes = t.filter_passes;
+        out.total_ms = t.total_ms;
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// Bytes of device memory the context allocated (driver padding included).
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_context_get_memory_usage(context: DnsrContext, p_bytes: *mut u64) -> DnsrResult {
+    guard(|sink| {
+        let entry = handles::get(context)?;
+        *sink = entry.log;
+        let out = unsafe { p_bytes.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pBytes is NULL".into()))?;
+        *out = entry.lock()?.memory_bytes();
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// Bytes of device memory a context would allocate for this size, before driver padding. Needs no device.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_get_memory_requirements(
+    width: u32,
+    height: u32,
+    precision: DnsrPrecision,
+    filter_passes: u32,
+    light_count: u32,
+    p_bytes: *mut u64,
+) -> DnsrResult {
+    guard(|_| {
+        let out = unsafe { p_bytes.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pBytes is NULL".into()))?;
+        *out = crate::memory_requirements(width, height, precision_from_c(precision)?, filter_passes, light_count)?;
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// Optional device extensions, as static C strings.
+struct ExtensionNames([*const c_char; 1]);
+// SAFETY: pointers to static string literals.
+unsafe impl Sync for ExtensionNames {}
+static OPTIONAL_EXTENSIONS: ExtensionNames = ExtensionNames([c"VK_KHR_push_descriptor".as_ptr()]);
+
+/// What the host must create its instance and device with (see DnsrDeviceRequirements).
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_get_device_requirements(p_requirements: *mut DnsrDeviceRequirements) -> DnsrResult {
+    guard(|_| {
+        let out = unsafe { p_requirements.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pRequirements is NULL".into()))?;
+        check_type(out.s_type, DNSR_STRUCTURE_TYPE_DEVICE_REQUIREMENTS, "DNSR_STRUCTURE_TYPE_DEVICE_REQUIREMENTS", "pRequirements")?;
+        out.min_api_version = crate::MIN_API_VERSION;
+        out.required_extension_count = 0;
+        out.pp_required_extension_names = std::ptr::null();
+        out.optional_extension_count = OPTIONAL_EXTENSIONS.0.len() as u32;
+        out.pp_optional_extension_names = OPTIONAL_EXTENSIONS.0.as_ptr();
+        out.optional_features = DNSR_FEATURE_FLOAT16 | DNSR_FEATURE_PUSH_DESCRIPTOR | DNSR_FEATURE_SUBGROUP_SIZE_CONTROL;
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// The name of a result code ("DNSR_ERROR_NON_FINITE"), or "DNSR_RESULT_UNKNOWN". Static storage.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_result_to_string(result: i32) -> *const c_char {
+    use DnsrResult::*;
+    let all = [
+        DNSR_SUCCESS,
+        DNSR_NOT_READY,
+        DNSR_ERROR_INVALID_ARGUMENT,
+        DNSR_ERROR_INVALID_STRUCTURE,
+        DNSR_ERROR_INVALID_HANDLE,
+        DNSR_ERROR_NULL_HANDLE,
+        DNSR_ERROR_UNSUPPORTED_API_VERSION,
+        DNSR_ERROR_MISSING_FEATURE,
+        DNSR_ERROR_INVALID_EXTENT,
+        DNSR_ERROR_IMAGE_EXTENT_MISMATCH,
+        DNSR_ERROR_UNSUPPORTED_FORMAT,
+        DNSR_ERROR_UNSUPPORTED_LAYOUT,
+        DNSR_ERROR_NON_FINITE,
+        DNSR_ERROR_INVALID_RENDER_RECT,
+        DNSR_ERROR_INVALID_SETTING,
+        DNSR_ERROR_INVALID_LIGHT_INDEX,
+        DNSR_ERROR_DESCRIPTOR_CACHE_FULL,
+        DNSR_ERROR_TIMESTAMPS_UNSUPPORTED,
+        DNSR_ERROR_SHADER_INTERFACE,
+        DNSR_ERROR_VULKAN,
+        DNSR_ERROR_INTERNAL,
+    ];
+    let names: [&'static std::ffi::CStr; 21] = [
+        c"DNSR_SUCCESS",
+        c"DNSR_NOT_READY",
+        c"DNSR_ERROR_INVALID_ARGUMENT",
+        c"DNSR_ERROR_INVALID_STRUCTURE",
+        c"DNSR_ERROR_INVALID_HANDLE",
+        c"DNSR_ERROR_NULL_HANDLE",
+        c"DNSR_ERROR_UNSUPPORTED_API_VERSION",
+        c"DNSR_ERROR_MISSING_FEATURE",
+        c"DNSR_ERROR_INVALID_EXTENT",
+        c"DNSR_ERROR_IMAGE_EXTENT_MISMATCH",
+        c"DNSR_ERROR_UNSUPPORTED_FORMAT",
+        c"DNSR_ERROR_UNSUPPORTED_LAYOUT",
+        c"DNSR_ERROR_NON_FINITE",
+        c"DNSR_ERROR_INVALID_RENDER_RECT",
+        c"DNSR_ERROR_INVALID_SETTING",
+        c"DNSR_ERROR_INVALID_LIGHT_INDEX",
+        c"DNSR_ERROR_DESCRIPTOR_CACHE_FULL",
+        c"DNSR_ERROR_TIMESTAMPS_UNSUPPORTED",
+        c"DNSR_ERROR_SHADER_INTERFACE",
+        c"DNSR_ERROR_VULKAN",
+        c"DNSR_ERROR_INTERNAL",
+    ];
+    all.iter().position(|&r| r as i32 == result).map_or(c"DNSR_RESULT_UNKNOWN", |i| names[i]).as_ptr()
+}
+
+/// Why this thread's most recent dnsr call failed (which field, and why), or "" if it succeeded. Valid until
+/// this thread's next dnsr call.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_last_error_message() -> *const c_char {
+    last_error_ptr()
+}

@@ -1,0 +1,479 @@
+//! The C types of include/dnsr.h. Field docs say: required or optional, lifetime, units, default.
+//!
+//! Enumerations that the host writes are `uint32_t` typedefs with `#define` values (a Rust enum must never
+//! receive an out-of-range value from C); each family ends with a `_MAX_ENUM` = 0x7FFFFFFF value.
+#![allow(non_camel_case_types)]
+
+use ash::vk;
+use std::ffi::{c_char, c_void};
+
+// Vulkan types come from <vulkan/vulkan.h>; cbindgen is told not to emit these aliases.
+/// `VkInstance`.
+pub type VkInstance = vk::Instance;
+/// `VkPhysicalDevice`.
+pub type VkPhysicalDevice = vk::PhysicalDevice;
+/// `VkDevice`.
+pub type VkDevice = vk::Device;
+/// `VkCommandBuffer`.
+pub type VkCommandBuffer = vk::CommandBuffer;
+/// `VkImage`.
+pub type VkImage = vk::Image;
+/// `VkImageView`.
+pub type VkImageView = vk::ImageView;
+/// `VkFormat`.
+pub type VkFormat = vk::Format;
+/// `VkImageLayout`.
+pub type VkImageLayout = vk::ImageLayout;
+/// `VkPipelineStageFlags`.
+pub type VkPipelineStageFlags = vk::PipelineStageFlags;
+/// `VkAccessFlags`.
+pub type VkAccessFlags = vk::AccessFlags;
+/// `VkDeviceMemory`.
+pub type VkDeviceMemory = vk::DeviceMemory;
+/// `VkDeviceSize`.
+pub type VkDeviceSize = vk::DeviceSize;
+/// `VkMemoryRequirements`.
+pub type VkMemoryRequirements = vk::MemoryRequirements;
+/// `VkAllocationCallbacks`.
+pub type VkAllocationCallbacks = vk::AllocationCallbacks<'static>;
+/// `VkObjectType`.
+pub type VkObjectType = vk::ObjectType;
+/// `VkResult`.
+pub type VkResult = vk::Result;
+/// `PFN_vkGetInstanceProcAddr` (nullable).
+pub type PFN_vkGetInstanceProcAddr = Option<vk::PFN_vkGetInstanceProcAddr>;
+/// `PFN_vkGetDeviceProcAddr` (nullable).
+pub type PFN_vkGetDeviceProcAddr = Option<vk::PFN_vkGetDeviceProcAddr>;
+
+/// Result of every dnsr function. Negative values are errors; `dnsr_last_error_message` says what was wrong.
+#[repr(i32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DnsrResult {
+    /// The call succeeded.
+    DNSR_SUCCESS = 0,
+    /// Nothing to report yet (e.g. no recorded frame has completed for `dnsr_context_get_timings`).
+    DNSR_NOT_READY = 1,
+    /// A required pointer argument is NULL, or an argument is out of range.
+    DNSR_ERROR_INVALID_ARGUMENT = -1,
+    /// A structure's `sType` is wrong.
+    DNSR_ERROR_INVALID_STRUCTURE = -2,
+    /// The context handle is not a live context (never created, or already destroyed).
+    DNSR_ERROR_INVALID_HANDLE = -3,
+    /// A required Vulkan handle or function pointer in a structure is null.
+    DNSR_ERROR_NULL_HANDLE = -4,
+    /// The declared Vulkan API version is too old or newer than the device.
+    DNSR_ERROR_UNSUPPORTED_API_VERSION = -5,
+    /// A requested feature was not declared enabled, or the device lacks it.
+    DNSR_ERROR_MISSING_FEATURE = -6,
+    /// A width or height is zero or larger than the device supports.
+    DNSR_ERROR_INVALID_EXTENT = -7,
+    /// A host image's extent does not match the render size.
+    DNSR_ERROR_IMAGE_EXTENT_MISMATCH = -8,
+    /// A format dnsr cannot read or write for that image, or the device cannot use that way.
+    DNSR_ERROR_UNSUPPORTED_FORMAT = -9,
+    /// A host image layout dnsr cannot use.
+    DNSR_ERROR_UNSUPPORTED_LAYOUT = -10,
+    /// A matrix or vector contains NaN or infinity.
+    DNSR_ERROR_NON_FINITE = -11,
+    /// The render rectangle is empty, misaligned or outside the images.
+    DNSR_ERROR_INVALID_RENDER_RECT = -12,
+    /// A setting is out of range.
+    DNSR_ERROR_INVALID_SETTING = -13,
+    /// The light index is not below the context's light count.
+    DNSR_ERROR_INVALID_LIGHT_INDEX = -14,
+    /// Without push descriptors, more distinct image-view combinations were used than the cache holds.
+    DNSR_ERROR_DESCRIPTOR_CACHE_FULL = -15,
+    /// Timestamps were requested but the queue family cannot write them.
+    DNSR_ERROR_TIMESTAMPS_UNSUPPORTED = -16,
+    /// SPIR-V reflection failed or does not match dnsr's binding interface.
+    DNSR_ERROR_SHADER_INTERFACE = -17,
+    /// A Vulkan call (or the host's GPU memory allocator) failed.
+    DNSR_ERROR_VULKAN = -18,
+    /// A bug in dnsr (a caught panic). The context that reported it should be destroyed.
+    DNSR_ERROR_INTERNAL = -19,
+    /// Forces a 32-bit enum.
+    DNSR_RESULT_MAX_ENUM = 0x7FFF_FFFF,
+}
+
+/// Structure type tags (`sType`).
+pub type DnsrStructureType = u32;
+/// `DnsrContextCreateInfo`.
+pub const DNSR_STRUCTURE_TYPE_CONTEXT_CREATE_INFO: DnsrStructureType = 1;
+/// `DnsrShadowsDispatch`.
+pub const DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH: DnsrStructureType = 2;
+/// `DnsrSettings`.
+pub const DNSR_STRUCTURE_TYPE_SETTINGS: DnsrStructureType = 3;
+/// `DnsrPassTimings`.
+pub const DNSR_STRUCTURE_TYPE_PASS_TIMINGS: DnsrStructureType = 4;
+/// `DnsrDeviceRequirements`.
+pub const DNSR_STRUCTURE_TYPE_DEVICE_REQUIREMENTS: DnsrStructureType = 5;
+/// Forces 32 bits.
+pub const DNSR_STRUCTURE_TYPE_MAX_ENUM: DnsrStructureType = 0x7FFF_FFFF;
+
+/// Optional device features the host enabled (bit flags).
+pub type DnsrFeatureFlags = u32;
+/// `shaderFloat16` and `storageBuffer16BitAccess` are enabled (needed by `DNSR_PRECISION_FP16`).
+pub const DNSR_FEATURE_FLOAT16: DnsrFeatureFlags = 1 << 0;
+/// VK_KHR_push_descriptor is enabled.
+pub const DNSR_FEATURE_PUSH_DESCRIPTOR: DnsrFeatureFlags = 1 << 1;
+/// `subgroupSizeControl` is enabled (accepted; current shaders do not need it).
+pub const DNSR_FEATURE_SUBGROUP_SIZE_CONTROL: DnsrFeatureFlags = 1 << 2;
+/// Forces 32 bits.
+pub const DNSR_FEATURE_MAX_ENUM: DnsrFeatureFlags = 0x7FFF_FFFF;
+
+/// Context creation flags.
+pub type DnsrContextCreateFlags = u32;
+/// Reverse-Z: depth 1 is near, 0 is far (sky).
+pub const DNSR_CONTEXT_CREATE_DEPTH_INVERTED: DnsrContextCreateFlags = 1 << 0;
+/// The projection has an infinite far plane.
+pub const DNSR_CONTEXT_CREATE_INFINITE_FAR: DnsrContextCreateFlags = 1 << 1;
+/// Record GPU timestamps around each pass (read with `dnsr_context_get_timings`).
+pub const DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS: DnsrContextCreateFlags = 1 << 2;
+/// Forces 32 bits.
+pub const DNSR_CONTEXT_CREATE_MAX_ENUM: DnsrContextCreateFlags = 0x7FFF_FFFF;
+
+/// Filter precision.
+pub type DnsrPrecision = u32;
+/// 32-bit floats everywhere.
+pub const DNSR_PRECISION_FP32: DnsrPrecision = 0;
+/// float16 filter arithmetic and 16-bit intermediates (needs `DNSR_FEATURE_FLOAT16`).
+pub const DNSR_PRECISION_FP16: DnsrPrecision = 1;
+/// Forces 32 bits.
+pub const DNSR_PRECISION_MAX_ENUM: DnsrPrecision = 0x7FFF_FFFF;
+
+/// Bit convention of the hit mask.
+pub type DnsrHitMaskConvention = u32;
+/// FidelityFX SDK: bit = 1 means the shadow ray hit an occluder (dnsr inverts it in its prepare pass).
+pub const DNSR_HIT_MASK_OCCLUDED_BITS: DnsrHitMaskConvention = 0;
+/// bit = 1 means lit: read directly, prepare pass skipped.
+pub const DNSR_HIT_MASK_LIT_BITS: DnsrHitMaskConvention = 1;
+/// Forces 32 bits.
+pub const DNSR_HIT_MASK_MAX_ENUM: DnsrHitMaskConvention = 0x7FFF_FFFF;
+
+/// Per-dispatch flags.
+pub type DnsrDispatchFlags = u32;
+/// Camera cut: discard this light's history before this frame.
+pub const DNSR_DISPATCH_RESET: DnsrDispatchFlags = 1 << 0;
+/// Denoise only `renderRect` (otherwise the whole render size).
+pub const DNSR_DISPATCH_USE_RENDER_RECT: DnsrDispatchFlags = 1 << 1;
+/// Forces 32 bits.
+pub const DNSR_DISPATCH_MAX_ENUM: DnsrDispatchFlags = 0x7FFF_FFFF;
+
+/// What a GPU allocation is for.
+pub type DnsrResourceKind = u32;
+/// An internal image.
+pub const DNSR_RESOURCE_KIND_IMAGE: DnsrResourceKind = 0;
+/// The constants buffer.
+pub const DNSR_RESOURCE_KIND_BUFFER: DnsrResourceKind = 1;
+/// Forces 32 bits.
+pub const DNSR_RESOURCE_KIND_MAX_ENUM: DnsrResourceKind = 0x7FFF_FFFF;
+
+/// Severity of a log message.
+pub type DnsrLogLevel = u32;
+/// A call failed; the message says why.
+pub const DNSR_LOG_LEVEL_ERROR: DnsrLogLevel = 0;
+/// Something worth knowing at creation (device, path chosen).
+pub const DNSR_LOG_LEVEL_INFO: DnsrLogLevel = 1;
+/// Forces 32 bits.
+pub const DNSR_LOG_LEVEL_MAX_ENUM: DnsrLogLevel = 0x7FFF_FFFF;
+
+/// Opaque context object (never dereferenced: handles are ids).
+pub struct DnsrContext_T {
+    _private: [u8; 0],
+}
+/// A denoiser context. NULL is never a valid context.
+pub type DnsrContext = *mut DnsrContext_T;
+
+/// The host's Vulkan loader entry points; dnsr loads every function through them and never links libvulkan.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct DnsrVulkanFunctions {
+    /// Required. The host's `vkGetInstanceProcAddr`.
+    pub vk_get_instance_proc_addr: PFN_vkGetInstanceProcAddr,
+    /// Required. The host's `vkGetDeviceProcAddr`.
+    pub vk_get_device_proc_addr: PFN_vkGetDeviceProcAddr,
+}
+
+/// Device memory the host's allocator hands to dnsr.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DnsrGpuAllocation {
+    /// Memory to bind the resource to. Must not be VK_NULL_HANDLE.
+    pub memory: VkDeviceMemory,
+    /// Byte offset within `memory`; a multiple of the requirement's alignment.
+    pub offset: VkDeviceSize,
+    /// The host's own handle (e.g. a VmaAllocation), given back to `free`.
+    pub user_handle: u64,
+}
+
+/// Optional: the host's GPU memory allocator (e.g. VMA) creates the memory of dnsr's images and buffers.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct DnsrGpuMemoryCallbacks {
+    /// Optional. Passed to both callbacks.
+    pub user_data: *mut c_void,
+    /// Required. Allocate device-local memory satisfying `*pRequirements`; fill `*pAllocation`; return
+    /// VK_SUCCESS or an error. Called during create and resize only.
+    pub allocate: Option<
+        unsafe extern "C" fn(
+            user_data: *mut c_void,
+            requirements: *const VkMemoryRequirements,
+            kind: DnsrResourceKind,
+            allocation: *mut DnsrGpuAllocation,
+        ) -> VkResult,
+    >,
+    /// Required. Free an allocation from `allocate`, after dnsr destroyed the resource bound to it.
+    pub free: Option<unsafe extern "C" fn(user_data: *mut c_void, allocation: *const DnsrGpuAllocation)>,
+}
+
+/// Optional: receives dnsr's log messages (errors, with the same text as `dnsr_last_error_message`).
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct DnsrLogCallback {
+    /// Optional. Passed to `log`.
+    pub user_data: *mut c_void,
+    /// Required. `message` is valid only during the call.
+    pub log: Option<unsafe extern "C" fn(user_data: *mut c_void, level: DnsrLogLevel, message: *const c_char)>,
+}
+
+/// Optional: receives a name for every Vulkan object dnsr creates (forward it to vkSetDebugUtilsObjectNameEXT).
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct DnsrDebugNameCallback {
+    /// Optional. Passed to `set_name`.
+    pub user_data: *mut c_void,
+    /// Required. `name` is valid only during the call.
+    pub set_name:
+        Option<unsafe extern "C" fn(user_data: *mut c_void, object_type: VkObjectType, handle: u64, name: *const c_char)>,
+}
+
+/// Every constant of the algorithm. Initialise with `dnsr_settings_init_default` (FidelityFX defaults).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct DnsrSettings {
+    /// Must be DNSR_STRUCTURE_TYPE_SETTINGS.
+    pub s_type: DnsrStructureType,
+    /// Must be NULL (reserved for extensions).
+    pub p_next: *const c_void,
+    /// Filter passes, 1..4 (steps 1, 2, 4, 8 px). Default 3.
+    pub filter_passes: u32,
+    /// Relative depth change counted as disocclusion facing the camera. Default 0.01.
+    pub disocclusion_threshold_facing: f32,
+    /// The same at grazing angles. Default 0.1.
+    pub disocclusion_threshold_grazing: f32,
+    /// Exponent of (1 - N.V) blending the two thresholds. Default 8.
+    pub disocclusion_angle_exponent: f32,
+    /// Local-moment Gaussian falloff: w(i) = exp(-falloff i^2 / 81). Default 3.
+    pub spatial_falloff: f32,
+    /// History clamp half-width in local standard deviations. Default 0.5.
+    pub history_clamp_sigmas: f32,
+    /// Sample count multiplied by exp(-d^2 / falloff) for a history d clamp widths away. Default 20.
+    pub history_rejection_falloff: f32,
+    /// Floor of the clamp width in the rejection distance. Default 0.001.
+    pub history_rejection_min_sigma: f32,
+    /// Variance boost below this many samples. Default 16.
+    pub variance_boost_samples: f32,
+    /// Sample count of full history trust. Default 8.
+    pub full_history_samples: f32,
+    /// Current-frame weight with full history trust. Default 0.05.
+    pub min_current_weight: f32,
+    /// Bound on the temporal sample count. Default 32.
+    pub max_history_samples: f32,
+    /// Cross-tap weight of the 3x3 kernel (corners get its square). Default 2/3.
+    pub kernel_cross_weight: f32,
+    /// Normal edge-stop exponent. Default 32.
+    pub normal_power: f32,
+    /// Output pow(mean, max(contrast - variance, 1)). Default 1.2; 1 disables.
+    pub output_contrast: f32,
+    /// Floor of the shadow edge-stop sigma. Default 1e-4.
+    pub min_shadow_sigma: f32,
+}
+
+/// Everything needed to create a context. Read during `dnsr_context_create` only (callback structs are copied;
+/// the function pointers and user data they hold must stay valid until the context is destroyed).
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct DnsrContextCreateInfo {
+    /// Must be DNSR_STRUCTURE_TYPE_CONTEXT_CREATE_INFO.
+    pub s_type: DnsrStructureType,
+    /// Must be NULL (reserved for extensions).
+    pub p_next: *const c_void,
+    /// Required. The host's instance; must outlive the context.
+    pub instance: VkInstance,
+    /// Required. The physical device of `device`.
+    pub physical_device: VkPhysicalDevice,
+    /// Required. The host's device; must outlive the context.
+    pub device: VkDevice,
+    /// Required. Loader entry points.
+    pub vulkan_functions: DnsrVulkanFunctions,
+    /// The apiVersion the host created its instance and device with (VK_MAKE_API_VERSION); at least 1.1.
+    pub api_version: u32,
+    /// Queue family of the command buffers dnsr records into (for timestamp support).
+    pub queue_family_index: u32,
+    /// DNSR_FEATURE_* bits the host enabled on `device`. 0 is valid.
+    pub enabled_features: DnsrFeatureFlags,
+    /// Render width in pixels, 1..maxImageDimension2D.
+    pub width: u32,
+    /// Render height in pixels, 1..maxImageDimension2D.
+    pub height: u32,
+    /// DNSR_CONTEXT_CREATE_* bits. 0 = standard depth, finite far plane, no timestamps.
+    pub flags: DnsrContextCreateFlags,
+    /// DNSR_PRECISION_FP32 (default) or DNSR_PRECISION_FP16.
+    pub precision: DnsrPrecision,
+    /// Output image format: VK_FORMAT_R8_UNORM, VK_FORMAT_R16_SFLOAT or VK_FORMAT_R32_SFLOAT.
+    pub output_format: VkFormat,
+    /// Number of lights with independent histories, at least 1.
+    pub light_count: u32,
+    /// Optional (NULL = FidelityFX defaults). Initial settings.
+    pub p_settings: *const DnsrSettings,
+    /// Optional. CPU allocation callbacks for every Vulkan object dnsr creates; must outlive the context.
+    pub p_allocation_callbacks: *const VkAllocationCallbacks,
+    /// Optional (NULL = dnsr calls vkAllocateMemory). The host's GPU memory allocator.
+    pub p_gpu_memory_callbacks: *const DnsrGpuMemoryCallbacks,
+    /// Optional. Log messages.
+    pub p_log_callback: *const DnsrLogCallback,
+    /// Optional. Debug names of dnsr's Vulkan objects.
+    pub p_debug_name_callback: *const DnsrDebugNameCallback,
+}
+
+/// One of the host's images, as used by one dispatch.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DnsrHostImage {
+    /// Required. The image (used for the output's layout transitions and for validation).
+    pub image: VkImage,
+    /// Required. A 2D view of mip 0, layer 0 (depth aspect only for depth/stencil formats).
+    pub view: VkImageView,
+    /// The view's format.
+    pub format: VkFormat,
+    /// The layout the image is in when the commands execute; it is left in this layout.
+    pub layout: VkImageLayout,
+    /// Width of mip 0 in pixels.
+    pub width: u32,
+    /// Height of mip 0 in pixels.
+    pub height: u32,
+}
+
+/// A pixel rectangle.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DnsrRect {
+    /// Left edge, a multiple of 8.
+    pub x: u32,
+    /// Top edge, a multiple of 4.
+    pub y: u32,
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+}
+
+/// Barriers dnsr emits for the host around its work. All zero = the host emits them itself.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DnsrHostSync {
+    /// Stages that wrote the input images.
+    pub input_src_stages: VkPipelineStageFlags,
+    /// Accesses that wrote the input images.
+    pub input_src_access: VkAccessFlags,
+    /// Stages that will use the output.
+    pub output_dst_stages: VkPipelineStageFlags,
+    /// Accesses that will use the output.
+    pub output_dst_access: VkAccessFlags,
+}
+
+/// One frame of one light: the FidelityFX dispatch description plus dnsr's additions. Matrices are column-major
+/// float[16] mapping column vectors; clip space is Vulkan's (uv (0,0) top-left = NDC (-1,-1), depth 0..1).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct DnsrShadowsDispatch {
+    /// Must be DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH.
+    pub s_type: DnsrStructureType,
+    /// Must be NULL (reserved for extensions).
+    pub p_next: *const c_void,
+    /// Required. The command buffer the host is recording (outside a render pass).
+    pub command_buffer: VkCommandBuffer,
+    /// Which light's history, below the context's light count.
+    pub light_index: u32,
+    /// DNSR_DISPATCH_* bits.
+    pub flags: DnsrDispatchFlags,
+    /// DNSR_HIT_MASK_OCCLUDED_BITS (FidelityFX) or DNSR_HIT_MASK_LIT_BITS.
+    pub hit_mask_convention: DnsrHitMaskConvention,
+    /// R32_UINT, ceil(W/8) x ceil(H/4); bit (y%4)*8 + (x%8) of texel (x/8, y/4).
+    pub hit_mask: DnsrHostImage,
+    /// W x H depth (D32/D16/D24 or R32/R16 float); receivers have 0 < depth < 1.
+    pub depth: DnsrHostImage,
+    /// W x H two-channel motion vectors: prev_uv = uv + value * motionVectorScale.
+    pub velocity: DnsrHostImage,
+    /// W x H world-space normals: rgb * normalsUnpackMul + normalsUnpackAdd.
+    pub normals: DnsrHostImage,
+    /// W x H output (1 = lit) in the context's output format; written as a storage image.
+    pub output: DnsrHostImage,
+    /// Motion vector multiplier (FidelityFX motionVectorScale).
+    pub motion_vector_scale: [f32; 2],
+    /// Normal decode multiplier (2 for UNORM normals).
+    pub normals_unpack_mul: f32,
+    /// Normal decode offset (-1 for UNORM normals).
+    pub normals_unpack_add: f32,
+    /// Camera position in the space `viewProjectionInverse` maps to.
+    pub eye: [f32; 3],
+    /// Frame counter; informational only.
+    pub frame_index: u32,
+    /// Current clip -> view space.
+    pub projection_inverse: [f32; 16],
+    /// Current clip -> previous clip.
+    pub reprojection_matrix: [f32; 16],
+    /// Current clip -> world.
+    pub view_projection_inverse: [f32; 16],
+    /// Depth edge stop exp(-|dz| / sigma) on linear depth; > 0. FidelityFX default 1.
+    pub depth_similarity_sigma: f32,
+    /// Region to denoise when DNSR_DISPATCH_USE_RENDER_RECT is set.
+    pub render_rect: DnsrRect,
+    /// Optional barriers on the host's behalf.
+    pub sync: DnsrHostSync,
+}
+
+/// GPU time of each pass of one completed frame, in milliseconds.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct DnsrPassTimings {
+    /// Must be DNSR_STRUCTURE_TYPE_PASS_TIMINGS (set it before the call).
+    pub s_type: DnsrStructureType,
+    /// Must be NULL.
+    pub p_next: *mut c_void,
+    /// Which recorded frame (counting record calls from 1).
+    pub frame: u64,
+    /// prepare (0 when skipped).
+    pub prepare_ms: f64,
+    /// tile classification.
+    pub tile_classification_ms: f64,
+    /// Each filter pass; entries beyond `filterPasses` are 0.
+    pub filter_ms: [f64; 4],
+    /// Filter passes that ran.
+    pub filter_passes: u32,
+    /// From before the first pass to after the last.
+    pub total_ms: f64,
+}
+
+/// What the host must create its instance and device with.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct DnsrDeviceRequirements {
+    /// Must be DNSR_STRUCTURE_TYPE_DEVICE_REQUIREMENTS (set it before the call).
+    pub s_type: DnsrStructureType,
+    /// Must be NULL.
+    pub p_next: *mut c_void,
+    /// Lowest apiVersion dnsr works with.
+    pub min_api_version: u32,
+    /// Device extensions dnsr requires (none today).
+    pub required_extension_count: u32,
+    /// Their names (static storage).
+    pub pp_required_extension_names: *const *const c_char,
+    /// Device extensions dnsr uses when enabled (declare them in `enabledFeatures`).
+    pub optional_extension_count: u32,
+    /// Their names (static storage): VK_KHR_push_descriptor.
+    pub pp_optional_extension_names: *const *const c_char,
+    /// DNSR_FEATURE_* bits dnsr can use: FLOAT16 = shaderFloat16 + storageBuffer16BitAccess (for
+    /// DNSR_PRECISION_FP16), PUSH_DESCRIPTOR, SUBGROUP_SIZE_CONTROL.
+    pub optional_features: DnsrFeatureFlags,
+}

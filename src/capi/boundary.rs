@@ -134,3 +134,19 @@ pub(crate) fn check_no_next(p_next: *const std::ffi::c_void, what: &str) -> Resu
         Err(CallError::InvalidStructure(format!("{what}->pNext must be NULL (this dnsr version defines no extension structures)")))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::ffi::CStr;
+
+    #[test]
+    fn a_panic_becomes_an_internal_error_with_its_message() {
+        let r = guard(|_| panic!("planted failure"));
+        assert_eq!(r, DnsrResult::DNSR_ERROR_INTERNAL);
+        let msg = unsafe { CStr::from_ptr(last_error_ptr()) }.to_string_lossy().into_owned();
+        assert!(msg.contains("planted failure"), "{msg}");
+        assert_eq!(guard(|_| Ok(DnsrResult::DNSR_SUCCESS)), DnsrResult::DNSR_SUCCESS);
+        assert_eq!(unsafe { CStr::from_ptr(last_error_ptr()) }.to_bytes(), b"");
+    }
+}

@@ -100,6 +100,16 @@ impl<'g> Runner<'g> {
     /// Like `run`, but reads the output back even when recording failed: the command buffer still runs the
     /// uploads and the readback, so a test can check that a refused dispatch changed nothing.
     pub fn run_raw(&mut self, f: &FrameInputs, dispatch: &ShadowsDispatch) -> (crate::Result<()>, Vec<f32>) {
+        let d = *dispatch;
+        self.run_with(f, |ctx, cmd| ctx.record_shadows(cmd, &d))
+    }
+
+    /// Uploads `f`, lets `record` record the denoiser into the command buffer (through any API), reads the output.
+    pub fn run_with<E>(
+        &mut self,
+        f: &FrameInputs,
+        record: impl FnOnce(&mut Context, vk::CommandBuffer) -> Result<(), E>,
+    ) -> (Result<(), E>, Vec<f32>) {
         let n = (f.width * f.height) as usize;
         // RGBA8 normals are stored as n * 0.5 + 0.5 (decode with unpack mul 2, add -1).
         let packed: Vec<[u8; 4]> = if self.normals.format == vk::Format::R8G8B8A8_UNORM {
@@ -124,7 +134,7 @@ impl<'g> Runner<'g> {
             for (img, off) in images.iter().zip(offsets) {
                 gpu.cmd_copy(cmd, img, staging, off, true);
             }
-            let r = ctx.record_shadows(cmd, dispatch);
+            let r = record(ctx, cmd);
             gpu.cmd_copy(cmd, output, staging, out_offset, false);
             full_barrier(&gpu.device, cmd);
             r

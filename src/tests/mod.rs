@@ -2,7 +2,8 @@
 //! every test ends with `assert_clean`, so any validation message fails it.
 
 mod bad_input;
-mod correctness;
+mod capi;
+pub(crate) mod correctness;
 mod interface;
 mod resources;
 

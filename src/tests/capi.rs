@@ -1,0 +1,170 @@
+//! The C ABI from the host's side: a frame through the exported C functions equals the same frame through the
+//! Rust API bit for bit; handles are checked; errors carry codes and messages.
+
+use super::{correctness::smooth, gpu, static_frame};
+use crate::capi::types::*;
+use crate::capi::*;
+use crate::testing::Runner;
+use ash::vk;
+use std::ffi::CStr;
+
+fn create_info(g: &crate::testing::gpu::Gpu, w: u32, h: u32) -> DnsrContextCreateInfo {
+    DnsrContextCreateInfo {
+        s_type: DNSR_STRUCTURE_TYPE_CONTEXT_CREATE_INFO,
+        p_next: std::ptr::null(),
+        instance: g.instance.handle(),
+        physical_device: g.physical_device,
+        device: g.device.handle(),
+        vulkan_functions: DnsrVulkanFunctions {
+            vk_get_instance_proc_addr: Some(g.entry.static_fn().get_instance_proc_addr),
+            vk_get_device_proc_addr: Some(g.instance.fp_v1_0().get_device_proc_addr),
+        },
+        api_version: g.api_version,
+        queue_family_index: g.queue_family,
+        enabled_features: if g.features.push_descriptor { DNSR_FEATURE_PUSH_DESCRIPTOR } else { 0 },
+        width: w,
+        height: h,
+        flags: 0,
+        precision: DNSR_PRECISION_FP32,
+        output_format: vk::Format::R32_SFLOAT,
+        light_count: 1,
+        p_settings: std::ptr::null(),
+        p_allocation_callbacks: std::ptr::null(),
+        p_gpu_memory_callbacks: std::ptr::null(),
+        p_log_callback: std::ptr::null(),
+        p_debug_name_callback: std::ptr::null(),
+    }
+}
+
+fn host(i: &crate::HostImage) -> DnsrHostImage {
+    DnsrHostImage { image: i.image, view: i.view, format: i.format, layout: i.layout, width: i.width, height: i.height }
+}
+
+fn c_dispatch(d: &crate::ShadowsDispatch, cmd: vk::CommandBuffer) -> DnsrShadowsDispatch {
+    DnsrShadowsDispatch {
+        s_type: DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH,
+        p_next: std::ptr::null(),
+        command_buffer: cmd,
+        light_index: d.light_index,
+        flags: if d.reset { DNSR_DISPATCH_RESET } else { 0 },
+        hit_mask_convention: DNSR_HIT_MASK_OCCLUDED_BITS,
+        hit_mask: host(&d.hit_mask),
+        depth: host(&d.depth),
+        velocity: host(&d.velocity),
+        normals: host(&d.normals),
+        output: host(&d.output),
+        motion_vector_scale: d.motion_vector_scale.to_array(),
+        normals_unpack_mul: d.normals_unpack_mul,
+        normals_unpack_add: d.normals_unpack_add,
+        eye: d.eye.to_array(),
+        frame_index: d.frame_index,
+        projection_inverse: d.projection_inverse.to_cols_array(),
+        reprojection_matrix: d.reprojection_matrix.to_cols_array(),
+        view_projection_inverse: d.view_projection_inverse.to_cols_array(),
+        depth_similarity_sigma: d.depth_similarity_sigma,
+        render_rect: DnsrRect::default(),
+        sync: DnsrHostSync {
+            input_src_stages: d.sync.input_src_stages,
+            input_src_access: d.sync.input_src_access,
+            output_dst_stages: d.sync.output_dst_stages,
+            output_dst_access: d.sync.output_dst_access,
+        },
+    }
+}
+
+fn last_error() -> String {
+    unsafe { CStr::from_ptr(dnsr_last_error_message()) }.to_string_lossy().into_owned()
+}
+
+#[test]
+fn a_frame_through_the_c_api_equals_the_rust_api_bit_for_bit() {
+    let g = gpu();
+    let (w, h) = (37, 23);
+    let mut info = g.create_info(w, h);
+    info.output_format = vk::Format::R32_SFLOAT;
+    let mut rust = Runner::new(&g, &info).unwrap();
+    let mut c_side = Runner::new(&g, &info).unwrap(); // its images; its own context stays unused
+    let mut ctx: DnsrContext = std::ptr::null_mut();
+    assert_eq!(dnsr_context_create(&create_info(&g, w, h), &mut ctx), DnsrResult::DNSR_SUCCESS, "{}", last_error());
+    for frame in 0..6 {
+        let f = static_frame(w, h, &smooth, frame + 1);
+        let expected = rust.frame(&f, frame == 0);
+        let d = crate::ShadowsDispatch { reset: frame == 0, ..c_side.dispatch(&f) };
+        let (result, got) = c_side.run_with(&f, |_, cmd| match dnsr_shadows_record(ctx, &c_dispatch(&d, cmd)) {
+            DnsrResult::DNSR_SUCCESS => Ok(()),
+            code => Err((code, last_error())),
+        });
+        result.unwrap();
+        assert_eq!(got, expected, "frame {frame}");
+    }
+    assert_eq!(dnsr_context_destroy(ctx), DnsrResult::DNSR_SUCCESS);
+    drop((rust, c_side));
+    g.assert_clean();
+}
+
+#[test]
+fn handles_codes_and_messages() {
+    let g = gpu();
+    let mut ctx: DnsrContext = std::ptr::null_mut();
+    let mut bad = create_info(&g, 8, 8);
+    bad.width = 0;
+    assert_eq!(dnsr_context_create(&bad, &mut ctx), DnsrResult::DNSR_ERROR_INVALID_EXTENT);
+    assert!(ctx.is_null());
+    assert!(last_error().contains("render size"), "{}", last_error());
+    bad = create_info(&g, 8, 8);
+    bad.s_type = 77;
+    assert_eq!(dnsr_context_create(&bad, &mut ctx), DnsrResult::DNSR_ERROR_INVALID_STRUCTURE);
+    assert!(last_error().contains("sType is 77"), "{}", last_error());
+    assert_eq!(dnsr_context_create(std::ptr::null(), &mut ctx), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);
+    assert_eq!(last_error(), "pCreateInfo is NULL");
+
+    assert_eq!(dnsr_context_create(&create_info(&g, 8, 8), &mut ctx), DnsrResult::DNSR_SUCCESS);
+    assert_eq!(last_error(), "", "a success clears the message");
+    let mut bytes = 0u64;
+    assert_eq!(dnsr_context_get_memory_usage(ctx, &mut bytes), DnsrResult::DNSR_SUCCESS);
+    assert!(bytes > 0);
+    let mut timings = DnsrPassTimings {
+        s_type: DNSR_STRUCTURE_TYPE_PASS_TIMINGS,
+        p_next: std::ptr::null_mut(),
+        frame: 0,
+        prepare_ms: 0.0,
+        tile_classification_ms: 0.0,
+        filter_ms: [0.0; 4],
+        filter_passes: 0,
+        total_ms: 0.0,
+    };
+    assert_eq!(dnsr_context_get_timings(ctx, &mut timings), DnsrResult::DNSR_NOT_READY);
+    let mut s = unsafe { std::mem::zeroed::<DnsrSettings>() };
+    assert_eq!(dnsr_context_get_settings(ctx, &mut s), DnsrResult::DNSR_SUCCESS);
+    assert_eq!(s.filter_passes, 3);
+    s.filter_passes = 9;
+    assert_eq!(dnsr_context_set_settings(ctx, &s), DnsrResult::DNSR_ERROR_INVALID_SETTING);
+    assert!(last_error().contains("filter_passes"), "{}", last_error());
+    assert_eq!(dnsr_context_destroy(ctx), DnsrResult::DNSR_SUCCESS);
+    assert_eq!(dnsr_context_destroy(ctx), DnsrResult::DNSR_ERROR_INVALID_HANDLE, "double destroy");
+    assert_eq!(dnsr_context_resize(ctx, 4, 4), DnsrResult::DNSR_ERROR_INVALID_HANDLE, "use after destroy");
+    assert_eq!(dnsr_context_destroy(std::ptr::null_mut()), DnsrResult::DNSR_SUCCESS);
+    assert_eq!(dnsr_context_reset_history(0xdead as DnsrContext, 0), DnsrResult::DNSR_ERROR_INVALID_HANDLE);
+
+    let mut req = unsafe { std::mem::zeroed::<DnsrDeviceRequirements>() };
+    assert_eq!(dnsr_get_device_requirements(&mut req), DnsrResult::DNSR_ERROR_INVALID_STRUCTURE);
+    req.s_type = DNSR_STRUCTURE_TYPE_DEVICE_REQUIREMENTS;
+    assert_eq!(dnsr_get_device_requirements(&mut req), DnsrResult::DNSR_SUCCESS);
+    assert_eq!(req.min_api_version, vk::API_VERSION_1_1);
+    let ext = unsafe { CStr::from_ptr(*req.pp_optional_extension_names) };
+    assert_eq!(ext, ash::khr::push_descriptor::NAME);
+    let mut needed = 0u64;
+    assert_eq!(dnsr_get_memory_requirements(1920, 1080, DNSR_PRECISION_FP32, 3, 1, &mut needed), DnsrResult::DNSR_SUCCESS);
+    assert!(needed > 1920 * 1080 * 50);
+    assert_eq!(dnsr_get_memory_requirements(1920, 1080, 5, 3, 1, &mut needed), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);
+    let name = |r: i32| unsafe { CStr::from_ptr(dnsr_result_to_string(r)) }.to_str().unwrap().to_owned();
+    assert_eq!(name(DnsrResult::DNSR_ERROR_NON_FINITE as i32), "DNSR_ERROR_NON_FINITE");
+    assert_eq!(name(12345), "DNSR_RESULT_UNKNOWN");
+    assert_eq!(dnsr_version() >> 22, DNSR_VERSION_MAJOR);
+    assert_eq!(
+        format!("{DNSR_VERSION_MAJOR}.{DNSR_VERSION_MINOR}.{DNSR_VERSION_PATCH}"),
+        env!("CARGO_PKG_VERSION"),
+        "C version constants follow Cargo.toml"
+    );
+    g.assert_clean();
+}

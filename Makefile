@@ -39,3 +39,52 @@ shaders: deps
 clean:
 	$(CARGO) clean
 	rm -rf out
+
+# Installs the C library: libdnsr.so.<version> (soname libdnsr.so.<abi>, plus the libdnsr.so.<abi> and
+# libdnsr.so links), libdnsr.a, dnsr.h, dnsr.pc for pkg-config and a CMake package (find_package(dnsr) ->
+# dnsr::dnsr). `make install PREFIX=$HOME/.local`, or for packaging `make install PREFIX=/usr DESTDIR=$pkgdir`.
+# `make uninstall` (same PREFIX/LIBDIR/INCLUDEDIR/DESTDIR) removes exactly those files.
+PREFIX ?= /usr/local
+LIBDIR ?= $(PREFIX)/lib
+INCLUDEDIR ?= $(PREFIX)/include
+DESTDIR ?=
+# The version is written once, in Cargo.toml's [package]. <abi> is 0.<minor> for 0.x and <major> from 1.0 on:
+# the same rule as src/build.rs (which sets the soname) and the CMake version file.
+DNSR_VERSION := $(shell sed -n '/^\[package\]/,/^\[/s/^version *= *"\([^"]*\)".*/\1/p' Cargo.toml)
+DNSR_MAJOR := $(word 1,$(subst ., ,$(DNSR_VERSION)))
+DNSR_MINOR := $(word 2,$(subst ., ,$(DNSR_VERSION)))
+DNSR_ABI := $(if $(filter 0,$(DNSR_MAJOR)),0.$(DNSR_MINOR),$(DNSR_MAJOR))
+DNSR_TARGET_DIR := $(or $(CARGO_TARGET_DIR),target)
+DNSR_CMAKEDIR := $(LIBDIR)/cmake/dnsr
+DNSR_TEMPLATES := capi-tests/install/templates
+# Template substitutions; in dnsr.pc, libdir and includedir are written relative to ${prefix} when under it.
+DNSR_SED := -e 's|@VERSION@|$(DNSR_VERSION)|g' -e 's|@ABI@|$(DNSR_ABI)|g' \
+	-e 's|@PREFIX@|$(PREFIX)|g' \
+	-e 's|@LIBDIR@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(LIBDIR))|g' \
+	-e 's|@INCLUDEDIR@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(INCLUDEDIR))|g' \
+	-e "s|@REL_INCLUDEDIR@|$$(realpath -m --relative-to='$(DNSR_CMAKEDIR)' '$(INCLUDEDIR)')|g" \
+	-e "s|@SIZEOF_VOID_P@|$$(($$(getconf LONG_BIT) / 8))|g"
+
+.PHONY: install uninstall
+
+install:
+	@test -n "$(DNSR_VERSION)" || { echo "no version in Cargo.toml [package]"; exit 1; }
+	$(CARGO) build --release --lib
+	install -d '$(DESTDIR)$(LIBDIR)' '$(DESTDIR)$(INCLUDEDIR)' '$(DESTDIR)$(LIBDIR)/pkgconfig' '$(DESTDIR)$(DNSR_CMAKEDIR)'
+	install -m 755 '$(DNSR_TARGET_DIR)/release/libdnsr.so' '$(DESTDIR)$(LIBDIR)/libdnsr.so.$(DNSR_VERSION)'
+	ln -sfn 'libdnsr.so.$(DNSR_VERSION)' '$(DESTDIR)$(LIBDIR)/libdnsr.so.$(DNSR_ABI)'
+	ln -sfn 'libdnsr.so.$(DNSR_ABI)' '$(DESTDIR)$(LIBDIR)/libdnsr.so'
+	install -m 644 '$(DNSR_TARGET_DIR)/release/libdnsr.a' '$(DESTDIR)$(LIBDIR)/libdnsr.a'
+	install -m 644 include/dnsr.h '$(DESTDIR)$(INCLUDEDIR)/dnsr.h'
+	sed $(DNSR_SED) $(DNSR_TEMPLATES)/dnsr.pc.in > '$(DESTDIR)$(LIBDIR)/pkgconfig/dnsr.pc'
+	sed $(DNSR_SED) $(DNSR_TEMPLATES)/dnsrConfig.cmake.in > '$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfig.cmake'
+	sed $(DNSR_SED) $(DNSR_TEMPLATES)/dnsrConfigVersion.cmake.in > '$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfigVersion.cmake'
+	chmod 644 '$(DESTDIR)$(LIBDIR)/pkgconfig/dnsr.pc' '$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfig.cmake' '$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfigVersion.cmake'
+	@echo "installed dnsr $(DNSR_VERSION) (soname libdnsr.so.$(DNSR_ABI)) to $(DESTDIR)$(PREFIX)"
+
+uninstall:
+	rm -f '$(DESTDIR)$(LIBDIR)/libdnsr.so.$(DNSR_VERSION)' '$(DESTDIR)$(LIBDIR)/libdnsr.so.$(DNSR_ABI)' \
+		'$(DESTDIR)$(LIBDIR)/libdnsr.so' '$(DESTDIR)$(LIBDIR)/libdnsr.a' '$(DESTDIR)$(INCLUDEDIR)/dnsr.h' \
+		'$(DESTDIR)$(LIBDIR)/pkgconfig/dnsr.pc' '$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfig.cmake' \
+		'$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfigVersion.cmake'
+	rmdir '$(DESTDIR)$(DNSR_CMAKEDIR)' 2>/dev/null || true

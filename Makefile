@@ -7,7 +7,7 @@ CARGO ?= cargo
 # `make test DNSR_DEVICE=NVIDIA`.
 DNSR_DEVICE ?= llvmpipe
 
-.PHONY: all demo test bench shaders deps clean
+.PHONY: all demo test bench generate shaders header deps clean
 
 all: test
 
@@ -32,9 +32,11 @@ test: deps
 bench: deps
 	$(CARGO) run --release --features demo --bin dnsr-bench
 
-# Regenerates shaders/generated/dnsr_constants.glsl and shaders/spv/*.spv (needs glslc).
-shaders: deps
+# Regenerates every generated, committed file: shaders/generated/dnsr_constants.glsl, shaders/spv/*.spv (needs
+# glslc), include/dnsr.h (cbindgen) and capi-tests/generated/layout.h. `make test` fails when any is stale.
+generate: deps
 	DNSR_BLESS=1 $(CARGO) test --release --lib bless_
+shaders header: generate
 
 clean:
 	$(CARGO) clean

@@ -1,0 +1,60 @@
+/*
+ * dnsr.h compiles as C11 under -pedantic -Wall -Wextra -Werror, and generated/layout.h (static asserts of the
+ * size, alignment and every field offset of each public struct, generated from the Rust definitions) holds:
+ * a layout mismatch fails the build, not a run. At run time: the library's version equals the header's, and
+ * dnsr_result_to_string names codes.
+ */
+#include "dnsr.h"
+#include "generated/layout.h"
+
+#include <stdio.h>
+#include <string.h>
+
+static int failures;
+
+static void expect_name(int32_t code, const char *want)
+{
+    const char *got = dnsr_result_to_string(code);
+    if (got == NULL || strcmp(got, want) != 0) {
+        fprintf(stderr, "dnsr_result_to_string(%d) = \"%s\", want \"%s\"\n", (int)code, got ? got : "(null)", want);
+        failures++;
+    }
+}
+
+int main(void)
+{
+    printf("C11 sizes: DnsrContextCreateInfo %zu, DnsrShadowsDispatch %zu, DnsrSettings %zu, DnsrHostImage %zu, "
+           "DnsrPassTimings %zu, DnsrDeviceRequirements %zu, DnsrGpuMemoryCallbacks %zu, DnsrResult %zu\n",
+           sizeof(DnsrContextCreateInfo), sizeof(DnsrShadowsDispatch), sizeof(DnsrSettings), sizeof(DnsrHostImage),
+           sizeof(DnsrPassTimings), sizeof(DnsrDeviceRequirements), sizeof(DnsrGpuMemoryCallbacks),
+           sizeof(DnsrResult));
+
+    uint32_t version = dnsr_version();
+    printf("library version %u.%u.%u, header version %u.%u.%u\n", version >> 22, (version >> 12) & 0x3ffu,
+           version & 0xfffu, DNSR_VERSION_MAJOR, DNSR_VERSION_MINOR, DNSR_VERSION_PATCH);
+    if (version != DNSR_VERSION) {
+        fprintf(stderr, "dnsr_version() = 0x%x but DNSR_VERSION = 0x%x\n", version, DNSR_VERSION);
+        failures++;
+    }
+
+    expect_name(DNSR_SUCCESS, "DNSR_SUCCESS");
+    expect_name(DNSR_NOT_READY, "DNSR_NOT_READY");
+    expect_name(DNSR_ERROR_INVALID_ARGUMENT, "DNSR_ERROR_INVALID_ARGUMENT");
+    expect_name(DNSR_ERROR_NON_FINITE, "DNSR_ERROR_NON_FINITE");
+    expect_name(DNSR_ERROR_INTERNAL, "DNSR_ERROR_INTERNAL");
+    expect_name(-20, "DNSR_RESULT_UNKNOWN");
+    expect_name(2, "DNSR_RESULT_UNKNOWN");
+    expect_name(DNSR_RESULT_MAX_ENUM, "DNSR_RESULT_UNKNOWN");
+    expect_name(INT32_MIN, "DNSR_RESULT_UNKNOWN");
+
+    /* A pure query needs no device: the default settings come back tagged. */
+    DnsrSettings s;
+    memset(&s, 0, sizeof s);
+    if (dnsr_settings_init_default(&s) != DNSR_SUCCESS || s.sType != DNSR_STRUCTURE_TYPE_SETTINGS || s.filterPasses != 3) {
+        fprintf(stderr, "dnsr_settings_init_default: sType %u, filterPasses %u\n", s.sType, s.filterPasses);
+        failures++;
+    }
+
+    printf("%s\n", failures ? "header_c11: FAILED" : "header_c11: ok");
+    return failures ? 1 : 0;
+}

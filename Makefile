@@ -27,6 +27,10 @@ test: deps
 	@# dnsr loads Vulkan through the host's vkGetInstanceProcAddr: the shared library must not link the loader.
 	@if ldd target/release/libdnsr.so | grep -q libvulkan; then echo "libdnsr.so links libvulkan"; exit 1; fi
 	@echo "libdnsr.so does not link libvulkan"
+	@# The C ABI: header (C11, C++17) and layout, bad-input matrix, a full frame, the minimal example, all under
+	@# AddressSanitizer and the validation layer; then the install story (pkg-config, CMake consumer, soname).
+	DNSR_DEVICE="$(DNSR_DEVICE)" capi-tests/run.sh
+	capi-tests/install/check.sh
 
 # Median GPU timings per pass on synthetic scenes (run it on the GPU you want numbers for).
 bench: deps

@@ -12,6 +12,9 @@ PACKAGES=(
     spirv-tools
     cmake
     pkg-config
+    gcc                     # capi-tests and examples-c (C11, with AddressSanitizer)
+    g++                     # capi-tests header check as C++17
+    binutils                # readelf: soname and NEEDED checks of the install test
     libglfw3-dev
     libtinygltf-dev
     xvfb

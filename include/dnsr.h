@@ -4,6 +4,11 @@
  * Conventions: every function returns a DnsrResult (or a value for pure queries); required pointers are
  * checked; on any error nothing is recorded into the command buffer and dnsr_last_error_message() says
  * which field was wrong and why. Structures with sType/pNext may grow in later versions.
+ *
+ * Threads: every function may be called from any thread. Calls on one DnsrContext are serialised by a lock
+ * inside it (record from one thread per context for predictable ordering); different contexts are independent.
+ * Callbacks (log, debug names, GPU memory, VkAllocationCallbacks) run on the thread of the dnsr call that
+ * triggers them, and may call dnsr functions themselves.
  */
 
 #ifndef DNSR_H
@@ -536,23 +541,32 @@ typedef struct DnsrShadowsDispatch {
    */
   DnsrHitMaskConvention hitMaskConvention;
   /**
-   * R32_UINT, ceil(W/8) x ceil(H/4); bit (y%4)*8 + (x%8) of texel (x/8, y/4).
+   * Required. VK_FORMAT_R32_UINT, ceil(W/8) x ceil(H/4); bit (y%4)*8 + (x%8) of texel (x/8, y/4).
+   * Sampled; layout GENERAL, SHADER_READ_ONLY_OPTIMAL or READ_ONLY_OPTIMAL.
    */
   struct DnsrHostImage hitMask;
   /**
-   * W x H depth (D32/D16/D24 or R32/R16 float); receivers have 0 < depth < 1.
+   * Required. W x H depth: D32_SFLOAT, D16_UNORM, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT,
+   * D32_SFLOAT_S8_UINT, D16_UNORM_S8_UINT (depth-aspect view), R32_SFLOAT, R16_SFLOAT or R16_UNORM. Receivers
+   * have 0 < depth < 1. Layout GENERAL, SHADER_READ_ONLY_OPTIMAL, READ_ONLY_OPTIMAL,
+   * DEPTH_STENCIL_READ_ONLY_OPTIMAL, DEPTH_READ_ONLY_OPTIMAL or DEPTH_READ_ONLY_STENCIL_ATTACHMENT_OPTIMAL.
    */
   struct DnsrHostImage depth;
   /**
-   * W x H two-channel motion vectors: prev_uv = uv + value * motionVectorScale.
+   * Required. W x H motion vectors, first two channels used: R16G16_SFLOAT, R32G32_SFLOAT, R16G16_SNORM,
+   * R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT. prev_uv = uv + value.xy * motionVectorScale. Sampled layouts
+   * as for the hit mask.
    */
   struct DnsrHostImage velocity;
   /**
-   * W x H world-space normals: rgb * normalsUnpackMul + normalsUnpackAdd.
+   * Required. W x H world-space normals, rgb * normalsUnpackMul + normalsUnpackAdd: R8G8B8A8_UNORM/SNORM,
+   * B8G8R8A8_UNORM, A2B10G10R10/A2R10G10B10_UNORM_PACK32, B10G11R11_UFLOAT_PACK32, R16G16B16A16_SFLOAT/UNORM/
+   * SNORM or R32G32B32A32_SFLOAT. Sampled layouts as for the hit mask.
    */
   struct DnsrHostImage normals;
   /**
-   * W x H output (1 = lit) in the context's output format; written as a storage image.
+   * Required. W x H output (1 = lit) in the context's output format, written as a storage image. Layout
+   * GENERAL, or SHADER_READ_ONLY_OPTIMAL / READ_ONLY_OPTIMAL / TRANSFER_SRC_OPTIMAL (moved to GENERAL and back).
    */
   struct DnsrHostImage output;
   /**
@@ -668,7 +682,9 @@ typedef struct DnsrDeviceRequirements {
    */
   uint32_t optionalExtensionCount;
   /**
-   * Their names (static storage): VK_KHR_push_descriptor.
+   * Their names (static storage): "VK_KHR_push_descriptor" (-> DNSR_FEATURE_PUSH_DESCRIPTOR) and
+   * "VK_EXT_subgroup_size_control" (core in Vulkan 1.3; -> DNSR_FEATURE_SUBGROUP_SIZE_CONTROL). FLOAT16 needs
+   * no extension on Vulkan 1.2+ (VK_KHR_shader_float16_int8 + VK_KHR_16bit_storage before).
    */
   const char *const *ppOptionalExtensionNames;
   /**

@@ -26,6 +26,9 @@ pub fn memory_requirements(width: u32, height: u32, precision: Precision, filter
     if !(1..=MAX_FILTER_PASSES).contains(&filter_passes) {
         return Err(Error::InvalidSetting { name: "filter_passes", range: "1..=4" });
     }
+    if light_count == 0 {
+        return Err(Error::InvalidSetting { name: "light_count", range: ">= 1" });
+    }
     let per_light = crate::state::texel_bytes([width, height], precision, filter_passes == MAX_FILTER_PASSES);
     Ok(per_light * light_count as u64 + std::mem::size_of::<FrameConstants>() as u64)
 }
@@ -79,7 +82,9 @@ pub struct Context {
 
 fn check_features(vk: &Vk, info: &ContextCreateInfo) -> Result<()> {
     let props = unsafe { vk.instance.get_physical_device_properties(vk.physical_device) };
-    if info.api_version < MIN_API_VERSION || info.api_version > props.api_version.max(MIN_API_VERSION) {
+    // Patch versions do not matter, and an apiVersion above the device's is legal Vulkan (the device's wins).
+    let major_minor = |v: u32| vk::make_api_version(0, vk::api_version_major(v), vk::api_version_minor(v), 0);
+    if major_minor(info.api_version) < MIN_API_VERSION || major_minor(props.api_version) < MIN_API_VERSION {
         return Err(Error::UnsupportedApiVersion { declared: info.api_version, required: MIN_API_VERSION, device: props.api_version });
     }
     if info.precision == Precision::Fp16 {
@@ -218,7 +223,12 @@ impl Context {
         self.destroy_lights();
         self.size = [width, height];
         self.binder.as_mut().expect("created").clear(&self.vk.device)?;
-        self.allocate_lights()
+        let allocated = self.allocate_lights();
+        if allocated.is_err() {
+            // Leave no half-allocated state: record refuses until a resize succeeds.
+            self.destroy_lights();
+        }
+        allocated
     }
 
     /// Current render size.
@@ -332,6 +342,9 @@ impl Context {
     pub fn record_shadows(&mut self, cmd: vk::CommandBuffer, d: &ShadowsDispatch) -> Result<()> {
         if cmd == vk::CommandBuffer::null() {
             return Err(Error::NullHandle("command_buffer"));
+        }
+        if self.lights.len() != self.light_count as usize {
+            return Err(Error::Vulkan { call: "resize (internal state was not reallocated)", result: vk::Result::ERROR_OUT_OF_DEVICE_MEMORY });
         }
         let rect = validate::dispatch(&self.vk, d, self.size, self.output_format, self.light_count)?;
         let extent = [rect.width, rect.height];

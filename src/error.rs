@@ -18,6 +18,19 @@ pub enum ImageRole {
     Output,
 }
 
+impl ImageRole {
+    /// The dispatch field this role is passed in.
+    pub fn field(self) -> &'static str {
+        match self {
+            ImageRole::HitMask => "hit_mask",
+            ImageRole::Depth => "depth",
+            ImageRole::Velocity => "velocity",
+            ImageRole::Normals => "normals",
+            ImageRole::Output => "output",
+        }
+    }
+}
+
 /// Failure of a dnsr call. When a recording call fails, nothing was recorded into the command buffer and no
 /// internal state changed.
 #[derive(Clone, Debug, PartialEq)]
@@ -64,6 +77,13 @@ pub enum Error {
         role: Option<ImageRole>,
         /// The format.
         format: vk::Format,
+    },
+    /// The output image's format differs from the context's output format.
+    OutputFormatMismatch {
+        /// The format the dispatch declared.
+        declared: vk::Format,
+        /// The format the context was created with.
+        context: vk::Format,
     },
     /// A host image layout dnsr cannot use for this image.
     UnsupportedLayout {
@@ -131,16 +151,23 @@ impl fmt::Display for Error {
             }
             Error::ImageExtentMismatch { role, actual, expected } => write!(
                 f,
-                "{role:?} image is {}x{} but must be {}x{} for this render size",
-                actual[0], actual[1], expected[0], expected[1]
+                "{} image is {}x{} but must be {}x{} for this render size",
+                role.field(),
+                actual[0],
+                actual[1],
+                expected[0],
+                expected[1]
             ),
             Error::UnsupportedFormat { role: Some(role), format } => {
-                write!(f, "{role:?} image format {format:?} is not supported for this use")
+                write!(f, "{} image format {format:?} is not supported for this use", role.field())
+            }
+            Error::OutputFormatMismatch { declared, context } => {
+                write!(f, "output image format {declared:?} differs from the context's output_format {context:?}")
             }
             Error::UnsupportedFormat { role: None, format } => {
                 write!(f, "the device cannot use internal format {format:?} as a sampled and storage image")
             }
-            Error::UnsupportedLayout { role, layout } => write!(f, "{role:?} image layout {layout:?} is not usable here"),
+            Error::UnsupportedLayout { role, layout } => write!(f, "{} image layout {layout:?} is not usable here", role.field()),
             Error::NonFinite(what) => write!(f, "{what} contains NaN or infinity"),
             Error::InvalidRenderRect { reason } => write!(f, "render rect: {reason}"),
             Error::InvalidSetting { name, range } => write!(f, "setting {name} out of range: {range}"),

@@ -107,6 +107,9 @@ pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, size: [u32; 2], output_form
     host_image(vk, ImageRole::Depth, &d.depth, DEPTH_FORMATS, DEPTH_LAYOUTS, size, sampled)?;
     host_image(vk, ImageRole::Velocity, &d.velocity, VELOCITY_FORMATS, SAMPLED_LAYOUTS, size, sampled)?;
     host_image(vk, ImageRole::Normals, &d.normals, NORMAL_FORMATS, SAMPLED_LAYOUTS, size, sampled)?;
+    if d.output.format != output_format && d.output.view != vk::ImageView::null() && d.output.image != vk::Image::null() {
+        return Err(Error::OutputFormatMismatch { declared: d.output.format, context: output_format });
+    }
     host_image(vk, ImageRole::Output, &d.output, &[output_format], OUTPUT_LAYOUTS, size, vk::FormatFeatureFlags::STORAGE_IMAGE)?;
 
     finite_mat("projection_inverse", &d.projection_inverse)?;

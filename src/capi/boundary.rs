@@ -29,7 +29,7 @@ fn code(e: &Error) -> DnsrResult {
         Error::MissingFeature(_) => DNSR_ERROR_MISSING_FEATURE,
         Error::ZeroExtent { .. } | Error::ExtentTooLarge { .. } => DNSR_ERROR_INVALID_EXTENT,
         Error::ImageExtentMismatch { .. } => DNSR_ERROR_IMAGE_EXTENT_MISMATCH,
-        Error::UnsupportedFormat { .. } => DNSR_ERROR_UNSUPPORTED_FORMAT,
+        Error::UnsupportedFormat { .. } | Error::OutputFormatMismatch { .. } => DNSR_ERROR_UNSUPPORTED_FORMAT,
         Error::UnsupportedLayout { .. } => DNSR_ERROR_UNSUPPORTED_LAYOUT,
         Error::NonFinite(_) => DNSR_ERROR_NON_FINITE,
         Error::InvalidRenderRect { .. } => DNSR_ERROR_INVALID_RENDER_RECT,
@@ -88,7 +88,7 @@ pub(crate) fn guard(f: impl FnOnce(&mut Option<LogSink>) -> Result<DnsrResult, C
             set_last_error("");
             return r;
         }
-        Ok(Err(CallError::Core(e))) => (code(&e), e.to_string()),
+        Ok(Err(CallError::Core(e))) => (code(&e), c_names(&e.to_string())),
         Ok(Err(CallError::InvalidArgument(m))) => (DnsrResult::DNSR_ERROR_INVALID_ARGUMENT, m),
         Ok(Err(CallError::InvalidStructure(m))) => (DnsrResult::DNSR_ERROR_INVALID_STRUCTURE, m),
         Ok(Err(CallError::InvalidHandle(what))) => {
@@ -106,9 +106,45 @@ pub(crate) fn guard(f: impl FnOnce(&mut Option<LogSink>) -> Result<DnsrResult, C
     };
     set_last_error(&message);
     if let Some(sink) = sink {
-        LAST_ERROR.with(|m| sink.log(DNSR_LOG_LEVEL_ERROR, &m.borrow()));
+        // A copy, so that the callback may itself call dnsr (which rewrites the last error).
+        let text: Vec<u8> = LAST_ERROR.with(|m| m.borrow().clone());
+        sink.log(DNSR_LOG_LEVEL_ERROR, &text);
     }
     result
+}
+
+/// Rewrites the Rust API's field names in a core error message to the C header's names
+/// (`hit_mask.view` -> `hitMask.view`, `get_device_proc_addr` -> `vulkanFunctions.vkGetDeviceProcAddr`).
+fn c_names(message: &str) -> String {
+    let special = [
+        ("get_instance_proc_addr", "vulkanFunctions.vkGetInstanceProcAddr"),
+        ("get_device_proc_addr", "vulkanFunctions.vkGetDeviceProcAddr"),
+        ("features.float16", "DNSR_FEATURE_FLOAT16"),
+        ("features.push_descriptor", "DNSR_FEATURE_PUSH_DESCRIPTOR"),
+        ("precision Fp16", "DNSR_PRECISION_FP16"),
+    ];
+    let mut text = message.to_string();
+    for (rust, c) in special {
+        text = text.replace(rust, c);
+    }
+    let mut out = String::with_capacity(text.len());
+    let mut upper_next = false;
+    for ch in text.chars() {
+        if ch == '_' && out.chars().last().is_some_and(|c: char| c.is_ascii_lowercase() || c.is_ascii_digit()) {
+            upper_next = true;
+            continue;
+        }
+        if upper_next && ch.is_ascii_lowercase() {
+            out.push(ch.to_ascii_uppercase());
+        } else {
+            if upper_next {
+                out.push('_');
+            }
+            out.push(ch);
+        }
+        upper_next = false;
+    }
+    out
 }
 
 /// Checks a required pointer argument and borrows it.
@@ -139,6 +175,15 @@ pub(crate) fn check_no_next(p_next: *const std::ffi::c_void, what: &str) -> Resu
 mod tests {
     use super::*;
     use std::ffi::CStr;
+
+    #[test]
+    fn rust_field_names_become_c_names() {
+        assert_eq!(c_names("hit_mask.view is null"), "hitMask.view is null");
+        assert_eq!(c_names("get_device_proc_addr is null"), "vulkanFunctions.vkGetDeviceProcAddr is null");
+        assert_eq!(c_names("setting filter_passes out of range: 1..=4"), "setting filterPasses out of range: 1..=4");
+        assert_eq!(c_names("normals_unpack_mul/add contains NaN"), "normalsUnpackMul/add contains NaN");
+        assert_eq!(c_names("DNSR_ERROR_X and R16_SFLOAT stay"), "DNSR_ERROR_X and R16_SFLOAT stay");
+    }
 
     #[test]
     fn a_panic_becomes_an_internal_error_with_its_message() {

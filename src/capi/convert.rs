@@ -104,18 +104,29 @@ impl CNamer {
     }
 }
 
-/// Converts a create info; also returns its log sink.
-pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo) -> Result<(ContextCreateInfo, Option<LogSink>), CallError> {
+/// Converts a create info. Its log sink is stored in `sink` first, so that every later problem is logged.
+pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo, sink: &mut Option<LogSink>) -> Result<ContextCreateInfo, CallError> {
     const WHAT: &str = "pCreateInfo";
+    // The sink is read before the sType check: a caller who set one wants to hear about a wrong sType too.
+    let log = match unsafe { c.p_log_callback.as_ref() } {
+        Some(l) if l.log.is_none() => {
+            return Err(CallError::InvalidArgument("pCreateInfo->pLogCallback->log is NULL".into()));
+        }
+        Some(l) => Some(LogSink(*l)),
+        None => None,
+    };
+    *sink = log;
     check_type(c.s_type, DNSR_STRUCTURE_TYPE_CONTEXT_CREATE_INFO, "DNSR_STRUCTURE_TYPE_CONTEXT_CREATE_INFO", WHAT)?;
     check_no_next(c.p_next, WHAT)?;
     let known_features = DNSR_FEATURE_FLOAT16 | DNSR_FEATURE_PUSH_DESCRIPTOR | DNSR_FEATURE_SUBGROUP_SIZE_CONTROL;
     if c.enabled_features & !known_features != 0 {
-        return Err(CallError::InvalidArgument(format!("pCreateInfo->enabledFeatures has unknown bits {:#x}", c.enabled_features)));
+        let unknown = c.enabled_features & !known_features;
+        return Err(CallError::InvalidArgument(format!("pCreateInfo->enabledFeatures has unknown bits {unknown:#x}")));
     }
     let known_flags = DNSR_CONTEXT_CREATE_DEPTH_INVERTED | DNSR_CONTEXT_CREATE_INFINITE_FAR | DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS;
     if c.flags & !known_flags != 0 {
-        return Err(CallError::InvalidArgument(format!("pCreateInfo->flags has unknown bits {:#x}", c.flags)));
+        let unknown = c.flags & !known_flags;
+        return Err(CallError::InvalidArgument(format!("pCreateInfo->flags has unknown bits {unknown:#x}")));
     }
     let settings = match unsafe { c.p_settings.as_ref() } {
         Some(s) => settings_from_c(s, "pCreateInfo->pSettings")?,
@@ -143,13 +154,6 @@ pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo) -> Result<(ContextCr
         let namer = CNamer(*n);
         hooks.debug_names = Some(Arc::new(move |t, handle, name| namer.set_name(t, handle, name)));
     }
-    let log = match unsafe { c.p_log_callback.as_ref() } {
-        Some(l) if l.log.is_none() => {
-            return Err(CallError::InvalidArgument("pCreateInfo->pLogCallback->log is NULL".into()));
-        }
-        Some(l) => Some(LogSink(*l)),
-        None => None,
-    };
     let info = ContextCreateInfo {
         instance: c.instance,
         physical_device: c.physical_device,
@@ -176,7 +180,7 @@ pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo) -> Result<(ContextCr
         settings,
         hooks,
     };
-    Ok((info, log))
+    Ok(info)
 }
 
 fn image(i: &DnsrHostImage) -> HostImage {
@@ -188,8 +192,9 @@ pub(crate) fn dispatch_from_c(c: &DnsrShadowsDispatch) -> Result<(vk::CommandBuf
     const WHAT: &str = "pDispatch";
     check_type(c.s_type, DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH, "DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH", WHAT)?;
     check_no_next(c.p_next, WHAT)?;
-    if c.flags & !(DNSR_DISPATCH_RESET | DNSR_DISPATCH_USE_RENDER_RECT) != 0 {
-        return Err(CallError::InvalidArgument(format!("pDispatch->flags has unknown bits {:#x}", c.flags)));
+    let unknown = c.flags & !(DNSR_DISPATCH_RESET | DNSR_DISPATCH_USE_RENDER_RECT);
+    if unknown != 0 {
+        return Err(CallError::InvalidArgument(format!("pDispatch->flags has unknown bits {unknown:#x}")));
     }
     let hit_mask_convention = match c.hit_mask_convention {
         DNSR_HIT_MASK_OCCLUDED_BITS => HitMaskConvention::OccludedBits,

@@ -10,7 +10,7 @@ mod convert;
 mod handles;
 pub mod types;
 
-use boundary::{check_type, guard, last_error_ptr, required, CallError};
+use boundary::{check_no_next, check_type, guard, last_error_ptr, required, CallError};
 use convert::{create_info_from_c, dispatch_from_c, precision_from_c, settings_from_c, settings_to_c};
 use std::ffi::c_char;
 use types::*;
@@ -37,10 +37,9 @@ pub extern "C" fn dnsr_context_create(p_create_info: *const DnsrContextCreateInf
         let out = unsafe { p_context.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pContext is NULL".into()))?;
         *out = std::ptr::null_mut();
         let c = required(p_create_info, "pCreateInfo")?;
-        let (info, log) = create_info_from_c(c)?;
-        *sink = log;
+        let info = create_info_from_c(c, sink)?;
         let context = crate::Context::new(&info)?;
-        *out = handles::insert(context, log);
+        *out = handles::insert(context, *sink);
         Ok(DnsrResult::DNSR_SUCCESS)
     })
 }
@@ -139,6 +138,7 @@ pub extern "C" fn dnsr_context_get_timings(context: DnsrContext, p_timings: *mut
         *sink = entry.log;
         let out = unsafe { p_timings.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pTimings is NULL".into()))?;
         check_type(out.s_type, DNSR_STRUCTURE_TYPE_PASS_TIMINGS, "DNSR_STRUCTURE_TYPE_PASS_TIMINGS", "pTimings")?;
+        check_no_next(out.p_next, "pTimings")?;
         let Some(t) = entry.lock()?.timings()? else { return Ok(DnsrResult::DNSR_NOT_READY) };
         out.frame = t.frame;
         out.prepare_ms = t.prepare_ms;
@@ -180,10 +180,11 @@ pub extern "C" fn dnsr_get_memory_requirements(
 }
 
 /// Optional device extensions, as static C strings.
-struct ExtensionNames([*const c_char; 1]);
+struct ExtensionNames([*const c_char; 2]);
 // SAFETY: pointers to static string literals.
 unsafe impl Sync for ExtensionNames {}
-static OPTIONAL_EXTENSIONS: ExtensionNames = ExtensionNames([c"VK_KHR_push_descriptor".as_ptr()]);
+static OPTIONAL_EXTENSIONS: ExtensionNames =
+    ExtensionNames([c"VK_KHR_push_descriptor".as_ptr(), c"VK_EXT_subgroup_size_control".as_ptr()]);
 
 /// What the host must create its instance and device with (see DnsrDeviceRequirements).
 #[unsafe(no_mangle)]
@@ -191,6 +192,7 @@ pub extern "C" fn dnsr_get_device_requirements(p_requirements: *mut DnsrDeviceRe
     guard(|_| {
         let out = unsafe { p_requirements.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pRequirements is NULL".into()))?;
         check_type(out.s_type, DNSR_STRUCTURE_TYPE_DEVICE_REQUIREMENTS, "DNSR_STRUCTURE_TYPE_DEVICE_REQUIREMENTS", "pRequirements")?;
+        check_no_next(out.p_next, "pRequirements")?;
         out.min_api_version = crate::MIN_API_VERSION;
         out.required_extension_count = 0;
         out.pp_required_extension_names = std::ptr::null();

@@ -399,15 +399,24 @@ pub struct DnsrShadowsDispatch {
     pub flags: DnsrDispatchFlags,
     /// DNSR_HIT_MASK_OCCLUDED_BITS (FidelityFX) or DNSR_HIT_MASK_LIT_BITS.
     pub hit_mask_convention: DnsrHitMaskConvention,
-    /// R32_UINT, ceil(W/8) x ceil(H/4); bit (y%4)*8 + (x%8) of texel (x/8, y/4).
+    /// Required. VK_FORMAT_R32_UINT, ceil(W/8) x ceil(H/4); bit (y%4)*8 + (x%8) of texel (x/8, y/4).
+    /// Sampled; layout GENERAL, SHADER_READ_ONLY_OPTIMAL or READ_ONLY_OPTIMAL.
     pub hit_mask: DnsrHostImage,
-    /// W x H depth (D32/D16/D24 or R32/R16 float); receivers have 0 < depth < 1.
+    /// Required. W x H depth: D32_SFLOAT, D16_UNORM, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT,
+    /// D32_SFLOAT_S8_UINT, D16_UNORM_S8_UINT (depth-aspect view), R32_SFLOAT, R16_SFLOAT or R16_UNORM. Receivers
+    /// have 0 < depth < 1. Layout GENERAL, SHADER_READ_ONLY_OPTIMAL, READ_ONLY_OPTIMAL,
+    /// DEPTH_STENCIL_READ_ONLY_OPTIMAL, DEPTH_READ_ONLY_OPTIMAL or DEPTH_READ_ONLY_STENCIL_ATTACHMENT_OPTIMAL.
     pub depth: DnsrHostImage,
-    /// W x H two-channel motion vectors: prev_uv = uv + value * motionVectorScale.
+    /// Required. W x H motion vectors, first two channels used: R16G16_SFLOAT, R32G32_SFLOAT, R16G16_SNORM,
+    /// R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT. prev_uv = uv + value.xy * motionVectorScale. Sampled layouts
+    /// as for the hit mask.
     pub velocity: DnsrHostImage,
-    /// W x H world-space normals: rgb * normalsUnpackMul + normalsUnpackAdd.
+    /// Required. W x H world-space normals, rgb * normalsUnpackMul + normalsUnpackAdd: R8G8B8A8_UNORM/SNORM,
+    /// B8G8R8A8_UNORM, A2B10G10R10/A2R10G10B10_UNORM_PACK32, B10G11R11_UFLOAT_PACK32, R16G16B16A16_SFLOAT/UNORM/
+    /// SNORM or R32G32B32A32_SFLOAT. Sampled layouts as for the hit mask.
     pub normals: DnsrHostImage,
-    /// W x H output (1 = lit) in the context's output format; written as a storage image.
+    /// Required. W x H output (1 = lit) in the context's output format, written as a storage image. Layout
+    /// GENERAL, or SHADER_READ_ONLY_OPTIMAL / READ_ONLY_OPTIMAL / TRANSFER_SRC_OPTIMAL (moved to GENERAL and back).
     pub output: DnsrHostImage,
     /// Motion vector multiplier (FidelityFX motionVectorScale).
     pub motion_vector_scale: [f32; 2],
@@ -471,7 +480,9 @@ pub struct DnsrDeviceRequirements {
     pub pp_required_extension_names: *const *const c_char,
     /// Device extensions dnsr uses when enabled (declare them in `enabledFeatures`).
     pub optional_extension_count: u32,
-    /// Their names (static storage): VK_KHR_push_descriptor.
+    /// Their names (static storage): "VK_KHR_push_descriptor" (-> DNSR_FEATURE_PUSH_DESCRIPTOR) and
+    /// "VK_EXT_subgroup_size_control" (core in Vulkan 1.3; -> DNSR_FEATURE_SUBGROUP_SIZE_CONTROL). FLOAT16 needs
+    /// no extension on Vulkan 1.2+ (VK_KHR_shader_float16_int8 + VK_KHR_16bit_storage before).
     pub pp_optional_extension_names: *const *const c_char,
     /// DNSR_FEATURE_* bits dnsr can use: FLOAT16 = shaderFloat16 + storageBuffer16BitAccess (for
     /// DNSR_PRECISION_FP16), PUSH_DESCRIPTOR, SUBGROUP_SIZE_CONTROL.

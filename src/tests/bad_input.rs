@@ -125,7 +125,7 @@ fn bad_dispatches_record_nothing() {
         (
             "output format differs from creation",
             |d| d.output.format = vk::Format::R16_SFLOAT,
-            |e| matches!(e, Error::UnsupportedFormat { role: Some(ImageRole::Output), .. }),
+            |e| matches!(e, Error::OutputFormatMismatch { declared: vk::Format::R16_SFLOAT, context: vk::Format::R32_SFLOAT }),
         ),
         (
             "undefined depth layout",

@@ -139,7 +139,7 @@ fn handles_codes_and_messages() {
     assert_eq!(s.filter_passes, 3);
     s.filter_passes = 9;
     assert_eq!(dnsr_context_set_settings(ctx, &s), DnsrResult::DNSR_ERROR_INVALID_SETTING);
-    assert!(last_error().contains("filter_passes"), "{}", last_error());
+    assert!(last_error().contains("filterPasses"), "{}", last_error());
     assert_eq!(dnsr_context_destroy(ctx), DnsrResult::DNSR_SUCCESS);
     assert_eq!(dnsr_context_destroy(ctx), DnsrResult::DNSR_ERROR_INVALID_HANDLE, "double destroy");
     assert_eq!(dnsr_context_resize(ctx, 4, 4), DnsrResult::DNSR_ERROR_INVALID_HANDLE, "use after destroy");

@@ -10,50 +10,46 @@ use ash::vk;
 use glam::{Mat4, Vec2, Vec3};
 use std::sync::Arc;
 
+/// Calls `$m!` with every field `Settings` and `DnsrSettings` share: the one list both conversions use.
+macro_rules! setting_fields {
+    ($m:ident) => {
+        $m!(
+            filter_passes,
+            disocclusion_threshold_facing,
+            disocclusion_threshold_grazing,
+            disocclusion_angle_exponent,
+            spatial_falloff,
+            history_clamp_sigmas,
+            history_rejection_falloff,
+            history_rejection_min_sigma,
+            variance_boost_samples,
+            full_history_samples,
+            min_current_weight,
+            max_history_samples,
+            kernel_cross_weight,
+            normal_power,
+            output_contrast,
+            min_shadow_sigma
+        )
+    };
+}
+
 pub(crate) fn settings_from_c(s: &DnsrSettings, what: &str) -> Result<Settings, CallError> {
     check_type(s.s_type, DNSR_STRUCTURE_TYPE_SETTINGS, "DNSR_STRUCTURE_TYPE_SETTINGS", what)?;
     check_no_next(s.p_next, what)?;
-    Ok(Settings {
-        filter_passes: s.filter_passes,
-        disocclusion_threshold_facing: s.disocclusion_threshold_facing,
-        disocclusion_threshold_grazing: s.disocclusion_threshold_grazing,
-        disocclusion_angle_exponent: s.disocclusion_angle_exponent,
-        spatial_falloff: s.spatial_falloff,
-        history_clamp_sigmas: s.history_clamp_sigmas,
-        history_rejection_falloff: s.history_rejection_falloff,
-        history_rejection_min_sigma: s.history_rejection_min_sigma,
-        variance_boost_samples: s.variance_boost_samples,
-        full_history_samples: s.full_history_samples,
-        min_current_weight: s.min_current_weight,
-        max_history_samples: s.max_history_samples,
-        kernel_cross_weight: s.kernel_cross_weight,
-        normal_power: s.normal_power,
-        output_contrast: s.output_contrast,
-        min_shadow_sigma: s.min_shadow_sigma,
-    })
+    macro_rules! from_c {
+        ($($f:ident),*) => { Settings { $($f: s.$f),* } };
+    }
+    Ok(setting_fields!(from_c))
 }
 
 pub(crate) fn settings_to_c(s: &Settings) -> DnsrSettings {
-    DnsrSettings {
-        s_type: DNSR_STRUCTURE_TYPE_SETTINGS,
-        p_next: std::ptr::null(),
-        filter_passes: s.filter_passes,
-        disocclusion_threshold_facing: s.disocclusion_threshold_facing,
-        disocclusion_threshold_grazing: s.disocclusion_threshold_grazing,
-        disocclusion_angle_exponent: s.disocclusion_angle_exponent,
-        spatial_falloff: s.spatial_falloff,
-        history_clamp_sigmas: s.history_clamp_sigmas,
-        history_rejection_falloff: s.history_rejection_falloff,
-        history_rejection_min_sigma: s.history_rejection_min_sigma,
-        variance_boost_samples: s.variance_boost_samples,
-        full_history_samples: s.full_history_samples,
-        min_current_weight: s.min_current_weight,
-        max_history_samples: s.max_history_samples,
-        kernel_cross_weight: s.kernel_cross_weight,
-        normal_power: s.normal_power,
-        output_contrast: s.output_contrast,
-        min_shadow_sigma: s.min_shadow_sigma,
+    macro_rules! to_c {
+        ($($f:ident),*) => {
+            DnsrSettings { s_type: DNSR_STRUCTURE_TYPE_SETTINGS, p_next: std::ptr::null(), $($f: s.$f),* }
+        };
     }
+    setting_fields!(to_c)
 }
 
 pub(crate) fn precision_from_c(p: DnsrPrecision) -> Result<Precision, CallError> {

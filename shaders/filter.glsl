@@ -9,7 +9,9 @@ const int DNSR_SHARED_COUNT = DNSR_SHARED_SIDE * DNSR_SHARED_SIDE;
 
 shared real2 s_signal[DNSR_SHARED_COUNT];   // (mean, variance)
 shared float s_depth[DNSR_SHARED_COUNT];    // linear depth; negative = sky or outside the rectangle
-shared real3 s_normal[DNSR_SHARED_COUNT];
+// Normals stay fp32: the edge stop raises their dot product to the 32nd power, which turns half-precision
+// rounding into percent-level weight errors.
+shared vec3 s_normal[DNSR_SHARED_COUNT];
 int g_side;
 
 int dnsr_shared_index(ivec2 s) { return s.y * g_side + s.x; }
@@ -23,19 +25,19 @@ void dnsr_filter_load(ivec2 region_origin) {
         vec2 signal = receiver ? dnsr_read_filter_input(p) : vec2(1.0, 0.0);
         s_signal[i] = real2(signal);
         s_depth[i] = receiver ? dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), depth) : -1.0;
-        s_normal[i] = receiver ? real3(dnsr_read_normal(p)) : real3(0.0);
+        s_normal[i] = receiver ? dnsr_read_normal(p) : vec3(0.0);
     }
 }
 
 // 3x3 Gaussian of the variance (center 1/4, cross 1/8, corner 1/16) over receivers only.
-real dnsr_blurred_variance(ivec2 s) {
-    real sum = real(0.0), weight = real(0.0);
+float dnsr_blurred_variance(ivec2 s) {
+    float sum = 0.0, weight = 0.0;
     for (int j = -1; j <= 1; ++j) {
         for (int i = -1; i <= 1; ++i) {
             int k = dnsr_shared_index(s + ivec2(i, j));
             if (s_depth[k] < 0.0) continue;
-            real w = real(1.0 / float(4 << (abs(i) + abs(j))));
-            sum += w * s_signal[k].y;
+            float w = 1.0 / float(4 << (abs(i) + abs(j)));
+            sum += w * float(s_signal[k].y);
             weight += w;
         }
     }
@@ -61,18 +63,20 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     } else if ((meta & DNSR_TILE_CLEARED) != 0u) {
         result = vec2((meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0, 0.0);
     } else {
+        // Storage (shared memory, intermediate images) follows the path's precision; the weights and sums are
+        // accumulated in fp32, which keeps the fp16 path within 2e-3 of the f64 reference.
         vec4 settings = dnsr_get_filter_settings();
-        real kernel[2] = real[2](real(1.0), real(settings.x));
-        real normal_power = real(settings.y);
-        real2 c = s_signal[center];
+        float kernel[2] = float[2](1.0, settings.x);
+        float normal_power = settings.y;
+        vec2 c = vec2(s_signal[center]);
         float zc = s_depth[center];
-        real3 nc = s_normal[center];
-        real inv_sigma = real(1.0) / max(sqrt(max(dnsr_blurred_variance(s), real(0.0))), real(settings.w));
+        vec3 nc = s_normal[center];
+        float inv_sigma = 1.0 / max(sqrt(max(dnsr_blurred_variance(s), 0.0)), settings.w);
         float inv_depth_sigma = 1.0 / dnsr_get_depth_similarity_sigma();
 
-        real weight_sum = real(1.0);
-        real mean_sum = c.x;
-        real var_sum = c.y;
+        float weight_sum = 1.0;
+        float mean_sum = c.x;
+        float var_sum = c.y;
         for (int j = -1; j <= 1; ++j) {
             for (int i = -1; i <= 1; ++i) {
                 if (i == 0 && j == 0) continue;
@@ -81,17 +85,17 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
                 int k = dnsr_shared_index(s + ivec2(i, j) * step);
                 float zq = s_depth[k];
                 if (zq < 0.0) continue;
-                real2 n = s_signal[k];
-                real w = kernel[abs(i)] * kernel[abs(j)]
-                       * exp(-abs(c.x - n.x) * inv_sigma)
-                       * real(exp(-abs(zc - zq) * inv_depth_sigma))
-                       * pow(max(dot(nc, s_normal[k]), real(0.0)), normal_power);
+                vec2 n = vec2(s_signal[k]);
+                float w = kernel[abs(i)] * kernel[abs(j)]
+                        * exp(-abs(c.x - n.x) * inv_sigma)
+                        * exp(-abs(zc - zq) * inv_depth_sigma)
+                        * pow(max(dot(nc, s_normal[k]), 0.0), normal_power);
                 weight_sum += w;
                 mean_sum += w * n.x;
                 var_sum += w * w * n.y;
             }
         }
-        result = vec2(clamp(float(mean_sum / weight_sum), 0.0, 1.0), max(float(var_sum / (weight_sum * weight_sum)), 0.0));
+        result = vec2(clamp(mean_sum / weight_sum, 0.0, 1.0), max(var_sum / (weight_sum * weight_sum), 0.0));
     }
 
     if (dnsr_get_write_internal()) dnsr_write_filter_output(p, result);

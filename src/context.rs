@@ -516,8 +516,34 @@ impl Context {
     }
 }
 
+/// Internal images of one light, for tests that read dnsr's intermediate state.
+#[cfg(test)]
+pub(crate) struct Internals {
+    pub tile_mask: vk::Image,
+    pub tile_meta: vk::Image,
+    pub reprojection: vk::Image,
+    pub history: vk::Image,
+    /// Written by the last recorded frame.
+    pub moments: vk::Image,
+    pub depth: vk::Image,
+    pub intermediate_format: vk::Format,
+}
+
 #[cfg(test)]
 impl Context {
+    pub(crate) fn internals(&self, light: usize) -> Internals {
+        let l = &self.lights[light];
+        Internals {
+            tile_mask: l.tile_mask.image,
+            tile_meta: l.tile_meta.image,
+            reprojection: l.reprojection.image,
+            history: l.history.image,
+            moments: l.moments[l.parity ^ 1].image,
+            depth: l.depth[l.parity ^ 1].image,
+            intermediate_format: intermediate_format(self.precision),
+        }
+    }
+
     /// The moments image written by the last recorded frame of `light` (m, s, n per pixel; RGBA32F, GENERAL).
     pub(crate) fn last_moments(&self, light: usize) -> vk::Image {
         let l = &self.lights[light];

@@ -15,6 +15,7 @@ mod error;
 mod gpu;
 mod host;
 mod passes;
+pub mod reference;
 mod settings;
 mod state;
 mod timestamps;

@@ -1,0 +1,85 @@
+//! filter (shaders/filter.glsl): one pass of the edge-avoiding a-trous filter, 3x3 taps at +-step.
+
+use super::{inside, is_receiver, linear_depth, pixel_uv, uv_to_ndc, Coord, Read, Write, TILE};
+use crate::passes::{TILE_CLEARED, TILE_LIT};
+use glam::DVec2;
+
+/// Linear depth of a receiver, or None for sky and pixels outside the rectangle.
+fn receiver_depth<Io: Read + ?Sized>(io: &Io, p: Coord) -> Option<f64> {
+    if !inside(io, p) {
+        return None;
+    }
+    let d = io.read_depth(p);
+    is_receiver(d).then(|| linear_depth(io, uv_to_ndc(pixel_uv(io, p)), d))
+}
+
+/// 3x3 Gaussian of the variance (center 1/4, cross 1/8, corner 1/16) over receivers.
+fn blurred_variance<Io: Read + ?Sized>(io: &Io, p: Coord) -> f64 {
+    let (mut sum, mut weight) = (0.0, 0.0);
+    for j in -1..=1i32 {
+        for i in -1..=1i32 {
+            let q = [p[0] + i, p[1] + j];
+            if receiver_depth(io, q).is_none() {
+                continue;
+            }
+            let w = 1.0 / (4 << (i.abs() + j.abs())) as f64;
+            sum += w * io.read_filter_input(q).y;
+            weight += w;
+        }
+    }
+    sum / weight
+}
+
+/// The filtered (mean, variance) of one receiver pixel of a mixed tile.
+pub fn filter_pixel<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64) -> DVec2 {
+    let s = io.settings();
+    let kernel = [1.0, s.kernel_cross_weight as f64];
+    let step = io.filter_step();
+    let c = io.read_filter_input(p);
+    let nc = io.read_normal(p);
+    let inv_sigma = 1.0 / blurred_variance(io, p).max(0.0).sqrt().max(s.min_shadow_sigma as f64);
+    let inv_depth_sigma = 1.0 / io.depth_similarity_sigma();
+    let (mut weight_sum, mut mean_sum, mut var_sum) = (1.0, c.x, c.y);
+    for j in -1..=1i32 {
+        for i in -1..=1i32 {
+            if i == 0 && j == 0 {
+                continue;
+            }
+            let q = [p[0] + i * step, p[1] + j * step];
+            let Some(zq) = receiver_depth(io, q) else { continue };
+            let n = io.read_filter_input(q);
+            let w = kernel[i.unsigned_abs() as usize]
+                * kernel[j.unsigned_abs() as usize]
+                * (-(c.x - n.x).abs() * inv_sigma).exp()
+                * (-(zc - zq).abs() * inv_depth_sigma).exp()
+                * nc.dot(io.read_normal(q)).max(0.0).powf(s.normal_power as f64);
+            weight_sum += w;
+            mean_sum += w * n.x;
+            var_sum += w * w * n.y;
+        }
+    }
+    DVec2::new((mean_sum / weight_sum).clamp(0.0, 1.0), (var_sum / (weight_sum * weight_sum)).max(0.0))
+}
+
+/// Runs the current filter pass (routing set by `Write::begin_filter_pass`) over the render rectangle.
+pub fn run<Io: Read + Write>(io: &mut Io) {
+    let e = io.extent();
+    let contrast = io.settings().output_contrast as f64;
+    for y in 0..e[1] {
+        for x in 0..e[0] {
+            let p = [x, y];
+            let meta = io.read_tile_meta([x / TILE[0], y / TILE[1]]);
+            let result = match receiver_depth(io, p) {
+                None => DVec2::new(1.0, 0.0),
+                Some(_) if meta & TILE_CLEARED != 0 => DVec2::new(if meta & TILE_LIT != 0 { 1.0 } else { 0.0 }, 0.0),
+                Some(zc) => filter_pixel(io, p, zc),
+            };
+            if io.write_internal() {
+                io.write_filter_output(p, result);
+            }
+            if io.is_final_pass() {
+                io.write_output(p, result.x.powf((contrast - result.y).max(1.0)));
+            }
+        }
+    }
+}

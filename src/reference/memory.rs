@@ -1,0 +1,259 @@
+//! A plain in-memory frame implementing the reference interface: the inputs, the previous frame's state, and
+//! every output, as arrays over the whole render size (render rectangle = whole image).
+
+use super::{Coord, Get, Read, Write, TILE};
+use crate::settings::Settings;
+use glam::{DMat4, DVec2, DVec3};
+
+/// One frame of one light for the CPU reference.
+#[derive(Clone, Debug)]
+pub struct Frame {
+    /// Width and height in pixels.
+    pub extent: Coord,
+    /// Settings.
+    pub settings: Settings,
+    /// Current clip -> view.
+    pub projection_inverse: DMat4,
+    /// Current clip -> previous clip.
+    pub reprojection: DMat4,
+    /// Current clip -> world.
+    pub view_projection_inverse: DMat4,
+    /// Eye in world space.
+    pub eye: DVec3,
+    /// Depth edge-stop sigma.
+    pub depth_similarity_sigma: f64,
+    /// History discarded this frame.
+    pub reset: bool,
+    /// Reverse-Z.
+    pub depth_inverted: bool,
+    /// Host hit mask (FidelityFX convention), one word per tile.
+    pub hit_mask: Vec<u32>,
+    /// Depth per pixel.
+    pub depth: Vec<f64>,
+    /// Scaled motion vectors per pixel.
+    pub velocity: Vec<DVec2>,
+    /// Decoded normals per pixel (unit or zero).
+    pub normals: Vec<DVec3>,
+    /// Previous frame's depth copy.
+    pub previous_depth: Vec<f64>,
+    /// Previous frame's moments.
+    pub previous_moments: Vec<DVec3>,
+    /// Previous frame's history (filter pass 0 mean).
+    pub history: Vec<f64>,
+    /// Output: lit-bit tile mask.
+    pub tile_mask: Vec<u32>,
+    /// Output: tile metadata.
+    pub tile_meta: Vec<u32>,
+    /// Output: depth copy.
+    pub depth_copy: Vec<f64>,
+    /// Output: moments.
+    pub moments: Vec<DVec3>,
+    /// Output: temporal result (mean, variance).
+    pub reprojection_out: Vec<DVec2>,
+    /// Output of each filter pass (pass 0 is the next frame's history).
+    pub filter_out: Vec<Vec<DVec2>>,
+    /// Output: final shadow.
+    pub output: Vec<f64>,
+    /// Intermediates are stored as float16 (the fp16 path's R16G16_SFLOAT images): writes round to half.
+    pub half_intermediates: bool,
+    pass: u32,
+    passes: u32,
+}
+
+impl Frame {
+    /// A frame of `w` x `h` with neutral inputs (sky, no motion) and empty history.
+    pub fn new(w: i32, h: i32, settings: Settings) -> Frame {
+        let n = (w * h) as usize;
+        let tiles = (((w + 7) / 8) * ((h + 3) / 4)) as usize;
+        Frame {
+            extent: [w, h],
+            settings,
+            projection_inverse: DMat4::IDENTITY,
+            reprojection: DMat4::IDENTITY,
+            view_projection_inverse: DMat4::IDENTITY,
+            eye: DVec3::ZERO,
+            depth_similarity_sigma: 1.0,
+            reset: false,
+            depth_inverted: false,
+            hit_mask: vec![0; tiles],
+            depth: vec![1.0; n],
+            velocity: vec![DVec2::ZERO; n],
+            normals: vec![DVec3::ZERO; n],
+            previous_depth: vec![1.0; n],
+            previous_moments: vec![DVec3::ZERO; n],
+            history: vec![0.0; n],
+            tile_mask: vec![0; tiles],
+            tile_meta: vec![0; tiles],
+            depth_copy: vec![0.0; n],
+            moments: vec![DVec3::ZERO; n],
+            reprojection_out: vec![DVec2::ZERO; n],
+            filter_out: Vec::new(),
+            output: vec![0.0; n],
+            half_intermediates: false,
+            pass: 0,
+            passes: 0,
+        }
+    }
+
+    fn px(&self, p: Coord) -> usize {
+        (p[1] * self.extent[0] + p[0]) as usize
+    }
+
+    fn tile(&self, t: Coord) -> usize {
+        (t[1] * ((self.extent[0] + TILE[0] - 1) / TILE[0]) + t[0]) as usize
+    }
+
+    fn store(&self, v: DVec2) -> DVec2 {
+        if self.half_intermediates { DVec2::new(round_to_half(v.x), round_to_half(v.y)) } else { v }
+    }
+
+    /// Moves this frame's outputs into the next frame's "previous" state (depth, moments, history).
+    pub fn advance(&mut self) {
+        self.previous_depth = self.depth_copy.clone();
+        self.previous_moments = self.moments.clone();
+        if let Some(h) = self.filter_out.first() {
+            self.history = h.iter().map(|v| v.x).collect();
+        }
+        self.reset = false;
+    }
+}
+
+impl Get for Frame {
+    fn extent(&self) -> Coord {
+        self.extent
+    }
+    fn projection_inverse(&self) -> DMat4 {
+        self.projection_inverse
+    }
+    fn reprojection_matrix(&self) -> DMat4 {
+        self.reprojection
+    }
+    fn view_projection_inverse(&self) -> DMat4 {
+        self.view_projection_inverse
+    }
+    fn eye(&self) -> DVec3 {
+        self.eye
+    }
+    fn depth_similarity_sigma(&self) -> f64 {
+        self.depth_similarity_sigma
+    }
+    fn is_reset(&self) -> bool {
+        self.reset
+    }
+    fn is_depth_inverted(&self) -> bool {
+        self.depth_inverted
+    }
+    fn settings(&self) -> &Settings {
+        &self.settings
+    }
+    fn filter_step(&self) -> i32 {
+        1 << self.pass
+    }
+    fn write_internal(&self) -> bool {
+        self.pass == 0 || !self.is_final_pass()
+    }
+    fn is_final_pass(&self) -> bool {
+        self.pass + 1 == self.passes
+    }
+}
+
+impl Read for Frame {
+    fn read_hit_mask(&self, tile: Coord) -> u32 {
+        self.hit_mask[self.tile(tile)]
+    }
+    fn read_tile_mask(&self, tile: Coord) -> u32 {
+        self.tile_mask[self.tile(tile)]
+    }
+    fn read_depth(&self, p: Coord) -> f64 {
+        self.depth[self.px(p)]
+    }
+    fn read_velocity(&self, p: Coord) -> DVec2 {
+        self.velocity[self.px(p)]
+    }
+    fn read_normal(&self, p: Coord) -> DVec3 {
+        self.normals[self.px(p)]
+    }
+    fn read_previous_depth(&self, p: Coord) -> f64 {
+        self.previous_depth[self.px(p)]
+    }
+    fn read_previous_moments(&self, p: Coord) -> DVec3 {
+        self.previous_moments[self.px(p)]
+    }
+    fn read_history(&self, uv: DVec2) -> f64 {
+        // Bilinear with clamp-to-edge, texel centers at integer + 0.5, as the GPU sampler.
+        let [w, h] = self.extent;
+        let s = DVec2::new(uv.x * w as f64 - 0.5, uv.y * h as f64 - 0.5);
+        let (x0, y0) = (s.x.floor(), s.y.floor());
+        let (fx, fy) = (s.x - x0, s.y - y0);
+        let at = |x: f64, y: f64| {
+            let xi = (x as i32).clamp(0, w - 1);
+            let yi = (y as i32).clamp(0, h - 1);
+            self.history[(yi * w + xi) as usize]
+        };
+        let top = at(x0, y0) * (1.0 - fx) + at(x0 + 1.0, y0) * fx;
+        let bottom = at(x0, y0 + 1.0) * (1.0 - fx) + at(x0 + 1.0, y0 + 1.0) * fx;
+        top * (1.0 - fy) + bottom * fy
+    }
+    fn read_tile_meta(&self, tile: Coord) -> u32 {
+        self.tile_meta[self.tile(tile)]
+    }
+    fn read_filter_input(&self, p: Coord) -> DVec2 {
+        let i = self.px(p);
+        if self.pass == 0 { self.reprojection_out[i] } else { self.filter_out[self.pass as usize - 1][i] }
+    }
+}
+
+impl Write for Frame {
+    fn write_tile_mask(&mut self, tile: Coord, lit_bits: u32) {
+        let i = self.tile(tile);
+        self.tile_mask[i] = lit_bits;
+    }
+    fn write_depth_copy(&mut self, p: Coord, depth: f64) {
+        let i = self.px(p);
+        self.depth_copy[i] = depth;
+    }
+    fn write_moments(&mut self, p: Coord, m: DVec3) {
+        let i = self.px(p);
+        self.moments[i] = m;
+    }
+    fn write_reprojection(&mut self, p: Coord, mean_var: DVec2) {
+        let i = self.px(p);
+        self.reprojection_out[i] = self.store(mean_var);
+    }
+    fn write_tile_meta(&mut self, tile: Coord, meta: u32) {
+        let i = self.tile(tile);
+        self.tile_meta[i] = meta;
+    }
+    fn write_filter_output(&mut self, p: Coord, mean_var: DVec2) {
+        let i = self.px(p);
+        self.filter_out[self.pass as usize][i] = self.store(mean_var);
+    }
+    fn write_output(&mut self, p: Coord, shadow: f64) {
+        let i = self.px(p);
+        self.output[i] = shadow;
+    }
+    fn begin_filter_pass(&mut self, pass: u32, passes: u32) {
+        self.pass = pass;
+        self.passes = passes;
+        let n = self.depth.len();
+        self.filter_out.resize(passes as usize, vec![DVec2::ZERO; n]);
+    }
+}
+
+/// Rounds to the nearest IEEE half-precision value (ties to even), as a GPU stores into a 16-bit float image.
+pub fn round_to_half(x: f64) -> f64 {
+    if !x.is_finite() || x == 0.0 {
+        return x;
+    }
+    let a = x.abs();
+    if a >= 65520.0 {
+        return f64::INFINITY.copysign(x);
+    }
+    // Spacing of halfs around `a`: 2^(e - 10) for normals (e >= -14), 2^-24 for subnormals.
+    let e = a.log2().floor().max(-14.0);
+    let ulp = (e - 10.0).exp2();
+    let q = a / ulp;
+    let r = q.round();
+    let r = if (q - q.floor() - 0.5).abs() < 1e-12 && r % 2.0 != 0.0 { r - 1.0 } else { r };
+    (r * ulp).copysign(x)
+}

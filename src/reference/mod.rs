@@ -1,0 +1,148 @@
+//! The CPU reference: every pass in f64, written for clarity against the same Get/Read/Write interface the
+//! shaders call (`dnsr_get_*`, `dnsr_read_*`, `dnsr_write_*` in shaders/dnsr_callbacks_default.glsl). It is the
+//! executable specification: the GPU passes must match it within the parity tolerances.
+//!
+//! Coordinates handed to the interface are relative to the render rectangle, as on the GPU.
+
+pub mod filter;
+pub mod memory;
+pub mod prepare;
+pub mod tile_classification;
+
+use crate::settings::Settings;
+use glam::{DMat4, DVec2, DVec3, DVec4};
+
+/// Integer pixel or tile coordinate.
+pub type Coord = [i32; 2];
+
+/// The constants every pass reads (`dnsr_get_*`).
+pub trait Get {
+    /// Render rectangle extent in pixels.
+    fn extent(&self) -> Coord;
+    /// Current clip -> view.
+    fn projection_inverse(&self) -> DMat4;
+    /// Current clip -> previous clip.
+    fn reprojection_matrix(&self) -> DMat4;
+    /// Current clip -> world.
+    fn view_projection_inverse(&self) -> DMat4;
+    /// Eye position in world space.
+    fn eye(&self) -> DVec3;
+    /// Depth edge-stop sigma.
+    fn depth_similarity_sigma(&self) -> f64;
+    /// History discarded this frame.
+    fn is_reset(&self) -> bool;
+    /// Reverse-Z.
+    fn is_depth_inverted(&self) -> bool;
+    /// Algorithm settings.
+    fn settings(&self) -> &Settings;
+    /// Tap step of the current filter pass (1, 2, 4, 8).
+    fn filter_step(&self) -> i32;
+    /// The current filter pass writes its (mean, variance) for the next pass or the next frame's history.
+    fn write_internal(&self) -> bool;
+    /// The current filter pass is the last and writes the output.
+    fn is_final_pass(&self) -> bool;
+}
+
+/// The inputs passes read (`dnsr_read_*`). Each pass reads only what it needs.
+pub trait Read: Get {
+    /// Host hit mask word of a tile (FidelityFX convention: 1 = occluded).
+    fn read_hit_mask(&self, tile: Coord) -> u32;
+    /// Internal tile mask word (1 = lit).
+    fn read_tile_mask(&self, tile: Coord) -> u32;
+    /// Raw depth.
+    fn read_depth(&self, p: Coord) -> f64;
+    /// Motion vector already scaled: prev_uv = uv + velocity.
+    fn read_velocity(&self, p: Coord) -> DVec2;
+    /// Decoded unit world normal, or zero when unusable.
+    fn read_normal(&self, p: Coord) -> DVec3;
+    /// Previous frame's raw depth.
+    fn read_previous_depth(&self, p: Coord) -> f64;
+    /// Previous frame's moments (mean, Welford sum, sample count).
+    fn read_previous_moments(&self, p: Coord) -> DVec3;
+    /// Bilinear history at a rect-relative uv (clamp to edge).
+    fn read_history(&self, uv: DVec2) -> f64;
+    /// Tile metadata word.
+    fn read_tile_meta(&self, tile: Coord) -> u32;
+    /// Filter pass input (mean, variance).
+    fn read_filter_input(&self, p: Coord) -> DVec2;
+}
+
+/// The outputs passes write (`dnsr_write_*`).
+pub trait Write {
+    /// Internal tile mask word.
+    fn write_tile_mask(&mut self, tile: Coord, lit_bits: u32);
+    /// This frame's depth copy.
+    fn write_depth_copy(&mut self, p: Coord, depth: f64);
+    /// This frame's moments.
+    fn write_moments(&mut self, p: Coord, m: DVec3);
+    /// Temporal result (mean, variance).
+    fn write_reprojection(&mut self, p: Coord, mean_var: DVec2);
+    /// Tile metadata word.
+    fn write_tile_meta(&mut self, tile: Coord, meta: u32);
+    /// Filter pass output (mean, variance).
+    fn write_filter_output(&mut self, p: Coord, mean_var: DVec2);
+    /// Final shadow value.
+    fn write_output(&mut self, p: Coord, shadow: f64);
+    /// Routes filter pass `pass` of `passes`: its input is the previous pass's output (pass 0: the temporal
+    /// result), as the GPU's intermediate images do.
+    fn begin_filter_pass(&mut self, pass: u32, passes: u32);
+}
+
+// ---- helpers shared by the passes (shaders/dnsr_common.glsl) ----
+
+/// Tile size in pixels.
+pub const TILE: Coord = [8, 4];
+
+/// Bit of pixel `p` within its tile word.
+pub fn tile_bit(p: Coord) -> u32 {
+    (p[1].rem_euclid(4) * 8 + p[0].rem_euclid(8)) as u32
+}
+
+/// Pixel inside the render rectangle.
+pub fn inside<G: Get + ?Sized>(io: &G, p: Coord) -> bool {
+    let e = io.extent();
+    p[0] >= 0 && p[1] >= 0 && p[0] < e[0] && p[1] < e[1]
+}
+
+/// A shadow receiver has 0 < depth < 1 (NaN is sky).
+pub fn is_receiver(depth: f64) -> bool {
+    depth > 0.0 && depth < 1.0
+}
+
+/// Pixel center in rect-relative uv.
+pub fn pixel_uv<G: Get + ?Sized>(io: &G, p: Coord) -> DVec2 {
+    let e = io.extent();
+    DVec2::new((p[0] as f64 + 0.5) / e[0] as f64, (p[1] as f64 + 0.5) / e[1] as f64)
+}
+
+/// Vulkan NDC of a uv.
+pub fn uv_to_ndc(uv: DVec2) -> DVec2 {
+    uv * 2.0 - 1.0
+}
+
+/// Distance along the view axis (infinite at an infinite far plane's far depth).
+pub fn linear_depth<G: Get + ?Sized>(io: &G, ndc: DVec2, depth: f64) -> f64 {
+    let v = io.projection_inverse() * DVec4::new(ndc.x, ndc.y, depth, 1.0);
+    (v.z / v.w).abs()
+}
+
+/// Decodes a stored normal as the default callbacks do.
+pub fn decode_normal(raw: DVec3, mul: f64, add: f64) -> DVec3 {
+    let n = raw * mul + add;
+    let len2 = n.length_squared();
+    if len2 > 1e-12 && len2 < 1e30 { n / len2.sqrt() } else { DVec3::ZERO }
+}
+
+/// Runs the whole frame: prepare (unless the mask already holds lit bits), tile classification, filter passes.
+/// `io` carries the inputs and the previous frame's state and receives every output.
+pub fn run_frame<Io: Read + Write>(io: &mut Io, run_prepare: bool) {
+    if run_prepare {
+        prepare::run(io);
+    }
+    tile_classification::run(io);
+    let passes = io.settings().filter_passes;
+    for pass in 0..passes {
+        io.begin_filter_pass(pass, passes);
+        filter::run(io);
+    }
+}

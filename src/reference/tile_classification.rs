@@ -1,0 +1,226 @@
+//! tile classification (shaders/tile_classification.glsl): uniform-tile skip, reprojection, disocclusion,
+//! temporal moments and the history blend, pixel by pixel in f64.
+
+use super::{inside, is_receiver, linear_depth, pixel_uv, tile_bit, uv_to_ndc, Coord, Read, Write, TILE};
+use crate::passes::{TILE_CLEARED, TILE_LIT};
+use glam::{DVec2, DVec3, DVec4};
+
+/// Radius of the local-moment window (17x17).
+pub const MOMENT_RADIUS: i32 = 8;
+
+fn tile_count<Io: Read + ?Sized>(io: &Io) -> Coord {
+    let e = io.extent();
+    [(e[0] + TILE[0] - 1) / TILE[0], (e[1] + TILE[1] - 1) / TILE[1]]
+}
+
+/// Bits of a tile whose pixels lie inside the render rectangle (0 outside the tile grid).
+pub fn tile_valid_bits<Io: Read + ?Sized>(io: &Io, tile: Coord) -> u32 {
+    let t = tile_count(io);
+    if tile[0] < 0 || tile[1] < 0 || tile[0] >= t[0] || tile[1] >= t[1] {
+        return 0;
+    }
+    let e = io.extent();
+    let n = [(e[0] - tile[0] * TILE[0]).min(8), (e[1] - tile[1] * TILE[1]).min(4)];
+    let row = if n[0] >= 8 { 0xFF } else { (1u32 << n[0]) - 1 };
+    (0..n[1]).fold(0, |bits, r| bits | (row << (8 * r)))
+}
+
+fn lit<Io: Read + ?Sized>(io: &Io, p: Coord) -> f64 {
+    let word = io.read_tile_mask([p[0].div_euclid(8), p[1].div_euclid(4)]);
+    ((word >> tile_bit(p)) & 1) as f64
+}
+
+fn moment_weight<Io: Read + ?Sized>(io: &Io, i: i32) -> f64 {
+    (-(io.settings().spatial_falloff as f64) * (i * i) as f64 / 81.0).exp()
+}
+
+/// Spatial mean and variance of the binary mask in the 17x17 Gaussian window (taps inside the rectangle only).
+pub fn local_moments<Io: Read + ?Sized>(io: &Io, p: Coord) -> DVec2 {
+    let mut sum = DVec2::ZERO;
+    for j in -MOMENT_RADIUS..=MOMENT_RADIUS {
+        let mut row = DVec2::ZERO;
+        for i in -MOMENT_RADIUS..=MOMENT_RADIUS {
+            let q = [p[0] + i, p[1] + j];
+            if inside(io, q) {
+                row += moment_weight(io, i) * DVec2::new(lit(io, q), 1.0);
+            }
+        }
+        sum += moment_weight(io, j) * row;
+    }
+    let mean = sum.x / sum.y.max(1e-20);
+    DVec2::new(mean, (mean - mean * mean).max(0.0))
+}
+
+/// 0: mixed; 1: every valid bit within +-8 px of the tile is lit; 2: every one is shadowed.
+pub fn uniform_state<Io: Read + ?Sized>(io: &Io, tile: Coord) -> u32 {
+    let (mut all_lit, mut all_shadow) = (true, true);
+    for dy in -2..=2 {
+        for dx in -1..=1 {
+            let t = [tile[0] + dx, tile[1] + dy];
+            let valid = tile_valid_bits(io, t);
+            let word = if valid != 0 { io.read_tile_mask(t) } else { 0 };
+            all_lit &= word & valid == valid;
+            all_shadow &= word & valid == 0;
+        }
+    }
+    if all_lit { 1 } else if all_shadow { 2 } else { 0 }
+}
+
+fn has_receiver<Io: Read + ?Sized>(io: &Io, tile: Coord) -> bool {
+    (0..TILE[1]).any(|y| {
+        (0..TILE[0]).any(|x| {
+            let p = [tile[0] * TILE[0] + x, tile[1] * TILE[1] + y];
+            inside(io, p) && is_receiver(io.read_depth(p))
+        })
+    })
+}
+
+/// Velocity of the closest receiver in the pixel's 2x2 quad (ties keep the pixel itself, then scan order).
+fn quad_velocity<Io: Read + ?Sized>(io: &Io, p: Coord) -> DVec2 {
+    let key = |q: Coord| {
+        if !inside(io, q) {
+            return 1e30;
+        }
+        let d = io.read_depth(q);
+        if !is_receiver(d) {
+            1e30
+        } else if io.is_depth_inverted() {
+            -d
+        } else {
+            d
+        }
+    };
+    let q0 = [p[0] & !1, p[1] & !1];
+    let mut best = p;
+    for j in 0..2 {
+        for i in 0..2 {
+            let q = [q0[0] + i, q0[1] + j];
+            if key(q) < key(best) {
+                best = q;
+            }
+        }
+    }
+    io.read_velocity(best)
+}
+
+fn finite(v: DVec2) -> bool {
+    v.x.is_finite() && v.y.is_finite()
+}
+
+/// Scales a Welford state (mean kept) to represent `f` times as many samples.
+fn scale_moments(m: &mut DVec3, f: f64) {
+    m.y *= f;
+    m.z *= f;
+}
+
+/// The temporal part for one receiver pixel of a mixed tile: returns (moments, (shadow, variance)).
+pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec3, DVec2) {
+    let s = io.settings();
+    let (thr_facing, thr_grazing, angle_exp, clamp_k) = (
+        s.disocclusion_threshold_facing as f64,
+        s.disocclusion_threshold_grazing as f64,
+        s.disocclusion_angle_exponent as f64,
+        s.history_clamp_sigmas as f64,
+    );
+    let (rej_falloff, rej_min, boost) =
+        (s.history_rejection_falloff as f64, s.history_rejection_min_sigma as f64, s.variance_boost_samples as f64);
+    let (full, min_blend, max_samples) =
+        (s.full_history_samples as f64, s.min_current_weight as f64, s.max_history_samples as f64);
+    let e = io.extent();
+
+    let local = local_moments(io, p);
+    let x = lit(io, p);
+    let uv = pixel_uv(io, p);
+    let ndc = uv_to_ndc(uv);
+    let history_uv = uv + quad_velocity(io, p);
+
+    let prev_clip = io.reprojection_matrix() * DVec4::new(ndc.x, ndc.y, depth, 1.0);
+    let prev_ndc = prev_clip.truncate() / prev_clip.w;
+    let prev_uv = prev_ndc.truncate() * 0.5 + 0.5;
+    let world = io.view_projection_inverse() * DVec4::new(ndc.x, ndc.y, depth, 1.0);
+    let view_dir = (io.eye() - world.truncate() / world.w).normalize();
+    let n_dot_v = io.read_normal(p).dot(view_dir).clamp(0.0, 1.0);
+    let threshold = thr_facing + (thr_grazing - thr_facing) * (1.0 - n_dot_v).powf(angle_exp);
+    let in01 = |v: DVec2| v.x >= 0.0 && v.y >= 0.0 && v.x < 1.0 && v.y < 1.0;
+    let on_screen = finite(prev_uv) && finite(history_uv) && prev_clip.w > 0.0 && in01(prev_uv) && in01(history_uv);
+    let clamp_px = |v: DVec2| [((v.x * e[0] as f64) as i32).clamp(0, e[0] - 1), ((v.y * e[1] as f64) as i32).clamp(0, e[1] - 1)];
+    let mut disoccluded = io.is_reset() || !on_screen;
+    if !disoccluded {
+        let previous = linear_depth(io, prev_ndc.truncate(), io.read_previous_depth(clamp_px(prev_uv)));
+        let expected = linear_depth(io, prev_ndc.truncate(), prev_ndc.z);
+        disoccluded = !((previous - expected).abs() < threshold * expected);
+    }
+
+    let mut m = DVec3::ZERO;
+    if !disoccluded {
+        m = io.read_previous_moments(clamp_px(history_uv));
+        let sane = m.z >= 0.0 && m.z <= max_samples && m.y >= 0.0 && m.y < 1e30 && m.x.is_finite();
+        if !sane {
+            m = DVec3::ZERO;
+        }
+    }
+    if m.z > max_samples - 1.0 {
+        let f = (max_samples - 1.0) / m.z;
+        scale_moments(&mut m, f);
+    }
+    let m_old = m.x;
+    m.z += 1.0;
+    m.x += (x - m_old) / m.z;
+    m.y += (x - m_old) * (x - m.x);
+    let mut variance = if m.z > 1.0 { m.y / (m.z - 1.0) } else { 1.0 };
+
+    let sigma = local.y.sqrt();
+    let mut history = if disoccluded { local.x } else { io.read_history(history_uv) };
+    if !history.is_finite() {
+        history = local.x;
+    }
+    let clamped = history.clamp(local.x - clamp_k * sigma, local.x + clamp_k * sigma);
+    let d = (history - local.x) / (clamp_k * sigma).max(rej_min);
+    scale_moments(&mut m, (-d * d / rej_falloff).exp());
+
+    if m.z < boost {
+        variance = variance.max(local.y) * (boost - m.z).max(1.0);
+    }
+    let history_weight = ((full - m.z).max(0.0) / full).sqrt();
+    let alpha = min_blend + (1.0 - min_blend) * history_weight;
+    let shadow = clamped + (x - clamped) * alpha;
+    (m, DVec2::new(shadow, variance))
+}
+
+/// Runs tile classification over the render rectangle.
+pub fn run<Io: Read + Write>(io: &mut Io) {
+    let e = io.extent();
+    let max_samples = io.settings().max_history_samples as f64;
+    let tiles = tile_count(io);
+    for ty in 0..tiles[1] {
+        for tx in 0..tiles[0] {
+            let tile = [tx, ty];
+            let state = if has_receiver(io, tile) { uniform_state(io, tile) } else { 1 };
+            let meta = match state {
+                0 => 0,
+                1 => TILE_CLEARED | TILE_LIT,
+                _ => TILE_CLEARED,
+            };
+            io.write_tile_meta(tile, meta);
+            for y in ty * TILE[1]..((ty + 1) * TILE[1]).min(e[1]) {
+                for x in tx * TILE[0]..((tx + 1) * TILE[0]).min(e[0]) {
+                    let p = [x, y];
+                    let depth = io.read_depth(p);
+                    io.write_depth_copy(p, depth);
+                    let receiver = is_receiver(depth);
+                    let (moments, result) = if state != 0 {
+                        let value = if state == 1 { 1.0 } else { 0.0 };
+                        let m = if receiver { DVec3::new(value, 0.0, max_samples) } else { DVec3::ZERO };
+                        (m, DVec2::new(if receiver { value } else { 1.0 }, 0.0))
+                    } else if !receiver {
+                        (DVec3::ZERO, DVec2::new(1.0, 0.0))
+                    } else {
+                        temporal(io, p, depth)
+                    };
+                    io.write_moments(p, moments);
+                    io.write_reprojection(p, result);
+                }
+            }
+        }
+    }
+}

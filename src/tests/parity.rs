@@ -1,0 +1,176 @@
+//! GPU vs CPU reference (src/reference, f64) on randomized inputs at odd sizes with every tile state present:
+//! each internal output of a frame is compared, from the same inputs and the same previous state.
+
+use super::gpu;
+use crate::reference::{self, memory::Frame};
+use crate::testing::gpu::{Gpu, TestImage};
+use crate::testing::scene::{hash01, FrameInputs};
+use crate::testing::{f16_to_f32, Runner};
+use crate::Precision;
+use ash::vk;
+use glam::{DMat4, DVec2, DVec3, Mat4};
+
+/// A random frame: static G-buffer (random depth and unit normals, sky patches) except a block whose depth jumps
+/// in frame 3 (disocclusion), and a fresh mask with uniform lit and shadowed regions (cleared tiles) around
+/// random noise.
+fn random_frame(w: u32, h: u32, seed: u64, frame: u64) -> FrameInputs {
+    let n = (w * h) as usize;
+    let (tw, th) = (w.div_ceil(8), h.div_ceil(4));
+    let cam = crate::testing::scene::Camera::above(0.0, 0.0, 10.0);
+    let base = crate::testing::scene::render(w, h, &cam, &cam, 1e9, &|_, _| 0.5, 0);
+    let mut f = FrameInputs { mask: vec![0; (tw * th) as usize], truth: vec![0.5; n], ..base };
+    for y in 0..h {
+        for x in 0..w {
+            let i = (y * w + x) as usize;
+            let r = |k: u64| hash01(seed ^ (k * 0x9E37), x, y);
+            let sky = (x / 6 + y / 5) % 7 == 3;
+            let jump = frame >= 3 && x < 12 && y >= h / 2;
+            f.depth[i] = if sky { 1.0 } else { (0.9 + 0.09 * r(1)) as f32 * if jump { 0.99 } else { 1.0 } };
+            let nrm = DVec3::new(r(2) - 0.5, r(3) * 0.5 + 0.5, r(4) - 0.5).normalize();
+            f.normals[i] = [nrm.x as f32, nrm.y as f32, nrm.z as f32, 0.0];
+            f.receiver[i] = !sky;
+            // Regions wide enough for uniform tiles (+-8 px): top-left lit, a bottom band shadowed, the rest noise
+            // with a probability that varies across the image.
+            let lit = if x < 24 && y < 12 {
+                true
+            } else if y + 12 >= h {
+                false
+            } else {
+                hash01(seed ^ frame.wrapping_mul(0xD1B5_4A32_D192_ED03), x, y) < (x as f64 / w as f64)
+            };
+            if !lit {
+                f.mask[((y / 4) * tw + x / 8) as usize] |= 1 << ((y % 4) * 8 + (x % 8));
+            }
+        }
+    }
+    f
+}
+
+fn download<T: Copy + bytemuck::Pod>(g: &Gpu, image: vk::Image, format: vk::Format, w: u32, h: u32) -> Vec<T> {
+    let raw = g.download(&TestImage::borrowed(image, format, w, h, vk::ImageLayout::GENERAL));
+    bytemuck::cast_slice(&raw).to_vec()
+}
+
+/// (mean, variance) pairs of an intermediate image in either precision.
+fn download_rg(g: &Gpu, image: vk::Image, format: vk::Format, w: u32, h: u32) -> Vec<DVec2> {
+    if format == vk::Format::R16G16_SFLOAT {
+        let raw: Vec<[u16; 2]> = download(g, image, format, w, h);
+        raw.iter().map(|v| DVec2::new(f16_to_f32(v[0]) as f64, f16_to_f32(v[1]) as f64)).collect()
+    } else {
+        let raw: Vec<[f32; 2]> = download(g, image, format, w, h);
+        raw.iter().map(|v| DVec2::new(v[0] as f64, v[1] as f64)).collect()
+    }
+}
+
+fn dmat(m: Mat4) -> DMat4 {
+    m.as_dmat4()
+}
+
+struct Worst {
+    name: &'static str,
+    err: f64,
+    at: usize,
+}
+
+fn worst(name: &'static str, gpu: impl Iterator<Item = f64>, cpu: impl Iterator<Item = f64>) -> Worst {
+    let mut w = Worst { name, err: 0.0, at: 0 };
+    for (i, (a, b)) in gpu.zip(cpu).enumerate() {
+        let e = if a.is_nan() || b.is_nan() { f64::INFINITY } else { (a - b).abs() };
+        if e > w.err {
+            w = Worst { name, err: e, at: i };
+        }
+    }
+    w
+}
+
+fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64) -> Vec<Worst> {
+    let mut info = g.create_info(w, h);
+    info.precision = precision;
+    info.output_format = vk::Format::R32_SFLOAT;
+    info.settings.filter_passes = passes;
+    let mut r = Runner::new(g, &info).unwrap();
+    for frame in 1..3 {
+        r.frame(&random_frame(w, h, seed, frame), frame == 1);
+    }
+    let before = r.ctx.internals(0);
+    let fmt = before.intermediate_format;
+    let prev_moments: Vec<[f32; 4]> = download(g, before.moments, vk::Format::R32G32B32A32_SFLOAT, w, h);
+    let prev_depth: Vec<f32> = download(g, before.depth, vk::Format::R32_SFLOAT, w, h);
+    let history = download_rg(g, before.history, fmt, w, h);
+
+    let f = random_frame(w, h, seed, 3);
+    let d = r.dispatch(&f);
+    let out = r.frame(&f, false);
+    let after = r.ctx.internals(0);
+    let (tw, th) = (w.div_ceil(8), h.div_ceil(4));
+    let tile_mask: Vec<u32> = download(g, after.tile_mask, vk::Format::R32_UINT, tw, th);
+    let tile_meta: Vec<u32> = download(g, after.tile_meta, vk::Format::R32_UINT, tw, th);
+    let moments: Vec<[f32; 4]> = download(g, after.moments, vk::Format::R32G32B32A32_SFLOAT, w, h);
+    let reprojection = download_rg(g, after.reprojection, fmt, w, h);
+    let history_out = download_rg(g, after.history, fmt, w, h);
+
+    let mut cpu = Frame::new(w as i32, h as i32, info.settings);
+    cpu.projection_inverse = dmat(d.projection_inverse);
+    cpu.reprojection = dmat(d.reprojection_matrix);
+    cpu.view_projection_inverse = dmat(d.view_projection_inverse);
+    cpu.eye = d.eye.as_dvec3();
+    cpu.depth_similarity_sigma = d.depth_similarity_sigma as f64;
+    cpu.hit_mask = f.mask.clone();
+    cpu.depth = f.depth.iter().map(|&v| v as f64).collect();
+    cpu.velocity = f.velocity.iter().map(|v| DVec2::new(v[0] as f64, v[1] as f64)).collect();
+    cpu.normals = f.normals.iter().map(|n| reference::decode_normal(DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64), 1.0, 0.0)).collect();
+    cpu.previous_depth = prev_depth.iter().map(|&v| v as f64).collect();
+    cpu.previous_moments = prev_moments.iter().map(|m| DVec3::new(m[0] as f64, m[1] as f64, m[2] as f64)).collect();
+    cpu.history = history.iter().map(|v| v.x).collect();
+    cpu.half_intermediates = precision == Precision::Fp16;
+    reference::run_frame(&mut cpu, true);
+
+    // Exact integer state, and every tile state present.
+    assert_eq!(tile_mask, cpu.tile_mask, "tile mask");
+    assert_eq!(tile_meta, cpu.tile_meta, "tile metadata");
+    for state in [0, crate::passes::TILE_CLEARED, crate::passes::TILE_CLEARED | crate::passes::TILE_LIT] {
+        assert!(cpu.tile_meta.contains(&state), "tile state {state} missing from the test input");
+    }
+    let mut results = vec![
+        worst("moments.mean", moments.iter().map(|m| m[0] as f64), cpu.moments.iter().map(|m| m.x)),
+        worst("moments.n", moments.iter().map(|m| m[2] as f64 / 32.0), cpu.moments.iter().map(|m| m.z / 32.0)),
+        worst("history (filter 0)", history_out.iter().map(|v| v.x), cpu.filter_out[0].iter().map(|v| v.x)),
+        worst("output", out.iter().map(|&v| v as f64), cpu.output.iter().copied()),
+    ];
+    if passes <= 2 {
+        // The temporal result survives only while no later pass reuses its image.
+        results.push(worst("reprojection.mean", reprojection.iter().map(|v| v.x), cpu.reprojection_out.iter().map(|v| v.x)));
+        // Variance up to ~16 while boosted: compared relative to max(1, value).
+        results.push(worst(
+            "reprojection.variance (relative)",
+            reprojection.iter().zip(&cpu.reprojection_out).map(|(g, c)| g.y / c.y.abs().max(1.0)),
+            cpu.reprojection_out.iter().map(|c| c.y / c.y.abs().max(1.0)),
+        ));
+    }
+    drop(r);
+    results
+}
+
+#[test]
+fn gpu_matches_the_cpu_reference() {
+    let g = gpu();
+    let mut precisions = vec![(Precision::Fp32, 1e-4)];
+    if g.features.float16 {
+        precisions.push((Precision::Fp16, 2e-3));
+    }
+    for (precision, tolerance) in precisions {
+        let mut overall: Option<(f64, String)> = None;
+        for (passes, w, h, seed) in [(2, 37, 23, 1), (3, 37, 23, 2), (4, 45, 29, 3), (1, 33, 17, 4), (3, 64, 40, 5)] {
+            for r in parity(&g, precision, passes, w, h, seed) {
+                let line = format!("{precision:?} {w}x{h} {passes} passes: {} max |gpu - cpu| = {:.2e} (pixel {})", r.name, r.err, r.at);
+                eprintln!("{line}");
+                assert!(r.err <= tolerance, "{line} exceeds {tolerance:.0e}");
+                if overall.as_ref().is_none_or(|o| r.err > o.0) {
+                    overall = Some((r.err, line));
+                }
+            }
+        }
+        eprintln!("worst case {precision:?}: {}", overall.unwrap().1);
+    }
+    g.assert_clean();
+}

@@ -18,16 +18,31 @@ pub struct Camera {
     pub inverted: bool,
     /// Infinite far plane.
     pub infinite_far: bool,
+    /// Orthographic projection of this vertical extent in world units (None: perspective).
+    pub orthographic: Option<f64>,
 }
 
 impl Camera {
     /// A camera `height` units above (x, z).
     pub fn above(x: f64, z: f64, height: f64) -> Camera {
-        Camera { eye: DVec3::new(x, height, z), fov_y: 0.9, near: 0.1, far: 100.0, inverted: false, infinite_far: false }
+        Camera { eye: DVec3::new(x, height, z), fov_y: 0.9, near: 0.1, far: 100.0, inverted: false, infinite_far: false, orthographic: None }
     }
 
     fn projection(&self, aspect: f64) -> DMat4 {
         // Right-handed view space (camera looks down -z), clip depth in [0, 1].
+        if let Some(height) = self.orthographic {
+            let (n, far) = (self.near, self.far);
+            let (near_z, far_z) = if self.inverted { (1.0, 0.0) } else { (0.0, 1.0) };
+            // z_clip = a * z + b with z = -n -> near_z and z = -far -> far_z; w = 1.
+            let a = (near_z - far_z) / (far - n);
+            let b = near_z + a * n;
+            return DMat4::from_cols(
+                DVec4::new(2.0 / (height * aspect), 0.0, 0.0, 0.0),
+                DVec4::new(0.0, 2.0 / height, 0.0, 0.0),
+                DVec4::new(0.0, 0.0, a, 0.0),
+                DVec4::new(0.0, 0.0, b, 1.0),
+            );
+        }
         let f = 1.0 / (self.fov_y * 0.5).tan();
         let (n, far) = (self.near, self.far);
         // z_clip = a * z + b, w_clip = -z.

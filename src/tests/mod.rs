@@ -4,6 +4,7 @@
 mod bad_input;
 mod capi;
 pub(crate) mod correctness;
+mod extremes;
 mod parity;
 mod interface;
 mod resources;

@@ -4,6 +4,7 @@
 mod bad_input;
 mod capi;
 pub(crate) mod correctness;
+mod diagnostics;
 mod extremes;
 mod parity;
 mod interface;

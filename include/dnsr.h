@@ -36,6 +36,11 @@
 #define DNSR_VERSION_PATCH 0
 
 /**
+ * Radius of the local-moment window (17x17).
+ */
+#define MOMENT_RADIUS 8
+
+/**
  * Result of every dnsr function. Negative values are errors; `dnsr_last_error_message` says what was wrong.
  */
 enum DnsrResult
@@ -695,6 +700,164 @@ typedef struct DnsrDeviceRequirements {
 } DnsrDeviceRequirements;
 
 /**
+ * Reference frame flags.
+ */
+typedef uint32_t DnsrReferenceFlags;
+
+/**
+ * The constants of one reference frame (the same values as a DnsrShadowsDispatch; the render rectangle is
+ * the whole `width` x `height`).
+ */
+typedef struct DnsrReferenceFrameInfo {
+  /**
+   * Must be DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO.
+   */
+  DnsrStructureType sType;
+  /**
+   * Must be NULL.
+   */
+  const void *pNext;
+  /**
+   * Width in pixels, 1..16384.
+   */
+  uint32_t width;
+  /**
+   * Height in pixels, 1..16384.
+   */
+  uint32_t height;
+  /**
+   * DNSR_REFERENCE_* bits.
+   */
+  DnsrReferenceFlags flags;
+  /**
+   * Optional (NULL = FidelityFX defaults).
+   */
+  const struct DnsrSettings *pSettings;
+  /**
+   * Motion vector multiplier.
+   */
+  float motionVectorScale[2];
+  /**
+   * Normal decode multiplier.
+   */
+  float normalsUnpackMul;
+  /**
+   * Normal decode offset.
+   */
+  float normalsUnpackAdd;
+  /**
+   * Eye in world space.
+   */
+  float eye[3];
+  /**
+   * Depth edge-stop sigma, > 0.
+   */
+  float depthSimilaritySigma;
+  /**
+   * Current clip -> view (column-major).
+   */
+  float projectionInverse[16];
+  /**
+   * Current clip -> previous clip (column-major).
+   */
+  float reprojectionMatrix[16];
+  /**
+   * Current clip -> world (column-major).
+   */
+  float viewProjectionInverse[16];
+} DnsrReferenceFrameInfo;
+
+/**
+ * Read and write callbacks over the engine's own data. Reads are required unless marked optional; writes are
+ * optional (NULL = not wanted). Every callback receives `userData`. Pixel coordinates are 0..width-1 and
+ * 0..height-1; tile coordinates index 8x4 tiles.
+ */
+typedef struct DnsrReferenceCallbacks {
+  /**
+   * Optional. Passed to every callback.
+   */
+  void *userData;
+  /**
+   * Required. Hit mask word of a tile.
+   */
+  uint32_t (*readHitMask)(void *user, int32_t tile_x, int32_t tile_y);
+  /**
+   * Required. Raw depth.
+   */
+  float (*readDepth)(void *user, int32_t x, int32_t y);
+  /**
+   * Required. Raw normal texel (rgb); dnsr decodes it with normalsUnpackMul/Add.
+   */
+  void (*readNormal)(void *user, int32_t x, int32_t y, float *rgb);
+  /**
+   * Required. Raw motion vector (xy); dnsr multiplies it by motionVectorScale.
+   */
+  void (*readVelocity)(void *user, int32_t x, int32_t y, float *xy);
+  /**
+   * Optional (required without DNSR_REFERENCE_RESET). Previous frame's raw depth.
+   */
+  float (*readPreviousDepth)(void *user, int32_t x, int32_t y);
+  /**
+   * Optional (required without DNSR_REFERENCE_RESET). Previous frame's moments (mean, sum, count).
+   */
+  void (*readPreviousMoments)(void *user, int32_t x, int32_t y, float *moments);
+  /**
+   * Optional (required without DNSR_REFERENCE_RESET). Previous frame's history texel (filter pass 0 mean).
+   */
+  float (*readHistory)(void *user, int32_t x, int32_t y);
+  /**
+   * Optional. Receives the denoised shadow.
+   */
+  void (*writeOutput)(void *user, int32_t x, int32_t y, float value);
+  /**
+   * Optional. Receives tile metadata (bit 0 cleared, bit 1 lit).
+   */
+  void (*writeTileMeta)(void *user, int32_t tile_x, int32_t tile_y, uint32_t meta);
+  /**
+   * Optional. Receives the temporal result (mean, variance).
+   */
+  void (*writeReprojection)(void *user, int32_t x, int32_t y, float mean, float variance);
+  /**
+   * Optional. Receives this frame's moments (the next frame's previous moments).
+   */
+  void (*writeMoments)(void *user, int32_t x, int32_t y, const float *moments);
+  /**
+   * Optional. Receives this frame's history (the next frame's `read_history`).
+   */
+  void (*writeHistory)(void *user, int32_t x, int32_t y, float value);
+} DnsrReferenceCallbacks;
+
+/**
+ * Integer pixel or tile coordinate.
+ */
+typedef int32_t Coord[2];
+
+/**
+ * `DnsrReferenceFrameInfo`.
+ */
+#define DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO 6
+
+/**
+ * Discard the previous state (the callbacks for previous depth, moments and history are not called).
+ */
+#define DNSR_REFERENCE_RESET (1 << 0)
+
+/**
+ * Reverse-Z depth.
+ */
+#define DNSR_REFERENCE_DEPTH_INVERTED (1 << 1)
+
+/**
+ * The hit mask holds lit bits (prepare skipped).
+ */
+#define DNSR_REFERENCE_HIT_MASK_LIT_BITS (1 << 2)
+
+/**
+ * Forces 32 bits.
+ */
+#define DNSR_REFERENCE_MAX_ENUM 2147483647
+
+/**
  * `DnsrContextCreateInfo`.
  */
 #define DNSR_STRUCTURE_TYPE_CONTEXT_CREATE_INFO 1
@@ -839,6 +1002,11 @@ typedef struct DnsrDeviceRequirements {
  */
 #define DNSR_LOG_LEVEL_MAX_ENUM 2147483647
 
+/**
+ * Tile size in pixels.
+ */
+#define TILE { 8, 4, }
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -937,6 +1105,14 @@ const char *dnsr_result_to_string(int32_t result);
  * this thread's next dnsr call.
  */
 const char *dnsr_last_error_message(void);
+
+/**
+ * Runs one frame of the CPU reference (f64) over the engine's data: read callbacks in, write callbacks out.
+ * Returns DNSR_ERROR_NON_FINITE for non-finite matrices, DNSR_ERROR_INVALID_ARGUMENT for a missing required
+ * callback. Single-threaded; meant for diffing a captured frame, not for real time.
+ */
+DnsrResult dnsr_reference_run_frame(const struct DnsrReferenceFrameInfo *pInfo,
+                                    const struct DnsrReferenceCallbacks *pCallbacks);
 
 #ifdef __cplusplus
 }  // extern "C"

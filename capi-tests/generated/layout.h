@@ -152,4 +152,37 @@ DNSR_STATIC_ASSERT(offsetof(DnsrDeviceRequirements, optionalExtensionCount) == 3
 DNSR_STATIC_ASSERT(offsetof(DnsrDeviceRequirements, ppOptionalExtensionNames) == 40, "offsetof(DnsrDeviceRequirements, ppOptionalExtensionNames)");
 DNSR_STATIC_ASSERT(offsetof(DnsrDeviceRequirements, optionalFeatures) == 48, "offsetof(DnsrDeviceRequirements, optionalFeatures)");
 
+DNSR_STATIC_ASSERT(sizeof(DnsrReferenceFrameInfo) == 264, "sizeof(DnsrReferenceFrameInfo)");
+DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrReferenceFrameInfo) == 8, "alignof(DnsrReferenceFrameInfo)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, sType) == 0, "offsetof(DnsrReferenceFrameInfo, sType)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, pNext) == 8, "offsetof(DnsrReferenceFrameInfo, pNext)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, width) == 16, "offsetof(DnsrReferenceFrameInfo, width)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, height) == 20, "offsetof(DnsrReferenceFrameInfo, height)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, flags) == 24, "offsetof(DnsrReferenceFrameInfo, flags)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, pSettings) == 32, "offsetof(DnsrReferenceFrameInfo, pSettings)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, motionVectorScale) == 40, "offsetof(DnsrReferenceFrameInfo, motionVectorScale)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, normalsUnpackMul) == 48, "offsetof(DnsrReferenceFrameInfo, normalsUnpackMul)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, normalsUnpackAdd) == 52, "offsetof(DnsrReferenceFrameInfo, normalsUnpackAdd)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, eye) == 56, "offsetof(DnsrReferenceFrameInfo, eye)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, depthSimilaritySigma) == 68, "offsetof(DnsrReferenceFrameInfo, depthSimilaritySigma)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, projectionInverse) == 72, "offsetof(DnsrReferenceFrameInfo, projectionInverse)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, reprojectionMatrix) == 136, "offsetof(DnsrReferenceFrameInfo, reprojectionMatrix)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, viewProjectionInverse) == 200, "offsetof(DnsrReferenceFrameInfo, viewProjectionInverse)");
+
+DNSR_STATIC_ASSERT(sizeof(DnsrReferenceCallbacks) == 104, "sizeof(DnsrReferenceCallbacks)");
+DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrReferenceCallbacks) == 8, "alignof(DnsrReferenceCallbacks)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, userData) == 0, "offsetof(DnsrReferenceCallbacks, userData)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readHitMask) == 8, "offsetof(DnsrReferenceCallbacks, readHitMask)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readDepth) == 16, "offsetof(DnsrReferenceCallbacks, readDepth)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readNormal) == 24, "offsetof(DnsrReferenceCallbacks, readNormal)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readVelocity) == 32, "offsetof(DnsrReferenceCallbacks, readVelocity)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readPreviousDepth) == 40, "offsetof(DnsrReferenceCallbacks, readPreviousDepth)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readPreviousMoments) == 48, "offsetof(DnsrReferenceCallbacks, readPreviousMoments)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readHistory) == 56, "offsetof(DnsrReferenceCallbacks, readHistory)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, writeOutput) == 64, "offsetof(DnsrReferenceCallbacks, writeOutput)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, writeTileMeta) == 72, "offsetof(DnsrReferenceCallbacks, writeTileMeta)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, writeReprojection) == 80, "offsetof(DnsrReferenceCallbacks, writeReprojection)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, writeMoments) == 88, "offsetof(DnsrReferenceCallbacks, writeMoments)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, writeHistory) == 96, "offsetof(DnsrReferenceCallbacks, writeHistory)");
+
 #endif

@@ -8,6 +8,7 @@
 mod boundary;
 mod convert;
 mod handles;
+pub mod reference;
 pub mod types;
 
 use boundary::{check_no_next, check_type, guard, last_error_ptr, required, CallError};

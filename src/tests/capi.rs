@@ -168,3 +168,102 @@ fn handles_codes_and_messages() {
     );
     g.assert_clean();
 }
+
+mod reference_table {
+    use super::super::{correctness::smooth, gpu, static_frame};
+    use crate::capi::reference::*;
+    use crate::capi::types::DnsrResult;
+    use crate::testing::scene::FrameInputs;
+    use crate::testing::Runner;
+    use ash::vk;
+    use std::ffi::c_void;
+
+    struct Data<'a> {
+        f: &'a FrameInputs,
+        output: Vec<f32>,
+    }
+
+    fn data<'a>(user: *mut c_void) -> &'a mut Data<'a> {
+        unsafe { &mut *(user as *mut Data) }
+    }
+    fn idx(d: &Data, x: i32, y: i32) -> usize {
+        (y as u32 * d.f.width + x as u32) as usize
+    }
+    unsafe extern "C" fn read_hit_mask(user: *mut c_void, tx: i32, ty: i32) -> u32 {
+        let d = data(user);
+        d.f.mask[(ty as u32 * d.f.width.div_ceil(8) + tx as u32) as usize]
+    }
+    unsafe extern "C" fn read_depth(user: *mut c_void, x: i32, y: i32) -> f32 {
+        let d = data(user);
+        d.f.depth[idx(d, x, y)]
+    }
+    unsafe extern "C" fn read_normal(user: *mut c_void, x: i32, y: i32, rgb: *mut f32) {
+        let d = data(user);
+        let n = d.f.normals[idx(d, x, y)];
+        unsafe { std::ptr::copy_nonoverlapping(n.as_ptr(), rgb, 3) };
+    }
+    unsafe extern "C" fn read_velocity(user: *mut c_void, x: i32, y: i32, xy: *mut f32) {
+        let d = data(user);
+        let v = d.f.velocity[idx(d, x, y)];
+        unsafe { std::ptr::copy_nonoverlapping(v.as_ptr(), xy, 2) };
+    }
+    unsafe extern "C" fn write_output(user: *mut c_void, x: i32, y: i32, value: f32) {
+        let d = data(user);
+        let i = idx(d, x, y);
+        d.output[i] = value;
+    }
+
+    /// An engine's first frame (reset) through the C reference table equals dnsr's GPU output on the same data.
+    #[test]
+    fn the_c_reference_table_reproduces_the_gpu_frame() {
+        let g = gpu();
+        let (w, h) = (37, 23);
+        let mut info = g.create_info(w, h);
+        info.output_format = vk::Format::R32_SFLOAT;
+        let mut r = Runner::new(&g, &info).unwrap();
+        let f = static_frame(w, h, &smooth, 7);
+        let d = r.dispatch(&f);
+        let gpu_out = r.frame(&f, true);
+
+        let mut user = Data { f: &f, output: vec![f32::NAN; (w * h) as usize] };
+        let frame = DnsrReferenceFrameInfo {
+            s_type: DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO,
+            p_next: std::ptr::null(),
+            width: w,
+            height: h,
+            flags: DNSR_REFERENCE_RESET,
+            p_settings: std::ptr::null(),
+            motion_vector_scale: d.motion_vector_scale.to_array(),
+            normals_unpack_mul: d.normals_unpack_mul,
+            normals_unpack_add: d.normals_unpack_add,
+            eye: d.eye.to_array(),
+            depth_similarity_sigma: d.depth_similarity_sigma,
+            projection_inverse: d.projection_inverse.to_cols_array(),
+            reprojection_matrix: d.reprojection_matrix.to_cols_array(),
+            view_projection_inverse: d.view_projection_inverse.to_cols_array(),
+        };
+        let callbacks = DnsrReferenceCallbacks {
+            user_data: &mut user as *mut Data as *mut c_void,
+            read_hit_mask: Some(read_hit_mask),
+            read_depth: Some(read_depth),
+            read_normal: Some(read_normal),
+            read_velocity: Some(read_velocity),
+            read_previous_depth: None,
+            read_previous_moments: None,
+            read_history: None,
+            write_output: Some(write_output),
+            write_tile_meta: None,
+            write_reprojection: None,
+            write_moments: None,
+            write_history: None,
+        };
+        assert_eq!(dnsr_reference_run_frame(&frame, &callbacks), DnsrResult::DNSR_SUCCESS);
+        let worst = gpu_out.iter().zip(&user.output).map(|(a, b)| (a - b).abs()).fold(0.0f32, f32::max);
+        assert!(worst <= 1e-4, "C reference vs GPU: {worst}");
+        // A frame without RESET needs the previous-state callbacks.
+        let no_reset = DnsrReferenceFrameInfo { flags: 0, ..frame };
+        assert_eq!(dnsr_reference_run_frame(&no_reset, &callbacks), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);
+        drop(r);
+        g.assert_clean();
+    }
+}

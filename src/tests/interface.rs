@@ -190,6 +190,19 @@ fn generated_layout_header() -> String {
         s_type, p_next, min_api_version, required_extension_count, pp_required_extension_names,
         optional_extension_count, pp_optional_extension_names, optional_features,
     });
+    {
+        use crate::capi::reference::*;
+        check!(DnsrReferenceFrameInfo {
+            s_type, p_next, width, height, flags, p_settings, motion_vector_scale, normals_unpack_mul,
+            normals_unpack_add, eye, depth_similarity_sigma, projection_inverse, reprojection_matrix,
+            view_projection_inverse,
+        });
+        check!(DnsrReferenceCallbacks {
+            user_data, read_hit_mask, read_depth, read_normal, read_velocity, read_previous_depth,
+            read_previous_moments, read_history, write_output, write_tile_meta, write_reprojection, write_moments,
+            write_history,
+        });
+    }
     s.push_str("#endif\n");
     s.replace("_Alignof", "DNSR_ALIGNOF").replacen(
         "#ifdef __cplusplus\n#define DNSR_STATIC_ASSERT(c, m) static_assert(c, m)\n#else\n#define DNSR_STATIC_ASSERT(c, m) _Static_assert(c, m)\n#endif\n",

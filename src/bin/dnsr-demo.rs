@@ -14,10 +14,12 @@
 use dnsr::ash::vk;
 use dnsr::testing::gpu::{Gpu, GpuOptions};
 use dnsr::testing::scene::{self, Camera, FrameInputs};
+use dnsr::testing::fields::{band, smoothstep, soft_box};
+use dnsr::testing::images::{mask_to_image, rmse, side_by_side, write_png};
 use dnsr::testing::Runner;
 use dnsr::{PassTimings, ShadowsDispatch};
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 const USAGE: &str = "\
@@ -176,25 +178,6 @@ impl Scene {
     }
 }
 
-fn smoothstep(e0: f64, e1: f64, x: f64) -> f64 {
-    if e1 <= e0 {
-        return if x < e0 { 0.0 } else { 1.0 };
-    }
-    let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
-}
-
-/// 1 inside [lo, hi], 0 outside, with smoothstep ramps `width` wide centred on both edges.
-fn band(t: f64, [lo, hi]: [f64; 2], width: f64) -> f64 {
-    let w = 0.5 * width;
-    smoothstep(lo - w, lo + w, t) * (1.0 - smoothstep(hi - w, hi + w, t))
-}
-
-/// Occlusion of a box occluder with penumbra `width`.
-fn soft_box(x: f64, z: f64, xs: [f64; 2], zs: [f64; 2], width: f64) -> f64 {
-    band(x, xs, width) * band(z, zs, width)
-}
-
 // ---------------------------------------------------------------------------------------------------------------
 // The run
 // ---------------------------------------------------------------------------------------------------------------
@@ -264,60 +247,6 @@ fn run(args: &Args) -> Result<ExitCode, AnyError> {
         println!("validation: no messages");
     }
     Ok(ExitCode::SUCCESS)
-}
-
-/// The 1-spp hit mask as one value per pixel: 1 lit, 0 shadowed. The mask follows the FidelityFX convention:
-/// one u32 per 8x4 tile, bit (y % 4) * 8 + (x % 8) set when the shadow ray hit an occluder.
-fn mask_to_image(f: &FrameInputs) -> Vec<f32> {
-    let tiles_x = f.width.div_ceil(8);
-    let mut out = Vec::with_capacity((f.width * f.height) as usize);
-    for y in 0..f.height {
-        for x in 0..f.width {
-            let tile = f.mask[((y / 4) * tiles_x + x / 8) as usize];
-            let occluded = tile >> ((y % 4) * 8 + (x % 8)) & 1 == 1;
-            out.push(if occluded { 0.0 } else { 1.0 });
-        }
-    }
-    out
-}
-
-/// Root-mean-square error against the truth over receiver pixels (NaN when there are none).
-fn rmse(image: &[f32], truth: &[f32], receiver: &[bool]) -> f64 {
-    let (mut sum, mut n) = (0.0, 0usize);
-    for i in (0..truth.len()).filter(|&i| receiver[i]) {
-        sum += (image[i] as f64 - truth[i] as f64).powi(2);
-        n += 1;
-    }
-    (sum / n as f64).sqrt()
-}
-
-/// Images of one size laid out left to right with a grey gap between them.
-fn side_by_side(w: u32, h: u32, images: &[&[f32]]) -> (u32, Vec<f32>) {
-    const GAP: u32 = 4;
-    let total = images.len() as u32 * (w + GAP) - GAP;
-    let mut out = vec![0.5; (total * h) as usize];
-    for (i, img) in images.iter().enumerate() {
-        let x0 = i as u32 * (w + GAP);
-        for y in 0..h {
-            let src = &img[(y * w) as usize..((y + 1) * w) as usize];
-            let dst = (y * total + x0) as usize;
-            out[dst..dst + w as usize].copy_from_slice(src);
-        }
-    }
-    (total, out)
-}
-
-/// Writes values in [0, 1] as an 8-bit grayscale PNG.
-fn write_png(path: &Path, w: u32, h: u32, values: &[f32]) -> Result<(), AnyError> {
-    let bytes: Vec<u8> = values.iter().map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8).collect();
-    let file = std::fs::File::create(path).map_err(|e| format!("cannot create {}: {e}", path.display()))?;
-    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), w, h);
-    encoder.set_color(png::ColorType::Grayscale);
-    encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder.write_header()?;
-    writer.write_image_data(&bytes)?;
-    writer.finish()?;
-    Ok(())
 }
 
 fn report(args: &Args, device: &str, memory: u64, errors: &[(u32, f64, f64)], timings: Option<&PassTimings>) -> String {

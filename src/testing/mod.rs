@@ -1,7 +1,9 @@
 //! Host-side harness shared by the tests and the demo: a Vulkan device, synthetic truth-known frames, and a
 //! runner that uploads a frame, records dnsr, and reads the output back. Not part of the stable API.
 
+pub mod fields;
 pub mod gpu;
+pub mod images;
 pub mod scene;
 
 use crate::{Context, ContextCreateInfo, HostSync, ShadowsDispatch};

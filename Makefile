@@ -7,7 +7,7 @@ CARGO ?= cargo
 # `make test DNSR_DEVICE=NVIDIA`.
 DNSR_DEVICE ?= llvmpipe
 
-.PHONY: all demo test bench generate shaders header deps clean
+.PHONY: all demo test bench accuracy generate shaders header deps clean
 
 all: test
 
@@ -31,6 +31,10 @@ test: deps
 	@# AddressSanitizer and the validation layer; then the install story (pkg-config, CMake consumer, soname).
 	DNSR_DEVICE="$(DNSR_DEVICE)" capi-tests/run.sh
 	capi-tests/install/check.sh
+
+# Truth-known quality harness: writes docs/accuracy.md and docs/accuracy/*.png (presets, knob sweeps, images).
+accuracy: deps
+	$(CARGO) run --release --features demo --bin dnsr-accuracy -- --out docs
 
 # Median GPU timings per pass on synthetic scenes (run it on the GPU you want numbers for).
 bench: deps

@@ -28,7 +28,7 @@ pub use dispatch::{HitMaskConvention, HostImage, HostSync, Rect, ShadowsDispatch
 pub use error::{Error, ImageRole, Result};
 pub use glam;
 pub use host::{DebugNamer, GpuAllocation, GpuMemoryAllocator, HostHooks, ResourceKind};
-pub use settings::{Settings, MAX_FILTER_PASSES};
+pub use settings::{Preset, Settings, MAX_FILTER_PASSES};
 pub use timestamps::PassTimings;
 
 #[cfg(any(test, feature = "demo"))]

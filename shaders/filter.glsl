@@ -44,24 +44,49 @@ float dnsr_blurred_variance(ivec2 s) {
     return sum / weight;
 }
 
+void dnsr_filter_write(ivec2 p, vec2 result) {
+    if (dnsr_get_write_internal()) dnsr_write_filter_output(p, result);
+#ifdef DNSR_FINAL_PASS
+    float contrast = dnsr_get_filter_settings().z;
+    dnsr_write_output(p, pow(result.x, max(contrast - result.y, 1.0)));
+#endif
+}
+
+// Value of a pixel in a cleared tile: sky is lit, receivers take the tile's value.
+vec2 dnsr_cleared_value(bool receiver, uint meta) {
+    return vec2(!receiver || (meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0, 0.0);
+}
+
 void dnsr_filter(ivec2 gid, ivec2 lid) {
     int step = dnsr_get_filter_step();
     g_side = 8 + 2 * step;
     ivec2 origin = gid * 8;
+    ivec2 p = origin + lid;
+
+    // Both tiles of the group cleared (uniform or no receivers): nothing to filter, no neighbourhood to load.
+    // The condition is the same for every invocation of the group, so the barrier below stays uniform.
+    ivec2 tile = origin / DNSR_TILE_SIZE;
+    uint meta_top = dnsr_read_tile_meta(tile);
+    uint meta_bottom = origin.y + 4 < dnsr_get_extent().y ? dnsr_read_tile_meta(tile + ivec2(0, 1)) : meta_top;
+    if ((meta_top & meta_bottom & DNSR_TILE_CLEARED) != 0u) {
+        if (!dnsr_inside(p)) return;
+        dnsr_filter_write(p, dnsr_cleared_value(dnsr_is_receiver(dnsr_read_depth(p)), lid.y < 4 ? meta_top : meta_bottom));
+        return;
+    }
+
     dnsr_filter_load(origin - step);
     barrier();
 
-    ivec2 p = origin + lid;
     if (!dnsr_inside(p)) return;
     ivec2 s = lid + step;
     int center = dnsr_shared_index(s);
-    uint meta = dnsr_read_tile_meta(p / DNSR_TILE_SIZE);
+    uint meta = lid.y < 4 ? meta_top : meta_bottom;
 
     vec2 result;
     if (s_depth[center] < 0.0) {
         result = vec2(1.0, 0.0);
     } else if ((meta & DNSR_TILE_CLEARED) != 0u) {
-        result = vec2((meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0, 0.0);
+        result = dnsr_cleared_value(true, meta);
     } else {
         // Storage (shared memory, intermediate images) follows the path's precision; the weights and sums are
         // accumulated in fp32, which keeps the fp16 path within 2e-3 of the f64 reference.
@@ -97,12 +122,7 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
         }
         result = vec2(clamp(mean_sum / weight_sum, 0.0, 1.0), max(var_sum / (weight_sum * weight_sum), 0.0));
     }
-
-    if (dnsr_get_write_internal()) dnsr_write_filter_output(p, result);
-#ifdef DNSR_FINAL_PASS
-    float contrast = dnsr_get_filter_settings().z;
-    dnsr_write_output(p, pow(result.x, max(contrast - result.y, 1.0)));
-#endif
+    dnsr_filter_write(p, result);
 }
 
 #endif

@@ -7,17 +7,28 @@ CARGO ?= cargo
 # `make test DNSR_DEVICE=NVIDIA`.
 DNSR_DEVICE ?= llvmpipe
 
-.PHONY: all demo test bench accuracy generate shaders header deps clean
+.PHONY: all demo demo-synthetic viewer test bench accuracy generate shaders header deps clean
 
 all: test
 
 deps:
 	.ci/deps.sh
 
-# Denoises a synthetic sequence; writes out/demo/{noisy,denoised,truth,strip}.png and report.md.
-# Runs on whatever Vulkan device exists (DNSR_DEVICE from the environment picks one by name).
-demo: deps
-	$(CARGO) run --release --features demo --bin dnsr-demo -- --out out/demo
+# The C++ viewer, headless, on its default glTF scene: ray-traced 1-spp soft shadows denoised by dnsr through the
+# C API. Writes out/demo/{noisy,denoised,reference,composite,strip,tiles}.png and report.json (GPU ms, RMSE/PSNR
+# against a 256-ray reference). Runs on whatever Vulkan device exists (VIEWER_DEVICE=<name> picks one).
+demo: viewer
+	build/viewer/dnsr_viewer --headless --frames 16 --size 640x384 --out out/demo
+
+# Builds the viewer (examples-c/viewer) against the freshly built library.
+viewer: deps
+	$(CARGO) build --release --lib
+	cmake -S examples-c/viewer -B build/viewer -DCMAKE_BUILD_TYPE=Release -DDNSR_LIB="$(CURDIR)/target/release/libdnsr.so"
+	cmake --build build/viewer -j
+
+# The synthetic, truth-known sequence of the Rust demo: out/demo-synthetic/{noisy,denoised,truth,strip}.png.
+demo-synthetic: deps
+	$(CARGO) run --release --features demo --bin dnsr-demo -- --out out/demo-synthetic
 
 # Every test, with the validation layer and synchronization validation: any message fails a test.
 # Also builds the demo, so a change that breaks it fails here rather than at a user's `make demo`.
@@ -31,6 +42,8 @@ test: deps
 	@# AddressSanitizer and the validation layer; then the install story (pkg-config, CMake consumer, soname).
 	DNSR_DEVICE="$(DNSR_DEVICE)" capi-tests/run.sh
 	capi-tests/install/check.sh
+	@# The C++ viewer: headless on lavapipe with validation, windowed under Xvfb, and every bad-glTF case.
+	VIEWER_DEVICE="$(DNSR_DEVICE)" examples-c/viewer/test.sh
 
 # Truth-known quality harness: writes docs/accuracy.md and docs/accuracy/*.png (presets, knob sweeps, images).
 accuracy: deps

@@ -17,7 +17,8 @@ PACKAGES=(
     binutils                # readelf: soname and NEEDED checks of the install test
     libglfw3-dev
     libtinygltf-dev
-    xvfb
+    xvfb                    # the viewer's windowed test (xvfb-run)
+    python3                 # the viewer test checks PNGs and report.json
 )
 
 installed() {

@@ -1,0 +1,822 @@
+// main.cpp: the dnsr viewer. Loads a glTF scene, ray traces it in compute shaders (G-buffer + one shadow ray
+// per pixel), denoises the shadow with dnsr and shows or saves the result.
+//
+//   dnsr_viewer [scene.gltf|scene.glb] [options]       window (GLFW): drag to orbit, scroll to zoom
+//   dnsr_viewer --headless --frames 16 --out out/      PNGs + report.json, no window system needed
+//
+// Exit status: 0 success; 1 a Vulkan/dnsr failure or (with --validate) any validation message; 2 bad command
+// line or a scene the viewer cannot load (one line on stderr says why).
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "png_write.h"
+#include "renderer.h"
+#include "scene_gltf.h"
+#include "vk_context.h"
+
+#ifndef VIEWER_DEFAULT_SCENE
+#define VIEWER_DEFAULT_SCENE "scenes/default.gltf"
+#endif
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+float radians(float degrees) { return degrees * kPi / 180.0f; }
+
+// ---- Command line ----
+
+struct Options {
+    std::string scene = VIEWER_DEFAULT_SCENE;
+    bool headless = false;
+    bool validate = false;
+    uint32_t frames = 0;  // 0: headless default 16, window: run until closed
+    uint32_t width = 0, height = 0;
+    std::string outDir = "out/viewer";
+    std::string screenshot;
+    bool pointLight = false;
+    float lightAngleDeg = 3.0f;
+    bool lightMotion = false;
+    uint32_t referenceSamples = 256;
+    float orbitDegPerFrame = 0.25f;
+    View view = View::Composite;  // window mode: the view shown first
+};
+
+const char *kUsage =
+    "usage: dnsr_viewer [SCENE.gltf|SCENE.glb] [options]\n"
+    "  --headless              render without a window; writes PNGs and report.json to --out\n"
+    "  --frames N              frames to render (headless default 16; window: until closed)\n"
+    "  --size WxH              render size (default 960x540 windowed, 320x192 headless)\n"
+    "  --out DIR               headless output directory (default out/viewer)\n"
+    "  --screenshot FILE       window mode: save the displayed image after --frames N frames and exit\n"
+    "  --point-light           a spherical point light instead of the directional light\n"
+    "  --light-angle DEG       angular radius of the light (default 3; sets the penumbra width)\n"
+    "  --light-motion          start with the light moving (key L toggles it)\n"
+    "  --reference-samples N   shadow rays per pixel of the reference (default 256)\n"
+    "  --view NAME             window mode: first view (noisy, denoised, reference, composite, tiles)\n"
+    "  --orbit-speed DEG       headless: camera orbit per frame in degrees (default 0.25; 0 = static)\n"
+    "  --validate              enable VK_LAYER_KHRONOS_validation; any message makes the exit status 1\n"
+    "environment: VIEWER_DEVICE=<substring of the device name> picks a Vulkan device (default: the first)\n"
+    "window keys: drag orbit, scroll zoom, R reset view, 1 noisy, 2 denoised, 3 reference, 4 composite,\n"
+    "             5 hit-mask density per tile, L toggle light motion, Esc/Q quit\n";
+
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+uint32_t parseCount(const char *flag, const char *value, uint32_t min, uint32_t max)
+{
+    char *end = nullptr;
+    long v = std::strtol(value, &end, 10);
+    if (!*value || *end || v < long(min) || v > long(max))
+        throw UsageError(std::string(flag) + " wants a number in " + std::to_string(min) + ".." + std::to_string(max) +
+                         ", got '" + value + "'");
+    return static_cast<uint32_t>(v);
+}
+
+Options parseOptions(int argc, char **argv)
+{
+    Options o;
+    bool haveScene = false;
+    for (int i = 1; i < argc; i++) {
+        std::string a = argv[i];
+        auto value = [&]() -> const char * {
+            if (i + 1 >= argc) throw UsageError(a + " needs a value");
+            return argv[++i];
+        };
+        if (a == "--help" || a == "-h") {
+            std::fputs(kUsage, stdout);
+            std::exit(0);
+        } else if (a == "--headless") {
+            o.headless = true;
+        } else if (a == "--validate") {
+            o.validate = true;
+        } else if (a == "--frames") {
+            o.frames = parseCount("--frames", value(), 1, 1000000);
+        } else if (a == "--size") {
+            const char *v = value();
+            unsigned w = 0, h = 0;
+            char tail = 0;
+            if (std::sscanf(v, "%ux%u%c", &w, &h, &tail) != 2 || w < 8 || h < 8 || w > 8192 || h > 8192)
+                throw UsageError(std::string("--size wants WxH between 8x8 and 8192x8192, got '") + v + "'");
+            o.width = w, o.height = h;
+        } else if (a == "--out") {
+            o.outDir = value();
+        } else if (a == "--screenshot") {
+            o.screenshot = value();
+        } else if (a == "--point-light") {
+            o.pointLight = true;
+        } else if (a == "--light-angle") {
+            const char *v = value();
+            char *end = nullptr;
+            o.lightAngleDeg = std::strtof(v, &end);
+            if (!*v || *end || !(o.lightAngleDeg >= 0.0f && o.lightAngleDeg <= 30.0f))
+                throw UsageError(std::string("--light-angle wants degrees in 0..30, got '") + v + "'");
+        } else if (a == "--orbit-speed") {
+            const char *v = value();
+            char *end = nullptr;
+            o.orbitDegPerFrame = std::strtof(v, &end);
+            if (!*v || *end || !(std::fabs(o.orbitDegPerFrame) <= 45.0f))
+                throw UsageError(std::string("--orbit-speed wants degrees in -45..45, got '") + v + "'");
+        } else if (a == "--view") {
+            std::string v = value();
+            const char *names[] = {"noisy", "denoised", "reference", "composite", "tiles"};
+            auto it = std::find(std::begin(names), std::end(names), v);
+            if (it == std::end(names))
+                throw UsageError("--view wants noisy, denoised, reference, composite or tiles, got '" + v + "'");
+            o.view = static_cast<View>(it - std::begin(names));
+        } else if (a == "--light-motion") {
+            o.lightMotion = true;
+        } else if (a == "--reference-samples") {
+            o.referenceSamples = parseCount("--reference-samples", value(), 1, 65536);
+        } else if (!a.empty() && a[0] == '-') {
+            throw UsageError("unknown option " + a);
+        } else if (haveScene) {
+            throw UsageError("more than one scene file given");
+        } else {
+            o.scene = a;
+            haveScene = true;
+        }
+    }
+    if (!o.width) {
+        o.width = o.headless ? 320 : 960;
+        o.height = o.headless ? 192 : 540;
+    }
+    if (o.headless && !o.frames) o.frames = 16;
+    if (o.headless && !o.screenshot.empty()) throw UsageError("--screenshot is for window mode (headless writes PNGs)");
+    if (!o.screenshot.empty() && !o.frames) throw UsageError("--screenshot needs --frames N");
+    return o;
+}
+
+// ---- Camera and light ----
+
+// An orbit camera: looks at `target` from `distance` away, at angles yaw (around +y) and pitch (above the
+// horizon). The scene's own camera, when it has one, gives the starting orbit.
+struct Orbit {
+    Vec3 target;
+    float yaw = 0, pitch = 0, distance = 1, fovY = 0.8f;
+
+    Vec3 eye() const
+    {
+        return target + Vec3{std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw)} *
+                            distance;
+    }
+};
+
+Orbit initialOrbit(const Scene &scene)
+{
+    Vec3 center = (scene.boundsMin + scene.boundsMax) * 0.5f;
+    float radius = std::max(length(scene.boundsMax - scene.boundsMin) * 0.5f, 1e-3f);
+    Orbit o;
+    if (scene.hasCamera) {
+        Vec3 eye = scene.cameraToWorld.transformPoint({0, 0, 0});
+        Vec3 forward = normalize(scene.cameraToWorld.transformPoint({0, 0, -1}) - eye);
+        if (isFinite(eye) && length(forward) > 0.5f) {
+            // Orbit around the point of the view axis nearest to the scene's centre.
+            float along = std::max(dot(center - eye, forward), 0.05f * radius);
+            o.target = eye + forward * along;
+            Vec3 back = eye - o.target;
+            o.distance = length(back);
+            o.pitch = std::asin(std::clamp(back.y / o.distance, -1.0f, 1.0f));
+            o.yaw = std::atan2(back.x, back.z);
+            o.fovY = scene.cameraYFov;
+            return o;
+        }
+    }
+    o.target = center;
+    o.fovY = 0.8f;
+    // 0.7 of the distance at which the bounding sphere would just fit: most scenes are flatter than a sphere.
+    o.distance = 0.7f * radius / std::sin(o.fovY * 0.5f);
+    o.pitch = radians(30.0f);
+    o.yaw = radians(35.0f);
+    return o;
+}
+
+struct LightState {
+    bool point = false;
+    float azimuth = 0, elevation = radians(50.0f);
+    float angle = radians(3.0f);  // angular radius
+    bool moving = false;
+
+    Vec3 direction() const
+    {
+        return {std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth)};
+    }
+};
+
+struct SceneFrame {
+    const Scene *scene = nullptr;
+    Vec3 center;
+    float radius = 1;
+};
+
+// The frame description for the renderer: camera matrices and light.
+FrameInput makeFrame(const SceneFrame &sf, const Orbit &orbit, const LightState &light, uint32_t width, uint32_t height)
+{
+    FrameInput in;
+    in.eye = orbit.eye();
+    in.viewMatrix = lookAt(in.eye, orbit.target, {0, 1, 0});
+    // A far plane behind the whole scene from anywhere on the orbit, and a near plane at 1% of the orbit distance:
+    // with standard depth, a much closer near plane squeezes every receiver's depth against 1 and costs dnsr's
+    // depth tests their precision (see reprojection() in vec_math.h).
+    float zNear = std::max(orbit.distance * 0.01f, sf.radius * 1e-4f);
+    float zFar = orbit.distance + 2.5f * sf.radius;
+    in.projection = perspectiveVulkan(orbit.fovY, float(width) / float(height), zNear, zFar);
+    in.pointLight = light.point;
+    if (light.point) {
+        // A sphere at half the scene radius from the centre; the angular radius is as seen from the centre.
+        float dist = 0.5f * sf.radius;
+        in.light = sf.center + light.direction() * dist;
+        in.lightSize = dist * std::tan(light.angle);
+    } else {
+        in.light = light.direction();
+        in.lightSize = std::tan(light.angle);
+    }
+    return in;
+}
+
+// ---- Measurements and output ----
+
+struct ErrorStats {
+    double rmseNoisy = 0, rmseDenoised = 0;
+    size_t pixels = 0;
+};
+
+double psnr(double rmse) { return rmse > 0 ? std::min(100.0, -20.0 * std::log10(rmse)) : 100.0; }
+
+// Per-pixel shadow values (1 = lit) of the last frame, from the readback.
+struct ShadowImages {
+    std::vector<float> noisy, denoised, reference;
+    std::vector<bool> receiver;  // depth < 1: the pixels the error is measured on
+};
+
+ShadowImages readShadows(const Renderer &r, uint32_t w, uint32_t h)
+{
+    ShadowImages s;
+    size_t n = size_t(w) * h;
+    s.noisy.resize(n), s.denoised.resize(n), s.reference.resize(n), s.receiver.resize(n);
+    const uint32_t *mask = r.readHitMask();
+    float count = float(std::max(r.referenceCount(), 1u));
+    for (uint32_t y = 0; y < h; y++)
+        for (uint32_t x = 0; x < w; x++) {
+            size_t i = size_t(y) * w + x;
+            uint32_t word = mask[(y / 4) * r.tilesX() + x / 8];
+            s.noisy[i] = (word >> ((y % 4) * 8 + x % 8)) & 1u ? 0.0f : 1.0f;
+            s.denoised[i] = std::clamp(r.readDenoised()[i], 0.0f, 1.0f);
+            s.reference[i] = r.readReferenceSum()[i] / count;
+            s.receiver[i] = r.readDepth()[i] < 1.0f;
+        }
+    return s;
+}
+
+ErrorStats measure(const ShadowImages &s)
+{
+    ErrorStats e;
+    double noisy = 0, denoised = 0;
+    for (size_t i = 0; i < s.receiver.size(); i++) {
+        if (!s.receiver[i]) continue;
+        noisy += double(s.noisy[i] - s.reference[i]) * (s.noisy[i] - s.reference[i]);
+        denoised += double(s.denoised[i] - s.reference[i]) * (s.denoised[i] - s.reference[i]);
+        e.pixels++;
+    }
+    if (e.pixels) {
+        e.rmseNoisy = std::sqrt(noisy / e.pixels);
+        e.rmseDenoised = std::sqrt(denoised / e.pixels);
+    }
+    return e;
+}
+
+std::vector<uint8_t> toGray8(const std::vector<float> &v)
+{
+    std::vector<uint8_t> out(v.size());
+    for (size_t i = 0; i < v.size(); i++) out[i] = uint8_t(std::clamp(v[i], 0.0f, 1.0f) * 255.0f + 0.5f);
+    return out;
+}
+
+std::vector<uint8_t> rgbaToRgb(const uint8_t *rgba, size_t pixels)
+{
+    std::vector<uint8_t> out(pixels * 3);
+    for (size_t i = 0; i < pixels; i++)
+        for (int c = 0; c < 3; c++) out[3 * i + c] = rgba[4 * i + c];
+    return out;
+}
+
+void savePng(const std::string &path, uint32_t w, uint32_t h, int channels, const std::vector<uint8_t> &data)
+{
+    std::string error;
+    if (!writePng(path, w, h, channels, data.data(), &error)) throw VulkanError(error);
+}
+
+std::string jsonString(const std::string &s)
+{
+    std::string out = "\"";
+    for (char c : s) {
+        if (c == '"' || c == '\\') out += '\\', out += c;
+        else if (static_cast<unsigned char>(c) < 0x20) out += ' ';
+        else out += c;
+    }
+    return out + "\"";
+}
+
+std::string fmt(double v, int decimals = 4)
+{
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, std::isfinite(v) ? v : 0.0);
+    return buf;
+}
+
+// ---- The application ----
+
+class App {
+public:
+    explicit App(const Options &o) : opt_(o) {}
+    ~App() { cleanup(); }
+
+    int run(const Scene &scene)
+    {
+        scene_ = {&scene, (scene.boundsMin + scene.boundsMax) * 0.5f,
+                  std::max(length(scene.boundsMax - scene.boundsMin) * 0.5f, 1e-3f)};
+        orbit0_ = orbit_ = initialOrbit(scene);
+        light_.point = opt_.pointLight;
+        light_.angle = radians(opt_.lightAngleDeg);
+        light_.moving = opt_.lightMotion;
+        view_ = opt_.view;
+        // Light from the side of the starting view (100 degrees around from the camera), so that the shadows
+        // fall where the camera sees them whatever the scene.
+        light_.azimuth = orbit_.yaw + radians(100.0f);
+        return opt_.headless ? runHeadless() : runWindow();
+    }
+
+    unsigned validationMessages() const { return ctx_.validationMessages; }
+
+    void cleanup()
+    {
+        if (ctx_.device) vkDeviceWaitIdle(ctx_.device);
+        renderer_.destroy();
+        if (ctx_.device) {
+            if (fence_) vkDestroyFence(ctx_.device, fence_, nullptr);
+            if (imageAvailable_) vkDestroySemaphore(ctx_.device, imageAvailable_, nullptr);
+            swapchain_.destroy(ctx_);
+            fence_ = VK_NULL_HANDLE, imageAvailable_ = VK_NULL_HANDLE;
+        }
+        if (surface_) vkDestroySurfaceKHR(ctx_.instance, surface_, nullptr);
+        surface_ = VK_NULL_HANDLE;
+        ctx_.destroy();
+        if (window_) glfwDestroyWindow(window_);
+        window_ = nullptr;
+        if (glfwStarted_) glfwTerminate();
+        glfwStarted_ = false;
+    }
+
+private:
+    void createRenderer()
+    {
+        RendererSettings rs;
+        rs.width = opt_.width, rs.height = opt_.height;
+        rs.sceneRadius = scene_.radius;
+        renderer_.create(ctx_, *scene_.scene, rs);
+        std::printf("viewer: %s on %s, %ux%u, %u triangles, BVH %u nodes (depth %u), push descriptors %s\n",
+                    opt_.scene.c_str(), ctx_.properties.deviceName, opt_.width, opt_.height, renderer_.triangles,
+                    renderer_.bvhNodes, renderer_.bvhDepth, ctx_.pushDescriptorEnabled ? "on" : "off");
+    }
+
+    // ---------------- Headless ----------------
+
+    int runHeadless()
+    {
+        VulkanContextOptions vo;
+        vo.validate = opt_.validate;
+        if (const char *d = std::getenv("VIEWER_DEVICE")) vo.deviceSubstring = d;
+        ctx_.create(vo);
+        createRenderer();
+
+        for (uint32_t f = 0; f < opt_.frames; f++) {
+            bool last = f + 1 == opt_.frames;
+            Orbit o = orbit_;
+            o.yaw += radians(opt_.orbitDegPerFrame) * f;  // a slow orbit: dnsr must reproject its history every frame
+            if (light_.moving) light_.azimuth += radians(0.5f);
+            FrameInput in = makeFrame(scene_, o, light_, opt_.width, opt_.height);
+            in.cameraCut = f == 0;
+            in.display = View::Composite;
+            // The reference, for the frame that is measured only: many rays per pixel from the same G-buffer.
+            in.resetReference = last;
+            in.referenceSamples = last ? opt_.referenceSamples : 0;
+            VkCommandBuffer cmd = ctx_.beginOneTimeCommands();
+            renderer_.recordFrame(cmd, in);
+            if (last) renderer_.recordReadback(cmd);
+            ctx_.submitAndWait(cmd);
+            renderer_.afterFrame();
+        }
+        writeHeadlessOutputs();
+        return 0;
+    }
+
+    void writeHeadlessOutputs()
+    {
+        const uint32_t w = opt_.width, h = opt_.height;
+        std::filesystem::create_directories(opt_.outDir);
+        ShadowImages s = readShadows(renderer_, w, h);
+        ErrorStats e = measure(s);
+        std::vector<uint8_t> noisy = toGray8(s.noisy), denoised = toGray8(s.denoised), reference = toGray8(s.reference);
+        std::vector<uint8_t> composite = rgbaToRgb(renderer_.readDisplay(), size_t(w) * h);
+        const std::string dir = opt_.outDir + "/";
+        savePng(dir + "noisy.png", w, h, 1, noisy);
+        savePng(dir + "denoised.png", w, h, 1, denoised);
+        savePng(dir + "reference.png", w, h, 1, reference);
+        savePng(dir + "composite.png", w, h, 3, composite);
+
+        // noisy | denoised | reference | composite, with a 2-pixel dark gap between panels.
+        const uint32_t gap = 2, stripW = 4 * w + 3 * gap;
+        std::vector<uint8_t> strip(size_t(stripW) * h * 3, 32);
+        const std::vector<uint8_t> *gray[3] = {&noisy, &denoised, &reference};
+        for (uint32_t y = 0; y < h; y++)
+            for (uint32_t x = 0; x < w; x++) {
+                size_t i = size_t(y) * w + x;
+                for (int p = 0; p < 4; p++) {
+                    uint8_t *dst = &strip[(size_t(y) * stripW + p * (w + gap) + x) * 3];
+                    for (int c = 0; c < 3; c++) dst[c] = p < 3 ? (*gray[p])[i] : composite[3 * i + c];
+                }
+            }
+        savePng(dir + "strip.png", stripW, h, 3, strip);
+
+        // Occluded rays per 8x4 tile, as view 5 of the window shows it: green = all lit, blue = all occluded (the
+        // tiles dnsr's classification can skip), orange = mixed (darker = more occluded), sky grey.
+        std::vector<uint8_t> tiles(size_t(w) * h * 3);
+        for (uint32_t y = 0; y < h; y++)
+            for (uint32_t x = 0; x < w; x++) {
+                size_t i = size_t(y) * w + x;
+                uint32_t word = renderer_.readHitMask()[(y / 4) * renderer_.tilesX() + x / 8];
+                int occluded = __builtin_popcount(word);
+                float t = occluded / 32.0f;
+                float rgb[3] = {1.0f - 0.2f * t, 0.8f - 0.5f * t, 0.3f - 0.2f * t};
+                if (occluded == 0) rgb[0] = 0.2f, rgb[1] = 0.7f, rgb[2] = 0.3f;
+                if (occluded == 32) rgb[0] = 0.2f, rgb[1] = 0.3f, rgb[2] = 0.8f;
+                float shade = s.receiver[i] ? 1.0f : 0.6f;
+                if (x % 8 == 0 || y % 4 == 0) shade *= 0.75f;  // tile grid
+                for (int c = 0; c < 3; c++) tiles[3 * i + c] = uint8_t(rgb[c] * shade * 255.0f + 0.5f);
+            }
+        savePng(dir + "tiles.png", w, h, 3, tiles);
+
+        const DnsrPassTimings &t = renderer_.dnsrTimings;
+        const ViewerTimings &v = renderer_.viewerTimings;
+        std::string filters;
+        for (uint32_t p = 0; p < t.filterPasses && p < 4; p++) filters += (p ? ", " : "") + fmt(t.filterMs[p]);
+        std::string json = "{\n";
+        json += "  \"device\": " + jsonString(ctx_.properties.deviceName) + ",\n";
+        json += "  \"dnsr_version\": \"" + std::to_string(DNSR_VERSION_MAJOR) + "." + std::to_string(DNSR_VERSION_MINOR) +
+                "." + std::to_string(DNSR_VERSION_PATCH) + "\",\n";
+        json += "  \"push_descriptor\": " + std::string(ctx_.pushDescriptorEnabled ? "true" : "false") + ",\n";
+        json += "  \"scene\": " + jsonString(opt_.scene) + ",\n";
+        json += "  \"triangles\": " + std::to_string(renderer_.triangles) + ",\n";
+        json += "  \"bvh_nodes\": " + std::to_string(renderer_.bvhNodes) + ",\n";
+        json += "  \"width\": " + std::to_string(w) + ",\n  \"height\": " + std::to_string(h) + ",\n";
+        json += "  \"frames\": " + std::to_string(opt_.frames) + ",\n";
+        json += "  \"light\": \"" + std::string(light_.point ? "point" : "directional") + "\",\n";
+        json += "  \"light_angle_deg\": " + fmt(opt_.lightAngleDeg, 2) + ",\n";
+        json += "  \"reference_samples\": " + std::to_string(renderer_.referenceCount()) + ",\n";
+        json += "  \"pixels_compared\": " + std::to_string(e.pixels) + ",\n";
+        json += "  \"rmse\": {\"noisy\": " + fmt(e.rmseNoisy, 6) + ", \"denoised\": " + fmt(e.rmseDenoised, 6) + "},\n";
+        json += "  \"psnr_db\": {\"noisy\": " + fmt(psnr(e.rmseNoisy), 3) + ", \"denoised\": " +
+                fmt(psnr(e.rmseDenoised), 3) + "},\n";
+        json += "  \"dnsr_gpu_ms\": {\"frame\": " + std::to_string(renderer_.haveDnsrTimings ? t.frame : 0) +
+                ", \"prepare\": " + fmt(t.prepareMs) + ", \"tile_classification\": " + fmt(t.tileClassificationMs) +
+                ", \"filter\": [" + filters + "], \"total\": " + fmt(t.totalMs) + "},\n";
+        json += "  \"viewer_gpu_ms\": {\"primary\": " + fmt(v.primary) + ", \"shadow\": " + fmt(v.shadow) +
+                ", \"reference\": " + fmt(v.reference) + ", \"dnsr\": " + fmt(v.dnsr) + ", \"composite\": " +
+                fmt(v.composite) + "},\n";
+        json += "  \"dnsr_memory_bytes\": " + std::to_string(renderer_.dnsrMemoryBytes()) + "\n}\n";
+        FILE *f = std::fopen((dir + "report.json").c_str(), "w");
+        if (!f || std::fputs(json.c_str(), f) < 0 || std::fclose(f) != 0)
+            throw VulkanError("cannot write " + dir + "report.json");
+
+        std::printf("viewer: %u frames; RMSE vs %u-ray reference over %zu pixels: noisy %.4f (%.1f dB), denoised "
+                    "%.4f (%.1f dB)\n",
+                    opt_.frames, renderer_.referenceCount(), e.pixels, e.rmseNoisy, psnr(e.rmseNoisy), e.rmseDenoised,
+                    psnr(e.rmseDenoised));
+        std::printf("viewer: dnsr GPU ms (frame %llu): prepare %.3f, tiles %.3f, filter [%s], total %.3f\n",
+                    static_cast<unsigned long long>(t.frame), t.prepareMs, t.tileClassificationMs, filters.c_str(),
+                    t.totalMs);
+        std::printf("viewer: wrote %s{noisy,denoised,reference,composite,strip,tiles}.png and report.json\n",
+                    dir.c_str());
+    }
+
+    // ---------------- Window ----------------
+
+    static App &self(GLFWwindow *w) { return *static_cast<App *>(glfwGetWindowUserPointer(w)); }
+
+    void onKey(int key, int action)
+    {
+        if (action != GLFW_PRESS) return;
+        switch (key) {
+        case GLFW_KEY_ESCAPE:
+        case GLFW_KEY_Q: glfwSetWindowShouldClose(window_, GLFW_TRUE); break;
+        case GLFW_KEY_R:
+            orbit_ = orbit0_;
+            cameraCut_ = true;  // a jump: dnsr's history no longer matches
+            break;
+        case GLFW_KEY_1: view_ = View::Noisy; break;
+        case GLFW_KEY_2: view_ = View::Denoised; break;
+        case GLFW_KEY_3: view_ = View::Reference; break;
+        case GLFW_KEY_4: view_ = View::Composite; break;
+        case GLFW_KEY_5: view_ = View::TileDensity; break;
+        case GLFW_KEY_L: light_.moving = !light_.moving; break;
+        default: break;
+        }
+    }
+
+    void onCursor(double x, double y)
+    {
+        if (dragging_) {
+            orbit_.yaw -= radians(0.3f) * float(x - lastX_);
+            orbit_.pitch = std::clamp(orbit_.pitch + radians(0.3f) * float(y - lastY_), radians(-85.0f), radians(85.0f));
+        }
+        lastX_ = x, lastY_ = y;
+    }
+
+    void createWindow()
+    {
+        glfwSetErrorCallback([](int, const char *msg) { std::fprintf(stderr, "glfw: %s\n", msg); });
+        if (!glfwInit()) throw VulkanError("cannot initialise GLFW (no display? use --headless)");
+        glfwStarted_ = true;
+        if (!glfwVulkanSupported()) throw VulkanError("GLFW found no Vulkan loader");
+        glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+        window_ = glfwCreateWindow(int(opt_.width), int(opt_.height), "dnsr viewer", nullptr, nullptr);
+        if (!window_) throw VulkanError("cannot create a window");
+        glfwSetWindowUserPointer(window_, this);
+        glfwSetKeyCallback(window_, [](GLFWwindow *w, int key, int, int action, int) { self(w).onKey(key, action); });
+        glfwSetCursorPosCallback(window_, [](GLFWwindow *w, double x, double y) { self(w).onCursor(x, y); });
+        glfwSetMouseButtonCallback(window_, [](GLFWwindow *w, int button, int action, int) {
+            if (button == GLFW_MOUSE_BUTTON_LEFT) self(w).dragging_ = action == GLFW_PRESS;
+        });
+        glfwSetScrollCallback(window_, [](GLFWwindow *w, double, double dy) {
+            Orbit &o = self(w).orbit_;
+            o.distance = std::clamp(o.distance * std::pow(0.9f, float(dy)), 1e-3f * self(w).scene_.radius,
+                                    20.0f * self(w).scene_.radius);
+        });
+    }
+
+    void recreateSwapchain()
+    {
+        int fbw = 0, fbh = 0;
+        glfwGetFramebufferSize(window_, &fbw, &fbh);
+        vkDeviceWaitIdle(ctx_.device);
+        swapchain_.create(ctx_, surface_, uint32_t(std::max(fbw, 1)), uint32_t(std::max(fbh, 1)));
+    }
+
+    // Scales the display image onto the swapchain image and makes it presentable.
+    void recordBlit(VkCommandBuffer cmd, uint32_t imageIndex)
+    {
+        VkImage target = swapchain_.images[imageIndex];
+        auto b = vkStruct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
+        b.srcAccessMask = 0;
+        b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;  // the previous contents are not needed
+        b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.image = target;
+        b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        // Source stage TRANSFER: the acquire semaphore's wait is at the transfer stage, so this chains after it.
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
+                             nullptr, 1, &b);
+        const GpuImage &src = renderer_.displayImage();
+        VkImageBlit region{};
+        region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.srcOffsets[1] = {int32_t(src.width), int32_t(src.height), 1};
+        region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.dstOffsets[1] = {int32_t(swapchain_.extent.width), int32_t(swapchain_.extent.height), 1};
+        vkCmdBlitImage(cmd, src.image, VK_IMAGE_LAYOUT_GENERAL, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region,
+                       VK_FILTER_NEAREST);  // nearest: the pixels dnsr produced, not a smoothed version of them
+        b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        b.dstAccessMask = 0;
+        b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        b.newLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0, 0, nullptr, 0,
+                             nullptr, 1, &b);
+    }
+
+    void updateTitle(double fps)
+    {
+        const char *names[] = {"noisy", "denoised", "reference", "composite", "tile density"};
+        char title[512];
+        const DnsrPassTimings &t = renderer_.dnsrTimings;
+        double filter = 0;
+        for (uint32_t p = 0; p < t.filterPasses && p < 4; p++) filter += t.filterMs[p];
+        const ViewerTimings &v = renderer_.viewerTimings;
+        char view[64];
+        std::snprintf(view, sizeof view, view_ == View::Reference ? "%s (%u rays/px)" : "%s", names[uint32_t(view_)],
+                      renderer_.referenceCount());
+        std::snprintf(title, sizeof title,
+                      "dnsr viewer | %s%s | dnsr GPU ms: prepare %.2f, tiles %.2f, filter %.2f (%u passes), total "
+                      "%.2f | rays ms: primary %.2f, shadow %.2f | %.1f fps",
+                      view, light_.moving ? " | light moving" : "", t.prepareMs,
+                      t.tileClassificationMs, filter, t.filterPasses, t.totalMs, v.primary, v.shadow, fps);
+        glfwSetWindowTitle(window_, title);
+    }
+
+    int runWindow()
+    {
+        createWindow();
+        VulkanContextOptions vo;
+        vo.validate = opt_.validate;
+        if (const char *d = std::getenv("VIEWER_DEVICE")) vo.deviceSubstring = d;
+        uint32_t count = 0;
+        const char **glfwExtensions = glfwGetRequiredInstanceExtensions(&count);
+        if (!glfwExtensions) throw VulkanError("GLFW cannot create Vulkan surfaces here");
+        vo.instanceExtensions.assign(glfwExtensions, glfwExtensions + count);
+        vo.deviceExtensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+        vo.canPresent = [](VkInstance instance, VkPhysicalDevice pd, uint32_t family) {
+            return glfwGetPhysicalDevicePresentationSupport(instance, pd, family) == GLFW_TRUE;
+        };
+        ctx_.create(vo);
+        VK_CHECK(glfwCreateWindowSurface(ctx_.instance, window_, nullptr, &surface_));
+        VkBool32 supported = VK_FALSE;
+        VK_CHECK(vkGetPhysicalDeviceSurfaceSupportKHR(ctx_.physicalDevice, ctx_.queueFamily, surface_, &supported));
+        if (!supported) throw VulkanError("the chosen queue family cannot present to this window");
+        recreateSwapchain();
+        createRenderer();
+
+        auto semInfo = vkStruct<VkSemaphoreCreateInfo>(VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO);
+        VK_CHECK(vkCreateSemaphore(ctx_.device, &semInfo, nullptr, &imageAvailable_));
+        auto fenceInfo = vkStruct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
+        VK_CHECK(vkCreateFence(ctx_.device, &fenceInfo, nullptr, &fence_));
+        auto alloc = vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
+        alloc.commandPool = ctx_.commandPool;
+        alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        alloc.commandBufferCount = 1;
+        VkCommandBuffer cmd;
+        VK_CHECK(vkAllocateCommandBuffers(ctx_.device, &alloc, &cmd));
+
+        using Clock = std::chrono::steady_clock;
+        auto lastTitle = Clock::now(), lastFrame = Clock::now();
+        uint32_t framesSinceTitle = 0, frame = 0;
+        Orbit lastOrbit = orbit_;
+        float lastAzimuth = light_.azimuth;
+        cameraCut_ = true;
+        while (!glfwWindowShouldClose(window_)) {
+            glfwPollEvents();
+            int fbw = 0, fbh = 0;
+            glfwGetFramebufferSize(window_, &fbw, &fbh);
+            if (fbw == 0 || fbh == 0) {  // minimised: nothing to present to
+                glfwWaitEvents();
+                continue;
+            }
+            auto now = Clock::now();
+            float dt = std::chrono::duration<float>(now - lastFrame).count();
+            lastFrame = now;
+            if (light_.moving) light_.azimuth += radians(20.0f) * std::min(dt, 0.1f);
+
+            uint32_t imageIndex = 0;
+            VkResult acquired = vkAcquireNextImageKHR(ctx_.device, swapchain_.swapchain, UINT64_MAX, imageAvailable_,
+                                                      VK_NULL_HANDLE, &imageIndex);
+            if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
+                recreateSwapchain();
+                continue;
+            }
+            if (acquired != VK_SUBOPTIMAL_KHR) VK_CHECK(acquired);
+
+            FrameInput in = makeFrame(scene_, orbit_, light_, opt_.width, opt_.height);
+            in.cameraCut = cameraCut_;
+            in.display = view_;
+            // The reference accumulates while nothing moves (view 3 shows it converging); any change restarts it.
+            bool changed = std::memcmp(&lastOrbit, &orbit_, sizeof orbit_) != 0 || lastAzimuth != light_.azimuth;
+            in.resetReference = changed || cameraCut_;
+            uint32_t have = in.resetReference ? 0 : renderer_.referenceCount();
+            if (view_ == View::Reference && have < opt_.referenceSamples)
+                in.referenceSamples = std::min(8u, opt_.referenceSamples - have);
+            lastOrbit = orbit_;
+            lastAzimuth = light_.azimuth;
+            cameraCut_ = false;
+
+            VK_CHECK(vkResetCommandBuffer(cmd, 0));
+            auto begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+            begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+            VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+            renderer_.recordFrame(cmd, in);
+            recordBlit(cmd, imageIndex);
+            VK_CHECK(vkEndCommandBuffer(cmd));
+
+            VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+            auto submit = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
+            submit.waitSemaphoreCount = 1;
+            submit.pWaitSemaphores = &imageAvailable_;
+            submit.pWaitDstStageMask = &waitStage;
+            submit.commandBufferCount = 1;
+            submit.pCommandBuffers = &cmd;
+            submit.signalSemaphoreCount = 1;
+            submit.pSignalSemaphores = &swapchain_.renderFinished[imageIndex];
+            VK_CHECK(vkQueueSubmit(ctx_.queue, 1, &submit, fence_));
+
+            auto present = vkStruct<VkPresentInfoKHR>(VK_STRUCTURE_TYPE_PRESENT_INFO_KHR);
+            present.waitSemaphoreCount = 1;
+            present.pWaitSemaphores = &swapchain_.renderFinished[imageIndex];
+            present.swapchainCount = 1;
+            present.pSwapchains = &swapchain_.swapchain;
+            present.pImageIndices = &imageIndex;
+            VkResult presented = vkQueuePresentKHR(ctx_.queue, &present);
+
+            // One frame in flight: wait for this one before recording the next (and before reading timings).
+            VK_CHECK(vkWaitForFences(ctx_.device, 1, &fence_, VK_TRUE, UINT64_MAX));
+            VK_CHECK(vkResetFences(ctx_.device, 1, &fence_));
+            renderer_.afterFrame();
+            if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR) recreateSwapchain();
+            else VK_CHECK(presented);
+
+            frame++;
+            framesSinceTitle++;
+            double since = std::chrono::duration<double>(Clock::now() - lastTitle).count();
+            if (since >= 1.0) {
+                updateTitle(framesSinceTitle / since);
+                lastTitle = Clock::now();
+                framesSinceTitle = 0;
+            }
+            if (opt_.frames && frame >= opt_.frames) {
+                if (!opt_.screenshot.empty()) saveScreenshot();
+                break;
+            }
+        }
+        vkDeviceWaitIdle(ctx_.device);
+        vkFreeCommandBuffers(ctx_.device, ctx_.commandPool, 1, &cmd);
+        return 0;
+    }
+
+    // Saves the image that was just blit to the window (the display image, at render size).
+    void saveScreenshot()
+    {
+        VkCommandBuffer cmd = ctx_.beginOneTimeCommands();
+        renderer_.recordReadback(cmd);
+        ctx_.submitAndWait(cmd);
+        savePng(opt_.screenshot, opt_.width, opt_.height, 3,
+                rgbaToRgb(renderer_.readDisplay(), size_t(opt_.width) * opt_.height));
+        std::printf("viewer: wrote %s after %u frames\n", opt_.screenshot.c_str(), opt_.frames);
+    }
+
+    Options opt_;
+    SceneFrame scene_;
+    Orbit orbit_, orbit0_;
+    LightState light_;
+    View view_ = View::Composite;
+    bool cameraCut_ = true;
+    VulkanContext ctx_;
+    Renderer renderer_;
+
+    GLFWwindow *window_ = nullptr;
+    bool glfwStarted_ = false;
+    VkSurfaceKHR surface_ = VK_NULL_HANDLE;
+    Swapchain swapchain_;
+    VkSemaphore imageAvailable_ = VK_NULL_HANDLE;
+    VkFence fence_ = VK_NULL_HANDLE;
+    bool dragging_ = false;
+    double lastX_ = 0, lastY_ = 0;
+};
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    Options options;
+    try {
+        options = parseOptions(argc, argv);
+    } catch (const UsageError &e) {
+        std::fprintf(stderr, "viewer: %s (see --help)\n", e.what());
+        return 2;
+    }
+
+    Scene scene;
+    try {
+        scene = loadGltfScene(options.scene);
+    } catch (const SceneError &e) {
+        std::fprintf(stderr, "viewer: %s\n", e.what());
+        return 2;
+    } catch (const std::exception &e) {  // e.g. std::bad_alloc for absurd sizes in a malformed file
+        std::fprintf(stderr, "viewer: %s: cannot load: %s\n", options.scene.c_str(), e.what());
+        return 2;
+    }
+
+    int status = 1;
+    unsigned validationMessages = 0;
+    {
+        App app(options);
+        try {
+            status = app.run(scene);
+        } catch (const std::exception &e) {
+            std::fprintf(stderr, "viewer: %s\n", e.what());
+            status = 1;
+        }
+        app.cleanup();  // before counting: destroying objects can itself produce validation messages
+        validationMessages = app.validationMessages();
+    }
+    if (validationMessages) {
+        std::fprintf(stderr, "viewer: %u validation message(s)\n", validationMessages);
+        return 1;
+    }
+    return status;
+}

@@ -1,0 +1,452 @@
+// renderer.cpp: see renderer.h.
+#include "renderer.h"
+
+#include <cstring>
+
+namespace {
+
+// SPIR-V compiled from shaders/*.comp by glslc at build time (CMake), embedded so the viewer runs from anywhere.
+const uint32_t kPrimarySpv[] =
+#include "primary.comp.inc"
+    ;
+const uint32_t kShadowSpv[] =
+#include "shadow.comp.inc"
+    ;
+const uint32_t kReferenceSpv[] =
+#include "reference.comp.inc"
+    ;
+const uint32_t kCompositeSpv[] =
+#include "composite.comp.inc"
+    ;
+
+// Host copy of shaders/common.glsl's FrameConstants (std140: vec4-aligned members only, so no padding rules).
+struct FrameConstants {
+    Mat4 viewProj, invViewProj, prevViewProj;
+    float eye[4];
+    float light[4];
+    float lightParams[4];
+    uint32_t size[4];
+    uint32_t info[4];
+    float skyColor[4];
+};
+
+// The shaders' binding numbers (shaders/common.glsl).
+enum Binding : uint32_t {
+    kFrameConstants = 0,
+    kBvhNodes,
+    kTriGeometry,
+    kTriShading,
+    kRayOrigin,
+    kDepth,
+    kNormals,
+    kVelocity,
+    kAlbedo,
+    kHitMask,
+    kDenoised,
+    kReference,
+    kDisplay,
+    kBindingCount
+};
+
+enum Timestamp : uint32_t { kStart, kAfterPrimary, kAfterShadow, kAfterReference, kAfterDnsr, kAfterComposite, kCount };
+
+constexpr uint32_t kReferenceChunk = 32;  // samples per reference dispatch: keeps each dispatch short
+
+[[noreturn]] void dnsrFail(const char *call, DnsrResult r)
+{
+    throw VulkanError(std::string(call) + " failed: " + dnsr_result_to_string(r) + ": " + dnsr_last_error_message());
+}
+
+DnsrHostImage hostImage(const GpuImage &img)
+{
+    return DnsrHostImage{img.image, img.view, img.format, VK_IMAGE_LAYOUT_GENERAL, img.width, img.height};
+}
+
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst,
+                   VkAccessFlags dstAccess)
+{
+    auto b = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+    b.srcAccessMask = srcAccess;
+    b.dstAccessMask = dstAccess;
+    vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &b, 0, nullptr, 0, nullptr);
+}
+
+uint32_t divUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
+
+}  // namespace
+
+void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSettings &settings)
+{
+    ctx_ = &ctx;
+    settings_ = settings;
+    const uint32_t w = settings.width, h = settings.height;
+
+    // Scene -> BVH -> GPU buffers. Triangles are stored in BVH leaf order: v0, e1, e2 for the intersection test,
+    // then the three vertex normals with the packed albedo in the first one's w.
+    Bvh bvh = buildBvh(scene.positions);
+    bvhNodes = static_cast<uint32_t>(bvh.nodes.size());
+    bvhDepth = bvh.depth;
+    triangles = static_cast<uint32_t>(scene.triangleCount());
+    std::vector<float> geometry, shading;
+    geometry.reserve(bvh.triangleOrder.size() * 12);
+    shading.reserve(bvh.triangleOrder.size() * 12);
+    for (uint32_t t : bvh.triangleOrder) {
+        Vec3 v0 = scene.positions[3 * t], v1 = scene.positions[3 * t + 1], v2 = scene.positions[3 * t + 2];
+        for (Vec3 v : {v0, v1 - v0, v2 - v0}) geometry.insert(geometry.end(), {v.x, v.y, v.z, 0.0f});
+        for (int k = 0; k < 3; k++) {
+            Vec3 n = scene.normals[3 * t + k];
+            float w4 = 0.0f;
+            if (k == 0) std::memcpy(&w4, &scene.albedo[t], 4);
+            shading.insert(shading.end(), {n.x, n.y, n.z, w4});
+        }
+    }
+    const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    nodes_ = ctx.createBuffer(bvh.nodes.size() * sizeof(BvhNode), storage, false);
+    ctx.upload(nodes_, bvh.nodes.data(), nodes_.size);
+    triGeometry_ = ctx.createBuffer(geometry.size() * sizeof(float), storage, false);
+    ctx.upload(triGeometry_, geometry.data(), triGeometry_.size);
+    triShading_ = ctx.createBuffer(shading.size() * sizeof(float), storage, false);
+    ctx.upload(triShading_, shading.data(), triShading_.size);
+    frameConstants_ = ctx.createBuffer(sizeof(FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+
+    // Images. SAMPLED because dnsr reads its inputs through samplers, STORAGE because our passes write them,
+    // TRANSFER for the initial clear and for readback / the blit to the window.
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                    VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    rayOrigin_ = ctx.createImage(VK_FORMAT_R32G32B32A32_SFLOAT, w, h, usage);
+    depth_ = ctx.createImage(VK_FORMAT_R32_SFLOAT, w, h, usage);  // dnsr accepts R32_SFLOAT depth
+    normals_ = ctx.createImage(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, usage);  // unpack: mul 1, add 0
+    velocity_ = ctx.createImage(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, usage);
+    albedo_ = ctx.createImage(VK_FORMAT_R8G8B8A8_UNORM, w, h, usage);
+    hitMask_ = ctx.createImage(VK_FORMAT_R32_UINT, tilesX(), tilesY(), usage);
+    denoised_ = ctx.createImage(VK_FORMAT_R32_SFLOAT, w, h, usage);
+    reference_ = ctx.createImage(VK_FORMAT_R32_SFLOAT, w, h, usage);
+    display_ = ctx.createImage(VK_FORMAT_R8G8B8A8_UNORM, w, h, usage);
+
+    // Readback buffer: one section per image, each starting at a multiple of 16 bytes (a buffer-image copy's
+    // offset must be a multiple of the texel size, up to 16 for RGBA32F; odd render sizes break 4-byte sections).
+    VkDeviceSize pixels = VkDeviceSize(w) * h, offset = 0;
+    auto section = [&](VkDeviceSize bytes) {
+        VkDeviceSize start = offset;
+        offset = (offset + bytes + 15) & ~VkDeviceSize(15);
+        return start;
+    };
+    depthOffset_ = section(pixels * 4);
+    maskOffset_ = section(VkDeviceSize(tilesX()) * tilesY() * 4);
+    denoisedOffset_ = section(pixels * 4);
+    referenceOffset_ = section(pixels * 4);
+    displayOffset_ = section(pixels * 4);
+    normalsOffset_ = section(pixels * 8);
+    velocityOffset_ = section(pixels * 8);
+    readback_ = ctx.createBuffer(offset, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+
+    // Every image to GENERAL once, cleared so that nothing undefined is ever read.
+    VkCommandBuffer cmd = ctx.beginOneTimeCommands();
+    std::vector<VkImageMemoryBarrier> toGeneral;
+    for (const GpuImage *img : {&rayOrigin_, &depth_, &normals_, &velocity_, &albedo_, &hitMask_, &denoised_,
+                                &reference_, &display_}) {
+        auto b = vkStruct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
+        b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.image = img->image;
+        b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        toGeneral.push_back(b);
+    }
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
+                         nullptr, static_cast<uint32_t>(toGeneral.size()), toGeneral.data());
+    VkClearColorValue zero{};
+    VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    for (const VkImageMemoryBarrier &b : toGeneral)
+        vkCmdClearColorImage(cmd, b.image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+    ctx.submitAndWait(cmd);
+
+    createDescriptors();
+    primary_ = ctx.createComputePipeline(pipelineLayout_, kPrimarySpv, sizeof kPrimarySpv);
+    shadow_ = ctx.createComputePipeline(pipelineLayout_, kShadowSpv, sizeof kShadowSpv);
+    reference_pipeline_ = ctx.createComputePipeline(pipelineLayout_, kReferenceSpv, sizeof kReferenceSpv);
+    composite_ = ctx.createComputePipeline(pipelineLayout_, kCompositeSpv, sizeof kCompositeSpv);
+
+    auto queryInfo = vkStruct<VkQueryPoolCreateInfo>(VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO);
+    queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    queryInfo.queryCount = kCount;
+    VK_CHECK(vkCreateQueryPool(ctx.device, &queryInfo, nullptr, &timestamps_));
+
+    createDenoiser();
+}
+
+// One descriptor set layout for all four passes: each shader uses the subset of bindings it needs.
+void Renderer::createDescriptors()
+{
+    VkDevice dev = ctx_->device;
+    std::vector<VkDescriptorSetLayoutBinding> bindings(kBindingCount);
+    for (uint32_t i = 0; i < kBindingCount; i++) {
+        bindings[i].binding = i;
+        bindings[i].descriptorType = i == kFrameConstants ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+                                     : i <= kTriShading   ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
+                                                          : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+        bindings[i].descriptorCount = 1;
+        bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    }
+    auto layoutInfo = vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+    layoutInfo.bindingCount = kBindingCount;
+    layoutInfo.pBindings = bindings.data();
+    VK_CHECK(vkCreateDescriptorSetLayout(dev, &layoutInfo, nullptr, &setLayout_));
+
+    VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, 4 * sizeof(uint32_t)};
+    auto pipelineInfo = vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+    pipelineInfo.setLayoutCount = 1;
+    pipelineInfo.pSetLayouts = &setLayout_;
+    pipelineInfo.pushConstantRangeCount = 1;
+    pipelineInfo.pPushConstantRanges = &push;
+    VK_CHECK(vkCreatePipelineLayout(dev, &pipelineInfo, nullptr, &pipelineLayout_));
+
+    VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
+                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kBindingCount - 4}};
+    auto poolInfo = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+    poolInfo.maxSets = 1;
+    poolInfo.poolSizeCount = 3;
+    poolInfo.pPoolSizes = sizes;
+    VK_CHECK(vkCreateDescriptorPool(dev, &poolInfo, nullptr, &descriptorPool_));
+    auto alloc = vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+    alloc.descriptorPool = descriptorPool_;
+    alloc.descriptorSetCount = 1;
+    alloc.pSetLayouts = &setLayout_;
+    VK_CHECK(vkAllocateDescriptorSets(dev, &alloc, &set_));
+
+    VkDescriptorBufferInfo buffers[4] = {{frameConstants_.buffer, 0, VK_WHOLE_SIZE},
+                                         {nodes_.buffer, 0, VK_WHOLE_SIZE},
+                                         {triGeometry_.buffer, 0, VK_WHOLE_SIZE},
+                                         {triShading_.buffer, 0, VK_WHOLE_SIZE}};
+    const GpuImage *images[] = {&rayOrigin_, &depth_,    &normals_,   &velocity_, &albedo_,
+                                &hitMask_,   &denoised_, &reference_, &display_};
+    VkDescriptorImageInfo imageInfos[kBindingCount - 4];
+    std::vector<VkWriteDescriptorSet> writes(kBindingCount,
+                                             vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET));
+    for (uint32_t i = 0; i < kBindingCount; i++) {
+        writes[i].dstSet = set_;
+        writes[i].dstBinding = i;
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = bindings[i].descriptorType;
+        if (i < 4) {
+            writes[i].pBufferInfo = &buffers[i];
+        } else {
+            imageInfos[i - 4] = {VK_NULL_HANDLE, images[i - 4]->view, VK_IMAGE_LAYOUT_GENERAL};
+            writes[i].pImageInfo = &imageInfos[i - 4];
+        }
+    }
+    vkUpdateDescriptorSets(dev, kBindingCount, writes.data(), 0, nullptr);
+}
+
+// The denoiser, created exactly as an engine would through include/dnsr.h.
+void Renderer::createDenoiser()
+{
+    // A header built for another library version would misread every structure: check first.
+    if (dnsr_version() != DNSR_VERSION)
+        throw VulkanError("dnsr.h is version " + std::to_string(DNSR_VERSION) + " but libdnsr is " +
+                          std::to_string(dnsr_version()));
+    DnsrContextCreateInfo info{};
+    info.sType = DNSR_STRUCTURE_TYPE_CONTEXT_CREATE_INFO;
+    info.instance = ctx_->instance;
+    info.physicalDevice = ctx_->physicalDevice;
+    info.device = ctx_->device;
+    info.vulkanFunctions = {vkGetInstanceProcAddr, vkGetDeviceProcAddr};  // dnsr never links the loader
+    info.apiVersion = ctx_->apiVersion;
+    info.queueFamilyIndex = ctx_->queueFamily;
+    info.enabledFeatures = ctx_->pushDescriptorEnabled ? DNSR_FEATURE_PUSH_DESCRIPTOR : 0;
+    info.width = settings_.width;
+    info.height = settings_.height;
+    info.flags = DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS;  // standard depth (sky = 1), finite far plane
+    info.precision = DNSR_PRECISION_FP32;
+    info.outputFormat = VK_FORMAT_R32_SFLOAT;
+    info.lightCount = 1;
+    DnsrResult r = dnsr_context_create(&info, &denoiser_);
+    if (r != DNSR_SUCCESS) dnsrFail("dnsr_context_create", r);
+}
+
+uint64_t Renderer::dnsrMemoryBytes() const
+{
+    uint64_t bytes = 0;
+    if (denoiser_) dnsr_context_get_memory_usage(denoiser_, &bytes);
+    return bytes;
+}
+
+void Renderer::dispatch(VkCommandBuffer cmd, VkPipeline pipeline, uint32_t groupsX, uint32_t groupsY, uint32_t mode,
+                        uint32_t sampleBase, uint32_t sampleCount)
+{
+    const uint32_t push[4] = {mode, sampleBase, sampleCount, 0};
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_, 0, nullptr);
+    vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, push);
+    vkCmdDispatch(cmd, groupsX, groupsY, 1);
+}
+
+void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
+{
+    const uint32_t w = settings_.width, h = settings_.height;
+    Mat4 viewProj = in.projection * in.viewMatrix;
+    if (frameIndex_ == 0 || in.cameraCut) prevViewProj_ = viewProj;  // no previous frame: no motion
+    Mat4 invViewProj, invProjection, reprojection;
+    if (!inverse(viewProj, invViewProj) || !inverse(in.projection, invProjection) ||
+        !::reprojection(prevViewProj_, viewProj, reprojection))
+        throw VulkanError("the camera matrices are singular");
+    if (in.resetReference) referenceCount_ = 0;
+    uint32_t referenceAfter = referenceCount_ + in.referenceSamples;
+
+    // Per-frame constants. The buffer is host-coherent and the previous frame has completed (one frame in
+    // flight), so writing it now is safe.
+    FrameConstants c{};
+    c.viewProj = viewProj;
+    c.invViewProj = invViewProj;
+    c.prevViewProj = prevViewProj_;
+    c.eye[0] = in.eye.x, c.eye[1] = in.eye.y, c.eye[2] = in.eye.z;
+    c.light[0] = in.light.x, c.light[1] = in.light.y, c.light[2] = in.light.z, c.light[3] = in.pointLight ? 1.f : 0.f;
+    c.lightParams[0] = in.lightSize;
+    c.lightParams[1] = settings_.ambient;
+    c.lightParams[2] = 2e-4f * settings_.sceneRadius;
+    c.lightParams[3] = settings_.sceneRadius;
+    c.size[0] = w, c.size[1] = h, c.size[2] = tilesX(), c.size[3] = tilesY();
+    c.info[0] = frameIndex_, c.info[1] = referenceAfter;
+    c.skyColor[0] = 0.55f, c.skyColor[1] = 0.70f, c.skyColor[2] = 0.90f, c.skyColor[3] = 1.0f;
+    std::memcpy(frameConstants_.mapped, &c, sizeof c);
+
+    vkCmdResetQueryPool(cmd, timestamps_, 0, kCount);
+    // The previous frame's passes, readback and blit (same queue, earlier submission) before this frame
+    // overwrites what they read or wrote.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT |
+                      VK_ACCESS_TRANSFER_WRITE_BIT);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps_, kStart);
+
+    dispatch(cmd, primary_, divUp(w, 8), divUp(h, 8));
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterPrimary);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+
+    dispatch(cmd, shadow_, divUp(tilesX(), 8), divUp(tilesY(), 8));
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterShadow);
+
+    // Reference samples, in chunks; each chunk adds to the sum the previous one wrote.
+    for (uint32_t done = 0; done < in.referenceSamples; done += kReferenceChunk) {
+        if (done > 0)
+            memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+        uint32_t n = std::min(kReferenceChunk, in.referenceSamples - done);
+        dispatch(cmd, reference_pipeline_, divUp(w, 8), divUp(h, 8), 0, referenceCount_ + done, n);
+    }
+    referenceCount_ = referenceAfter;
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterReference);
+
+    // ---- dnsr ----
+    DnsrShadowsDispatch d{};
+    d.sType = DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH;
+    d.commandBuffer = cmd;
+    d.lightIndex = 0;
+    d.flags = in.cameraCut ? DNSR_DISPATCH_RESET : 0;
+    d.hitMaskConvention = DNSR_HIT_MASK_OCCLUDED_BITS;  // bit = 1: the ray hit an occluder
+    d.hitMask = hostImage(hitMask_);
+    d.depth = hostImage(depth_);
+    d.velocity = hostImage(velocity_);
+    d.normals = hostImage(normals_);
+    d.output = hostImage(denoised_);
+    d.motionVectorScale[0] = d.motionVectorScale[1] = 1.0f;  // velocity = prev_uv - uv, in uv units
+    d.normalsUnpackMul = 1.0f;  // float normals, stored as is
+    d.normalsUnpackAdd = 0.0f;
+    d.eye[0] = in.eye.x, d.eye[1] = in.eye.y, d.eye[2] = in.eye.z;
+    d.frameIndex = frameIndex_;
+    std::memcpy(d.projectionInverse, invProjection.m, sizeof d.projectionInverse);
+    std::memcpy(d.reprojectionMatrix, reprojection.m, sizeof d.reprojectionMatrix);  // current clip -> previous
+    std::memcpy(d.viewProjectionInverse, invViewProj.m, sizeof d.viewProjectionInverse);
+    d.depthSimilaritySigma = 1.0f;
+    // dnsr emits the barriers around its work: our compute passes' writes before its reads, its output write
+    // before our composite pass reads it.
+    d.sync.inputSrcStages = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+    d.sync.inputSrcAccess = VK_ACCESS_SHADER_WRITE_BIT;
+    d.sync.outputDstStages = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+    d.sync.outputDstAccess = VK_ACCESS_SHADER_READ_BIT;
+    DnsrResult r = dnsr_shadows_record(denoiser_, &d);
+    if (r != DNSR_SUCCESS) dnsrFail("dnsr_shadows_record", r);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterDnsr);
+
+    dispatch(cmd, composite_, divUp(w, 8), divUp(h, 8), static_cast<uint32_t>(in.display));
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterComposite);
+    // The display image is read next by a blit (window) or a copy (readback).
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_TRANSFER_READ_BIT);
+
+    prevViewProj_ = viewProj;
+    frameIndex_++;
+}
+
+void Renderer::afterFrame()
+{
+    uint64_t ticks[kCount];
+    VkResult r = vkGetQueryPoolResults(ctx_->device, timestamps_, 0, kCount, sizeof ticks, ticks, sizeof(uint64_t),
+                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+    if (r == VK_SUCCESS) {
+        double ms = ctx_->properties.limits.timestampPeriod * 1e-6;
+        auto span = [&](int a, int b) { return ticks[b] > ticks[a] ? double(ticks[b] - ticks[a]) * ms : 0.0; };
+        viewerTimings = {span(kStart, kAfterPrimary), span(kAfterPrimary, kAfterShadow),
+                         span(kAfterShadow, kAfterReference), span(kAfterReference, kAfterDnsr),
+                         span(kAfterDnsr, kAfterComposite)};
+    }
+    DnsrPassTimings t{};
+    t.sType = DNSR_STRUCTURE_TYPE_PASS_TIMINGS;
+    DnsrResult result = dnsr_context_get_timings(denoiser_, &t);
+    if (result == DNSR_SUCCESS) {
+        dnsrTimings = t;
+        haveDnsrTimings = true;
+    } else if (result != DNSR_NOT_READY) {
+        dnsrFail("dnsr_context_get_timings", result);
+    }
+}
+
+void Renderer::recordReadback(VkCommandBuffer cmd)
+{
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_TRANSFER_READ_BIT);
+    auto copy = [&](const GpuImage &img, VkDeviceSize offset) {
+        VkBufferImageCopy region{};
+        region.bufferOffset = offset;
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {img.width, img.height, 1};
+        vkCmdCopyImageToBuffer(cmd, img.image, VK_IMAGE_LAYOUT_GENERAL, readback_.buffer, 1, &region);
+    };
+    copy(depth_, depthOffset_);
+    copy(hitMask_, maskOffset_);
+    copy(denoised_, denoisedOffset_);
+    copy(reference_, referenceOffset_);
+    copy(display_, displayOffset_);
+    copy(normals_, normalsOffset_);
+    copy(velocity_, velocityOffset_);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                  VK_ACCESS_HOST_READ_BIT);
+}
+
+void Renderer::destroy()
+{
+    if (!ctx_) return;
+    VkDevice dev = ctx_->device;
+    vkDeviceWaitIdle(dev);
+    // The context goes first, once the GPU has finished every command buffer it recorded into.
+    if (denoiser_) dnsr_context_destroy(denoiser_);
+    denoiser_ = nullptr;
+    for (VkPipeline p : {primary_, shadow_, reference_pipeline_, composite_})
+        if (p) vkDestroyPipeline(dev, p, nullptr);
+    if (pipelineLayout_) vkDestroyPipelineLayout(dev, pipelineLayout_, nullptr);
+    if (descriptorPool_) vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);
+    if (setLayout_) vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
+    if (timestamps_) vkDestroyQueryPool(dev, timestamps_, nullptr);
+    for (GpuImage *img : {&rayOrigin_, &depth_, &normals_, &velocity_, &albedo_, &hitMask_, &denoised_, &reference_,
+                          &display_})
+        ctx_->destroyImage(*img);
+    for (GpuBuffer *b : {&frameConstants_, &nodes_, &triGeometry_, &triShading_, &readback_}) ctx_->destroyBuffer(*b);
+    ctx_ = nullptr;
+}

@@ -1,0 +1,109 @@
+// renderer.h: the viewer's frame, recorded into one command buffer the way an engine would:
+//
+//   primary.comp    camera rays -> G-buffer (depth, normal, motion vectors, albedo, shadow-ray origin)
+//   shadow.comp     one jittered shadow ray per pixel -> the 8x4-tile hit mask
+//   reference.comp  (when asked) many shadow rays per pixel -> the ground truth, for error measurements
+//   dnsr            dnsr_shadows_record: hit mask + G-buffer -> denoised shadow
+//   composite.comp  albedo * (ambient + N.L * shadow), or a debug view -> the display image
+//
+// Every image stays in layout GENERAL. The renderer never submits: the caller submits the command buffer and
+// waits for it before calling afterFrame() and recording the next frame (one frame in flight keeps the sample
+// simple; an engine would keep a few, with one set of per-frame resources each).
+#pragma once
+
+#include <dnsr.h>
+
+#include "bvh.h"
+#include "scene_gltf.h"
+#include "vk_context.h"
+
+enum class View : uint32_t { Noisy = 0, Denoised = 1, Reference = 2, Composite = 3, TileDensity = 4 };
+
+struct RendererSettings {
+    uint32_t width = 0, height = 0;
+    float sceneRadius = 1.0f;  // sets the shadow-ray offset
+    float ambient = 0.2f;
+};
+
+struct FrameInput {
+    Mat4 viewMatrix, projection;
+    Vec3 eye;
+    // The light: a direction towards it (directional) or its position (point), and its size: tan of the angular
+    // radius (directional) or the sphere radius (point).
+    bool pointLight = false;
+    Vec3 light;
+    float lightSize = 0.05f;
+    bool cameraCut = false;          // discard dnsr's history (first frame, view reset)
+    View display = View::Composite;  // what composite.comp writes to the display image
+    bool resetReference = false;     // restart the reference accumulation (camera or light changed)
+    uint32_t referenceSamples = 0;   // reference samples per pixel to add this frame
+};
+
+// GPU time of the viewer's own passes in the last completed frame, in milliseconds.
+struct ViewerTimings {
+    double primary = 0, shadow = 0, reference = 0, dnsr = 0, composite = 0;
+};
+
+class Renderer {
+public:
+    void create(VulkanContext &ctx, const Scene &scene, const RendererSettings &settings);
+    void destroy();
+
+    // Records one frame into `cmd` (being recorded). Throws VulkanError when dnsr refuses the dispatch.
+    void recordFrame(VkCommandBuffer cmd, const FrameInput &input);
+    // After the GPU finished the frame: fetch the timings (the viewer's timestamps and dnsr's).
+    void afterFrame();
+    // Copies the G-buffer, hit mask, denoised shadow, reference sum and display image to host memory (after a
+    // recordFrame in the same command buffer); read them with the accessors below once the GPU is done.
+    void recordReadback(VkCommandBuffer cmd);
+
+    const float *readDepth() const { return at<float>(depthOffset_); }
+    const uint32_t *readHitMask() const { return at<uint32_t>(maskOffset_); }
+    const float *readDenoised() const { return at<float>(denoisedOffset_); }
+    const float *readReferenceSum() const { return at<float>(referenceOffset_); }
+    const uint8_t *readDisplay() const { return at<uint8_t>(displayOffset_); }
+    // RGBA16F texels (raw half floats), for checking the G-buffer against dnsr's CPU reference.
+    const uint16_t *readNormals() const { return at<uint16_t>(normalsOffset_); }
+    const uint16_t *readVelocity() const { return at<uint16_t>(velocityOffset_); }
+
+    const GpuImage &displayImage() const { return display_; }
+    uint32_t referenceCount() const { return referenceCount_; }
+    uint32_t tilesX() const { return (settings_.width + 7) / 8; }
+    uint32_t tilesY() const { return (settings_.height + 3) / 4; }
+    uint64_t dnsrMemoryBytes() const;
+
+    DnsrPassTimings dnsrTimings{};  // dnsr's per-pass GPU times (valid when haveDnsrTimings)
+    bool haveDnsrTimings = false;
+    ViewerTimings viewerTimings;
+    uint32_t bvhNodes = 0, bvhDepth = 0, triangles = 0;
+
+private:
+    template <typename T> const T *at(VkDeviceSize offset) const
+    {
+        return reinterpret_cast<const T *>(static_cast<const uint8_t *>(readback_.mapped) + offset);
+    }
+    void createDescriptors();
+    void createDenoiser();
+    void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, uint32_t groupsX, uint32_t groupsY, uint32_t mode = 0,
+                  uint32_t sampleBase = 0, uint32_t sampleCount = 0);
+
+    VulkanContext *ctx_ = nullptr;
+    RendererSettings settings_;
+    DnsrContext denoiser_ = nullptr;
+    uint32_t frameIndex_ = 0;
+    uint32_t referenceCount_ = 0;
+    Mat4 prevViewProj_;
+
+    GpuBuffer frameConstants_, nodes_, triGeometry_, triShading_, readback_;
+    GpuImage rayOrigin_, depth_, normals_, velocity_, albedo_, hitMask_, denoised_, reference_, display_;
+    VkDeviceSize depthOffset_ = 0, maskOffset_ = 0, denoisedOffset_ = 0, referenceOffset_ = 0, displayOffset_ = 0,
+                 normalsOffset_ = 0, velocityOffset_ = 0;
+
+    VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+    VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
+    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
+    VkPipeline primary_ = VK_NULL_HANDLE, shadow_ = VK_NULL_HANDLE, reference_pipeline_ = VK_NULL_HANDLE,
+               composite_ = VK_NULL_HANDLE;
+    VkQueryPool timestamps_ = VK_NULL_HANDLE;
+};

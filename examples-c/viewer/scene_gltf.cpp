@@ -1,0 +1,360 @@
+// scene_gltf.cpp: glTF loading with tinygltf (Debian's shared libtinygltf), then our own validation of every
+// accessor before a single byte is read: tinygltf parses the JSON and loads the buffers, but it does not check
+// that an accessor fits inside its buffer view, that indices are in range, or that positions are finite.
+#include "scene_gltf.h"
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <cstring>
+
+namespace {
+
+// tinygltf's messages can span lines; the viewer promises a one-line message.
+std::string oneLine(std::string s)
+{
+    for (char &c : s)
+        if (c == '\n' || c == '\r') c = ' ';
+    while (!s.empty() && s.back() == ' ') s.pop_back();
+    return s;
+}
+
+[[noreturn]] void fail(const std::string &path, const std::string &what)
+{
+    throw SceneError(path + ": " + oneLine(what));
+}
+
+// Image decoding is not needed (the viewer ignores textures): accept every image without decoding it, so that a
+// broken or unsupported texture never stops the geometry from loading.
+bool skipImage(tinygltf::Image *, const int, std::string *, std::string *, int, int, const unsigned char *, int, void *)
+{
+    return true;
+}
+
+// A validated view of an accessor's elements: element i starts at base + i * stride and is `elementSize` bytes.
+struct AccessorData {
+    const uint8_t *base = nullptr;
+    size_t stride = 0;
+    size_t count = 0;
+    int componentType = 0;
+};
+
+size_t componentSize(int componentType)
+{
+    switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_INT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    case TINYGLTF_COMPONENT_TYPE_DOUBLE: return 8;
+    default: return 0;
+    }
+}
+
+const char *typeName(int type)
+{
+    switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+    case TINYGLTF_TYPE_VEC2: return "VEC2";
+    case TINYGLTF_TYPE_VEC3: return "VEC3";
+    case TINYGLTF_TYPE_VEC4: return "VEC4";
+    case TINYGLTF_TYPE_MAT2: return "MAT2";
+    case TINYGLTF_TYPE_MAT3: return "MAT3";
+    case TINYGLTF_TYPE_MAT4: return "MAT4";
+    default: return "unknown";
+    }
+}
+
+class Loader {
+public:
+    Loader(const std::string &path, const tinygltf::Model &model, Scene &scene)
+        : path_(path), model_(model), scene_(scene)
+    {
+    }
+
+    void run()
+    {
+        if (model_.scenes.empty()) fail(path_, "the file has no scenes (nothing to show)");
+        int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+        if (sceneIndex >= static_cast<int>(model_.scenes.size()))
+            fail(path_, "\"scene\" is " + std::to_string(sceneIndex) + " but there are only " +
+                            std::to_string(model_.scenes.size()) + " scenes");
+        const tinygltf::Scene &scene = model_.scenes[sceneIndex];
+        scene_.name = scene.name;
+        onPath_.assign(model_.nodes.size(), false);
+        for (int root : scene.nodes) visit(root, Mat4{}, 0);
+        std::string skipped;
+        if (skippedPrimitives_)
+            skipped = std::to_string(skippedPrimitives_) + " non-triangle primitive(s) (mode " +
+                      std::to_string(skippedMode_) + ") skipped: only triangles are supported";
+        if (scene_.positions.empty())
+            fail(path_, "scene " + std::to_string(sceneIndex) + " has no triangle meshes" +
+                            (skipped.empty() ? "" : " (" + skipped + ")"));
+        if (!skipped.empty()) std::fprintf(stderr, "viewer: %s: %s\n", path_.c_str(), skipped.c_str());
+    }
+
+private:
+    // Validates accessor `index` as `expectedType` with one of `componentTypes`, returns where its bytes are.
+    AccessorData accessor(int index, const char *what, int expectedType, std::initializer_list<int> componentTypes)
+    {
+        std::string name = std::string(what) + " accessor " + std::to_string(index);
+        if (index < 0 || index >= static_cast<int>(model_.accessors.size()))
+            fail(path_, name + " does not exist (" + std::to_string(model_.accessors.size()) + " accessors)");
+        const tinygltf::Accessor &a = model_.accessors[index];
+        if (a.type != expectedType)
+            fail(path_, name + " has type " + typeName(a.type) + ", expected " + typeName(expectedType));
+        if (std::find(componentTypes.begin(), componentTypes.end(), a.componentType) == componentTypes.end())
+            fail(path_, name + " has unsupported componentType " + std::to_string(a.componentType));
+        if (a.sparse.isSparse) fail(path_, name + " is sparse (not supported)");
+        if (a.bufferView < 0 || a.bufferView >= static_cast<int>(model_.bufferViews.size()))
+            fail(path_, name + " has no valid bufferView (accessors without data are not supported)");
+        if (a.count == 0) fail(path_, name + " has count 0");
+        const tinygltf::BufferView &view = model_.bufferViews[a.bufferView];
+        if (view.buffer < 0 || view.buffer >= static_cast<int>(model_.buffers.size()))
+            fail(path_, "bufferView " + std::to_string(a.bufferView) + " refers to a missing buffer");
+        const std::vector<unsigned char> &data = model_.buffers[view.buffer].data;
+        // Every comparison is arranged so that no sum can overflow, whatever the file says.
+        if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
+            fail(path_, "bufferView " + std::to_string(a.bufferView) + " (offset " + std::to_string(view.byteOffset) +
+                            ", length " + std::to_string(view.byteLength) + ") does not fit in buffer " +
+                            std::to_string(view.buffer) + " of " + std::to_string(data.size()) + " bytes");
+        size_t components = a.type == TINYGLTF_TYPE_SCALAR ? 1 : a.type == TINYGLTF_TYPE_VEC3 ? 3 : 0;
+        size_t elementSize = componentSize(a.componentType) * components;
+        size_t stride = view.byteStride ? view.byteStride : elementSize;
+        if (elementSize == 0 || stride < elementSize)
+            fail(path_, name + ": byteStride " + std::to_string(view.byteStride) + " is smaller than an element");
+        if (a.byteOffset > view.byteLength || elementSize > view.byteLength - a.byteOffset ||
+            (a.count - 1) > (view.byteLength - a.byteOffset - elementSize) / stride)
+            fail(path_, name + " (" + std::to_string(a.count) + " elements from offset " + std::to_string(a.byteOffset) +
+                            ") does not fit in its bufferView of " + std::to_string(view.byteLength) + " bytes");
+        return {data.data() + view.byteOffset + a.byteOffset, stride, a.count, a.componentType};
+    }
+
+    static Vec3 readVec3(const AccessorData &d, size_t i)
+    {
+        float v[3];
+        std::memcpy(v, d.base + i * d.stride, sizeof v);  // memcpy: glTF data need not be aligned for us
+        return {v[0], v[1], v[2]};
+    }
+
+    static uint32_t readIndex(const AccessorData &d, size_t i)
+    {
+        const uint8_t *p = d.base + i * d.stride;
+        if (d.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) return *p;
+        if (d.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+            uint16_t v;
+            std::memcpy(&v, p, 2);
+            return v;
+        }
+        uint32_t v;
+        std::memcpy(&v, p, 4);
+        return v;
+    }
+
+    Mat4 localTransform(const tinygltf::Node &node, int index)
+    {
+        std::string name = "node " + std::to_string(index);
+        Mat4 m;
+        if (!node.matrix.empty()) {
+            if (node.matrix.size() != 16) fail(path_, name + ": matrix must have 16 numbers");
+            for (int i = 0; i < 16; i++) m.m[i] = static_cast<float>(node.matrix[i]);
+        } else {
+            auto check = [&](const std::vector<double> &v, size_t n, const char *field) {
+                if (!v.empty() && v.size() != n)
+                    fail(path_, name + ": " + field + " must have " + std::to_string(n) + " numbers");
+            };
+            check(node.translation, 3, "translation");
+            check(node.rotation, 4, "rotation");
+            check(node.scale, 3, "scale");
+            Vec3 t = node.translation.empty() ? Vec3{} : Vec3{float(node.translation[0]), float(node.translation[1]),
+                                                              float(node.translation[2])};
+            Vec3 s = node.scale.empty() ? Vec3{1, 1, 1}
+                                        : Vec3{float(node.scale[0]), float(node.scale[1]), float(node.scale[2])};
+            float x = 0, y = 0, z = 0, w = 1;
+            if (!node.rotation.empty()) {
+                x = float(node.rotation[0]), y = float(node.rotation[1]), z = float(node.rotation[2]);
+                w = float(node.rotation[3]);
+                float n = std::sqrt(x * x + y * y + z * z + w * w);
+                if (!(n > 0) || !std::isfinite(n)) fail(path_, name + ": rotation is not a valid quaternion");
+                x /= n, y /= n, z /= n, w /= n;
+            }
+            // M = T * R * S (glTF's order), the rotation matrix from the unit quaternion.
+            const float r[3][3] = {
+                {1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
+                {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
+                {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)},
+            };
+            const float sc[3] = {s.x, s.y, s.z};
+            for (int row = 0; row < 3; row++)
+                for (int col = 0; col < 3; col++) m.at(row, col) = r[row][col] * sc[col];
+            m.at(0, 3) = t.x, m.at(1, 3) = t.y, m.at(2, 3) = t.z;
+        }
+        if (!m.isFinite()) fail(path_, name + ": transform contains a non-finite number");
+        return m;
+    }
+
+    void visit(int index, const Mat4 &parent, int depth)
+    {
+        if (index < 0 || index >= static_cast<int>(model_.nodes.size()))
+            fail(path_, "node " + std::to_string(index) + " does not exist");
+        if (onPath_[index]) fail(path_, "node " + std::to_string(index) + " is its own ancestor (cycle)");
+        if (depth > 1000) fail(path_, "node hierarchy deeper than 1000 levels");
+        onPath_[index] = true;
+        const tinygltf::Node &node = model_.nodes[index];
+        Mat4 world = parent * localTransform(node, index);
+        if (!world.isFinite()) fail(path_, "node " + std::to_string(index) + ": world transform overflows");
+        if (node.mesh >= 0) {
+            if (node.mesh >= static_cast<int>(model_.meshes.size()))
+                fail(path_, "node " + std::to_string(index) + " refers to missing mesh " + std::to_string(node.mesh));
+            addMesh(model_.meshes[node.mesh], node.mesh, world);
+        }
+        if (node.camera >= 0 && !scene_.hasCamera && node.camera < static_cast<int>(model_.cameras.size()) &&
+            model_.cameras[node.camera].type == "perspective") {
+            double yfov = model_.cameras[node.camera].perspective.yfov;
+            if (yfov > 0.01 && yfov < 3.0) {
+                scene_.hasCamera = true;
+                scene_.cameraToWorld = world;
+                scene_.cameraYFov = static_cast<float>(yfov);
+            }
+        }
+        for (int child : node.children) visit(child, world, depth + 1);
+        onPath_[index] = false;
+    }
+
+    uint32_t materialColor(int material)
+    {
+        float c[3] = {0.8f, 0.8f, 0.8f};
+        if (material >= 0 && material < static_cast<int>(model_.materials.size())) {
+            const std::vector<double> &f = model_.materials[material].pbrMetallicRoughness.baseColorFactor;
+            for (int i = 0; i < 3 && f.size() == 4; i++)
+                c[i] = std::isfinite(f[i]) ? static_cast<float>(std::clamp(f[i], 0.0, 1.0)) : 0.8f;
+        }
+        uint32_t packed = 0xff000000u;
+        for (int i = 0; i < 3; i++) packed |= static_cast<uint32_t>(c[i] * 255.0f + 0.5f) << (8 * i);
+        return packed;
+    }
+
+    void addMesh(const tinygltf::Mesh &mesh, int meshIndex, const Mat4 &world)
+    {
+        // Normals transform with the inverse transpose of the upper 3x3.
+        Mat4 normalMatrix;
+        Mat4 inv;
+        bool invertible = inverse(world, inv);
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++) normalMatrix.at(r, c) = invertible ? inv.at(c, r) : world.at(r, c);
+
+        for (size_t p = 0; p < mesh.primitives.size(); p++) {
+            const tinygltf::Primitive &prim = mesh.primitives[p];
+            std::string name = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(p);
+            if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES) {  // points, lines, strips, fans
+                skippedPrimitives_++;
+                skippedMode_ = prim.mode;
+                continue;
+            }
+            auto pos = prim.attributes.find("POSITION");
+            if (pos == prim.attributes.end()) fail(path_, name + " has no POSITION attribute");
+            AccessorData positions = accessor(pos->second, "POSITION", TINYGLTF_TYPE_VEC3,
+                                              {TINYGLTF_COMPONENT_TYPE_FLOAT});
+            AccessorData normals;
+            auto nor = prim.attributes.find("NORMAL");
+            if (nor != prim.attributes.end()) {
+                normals = accessor(nor->second, "NORMAL", TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT});
+                if (normals.count != positions.count)
+                    fail(path_, name + ": NORMAL has " + std::to_string(normals.count) + " elements, POSITION " +
+                                    std::to_string(positions.count));
+            }
+            for (size_t i = 0; i < positions.count; i++)
+                if (!isFinite(readVec3(positions, i)))
+                    fail(path_, name + ": POSITION " + std::to_string(i) + " is not finite");
+
+            std::vector<uint32_t> indices;
+            if (prim.indices >= 0) {
+                AccessorData idx = accessor(prim.indices, "indices", TINYGLTF_TYPE_SCALAR,
+                                            {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                             TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                                             TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT});
+                if (idx.count % 3 != 0)
+                    fail(path_, name + ": index count " + std::to_string(idx.count) + " is not a multiple of 3");
+                indices.resize(idx.count);
+                for (size_t i = 0; i < idx.count; i++) {
+                    indices[i] = readIndex(idx, i);
+                    if (indices[i] >= positions.count)
+                        fail(path_, name + ": index " + std::to_string(i) + " is " + std::to_string(indices[i]) +
+                                        ", out of range for " + std::to_string(positions.count) + " vertices");
+                }
+            } else {
+                if (positions.count % 3 != 0)
+                    fail(path_, name + ": " + std::to_string(positions.count) +
+                                    " vertices without indices is not a multiple of 3");
+                indices.resize(positions.count);
+                for (size_t i = 0; i < positions.count; i++) indices[i] = static_cast<uint32_t>(i);
+            }
+
+            uint32_t color = materialColor(prim.material);
+            for (size_t t = 0; t < indices.size(); t += 3) {
+                Vec3 v[3], n[3];
+                for (int k = 0; k < 3; k++) v[k] = world.transformPoint(readVec3(positions, indices[t + k]));
+                if (!isFinite(v[0]) || !isFinite(v[1]) || !isFinite(v[2]))
+                    fail(path_, name + ": a transformed position overflows");
+                Vec3 geometric = normalize(cross(v[1] - v[0], v[2] - v[0]));
+                if (length(geometric) == 0) continue;  // degenerate: invisible to rays anyway
+                for (int k = 0; k < 3; k++) {
+                    n[k] = geometric;
+                    if (normals.base) {
+                        Vec3 local = readVec3(normals, indices[t + k]);
+                        Vec3 w = normalize(normalMatrix.transformPoint(local));  // no translation part
+                        if (isFinite(w) && length(w) > 0.5f) n[k] = w;  // keeps the face normal for bad normals
+                    }
+                    scene_.positions.push_back(v[k]);
+                    scene_.normals.push_back(n[k]);
+                }
+                scene_.albedo.push_back(color);
+            }
+        }
+    }
+
+    const std::string &path_;
+    const tinygltf::Model &model_;
+    Scene &scene_;
+    std::vector<bool> onPath_;
+    size_t skippedPrimitives_ = 0;
+    int skippedMode_ = 0;
+};
+
+}  // namespace
+
+Scene loadGltfScene(const std::string &path)
+{
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) fail(path, "cannot open file");
+    char magic[4] = {};
+    probe.read(magic, 4);
+    // Decide by content rather than extension: a .glb starts with "glTF".
+    bool binary = probe.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;
+    probe.close();
+
+    tinygltf::TinyGLTF gltf;
+    gltf.SetImageLoader(skipImage, nullptr);
+    tinygltf::Model model;
+    std::string err, warn;
+    bool ok = binary ? gltf.LoadBinaryFromFile(&model, &err, &warn, path)
+                     : gltf.LoadASCIIFromFile(&model, &err, &warn, path);
+    if (!ok) fail(path, err.empty() ? "tinygltf could not load the file" : err);
+
+    Scene scene;
+    Loader(path, model, scene).run();
+
+    scene.boundsMin = scene.boundsMax = scene.positions[0];
+    for (const Vec3 &p : scene.positions) {
+        scene.boundsMin = vmin(scene.boundsMin, p);
+        scene.boundsMax = vmax(scene.boundsMax, p);
+    }
+    if (!isFinite(scene.boundsMax - scene.boundsMin) || length(scene.boundsMax - scene.boundsMin) > 1e15f)
+        fail(path, "the scene's extent is too large to render");
+    return scene;
+}

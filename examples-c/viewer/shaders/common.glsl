@@ -1,0 +1,212 @@
+// common.glsl: the resources every viewer pass shares (one descriptor set layout for all of them), the BVH
+// traversal and the shadow-ray sampling. Included by every .comp file.
+
+// ---- Per-frame constants (host struct FrameConstants in renderer.cpp; std140) ----
+layout(set = 0, binding = 0, std140) uniform FrameConstants {
+    mat4 viewProj;      // world -> clip (Vulkan: uv (0,0) top-left = NDC (-1,-1), depth 0..1)
+    mat4 invViewProj;   // clip -> world
+    mat4 prevViewProj;  // last frame's world -> clip, for the motion vectors
+    vec4 eye;           // xyz: camera position
+    vec4 light;         // xyz: direction towards the light (directional) or its position (point); w: 1 = point
+    vec4 lightParams;   // x: tan(angular radius) (directional) or light radius (point); y: ambient;
+                        // z: shadow-ray offset at the camera; w: scene radius (the offset grows with distance)
+    uvec4 size;         // x, y: render size; z, w: hit-mask size in tiles
+    uvec4 info;         // x: frame index; y: reference samples accumulated so far
+    vec4 skyColor;
+} frame;
+
+// ---- Scene: the BVH and its triangles (storage buffers; host structs in bvh.h / renderer.cpp) ----
+layout(set = 0, binding = 1, std430) readonly buffer BvhNodes { vec4 bvhNodes[]; };  // 2 per node
+layout(set = 0, binding = 2, std430) readonly buffer TriGeometry { vec4 triGeometry[]; };  // v0, e1, e2
+layout(set = 0, binding = 3, std430) readonly buffer TriShading { vec4 triShading[]; };  // n0 (w: albedo), n1, n2
+
+// ---- Images (all in layout GENERAL) ----
+layout(set = 0, binding = 4, rgba32f) uniform image2D rayOriginImage;  // xyz: shadow-ray origin; w: 1 = surface
+layout(set = 0, binding = 5, r32f) uniform image2D depthImage;         // NDC depth, sky = 1
+layout(set = 0, binding = 6, rgba16f) uniform image2D normalImage;     // world normal (xyz), 0 for sky
+layout(set = 0, binding = 7, rgba16f) uniform image2D velocityImage;   // prev_uv - uv (xy)
+layout(set = 0, binding = 8, rgba8) uniform image2D albedoImage;       // base colour
+layout(set = 0, binding = 9, r32ui) uniform uimage2D hitMaskImage;     // one bit per pixel, 1 = occluded
+layout(set = 0, binding = 10, r32f) uniform image2D denoisedImage;     // dnsr's output, 1 = lit
+layout(set = 0, binding = 11, r32f) uniform image2D referenceImage;    // sum of reference visibility samples
+layout(set = 0, binding = 12, rgba8) uniform image2D displayImage;     // what the window or a PNG shows
+
+layout(push_constant) uniform PushConstants {
+    uint mode;         // composite.comp: what to display
+    uint sampleBase;   // reference.comp: first sample index of this dispatch
+    uint sampleCount;  // reference.comp: samples per pixel in this dispatch
+    uint pad;
+} pc;
+
+const float kInfinity = 1e30;
+const uint kStackSize = 48;  // = kBvhMaxDepth in bvh.h: the builder never goes deeper
+
+// ---- Ray / BVH traversal ----
+
+// Distance to an AABB along the ray, or kInfinity when missed or farther than tMax.
+float rayBox(vec3 origin, vec3 invDir, vec3 bmin, vec3 bmax, float tMax)
+{
+    vec3 t0 = (bmin - origin) * invDir;
+    vec3 t1 = (bmax - origin) * invDir;
+    vec3 tSmall = min(t0, t1), tLarge = max(t0, t1);
+    float tNear = max(max(tSmall.x, tSmall.y), max(tSmall.z, 0.0));
+    float tFar = min(min(tLarge.x, tLarge.y), min(tLarge.z, tMax));
+    return tNear <= tFar ? tNear : kInfinity;
+}
+
+// Moller-Trumbore, double-sided. Returns the distance, or kInfinity.
+float rayTriangle(uint tri, vec3 origin, vec3 dir, float tMax, out vec2 bary)
+{
+    vec3 v0 = triGeometry[3 * tri].xyz, e1 = triGeometry[3 * tri + 1].xyz, e2 = triGeometry[3 * tri + 2].xyz;
+    vec3 p = cross(dir, e2);
+    float det = dot(e1, p);
+    bary = vec2(0.0);
+    if (abs(det) < 1e-12) return kInfinity;
+    float invDet = 1.0 / det;
+    vec3 s = origin - v0;
+    float u = dot(s, p) * invDet;
+    if (u < 0.0 || u > 1.0) return kInfinity;
+    vec3 q = cross(s, e1);
+    float v = dot(dir, q) * invDet;
+    if (v < 0.0 || u + v > 1.0) return kInfinity;
+    float t = dot(e2, q) * invDet;
+    bary = vec2(u, v);
+    return (t > 0.0 && t < tMax) ? t : kInfinity;
+}
+
+// Closest hit (anyHit = false) or any hit (anyHit = true, for shadow rays) along origin + t * dir, t < tMax.
+// Returns whether something was hit; hitTri / hitT / hitBary describe the closest hit found.
+bool traceRay(vec3 origin, vec3 dir, float tMax, bool anyHit, out uint hitTri, out float hitT, out vec2 hitBary)
+{
+    // A zero direction component would give 0 * inf = NaN in rayBox; nudge it instead.
+    vec3 safeDir = mix(dir, vec3(1e-20), lessThan(abs(dir), vec3(1e-20)));
+    vec3 invDir = 1.0 / safeDir;
+    hitTri = 0u;
+    hitT = tMax;
+    hitBary = vec2(0.0);
+    bool hit = false;
+    if (rayBox(origin, invDir, bvhNodes[0].xyz, bvhNodes[1].xyz, tMax) == kInfinity) return false;
+
+    uint stack[kStackSize];
+    uint stackSize = 0u;
+    uint node = 0u;
+    while (true) {
+        vec4 a = bvhNodes[2u * node], b = bvhNodes[2u * node + 1u];
+        uint first = floatBitsToUint(a.w), count = floatBitsToUint(b.w);
+        if (count > 0u) {  // leaf
+            for (uint i = first; i < first + count; i++) {
+                vec2 bary;
+                float t = rayTriangle(i, origin, dir, hitT, bary);
+                if (t < hitT) {
+                    hit = true;
+                    hitT = t;
+                    hitTri = i;
+                    hitBary = bary;
+                    if (anyHit) return true;
+                }
+            }
+        } else {  // interior: visit the nearer child first, keep the other for later
+            uint left = first, right = first + 1u;
+            float tLeft = rayBox(origin, invDir, bvhNodes[2u * left].xyz, bvhNodes[2u * left + 1u].xyz, hitT);
+            float tRight = rayBox(origin, invDir, bvhNodes[2u * right].xyz, bvhNodes[2u * right + 1u].xyz, hitT);
+            if (tRight < tLeft) {
+                uint n = left; left = right; right = n;
+                float t = tLeft; tLeft = tRight; tRight = t;
+            }
+            if (tLeft != kInfinity) {
+                if (tRight != kInfinity && stackSize < kStackSize) stack[stackSize++] = right;
+                node = left;
+                continue;
+            }
+        }
+        if (stackSize == 0u) break;
+        node = stack[--stackSize];
+    }
+    return hit;
+}
+
+// ---- Sampling ----
+
+// R2 low-discrepancy sequence (Roberts 2018) in 0.32 fixed point: exact for any index, no float drift.
+uvec2 r2Fixed(uint index)
+{
+    return uvec2(3242174889u, 2447445413u) * index + uvec2(2147483648u);  // (1/g, 1/g^2) * 2^32, g = 1.3247...
+}
+
+// A per-pixel hash (pcg2d, Jarzynski & Olano 2020) decorrelating the pixels' sequences.
+uvec2 pcg2d(uvec2 v)
+{
+    v = v * 1664525u + 1013904223u;
+    v.x += v.y * 1664525u;
+    v.y += v.x * 1664525u;
+    v ^= v >> 16u;
+    v.x += v.y * 1664525u;
+    v.y += v.x * 1664525u;
+    v ^= v >> 16u;
+    return v;
+}
+
+// Sample `index` of pixel `pixel`'s sequence in [0,1)^2: the R2 sequence shifted by a random per-pixel offset
+// (Cranley-Patterson rotation), so each pixel's samples stay well spread over frames.
+vec2 sample2D(uvec2 pixel, uint index, uint seed)
+{
+    uvec2 u = r2Fixed(index) + pcg2d(pixel ^ uvec2(seed, seed * 7919u));  // wraps mod 2^32 = fract()
+    return vec2(u >> 8u) * (1.0 / 16777216.0);
+}
+
+// Uniform point on the unit disk (Shirley-Chiu concentric map: keeps the sequence's stratification).
+vec2 concentricDisk(vec2 u)
+{
+    vec2 o = 2.0 * u - 1.0;
+    if (o.x == 0.0 && o.y == 0.0) return vec2(0.0);
+    float r, phi;
+    if (abs(o.x) > abs(o.y)) {
+        r = o.x;
+        phi = 0.78539816 * (o.y / o.x);
+    } else {
+        r = o.y;
+        phi = 1.57079633 - 0.78539816 * (o.x / o.y);
+    }
+    return r * vec2(cos(phi), sin(phi));
+}
+
+// Direction towards the light's centre from p, and the distance to it (kInfinity for a directional light).
+vec3 lightDirection(vec3 p, out float dist)
+{
+    if (frame.light.w == 0.0) {
+        dist = kInfinity;
+        return frame.light.xyz;
+    }
+    vec3 d = frame.light.xyz - p;
+    dist = length(d);
+    return d / dist;
+}
+
+// One shadow ray from `origin` (a surface point already nudged off its surface) with shading normal n, towards
+// a point of the light chosen by u: within a cone of the light's angular radius for a directional light, on the
+// disk of the light sphere facing the point for a point light. Returns 1 when lit, 0 when occluded. A surface
+// facing away from the light counts as occluded, as a ray through the object would find.
+float shadowSample(vec3 origin, vec3 n, vec2 u)
+{
+    float dist;
+    vec3 l = lightDirection(origin, dist);
+    if (dot(n, l) <= 0.0) return 0.0;
+    vec3 t = normalize(abs(l.x) > 0.9 ? cross(l, vec3(0, 1, 0)) : cross(l, vec3(1, 0, 0)));
+    vec3 b = cross(l, t);
+    vec2 d = concentricDisk(u);
+    vec3 dir;
+    float tMax;
+    if (frame.light.w == 0.0) {
+        dir = normalize(l + (d.x * t + d.y * b) * frame.lightParams.x);
+        tMax = kInfinity;
+    } else {
+        vec3 target = frame.light.xyz + (d.x * t + d.y * b) * frame.lightParams.x;
+        dir = target - origin;
+        tMax = length(dir);
+        dir /= tMax;
+    }
+    uint tri;
+    float hitT;
+    vec2 bary;
+    return traceRay(origin, dir, tMax, true, tri, hitT, bary) ? 0.0 : 1.0;
+}

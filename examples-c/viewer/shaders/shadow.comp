@@ -1,0 +1,28 @@
+#version 450
+// shadow.comp: ONE jittered shadow ray per pixel, packed into dnsr's hit mask. One invocation per 8x4 tile
+// traces the tile's 32 rays and writes the tile's word once: no atomics and no subgroup operations, so the
+// result does not depend on the device's subgroup size. Bit (y % 4) * 8 + (x % 8) is set when the ray hit an
+// occluder (the FidelityFX convention, DNSR_HIT_MASK_OCCLUDED_BITS); sky pixels stay 0 (not occluded).
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+void main()
+{
+    uvec2 tile = gl_GlobalInvocationID.xy;
+    if (any(greaterThanEqual(tile, frame.size.zw))) return;
+    uint mask = 0u;
+    for (uint bit = 0u; bit < 32u; bit++) {
+        uvec2 pixel = tile * uvec2(8u, 4u) + uvec2(bit % 8u, bit / 8u);
+        if (any(greaterThanEqual(pixel, frame.size.xy))) continue;  // partial tile at the right/bottom edge
+        vec4 origin = imageLoad(rayOriginImage, ivec2(pixel));
+        if (origin.w == 0.0) continue;  // sky
+        vec3 n = imageLoad(normalImage, ivec2(pixel)).xyz;
+        // This frame's sample of the pixel's sequence: successive frames walk the R2 sequence, so the
+        // denoiser's temporal accumulation sees well-spread samples rather than white noise.
+        vec2 u = sample2D(pixel, frame.info.x, 0x9e3779b9u);
+        if (shadowSample(origin.xyz, n, u) == 0.0) mask |= 1u << bit;
+    }
+    imageStore(hitMaskImage, ivec2(tile), uvec4(mask));
+}

@@ -517,6 +517,11 @@ typedef struct DnsrHostSync {
 } DnsrHostSync;
 
 /**
+ * What the output shows (DebugView in the Rust API).
+ */
+typedef uint32_t DnsrDebugView;
+
+/**
  * One frame of one light: the FidelityFX dispatch description plus dnsr's additions. Matrices are column-major
  * float[16] mapping column vectors; clip space is Vulkan's (uv (0,0) top-left = NDC (-1,-1), depth 0..1).
  */
@@ -618,6 +623,10 @@ typedef struct DnsrShadowsDispatch {
    * Optional barriers on the host's behalf.
    */
   struct DnsrHostSync sync;
+  /**
+   * DNSR_DEBUG_VIEW_NONE (0, the shadow) or a debug view of dnsr's internal state written to the output.
+   */
+  DnsrDebugView debugView;
 } DnsrShadowsDispatch;
 
 /**
@@ -971,6 +980,36 @@ typedef int32_t Coord[2];
  * Forces 32 bits.
  */
 #define DNSR_DISPATCH_MAX_ENUM 2147483647
+
+/**
+ * The denoised shadow.
+ */
+#define DNSR_DEBUG_VIEW_NONE 0
+
+/**
+ * Tile classification: 1 cleared lit, 0 cleared shadowed, 0.5 filtered, 0.75 sky.
+ */
+#define DNSR_DEBUG_VIEW_TILE_CLASSIFICATION 1
+
+/**
+ * Temporal sample count / maxHistorySamples.
+ */
+#define DNSR_DEBUG_VIEW_SAMPLE_COUNT 2
+
+/**
+ * Standard deviation of the filtered estimate, clamped to [0, 1].
+ */
+#define DNSR_DEBUG_VIEW_VARIANCE 3
+
+/**
+ * 1 where the history restarted this frame (disocclusion, reset or rejection), else 0.
+ */
+#define DNSR_DEBUG_VIEW_DISOCCLUSION 4
+
+/**
+ * Forces 32 bits.
+ */
+#define DNSR_DEBUG_VIEW_MAX_ENUM 2147483647
 
 /**
  * An internal image.

@@ -96,6 +96,8 @@ layout(set = 0, binding = 15) uniform texture2D dnsr_filter_input;
 layout(set = 0, binding = 16, DNSR_INTERMEDIATE_FORMAT) uniform writeonly image2D dnsr_filter_output;
 #ifdef DNSR_FINAL_PASS
 layout(set = 0, binding = 17, DNSR_OUTPUT_FORMAT) uniform writeonly image2D dnsr_output;
+// This frame's moments, read only by the debug views.
+layout(set = 0, binding = 18) uniform texture2D dnsr_debug_moments;
 #endif
 
 int dnsr_get_filter_step() { return int(dnsr_push.pass.x); }
@@ -105,6 +107,8 @@ vec2 dnsr_read_filter_input(ivec2 p) { return texelFetch(dnsr_filter_input, p + 
 void dnsr_write_filter_output(ivec2 p, vec2 mean_var) { imageStore(dnsr_filter_output, p + dnsr_get_offset(), vec4(mean_var, 0.0, 0.0)); }
 #ifdef DNSR_FINAL_PASS
 void dnsr_write_output(ivec2 p, float shadow) { imageStore(dnsr_output, p + dnsr_get_offset(), vec4(shadow)); }
+uint dnsr_get_debug_view() { return dnsr_push.pass.w; }
+vec3 dnsr_read_debug_moments(ivec2 p) { return texelFetch(dnsr_debug_moments, p + dnsr_get_offset(), 0).xyz; }
 #endif
 #endif
 

@@ -44,11 +44,27 @@ float dnsr_blurred_variance(ivec2 s) {
     return sum / weight;
 }
 
-void dnsr_filter_write(ivec2 p, vec2 result) {
+#ifdef DNSR_FINAL_PASS
+// The debug views: what the output shows instead of the shadow (see DebugView in src/dispatch.rs).
+float dnsr_debug_value(uint view, ivec2 p, bool receiver, uint meta, vec2 result) {
+    bool cleared = (meta & DNSR_TILE_CLEARED) != 0u;
+    if (view == DNSR_DEBUG_VIEW_TILE_CLASSIFICATION) {
+        return !receiver ? 0.75 : (!cleared ? 0.5 : ((meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0));
+    }
+    if (view == DNSR_DEBUG_VIEW_VARIANCE) return clamp(sqrt(max(result.y, 0.0)), 0.0, 1.0);
+    float n = receiver ? dnsr_read_debug_moments(p).z : 0.0;
+    if (view == DNSR_DEBUG_VIEW_SAMPLE_COUNT) return clamp(n / dnsr_get_temporal_settings().z, 0.0, 1.0);
+    return receiver && !cleared && n <= 1.0 ? 1.0 : 0.0; // DNSR_DEBUG_VIEW_DISOCCLUSION
+}
+#endif
+
+void dnsr_filter_write(ivec2 p, vec2 result, bool receiver, uint meta) {
     if (dnsr_get_write_internal()) dnsr_write_filter_output(p, result);
 #ifdef DNSR_FINAL_PASS
+    uint view = dnsr_get_debug_view();
     float contrast = dnsr_get_filter_settings().z;
-    dnsr_write_output(p, pow(result.x, max(contrast - result.y, 1.0)));
+    dnsr_write_output(p, view == DNSR_DEBUG_VIEW_NONE ? pow(result.x, max(contrast - result.y, 1.0))
+                                                      : dnsr_debug_value(view, p, receiver, meta, result));
 #endif
 }
 
@@ -70,7 +86,9 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     uint meta_bottom = origin.y + 4 < dnsr_get_extent().y ? dnsr_read_tile_meta(tile + ivec2(0, 1)) : meta_top;
     if ((meta_top & meta_bottom & DNSR_TILE_CLEARED) != 0u) {
         if (!dnsr_inside(p)) return;
-        dnsr_filter_write(p, dnsr_cleared_value(dnsr_is_receiver(dnsr_read_depth(p)), lid.y < 4 ? meta_top : meta_bottom));
+        bool receiver = dnsr_is_receiver(dnsr_read_depth(p));
+        uint meta = lid.y < 4 ? meta_top : meta_bottom;
+        dnsr_filter_write(p, dnsr_cleared_value(receiver, meta), receiver, meta);
         return;
     }
 
@@ -122,7 +140,7 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
         }
         result = vec2(clamp(mean_sum / weight_sum, 0.0, 1.0), max(var_sum / (weight_sum * weight_sum), 0.0));
     }
-    dnsr_filter_write(p, result);
+    dnsr_filter_write(p, result, s_depth[center] >= 0.0, meta);
 }
 
 #endif

@@ -77,7 +77,7 @@ gpu_block! {
 gpu_block! {
     /// Push constants of one filter pass.
     pub(crate) struct FilterPush as "DnsrFilterPush" {
-        /// x: tap step in pixels; y: DNSR_PASS_* bits; zw: unused.
+        /// x: tap step in pixels; y: DNSR_PASS_* bits; z: pass index; w: DNSR_DEBUG_VIEW_* (final pass).
         pass: [u32; 4],
     }
 }
@@ -98,6 +98,11 @@ pub(crate) const GLSL_FLAGS: &[(&str, u32)] = &[
     ("DNSR_TILE_CLEARED", crate::passes::TILE_CLEARED),
     ("DNSR_TILE_LIT", crate::passes::TILE_LIT),
     ("DNSR_MAX_FILTER_STEP", crate::passes::filter::MAX_STEP),
+    ("DNSR_DEBUG_VIEW_NONE", crate::dispatch::DebugView::None as u32),
+    ("DNSR_DEBUG_VIEW_TILE_CLASSIFICATION", crate::dispatch::DebugView::TileClassification as u32),
+    ("DNSR_DEBUG_VIEW_SAMPLE_COUNT", crate::dispatch::DebugView::SampleCount as u32),
+    ("DNSR_DEBUG_VIEW_VARIANCE", crate::dispatch::DebugView::Variance as u32),
+    ("DNSR_DEBUG_VIEW_DISOCCLUSION", crate::dispatch::DebugView::Disocclusion as u32),
 ];
 
 /// The complete text of `shaders/generated/dnsr_constants.glsl`.

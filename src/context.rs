@@ -472,7 +472,7 @@ impl Context {
         for p in 0..passes {
             barrier::compute_to_compute(dev, cmd);
             let pipeline = filter_pipeline(p);
-            let push = filter::push_constants(p, passes);
+            let push = filter::push_constants(p, passes, d.debug_view);
             unsafe {
                 dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.pipeline);
                 dev.cmd_push_constants(cmd, pipeline.layout, vk::ShaderStageFlags::COMPUTE, 0, bytemuck::bytes_of(&push));

@@ -31,6 +31,23 @@ pub enum HitMaskConvention {
     LitBits,
 }
 
+/// What the output image shows. Anything but `None` replaces the shadow with a visualisation of dnsr's
+/// internal state, for finding out why an integration looks wrong.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum DebugView {
+    /// The denoised shadow.
+    #[default]
+    None,
+    /// Tile classification: 1 cleared lit, 0 cleared shadowed, 0.5 filtered (temporal + spatial work), 0.75 sky.
+    TileClassification,
+    /// Temporal sample count / max_history_samples (1 in cleared tiles, 0 on sky).
+    SampleCount,
+    /// Standard deviation of the filtered estimate, clamped to [0, 1].
+    Variance,
+    /// 1 where the history restarted this frame (disocclusion, reset or rejection: sample count <= 1), else 0.
+    Disocclusion,
+}
+
 /// A pixel rectangle within the render size.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Rect {
@@ -109,6 +126,8 @@ pub struct ShadowsDispatch {
     pub render_rect: Option<Rect>,
     /// Barriers dnsr should emit on the host's behalf.
     pub sync: HostSync,
+    /// What the output shows (the shadow unless a debug view is chosen).
+    pub debug_view: DebugView,
 }
 
 impl Default for ShadowsDispatch {
@@ -133,6 +152,7 @@ impl Default for ShadowsDispatch {
             reset: false,
             render_rect: None,
             sync: HostSync::default(),
+            debug_view: DebugView::None,
         }
     }
 }

@@ -24,7 +24,7 @@ mod validate;
 pub use ash;
 pub use context::{memory_requirements, Context, MIN_API_VERSION};
 pub use create_info::{ContextCreateInfo, DepthFlags, EnabledFeatures, Precision};
-pub use dispatch::{HitMaskConvention, HostImage, HostSync, Rect, ShadowsDispatch};
+pub use dispatch::{DebugView, HitMaskConvention, HostImage, HostSync, Rect, ShadowsDispatch};
 pub use error::{Error, ImageRole, Result};
 pub use glam;
 pub use host::{DebugNamer, GpuAllocation, GpuMemoryAllocator, HostHooks, ResourceKind};

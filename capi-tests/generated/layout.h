@@ -129,6 +129,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, viewProjectionInverse) == 360, 
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, depthSimilaritySigma) == 424, "offsetof(DnsrShadowsDispatch, depthSimilaritySigma)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, renderRect) == 428, "offsetof(DnsrShadowsDispatch, renderRect)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, sync) == 444, "offsetof(DnsrShadowsDispatch, sync)");
+DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, debugView) == 460, "offsetof(DnsrShadowsDispatch, debugView)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrPassTimings) == 88, "sizeof(DnsrPassTimings)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrPassTimings) == 8, "alignof(DnsrPassTimings)");

@@ -62,7 +62,8 @@ const char *kUsage =
     "  --light-angle DEG       angular radius of the light (default 3; sets the penumbra width)\n"
     "  --light-motion          start with the light moving (key L toggles it)\n"
     "  --reference-samples N   shadow rays per pixel of the reference (default 256)\n"
-    "  --view NAME             window mode: first view (noisy, denoised, reference, composite, tiles)\n"
+    "  --view NAME             window mode: first view (noisy, denoised, reference, composite, tiles, or dnsr's\n"
+    "                          debug views classification, samples, variance, disocclusion)\n"
     "  --orbit-speed DEG       headless: camera orbit per frame in degrees (default 0.25; 0 = static)\n"
     "  --validate              enable VK_LAYER_KHRONOS_validation; any message makes the exit status 1\n"
     "environment: VIEWER_DEVICE=<substring of the device name> picks a Vulkan device (default: the first)\n"
@@ -129,10 +130,12 @@ Options parseOptions(int argc, char **argv)
                 throw UsageError(std::string("--orbit-speed wants degrees in -45..45, got '") + v + "'");
         } else if (a == "--view") {
             std::string v = value();
-            const char *names[] = {"noisy", "denoised", "reference", "composite", "tiles"};
+            const char *names[] = {"noisy",          "denoised", "reference", "composite",   "tiles",
+                                   "classification", "samples",  "variance",  "disocclusion"};
             auto it = std::find(std::begin(names), std::end(names), v);
             if (it == std::end(names))
-                throw UsageError("--view wants noisy, denoised, reference, composite or tiles, got '" + v + "'");
+                throw UsageError("--view wants noisy, denoised, reference, composite, tiles, classification, samples, "
+                                 "variance or disocclusion, got '" + v + "'");
             o.view = static_cast<View>(it - std::begin(names));
         } else if (a == "--light-motion") {
             o.lightMotion = true;
@@ -528,6 +531,10 @@ private:
         case GLFW_KEY_3: view_ = View::Reference; break;
         case GLFW_KEY_4: view_ = View::Composite; break;
         case GLFW_KEY_5: view_ = View::TileDensity; break;
+        case GLFW_KEY_6: view_ = View::DnsrTiles; break;
+        case GLFW_KEY_7: view_ = View::DnsrSampleCount; break;
+        case GLFW_KEY_8: view_ = View::DnsrVariance; break;
+        case GLFW_KEY_9: view_ = View::DnsrDisocclusion; break;
         case GLFW_KEY_L: light_.moving = !light_.moving; break;
         default: break;
         }
@@ -605,7 +612,15 @@ private:
 
     void updateTitle(double fps)
     {
-        const char *names[] = {"noisy", "denoised", "reference", "composite", "tile density"};
+        const char *names[] = {"noisy",
+                               "denoised",
+                               "reference",
+                               "composite",
+                               "tile density",
+                               "dnsr tile classification (1 lit, 0 shadow, 0.5 filtered, 0.75 sky)",
+                               "dnsr sample count",
+                               "dnsr variance (std dev)",
+                               "dnsr disocclusion (history restarted)"};
         char title[512];
         const DnsrPassTimings &t = renderer_.dnsrTimings;
         double filter = 0;

@@ -371,11 +371,17 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
     d.sync.inputSrcAccess = VK_ACCESS_SHADER_WRITE_BIT;
     d.sync.outputDstStages = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
     d.sync.outputDstAccess = VK_ACCESS_SHADER_READ_BIT;
+    // Views 5..8 map in order onto DNSR_DEBUG_VIEW_TILE_CLASSIFICATION .. DNSR_DEBUG_VIEW_DISOCCLUSION.
+    bool dnsrView = in.display >= View::DnsrTiles;
+    d.debugView = dnsrView ? DNSR_DEBUG_VIEW_TILE_CLASSIFICATION + (uint32_t(in.display) - uint32_t(View::DnsrTiles))
+                           : DNSR_DEBUG_VIEW_NONE;
     DnsrResult r = dnsr_shadows_record(denoiser_, &d);
     if (r != DNSR_SUCCESS) dnsrFail("dnsr_shadows_record", r);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterDnsr);
 
-    dispatch(cmd, composite_, divUp(w, 8), divUp(h, 8), static_cast<uint32_t>(in.display));
+    // dnsr's debug views land in its output image: shown like the denoised shadow (composite mode 1).
+    uint32_t mode = dnsrView ? uint32_t(View::Denoised) : static_cast<uint32_t>(in.display);
+    dispatch(cmd, composite_, divUp(w, 8), divUp(h, 8), mode);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterComposite);
     // The display image is read next by a blit (window) or a copy (readback).
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,

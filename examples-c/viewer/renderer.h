@@ -17,7 +17,19 @@
 #include "scene_gltf.h"
 #include "vk_context.h"
 
-enum class View : uint32_t { Noisy = 0, Denoised = 1, Reference = 2, Composite = 3, TileDensity = 4 };
+// Views 5..8 ask dnsr itself for a debug view of its internal state (DnsrShadowsDispatch::debugView), shown
+// like the denoised shadow.
+enum class View : uint32_t {
+    Noisy = 0,
+    Denoised = 1,
+    Reference = 2,
+    Composite = 3,
+    TileDensity = 4,
+    DnsrTiles = 5,
+    DnsrSampleCount = 6,
+    DnsrVariance = 7,
+    DnsrDisocclusion = 8,
+};
 
 struct RendererSettings {
     uint32_t width = 0, height = 0;

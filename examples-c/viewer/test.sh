@@ -93,7 +93,15 @@ if command -v xvfb-run >/dev/null; then
     --screenshot "$tmp/reference.png" > "$tmp/window.log" 2>&1 || status=$?
   (( status == 0 )) || { cat "$tmp/window.log"; fail "window run (reference view) exited with status $status"; }
   check_not_blank "$tmp/reference.png"
-  window="window screenshots ok"
+  # dnsr's own debug views (tile classification, sample count, variance, disocclusion) through the C API.
+  for v in classification samples variance disocclusion; do
+    xvfb-run -a -s "-screen 0 1024x768x24" "$viewer" --validate --size 160x96 --frames 3 --view "$v" \
+      --screenshot "$tmp/$v.png" > "$tmp/window.log" 2>&1 || status=$?
+    (( status == 0 )) || { cat "$tmp/window.log"; fail "window run ($v view) exited with status $status"; }
+  done
+  check_not_blank "$tmp/classification.png"
+  check_not_blank "$tmp/samples.png"
+  window="window screenshots ok (composite, reference, 4 dnsr debug views)"
   echo "window: $window"
 fi
 

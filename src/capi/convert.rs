@@ -3,7 +3,7 @@
 use super::boundary::{check_no_next, check_type, CallError, LogSink};
 use super::types::*;
 use crate::create_info::{ContextCreateInfo, DepthFlags, EnabledFeatures, Precision};
-use crate::dispatch::{HitMaskConvention, HostImage, HostSync, Rect, ShadowsDispatch};
+use crate::dispatch::{DebugView, HitMaskConvention, HostImage, HostSync, Rect, ShadowsDispatch};
 use crate::host::{GpuAllocation, GpuMemoryAllocator, HostHooks, ResourceKind};
 use crate::settings::Settings;
 use ash::vk;
@@ -197,8 +197,17 @@ pub(crate) fn dispatch_from_c(c: &DnsrShadowsDispatch) -> Result<(vk::CommandBuf
         DNSR_HIT_MASK_LIT_BITS => HitMaskConvention::LitBits,
         other => return Err(CallError::InvalidArgument(format!("pDispatch->hitMaskConvention {other} is not a DnsrHitMaskConvention"))),
     };
+    let debug_view = match c.debug_view {
+        DNSR_DEBUG_VIEW_NONE => DebugView::None,
+        DNSR_DEBUG_VIEW_TILE_CLASSIFICATION => DebugView::TileClassification,
+        DNSR_DEBUG_VIEW_SAMPLE_COUNT => DebugView::SampleCount,
+        DNSR_DEBUG_VIEW_VARIANCE => DebugView::Variance,
+        DNSR_DEBUG_VIEW_DISOCCLUSION => DebugView::Disocclusion,
+        other => return Err(CallError::InvalidArgument(format!("pDispatch->debugView {other} is not a DnsrDebugView"))),
+    };
     let r = c.render_rect;
     let d = ShadowsDispatch {
+        debug_view,
         light_index: c.light_index,
         hit_mask: image(&c.hit_mask),
         hit_mask_convention,

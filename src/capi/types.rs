@@ -159,6 +159,21 @@ pub const DNSR_DISPATCH_USE_RENDER_RECT: DnsrDispatchFlags = 1 << 1;
 /// Forces 32 bits.
 pub const DNSR_DISPATCH_MAX_ENUM: DnsrDispatchFlags = 0x7FFF_FFFF;
 
+/// What the output shows (DebugView in the Rust API).
+pub type DnsrDebugView = u32;
+/// The denoised shadow.
+pub const DNSR_DEBUG_VIEW_NONE: DnsrDebugView = 0;
+/// Tile classification: 1 cleared lit, 0 cleared shadowed, 0.5 filtered, 0.75 sky.
+pub const DNSR_DEBUG_VIEW_TILE_CLASSIFICATION: DnsrDebugView = 1;
+/// Temporal sample count / maxHistorySamples.
+pub const DNSR_DEBUG_VIEW_SAMPLE_COUNT: DnsrDebugView = 2;
+/// Standard deviation of the filtered estimate, clamped to [0, 1].
+pub const DNSR_DEBUG_VIEW_VARIANCE: DnsrDebugView = 3;
+/// 1 where the history restarted this frame (disocclusion, reset or rejection), else 0.
+pub const DNSR_DEBUG_VIEW_DISOCCLUSION: DnsrDebugView = 4;
+/// Forces 32 bits.
+pub const DNSR_DEBUG_VIEW_MAX_ENUM: DnsrDebugView = 0x7FFF_FFFF;
+
 /// What a GPU allocation is for.
 pub type DnsrResourceKind = u32;
 /// An internal image.
@@ -440,6 +455,8 @@ pub struct DnsrShadowsDispatch {
     pub render_rect: DnsrRect,
     /// Optional barriers on the host's behalf.
     pub sync: DnsrHostSync,
+    /// DNSR_DEBUG_VIEW_NONE (0, the shadow) or a debug view of dnsr's internal state written to the output.
+    pub debug_view: DnsrDebugView,
 }
 
 /// GPU time of each pass of one completed frame, in milliseconds.

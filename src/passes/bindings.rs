@@ -24,9 +24,10 @@ pub(crate) enum Resource {
     FilterInput,
     FilterOutput,
     Output,
+    DebugMoments,
 }
 
-pub(crate) const RESOURCE_COUNT: usize = Resource::Output as usize + 1;
+pub(crate) const RESOURCE_COUNT: usize = Resource::DebugMoments as usize + 1;
 
 /// (GLSL name, resource, descriptor type the shader must declare it as).
 const TABLE: [(&str, Resource, vk::DescriptorType); RESOURCE_COUNT] = [
@@ -48,6 +49,7 @@ const TABLE: [(&str, Resource, vk::DescriptorType); RESOURCE_COUNT] = [
     ("dnsr_filter_input", Resource::FilterInput, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_filter_output", Resource::FilterOutput, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_output", Resource::Output, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_debug_moments", Resource::DebugMoments, vk::DescriptorType::SAMPLED_IMAGE),
 ];
 
 impl Resource {

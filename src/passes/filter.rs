@@ -9,6 +9,7 @@ use super::bindings::{BindingTable, Resource};
 use super::{groups, internal, FrameViews};
 use crate::constants::{FilterPush, PASS_WRITE_INTERNAL};
 use crate::create_info::Precision;
+use crate::dispatch::DebugView;
 use ash::vk;
 
 /// Tap step of the widest pass; sizes the shader's shared-memory apron.
@@ -50,13 +51,15 @@ pub(crate) fn bindings(v: &FrameViews, pass: u32, passes: u32) -> BindingTable {
     t[Resource::FilterOutput as usize] = internal(output(v, pass));
     if is_final(pass, passes) {
         t[Resource::Output as usize] = internal(v.output);
+        t[Resource::DebugMoments as usize] = internal(v.moments);
     }
     t
 }
 
-pub(crate) fn push_constants(pass: u32, passes: u32) -> FilterPush {
+pub(crate) fn push_constants(pass: u32, passes: u32, debug_view: DebugView) -> FilterPush {
     let write_internal = pass == 0 || !is_final(pass, passes);
-    FilterPush { pass: [1 << pass, if write_internal { PASS_WRITE_INTERNAL } else { 0 }, pass, 0] }
+    let view = if is_final(pass, passes) { debug_view as u32 } else { 0 };
+    FilterPush { pass: [1 << pass, if write_internal { PASS_WRITE_INTERNAL } else { 0 }, pass, view] }
 }
 
 pub(crate) fn group_count(extent: [u32; 2]) -> [u32; 3] {

@@ -69,6 +69,7 @@ fn c_dispatch(d: &crate::ShadowsDispatch, cmd: vk::CommandBuffer) -> DnsrShadows
             output_dst_stages: d.sync.output_dst_stages,
             output_dst_access: d.sync.output_dst_access,
         },
+        debug_view: DNSR_DEBUG_VIEW_NONE,
     }
 }
 

@@ -371,3 +371,39 @@ fn depth_attachment_and_packed_normals_match_float_gbuffer() {
     }
     g.assert_clean();
 }
+
+#[test]
+fn debug_views_show_the_internal_state() {
+    use crate::DebugView;
+    let g = gpu();
+    let (w, h) = (48, 32);
+    let mut r = runner(&g, w, h, Precision::Fp32);
+    let cam = Camera::above(0.0, 0.0, 10.0);
+    let view = |r: &mut Runner, f: &FrameInputs, v: DebugView, reset: bool| {
+        r.run(f, &crate::ShadowsDispatch { debug_view: v, reset, ..r.dispatch(f) }).unwrap()
+    };
+    // All lit with sky at the sides: every receiver tile is cleared lit, sky is 0.75.
+    let lit = render(w, h, &cam, &cam, 2.0, &|_, _| 1.0, 1);
+    let out = view(&mut r, &lit, DebugView::TileClassification, true);
+    for i in 0..out.len() {
+        assert_eq!(out[i], if lit.receiver[i] { 1.0 } else { 0.75 }, "pixel {i}");
+    }
+    // A mixed mask right after a reset: filtered tiles (0.5) whose history restarted (disocclusion 1, n = 1).
+    let mixed = render(w, h, &cam, &cam, 1e9, &|_, _| 0.5, 2);
+    let classes = view(&mut r, &mixed, DebugView::TileClassification, true);
+    assert!(classes.iter().all(|&c| c == 0.5), "a 50% mask leaves no tile uniform");
+    let restarted = view(&mut r, &mixed, DebugView::Disocclusion, true);
+    assert!(restarted.iter().all(|&d| d == 1.0));
+    let counts = view(&mut r, &mixed, DebugView::SampleCount, true);
+    let max = r.ctx.settings().max_history_samples;
+    assert!(counts.iter().all(|&n| (n - 1.0 / max).abs() < 1e-6), "{:?}", &counts[..4]);
+    // Static frames accumulate: no restarts, counts grow, variance stays a valid standard deviation.
+    for frame in 0..12 {
+        view(&mut r, &render(w, h, &cam, &cam, 1e9, &|_, _| 0.5, 10 + frame), DebugView::None, false);
+    }
+    let next = render(w, h, &cam, &cam, 1e9, &|_, _| 0.5, 99);
+    assert!(view(&mut r, &next, DebugView::Disocclusion, false).iter().all(|&d| d == 0.0));
+    assert!(view(&mut r, &next, DebugView::SampleCount, false).iter().all(|&n| n > 8.0 / max));
+    assert!(view(&mut r, &next, DebugView::Variance, false).iter().all(|v| v.is_finite() && (0.0..=1.0).contains(v)));
+    g.assert_clean();
+}

@@ -74,7 +74,7 @@ fn reflected_interfaces_match_what_the_host_binds() {
             0,
         ),
         ("filter", &[Constants, Depth, Normals, TileMeta, FilterInput, FilterOutput], 16),
-        ("filter_final_r16f_fp16", &[Constants, Depth, Normals, TileMeta, FilterInput, FilterOutput, Output], 16),
+        ("filter_final_r16f_fp16", &[Constants, Depth, Normals, TileMeta, FilterInput, FilterOutput, Output, DebugMoments], 16),
     ];
     for (name, resources, push) in expect {
         let v = VARIANTS.iter().find(|v| v.name == *name).unwrap();
@@ -183,7 +183,7 @@ fn generated_layout_header() -> String {
     check!(DnsrShadowsDispatch {
         s_type, p_next, command_buffer, light_index, flags, hit_mask_convention, hit_mask, depth, velocity, normals,
         output, motion_vector_scale, normals_unpack_mul, normals_unpack_add, eye, frame_index, projection_inverse,
-        reprojection_matrix, view_projection_inverse, depth_similarity_sigma, render_rect, sync,
+        reprojection_matrix, view_projection_inverse, depth_similarity_sigma, render_rect, sync, debug_view,
     });
     check!(DnsrPassTimings { s_type, p_next, frame, prepare_ms, tile_classification_ms, filter_ms, filter_passes, total_ms });
     check!(DnsrDeviceRequirements {

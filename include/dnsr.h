@@ -9,6 +9,24 @@
  * inside it (record from one thread per context for predictable ordering); different contexts are independent.
  * Callbacks (log, debug names, GPU memory, VkAllocationCallbacks) run on the thread of the dnsr call that
  * triggers them, and may call dnsr functions themselves.
+ *
+ * Lifetimes: the images and views a DnsrShadowsDispatch names are borrowed for that frame only. They must stay
+ * alive until the command buffer it was recorded into has completed on the GPU; after that they may be
+ * destroyed, and new views (even ones the driver gives the same handle values) may be passed next frame. dnsr
+ * keeps no host handle beyond the frame: with VK_KHR_push_descriptor the descriptors live in the command buffer,
+ * without it dnsr rewrites one of maxFramesInFlight descriptor-set slots per light on every record. So at most
+ * maxFramesInFlight frames of one light may be pending on the GPU at once, and a recorded command buffer is
+ * submitted once (re-submitting it after later records is not supported).
+ *
+ * Exceptions: dnsr is written in Rust; every dnsr panic is caught and returned as DNSR_ERROR_INTERNAL. A C++
+ * exception thrown into dnsr (from a callback, or from a Vulkan layer or driver function it calls, e.g.
+ * std::bad_alloc) cannot be caught by Rust and terminates the process: callbacks must not throw. dnsr checks
+ * sizes, counts and its memory need against the device before calling Vulkan, so that a layer never sees an
+ * absurd allocation from it.
+ *
+ * Bounds: lightCount <= DNSR_MAX_LIGHT_COUNT, maxFramesInFlight <= DNSR_MAX_FRAMES_IN_FLIGHT, width and height
+ * <= maxImageDimension2D, and the context's device memory (dnsr_get_memory_requirements) within the device's
+ * largest device-local heap (DNSR_ERROR_OUT_OF_DEVICE_MEMORY otherwise, before anything is allocated).
  */
 
 #ifndef DNSR_H
@@ -19,6 +37,21 @@
 #include <stdint.h>
 #include <stddef.h>
 #include <vulkan/vulkan.h>
+
+/**
+ * Largest `DnsrContextCreateInfo::lightCount`.
+ */
+#define DNSR_MAX_LIGHT_COUNT 64
+
+/**
+ * Largest `DnsrContextCreateInfo::maxFramesInFlight`.
+ */
+#define DNSR_MAX_FRAMES_IN_FLIGHT 16
+
+/**
+ * What `DnsrContextCreateInfo::maxFramesInFlight` = 0 means.
+ */
+#define DNSR_DEFAULT_MAX_FRAMES_IN_FLIGHT 3
 
 /**
  * Major version of this dnsr build.
@@ -34,11 +67,6 @@
  * Patch version of this dnsr build.
  */
 #define DNSR_VERSION_PATCH 0
-
-/**
- * Radius of the local-moment window (17x17).
- */
-#define MOMENT_RADIUS 8
 
 /**
  * Result of every dnsr function. Negative values are errors; `dnsr_last_error_message` says what was wrong.
@@ -113,10 +141,6 @@ enum DnsrResult
    */
   DNSR_ERROR_INVALID_LIGHT_INDEX = -14,
   /**
-   * Without push descriptors, more distinct image-view combinations were used than the cache holds.
-   */
-  DNSR_ERROR_DESCRIPTOR_CACHE_FULL = -15,
-  /**
    * Timestamps were requested but the queue family cannot write them.
    */
   DNSR_ERROR_TIMESTAMPS_UNSUPPORTED = -16,
@@ -132,6 +156,20 @@ enum DnsrResult
    * A bug in dnsr (a caught panic). The context that reported it should be destroyed.
    */
   DNSR_ERROR_INTERNAL = -19,
+  /**
+   * The context would need more device memory than the device has (checked before anything is allocated:
+   * the largest device-local heap's budget with VK_EXT_memory_budget, else its size).
+   */
+  DNSR_ERROR_OUT_OF_DEVICE_MEMORY = -20,
+  /**
+   * `sync` names unknown bits, a stage the device or queue family does not support, or an access that no
+   * given stage performs (Vulkan's "supported access types").
+   */
+  DNSR_ERROR_INVALID_HOST_SYNC = -21,
+  /**
+   * `queueFamilyIndex` does not exist on the physical device, or the family cannot run compute work.
+   */
+  DNSR_ERROR_INVALID_QUEUE_FAMILY = -22,
   /**
    * Forces a 32-bit enum.
    */
@@ -185,7 +223,9 @@ typedef uint32_t DnsrContextCreateFlags;
 typedef uint32_t DnsrPrecision;
 
 /**
- * Every constant of the algorithm. Initialise with `dnsr_settings_init_default` (FidelityFX defaults).
+ * Every constant of the algorithm. Initialise with `dnsr_settings_init_default` (FidelityFX defaults). Each
+ * field is checked against its range (NaN and infinities are refused) by dnsr_context_create and
+ * dnsr_context_set_settings: DNSR_ERROR_INVALID_SETTING names the field, the value and the range.
  */
 typedef struct DnsrSettings {
   /**
@@ -197,67 +237,69 @@ typedef struct DnsrSettings {
    */
   const void *pNext;
   /**
-   * Filter passes, 1..4 (steps 1, 2, 4, 8 px). Default 3.
+   * Filter passes (a-trous steps 1, 2, 4, 8 px). Range [1, 4]. Default 3.
    */
   uint32_t filterPasses;
   /**
-   * Relative depth change counted as disocclusion facing the camera. Default 0.01.
+   * Relative depth change counted as disocclusion where the surface faces the camera, |prev - cur| / cur.
+   * Range [0, 10]. Default 0.01.
    */
   float disocclusionThresholdFacing;
   /**
-   * The same at grazing angles. Default 0.1.
+   * The same at grazing angles. Range [0, 10]. Default 0.1.
    */
   float disocclusionThresholdGrazing;
   /**
-   * Exponent of (1 - N.V) blending the two thresholds. Default 8.
+   * Exponent of (1 - N.V) blending the two thresholds. Range [0, 64]. Default 8.
    */
   float disocclusionAngleExponent;
   /**
-   * Local-moment Gaussian falloff: w(i) = exp(-falloff i^2 / 81). Default 3.
+   * Local-moment Gaussian falloff: w(i) = exp(-falloff i^2 / 81). Range [0, 100]. Default 3.
    */
   float spatialFalloff;
   /**
-   * History clamp half-width in local standard deviations. Default 0.5.
+   * History clamp half-width in local standard deviations. Range [0, 16]. Default 0.5.
    */
   float historyClampSigmas;
   /**
-   * Sample count multiplied by exp(-d^2 / falloff) for a history d clamp widths away. Default 20.
+   * Sample count multiplied by exp(-d^2 / falloff) for a history d clamp widths away. Range [1e-3, 1e6].
+   * Default 20.
    */
   float historyRejectionFalloff;
   /**
-   * Floor of the clamp width in the rejection distance. Default 0.001.
+   * Floor of the clamp width in the rejection distance. Range [1e-6, 1]. Default 0.001.
    */
   float historyRejectionMinSigma;
   /**
-   * Variance boost below this many samples. Default 16.
+   * Variance boost below this many samples. Range [0, 1024]. Default 16.
    */
   float varianceBoostSamples;
   /**
-   * Sample count of full history trust. Default 8.
+   * Sample count of full history trust. Range [1, 1024]. Default 8.
    */
   float fullHistorySamples;
   /**
-   * Current-frame weight with full history trust. Default 0.05.
+   * Current-frame weight with full history trust. Range [1e-3, 1]. Default 0.05.
    */
   float minCurrentWeight;
   /**
-   * Bound on the temporal sample count. Default 32.
+   * Bound on the temporal sample count. Range [2, 4096]. Default 32.
    */
   float maxHistorySamples;
   /**
-   * Cross-tap weight of the 3x3 kernel (corners get its square). Default 2/3.
+   * Cross-tap weight of the 3x3 kernel (corners get its square). Range [0, 1]. Default 2/3.
    */
   float kernelCrossWeight;
   /**
-   * Normal edge-stop exponent. Default 32.
+   * Normal edge-stop exponent. Range [0, 256]. Default 32.
    */
   float normalPower;
   /**
-   * Output pow(mean, max(contrast - variance, 1)). Default 1.2; 1 disables.
+   * Output pow(mean, max(contrast - variance, 1)). Range [1, 4]; 1 disables. Default 1.2.
    */
   float outputContrast;
   /**
-   * Floor of the shadow edge-stop sigma. Default 1e-4.
+   * Floor of the shadow edge-stop sigma. Range [1e-6, 1]. Default 1e-4.
    */
   float minShadowSigma;
 } DnsrSettings;
@@ -370,11 +412,15 @@ typedef struct DnsrContextCreateInfo {
    */
   struct DnsrVulkanFunctions vulkanFunctions;
   /**
-   * The apiVersion the host created its instance and device with (VK_MAKE_API_VERSION); at least 1.1.
+   * The Vulkan version dnsr may use: the apiVersion the host created its instance with, or the device's
+   * version if that is lower (VK_MAKE_API_VERSION, variant 0). At least 1.1 and at most the device's
+   * major.minor (patch ignored); anything else is DNSR_ERROR_UNSUPPORTED_API_VERSION.
    */
   uint32_t apiVersion;
   /**
-   * Queue family of the command buffers dnsr records into (for timestamp support).
+   * Queue family of the command buffers dnsr records into. Must exist and support compute
+   * (DNSR_ERROR_INVALID_QUEUE_FAMILY); timestamp support and the stages `DnsrShadowsDispatch::sync` may name
+   * are checked against it.
    */
   uint32_t queueFamilyIndex;
   /**
@@ -402,9 +448,19 @@ typedef struct DnsrContextCreateInfo {
    */
   VkFormat outputFormat;
   /**
-   * Number of lights with independent histories, at least 1.
+   * Number of lights with independent histories, 1..DNSR_MAX_LIGHT_COUNT (64). Device memory grows linearly
+   * with it (see dnsr_get_memory_requirements); a context that would not fit in the device's memory is refused
+   * with DNSR_ERROR_OUT_OF_DEVICE_MEMORY before anything is allocated.
    */
   uint32_t lightCount;
+  /**
+   * How many recorded frames of one light may be in flight on the GPU at once, 1..DNSR_MAX_FRAMES_IN_FLIGHT
+   * (16); 0 = DNSR_DEFAULT_MAX_FRAMES_IN_FLIGHT (3). Contract: the command buffer holding frame N of a light
+   * must have completed before frame N + maxFramesInFlight of that light is recorded. Without push
+   * descriptors dnsr rewrites one of this many descriptor-set slots per light on every record, so it never
+   * holds a host image view past that frame.
+   */
+  uint32_t maxFramesInFlight;
   /**
    * Optional (NULL = FidelityFX defaults). Initial settings.
    */
@@ -495,7 +551,12 @@ typedef struct DnsrRect {
 } DnsrRect;
 
 /**
- * Barriers dnsr emits for the host around its work. All zero = the host emits them itself.
+ * Barriers dnsr emits for the host around its work. All zero = the host emits them itself. Synchronization-1
+ * bits only: Vulkan 1.0 stages (plus VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR where the device supports
+ * ray-tracing pipelines) that the device and the context's queue family support, and access bits that one of
+ * the given stages performs (Vulkan's "supported access types" table; MEMORY_READ/WRITE with any stage but
+ * TOP/BOTTOM_OF_PIPE). Anything else is DNSR_ERROR_INVALID_HOST_SYNC and nothing is recorded. Name only
+ * stages whose features you enabled (dnsr can check support, not enablement).
  */
 typedef struct DnsrHostSync {
   /**
@@ -612,7 +673,10 @@ typedef struct DnsrShadowsDispatch {
    */
   float viewProjectionInverse[16];
   /**
-   * Depth edge stop exp(-|dz| / sigma) on linear depth; > 0. FidelityFX default 1.
+   * Depth edge stop of the filter: a tap's weight is multiplied by exp(-|z_center - z_tap| / sigma), z the
+   * linear view-space depth from projectionInverse, in your view-space units (metres if your world is in
+   * metres). Smaller keeps contact shadows sharper across depth steps; larger blurs across them. Finite and
+   * > 0 (NaN/Inf: DNSR_ERROR_NON_FINITE; <= 0: DNSR_ERROR_INVALID_ARGUMENT). FidelityFX default 1.
    */
   float depthSimilaritySigma;
   /**
@@ -837,11 +901,6 @@ typedef struct DnsrReferenceCallbacks {
 } DnsrReferenceCallbacks;
 
 /**
- * Integer pixel or tile coordinate.
- */
-typedef int32_t Coord[2];
-
-/**
  * `DnsrReferenceFrameInfo`.
  */
 #define DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO 6
@@ -1040,11 +1099,6 @@ typedef int32_t Coord[2];
  * Forces 32 bits.
  */
 #define DNSR_LOG_LEVEL_MAX_ENUM 2147483647
-
-/**
- * Tile size in pixels.
- */
-#define TILE { 8, 4, }
 
 #ifdef __cplusplus
 extern "C" {

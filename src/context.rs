@@ -5,7 +5,7 @@ use crate::create_info::{ContextCreateInfo, EnabledFeatures, Precision};
 use crate::dispatch::{HitMaskConvention, ShadowsDispatch};
 use crate::error::{vk_check, Error, Result};
 use crate::gpu::barrier;
-use crate::gpu::descriptors::Binder;
+use crate::gpu::descriptors::{Binder, RecordSets, SetRole};
 use crate::gpu::image::{check_internal_format, color_range, InternalImage};
 use crate::gpu::memory::{self, Memory};
 use crate::host::ResourceKind;
@@ -13,7 +13,7 @@ use crate::gpu::loader::Vk;
 use crate::gpu::shader::{variant, Pipeline};
 use crate::passes::bindings::{image, BindingTable};
 use crate::passes::{filter, prepare, tile_classification, FrameViews};
-use crate::settings::{Settings, MAX_FILTER_PASSES};
+use crate::settings::{check_filter_passes, Settings, MAX_FILTER_PASSES};
 use crate::state::{intermediate_format, LightState, DEPTH_FORMAT, MOMENTS_FORMAT, TILE_FORMAT};
 use crate::timestamps::{PassTimings, Timestamps};
 use crate::validate;
@@ -23,12 +23,8 @@ use ash::vk;
 /// (which `Context::memory_bytes` includes). Needs no device.
 pub fn memory_requirements(width: u32, height: u32, precision: Precision, filter_passes: u32, light_count: u32) -> Result<u64> {
     validate::extent("render size", width, height, u32::MAX)?;
-    if !(1..=MAX_FILTER_PASSES).contains(&filter_passes) {
-        return Err(Error::InvalidSetting { name: "filter_passes", range: "1..=4" });
-    }
-    if light_count == 0 {
-        return Err(Error::InvalidSetting { name: "light_count", range: ">= 1" });
-    }
+    check_filter_passes(filter_passes)?;
+    validate::light_count(light_count)?;
     let per_light = crate::state::texel_bytes([width, height], precision, filter_passes == MAX_FILTER_PASSES);
     Ok(per_light * light_count as u64 + std::mem::size_of::<FrameConstants>() as u64)
 }
@@ -36,12 +32,16 @@ pub fn memory_requirements(width: u32, height: u32, precision: Precision, filter
 /// Lowest Vulkan version dnsr runs on (SPIR-V 1.3, samplerless texel fetches).
 pub const MIN_API_VERSION: u32 = vk::API_VERSION_1_1;
 
-/// Everything a frame binds, resolved before recording.
+/// Everything a frame binds, written before recording.
 struct FrameBindings {
     tables: [BindingTable; 2],
     filter_tables: [BindingTable; MAX_FILTER_PASSES as usize],
-    sets: [vk::DescriptorSet; 2],
-    filter_sets: [vk::DescriptorSet; MAX_FILTER_PASSES as usize],
+    sets: RecordSets,
+}
+
+/// The descriptor-set role of filter pass `pass` of `passes`.
+fn filter_role(pass: u32, passes: u32) -> SetRole {
+    if filter::is_final(pass, passes) { SetRole::FilterFinal } else { SetRole::Filter(pass) }
 }
 
 struct Pipelines {
@@ -54,6 +54,15 @@ struct Pipelines {
 impl Pipelines {
     fn all_mut(&mut self) -> [&mut Pipeline; 4] {
         [&mut self.prepare, &mut self.classification, &mut self.filter, &mut self.filter_final]
+    }
+
+    fn for_role(&self, role: SetRole) -> &Pipeline {
+        match role {
+            SetRole::Prepare => &self.prepare,
+            SetRole::Classification => &self.classification,
+            SetRole::Filter(_) => &self.filter,
+            SetRole::FilterFinal => &self.filter_final,
+        }
     }
 }
 
@@ -78,15 +87,13 @@ pub struct Context {
     light_count: u32,
     timestamps: Option<Timestamps>,
     frames_recorded: u64,
+    /// Stages `HostSync` may name on this device and queue family.
+    supported_stages: vk::PipelineStageFlags,
 }
 
 fn check_features(vk: &Vk, info: &ContextCreateInfo) -> Result<()> {
     let props = unsafe { vk.instance.get_physical_device_properties(vk.physical_device) };
-    // Patch versions do not matter, and an apiVersion above the device's is legal Vulkan (the device's wins).
-    let major_minor = |v: u32| vk::make_api_version(0, vk::api_version_major(v), vk::api_version_minor(v), 0);
-    if major_minor(info.api_version) < MIN_API_VERSION || major_minor(props.api_version) < MIN_API_VERSION {
-        return Err(Error::UnsupportedApiVersion { declared: info.api_version, required: MIN_API_VERSION, device: props.api_version });
-    }
+    validate::api_version(info.api_version, props.api_version, MIN_API_VERSION)?;
     if info.precision == Precision::Fp16 {
         if !info.features.float16 {
             return Err(Error::MissingFeature("precision Fp16 needs features.float16 (shaderFloat16 + 16-bit storage) enabled"));
@@ -117,11 +124,14 @@ impl Context {
         let vk = Vk::load(info)?;
         let props = unsafe { vk.instance.get_physical_device_properties(vk.physical_device) };
         validate::extent("render size", info.width, info.height, props.limits.max_image_dimension2_d)?;
-        if info.light_count == 0 {
-            return Err(Error::InvalidSetting { name: "light_count", range: ">= 1" });
-        }
+        validate::light_count(info.light_count)?;
+        validate::frames_in_flight(info.max_frames_in_flight)?;
         info.settings.validate()?;
         check_features(&vk, info)?;
+        let family = validate::queue_family(&vk, info.queue_family_index)?;
+        let supported_stages = validate::supported_stages(&vk, &family);
+        let needed = memory_requirements(info.width, info.height, info.precision, info.settings.filter_passes, info.light_count)?;
+        memory::check_available(&vk, needed)?;
 
         let push = vk.push_descriptor.clone();
         let mut ctx = Context {
@@ -141,11 +151,13 @@ impl Context {
             light_count: info.light_count,
             timestamps: None,
             frames_recorded: 0,
+            supported_stages,
         };
         // On any error below, dropping `ctx` releases what was created so far.
-        let push_mode = push.is_some();
-        ctx.binder = Some(Binder::new(&ctx.vk, push)?);
-        ctx.pipelines = Some(ctx.create_pipelines(push_mode)?);
+        let pipelines = ctx.pipelines.insert(ctx.create_pipelines(push.is_some())?);
+        let roles = [SetRole::Prepare, SetRole::Classification, SetRole::Filter(0), SetRole::Filter(1), SetRole::Filter(2), SetRole::FilterFinal];
+        let layouts = roles.map(|r| pipelines.for_role(r));
+        ctx.binder = Some(Binder::new(&ctx.vk, push, layouts, info.light_count, info.max_frames_in_flight)?);
         ctx.create_sampler_and_constants()?;
         if info.enable_timestamps {
             ctx.timestamps = Some(Timestamps::new(&ctx.vk, info.queue_family_index)?);
@@ -220,9 +232,10 @@ impl Context {
     pub fn resize(&mut self, width: u32, height: u32) -> Result<()> {
         let props = unsafe { self.vk.instance.get_physical_device_properties(self.vk.physical_device) };
         validate::extent("render size", width, height, props.limits.max_image_dimension2_d)?;
+        let needed = memory_requirements(width, height, self.precision, self.settings.filter_passes, self.light_count)?;
+        memory::check_available(&self.vk, needed.saturating_sub(self.memory_bytes()))?;
         self.destroy_lights();
         self.size = [width, height];
-        self.binder.as_mut().expect("created").clear(&self.vk.device)?;
         let allocated = self.allocate_lights();
         if allocated.is_err() {
             // Leave no half-allocated state: record refuses until a resize succeeds.
@@ -310,27 +323,27 @@ impl Context {
         }
     }
 
-    /// Binding tables of every pass of a frame with the given ping-pong parity, and their descriptor sets
-    /// (null with push descriptors).
-    fn bind_frame(&mut self, d: &ShadowsDispatch, parity: usize, run_prepare: bool) -> Result<FrameBindings> {
+    /// Binding tables of every pass of a frame with the given ping-pong parity, written into the light's next
+    /// ring slot (nothing to write with push descriptors). Called only once the dispatch is validated: it cannot
+    /// fail, and it advances the ring.
+    fn bind_frame(&mut self, d: &ShadowsDispatch, parity: usize, run_prepare: bool) -> FrameBindings {
         let passes = self.settings.filter_passes;
         let views = self.frame_views(d, parity);
         let tables = [prepare::bindings(&views), tile_classification::bindings(&views)];
-        let filter_tables = std::array::from_fn(|p| filter::bindings(&views, p as u32, passes));
+        let filter_tables: [BindingTable; MAX_FILTER_PASSES as usize] = std::array::from_fn(|p| filter::bindings(&views, p as u32, passes));
         let pipelines = self.pipelines.as_ref().expect("created");
         let binder = self.binder.as_mut().expect("created");
+        let sets = binder.next_record(d.light_index);
         let dev = &self.vk.device;
-        let mut sets = [vk::DescriptorSet::null(); 2];
         if run_prepare {
-            sets[0] = binder.prepare(dev, &pipelines.prepare, &tables[0], self.sampler)?;
+            binder.write(dev, sets.get(SetRole::Prepare), &pipelines.prepare, &tables[0], self.sampler);
         }
-        sets[1] = binder.prepare(dev, &pipelines.classification, &tables[1], self.sampler)?;
-        let mut filter_sets = [vk::DescriptorSet::null(); MAX_FILTER_PASSES as usize];
+        binder.write(dev, sets.get(SetRole::Classification), &pipelines.classification, &tables[1], self.sampler);
         for p in 0..passes {
-            let pipeline = if filter::is_final(p, passes) { &pipelines.filter_final } else { &pipelines.filter };
-            filter_sets[p as usize] = binder.prepare(dev, pipeline, &filter_tables[p as usize], self.sampler)?;
+            let role = filter_role(p, passes);
+            binder.write(dev, sets.get(role), pipelines.for_role(role), &filter_tables[p as usize], self.sampler);
         }
-        Ok(FrameBindings { tables, filter_tables, sets, filter_sets })
+        FrameBindings { tables, filter_tables, sets }
     }
 
     /// Records the denoiser for one light into `cmd`, which the host is recording (outside a render pass).
@@ -344,27 +357,19 @@ impl Context {
             return Err(Error::NullHandle("command_buffer"));
         }
         if self.lights.len() != self.light_count as usize {
-            return Err(Error::Vulkan { call: "resize (internal state was not reallocated)", result: vk::Result::ERROR_OUT_OF_DEVICE_MEMORY });
+            return Err(Error::NotResized);
         }
-        let rect = validate::dispatch(&self.vk, d, self.size, self.output_format, self.light_count)?;
+        let rect = validate::dispatch(&self.vk, d, self.size, self.output_format, self.light_count, self.supported_stages)?;
         let extent = [rect.width, rect.height];
         let passes = self.settings.filter_passes;
         let run_prepare = d.hit_mask_convention == HitMaskConvention::OccludedBits;
 
-        // Phase 1: everything that can fail, before any command is recorded. With a descriptor-set cache, the
-        // sets of the other ping-pong parity are made now too, so the next frame allocates nothing.
+        // Everything that can fail was checked above. Nothing below fails.
         let parity = self.lights[d.light_index as usize].parity;
-        let bound = self.bind_frame(d, parity, run_prepare)?;
-        if matches!(self.binder, Some(Binder::Cache(_))) {
-            self.bind_frame(d, parity ^ 1, run_prepare)?;
-        }
-        let FrameBindings { tables, filter_tables, sets, filter_sets } = bound;
+        let FrameBindings { tables, filter_tables, sets } = self.bind_frame(d, parity, run_prepare);
         let pipelines = self.pipelines.as_ref().expect("created");
         let dev = &self.vk.device;
-        let filter_pipeline = |p: u32| if filter::is_final(p, passes) { &pipelines.filter_final } else { &pipelines.filter };
-        let [prepare_set, classification_set] = sets;
 
-        // Phase 2: record. Nothing below fails.
         let light = &mut self.lights[d.light_index as usize];
         let reset = d.reset || light.pending_reset || !light.initialized;
         let mut c = FrameConstants {
@@ -463,21 +468,23 @@ impl Context {
 
         stamp(0);
         if run_prepare {
-            dispatch(&pipelines.prepare, &tables[0], prepare_set, prepare::group_count(extent));
+            dispatch(&pipelines.prepare, &tables[0], sets.get(SetRole::Prepare), prepare::group_count(extent));
             barrier::compute_to_compute(dev, cmd);
         }
         stamp(1);
+        let classification_set = sets.get(SetRole::Classification);
         dispatch(&pipelines.classification, &tables[1], classification_set, tile_classification::group_count(extent));
         stamp(2);
         for p in 0..passes {
             barrier::compute_to_compute(dev, cmd);
-            let pipeline = filter_pipeline(p);
+            let role = filter_role(p, passes);
+            let pipeline = pipelines.for_role(role);
             let push = filter::push_constants(p, passes, d.debug_view);
             unsafe {
                 dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.pipeline);
                 dev.cmd_push_constants(cmd, pipeline.layout, vk::ShaderStageFlags::COMPUTE, 0, bytemuck::bytes_of(&push));
             }
-            binder_ref(&self.binder).bind(dev, cmd, pipeline, &filter_tables[p as usize], self.sampler, filter_sets[p as usize]);
+            binder_ref(&self.binder).bind(dev, cmd, pipeline, &filter_tables[p as usize], self.sampler, sets.get(role));
             let groups = filter::group_count(extent);
             unsafe { dev.cmd_dispatch(cmd, groups[0], groups[1], groups[2]) };
             stamp(3 + p);

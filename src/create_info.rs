@@ -39,6 +39,13 @@ pub enum Precision {
     Fp16,
 }
 
+/// Most lights one context denoises (`ContextCreateInfo::light_count`).
+pub const MAX_LIGHT_COUNT: u32 = 64;
+/// Most frames of one light that may be in flight on the GPU at once (`ContextCreateInfo::max_frames_in_flight`).
+pub const MAX_FRAMES_IN_FLIGHT: u32 = 16;
+/// `max_frames_in_flight` of `ContextCreateInfo::new` (and of a C create info that leaves it 0).
+pub const DEFAULT_MAX_FRAMES_IN_FLIGHT: u32 = 3;
+
 /// Everything needed to create a `Context`. Vulkan handles are borrowed: they must outlive the context.
 #[derive(Clone, Debug)]
 pub struct ContextCreateInfo {
@@ -54,7 +61,8 @@ pub struct ContextCreateInfo {
     pub get_device_proc_addr: Option<vk::PFN_vkGetDeviceProcAddr>,
     /// The `apiVersion` the host created its instance/device with (`vk::make_api_version`). At least 1.1.
     pub api_version: u32,
-    /// Queue family of the command buffers dnsr records into (used to check timestamp support).
+    /// Queue family of the command buffers dnsr records into: it must support compute; timestamp support and
+    /// the stages `HostSync` may name are checked against it.
     pub queue_family_index: u32,
     /// Optional features the host enabled.
     pub features: EnabledFeatures,
@@ -68,8 +76,13 @@ pub struct ContextCreateInfo {
     pub precision: Precision,
     /// Format of the output image: R8_UNORM, R16_SFLOAT or R32_SFLOAT (must support storage on the device).
     pub output_format: vk::Format,
-    /// Number of independently denoised lights (each gets its own history), at least 1.
+    /// Number of independently denoised lights (each gets its own history), 1..=`MAX_LIGHT_COUNT`.
     pub light_count: u32,
+    /// How many recorded frames of one light may be in flight on the GPU at once, 1..=`MAX_FRAMES_IN_FLIGHT`:
+    /// the command buffer holding frame N of a light must have completed before frame N + max_frames_in_flight
+    /// of that light is recorded. Without push descriptors dnsr rewrites a ring of this many descriptor-set slots
+    /// per light, so host image views need to live only until the command buffer that used them completes.
+    pub max_frames_in_flight: u32,
     /// Record GPU timestamps around each pass; read them with `Context::timings`.
     pub enable_timestamps: bool,
     /// Initial settings.
@@ -104,6 +117,7 @@ impl ContextCreateInfo {
             precision: Precision::Fp32,
             output_format: vk::Format::R16_SFLOAT,
             light_count: 1,
+            max_frames_in_flight: DEFAULT_MAX_FRAMES_IN_FLIGHT,
             enable_timestamps: false,
             settings: Settings::default(),
             hooks: HostHooks::default(),

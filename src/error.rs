@@ -99,12 +99,44 @@ pub enum Error {
         /// What is wrong with it.
         reason: &'static str,
     },
-    /// A setting is outside its valid range.
+    /// A setting is outside its valid range (or NaN).
     InvalidSetting {
         /// The setting's name.
         name: &'static str,
-        /// The valid range, in words.
+        /// The value given.
+        value: f64,
+        /// The valid range, as an interval ("[0, 1]").
         range: &'static str,
+    },
+    /// A create-info, dispatch or function argument is outside its valid range.
+    InvalidValue {
+        /// The field or argument.
+        field: &'static str,
+        /// The value given, as text.
+        value: String,
+        /// What is allowed.
+        allowed: &'static str,
+    },
+    /// The device memory a context needs exceeds what the device has (checked before allocating anything).
+    OutOfDeviceMemory {
+        /// Bytes the context's images need (before driver padding).
+        needed: u64,
+        /// Bytes available in the largest device-local heap (its budget with VK_EXT_memory_budget).
+        available: u64,
+    },
+    /// `HostSync` names a stage or access dnsr cannot put in a barrier on this device and queue family.
+    InvalidHostSync {
+        /// The field (`input_src_stages` ...).
+        field: &'static str,
+        /// What is wrong.
+        reason: String,
+    },
+    /// The queue family index does not exist on the device, or the family cannot run compute work.
+    InvalidQueueFamily {
+        /// The index given.
+        index: u32,
+        /// What is wrong.
+        reason: &'static str,
     },
     /// A light index at or beyond the context's light count.
     InvalidLightIndex {
@@ -113,10 +145,8 @@ pub enum Error {
         /// The number of lights the context was created for.
         count: u32,
     },
-    /// The descriptor-set cache used without push descriptors is full: the host cycles through more distinct
-    /// image views than dnsr keeps sets for. Enable VK_KHR_push_descriptor, or call `resize` (which empties the
-    /// cache) once the GPU no longer uses earlier frames.
-    DescriptorCacheFull,
+    /// An earlier `resize` failed to allocate the internal images; record refuses until a resize succeeds.
+    NotResized,
     /// Timestamps were requested but the queue family cannot write them.
     TimestampsUnsupported,
     /// Reflection of embedded or host-supplied SPIR-V failed or does not match the binding interface.
@@ -170,14 +200,24 @@ impl fmt::Display for Error {
             Error::UnsupportedLayout { role, layout } => write!(f, "{} image layout {layout:?} is not usable here", role.field()),
             Error::NonFinite(what) => write!(f, "{what} contains NaN or infinity"),
             Error::InvalidRenderRect { reason } => write!(f, "render rect: {reason}"),
-            Error::InvalidSetting { name, range } => write!(f, "setting {name} out of range: {range}"),
+            Error::InvalidSetting { name, value, range } => {
+                write!(f, "setting {name} is {}; it must be in {range}", number(*value))
+            }
+            Error::InvalidValue { field, value, allowed } => write!(f, "{field} is {value}; {allowed}"),
+            Error::OutOfDeviceMemory { needed, available } => write!(
+                f,
+                "the context needs {} MiB of device memory but the largest device-local heap has {} MiB available",
+                needed.div_ceil(1 << 20),
+                available >> 20
+            ),
+            Error::InvalidHostSync { field, reason } => write!(f, "sync.{field}: {reason}"),
+            Error::InvalidQueueFamily { index, reason } => write!(f, "queue_family_index {index}: {reason}"),
             Error::InvalidLightIndex { index, count } => {
                 write!(f, "light index {index} is out of range: the context has {count} light(s)")
             }
-            Error::DescriptorCacheFull => write!(
+            Error::NotResized => write!(
                 f,
-                "descriptor set cache is full (too many distinct host image views without push descriptors); \
-                 enable VK_KHR_push_descriptor or call resize() once earlier frames completed"
+                "the internal images are missing because the last resize failed; call Context::resize again before recording"
             ),
             Error::TimestampsUnsupported => write!(f, "the queue family has no timestamp support"),
             Error::ShaderInterface(msg) => write!(f, "shader interface: {msg}"),
@@ -187,6 +227,17 @@ impl fmt::Display for Error {
 }
 
 impl std::error::Error for Error {}
+
+/// A value as a message shows it: NaN and infinities by name.
+fn number(v: f64) -> String {
+    if v.is_nan() {
+        "NaN".into()
+    } else if v.is_infinite() {
+        (if v > 0.0 { "+infinity" } else { "-infinity" }).into()
+    } else {
+        format!("{v}")
+    }
+}
 
 /// Result of a dnsr call.
 pub type Result<T> = std::result::Result<T, Error>;

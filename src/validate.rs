@@ -1,6 +1,7 @@
 //! Checks of a dispatch before anything is recorded. Each failure names the field and the reason.
 
-use crate::dispatch::{HostImage, Rect, ShadowsDispatch};
+use crate::create_info::{MAX_FRAMES_IN_FLIGHT, MAX_LIGHT_COUNT};
+use crate::dispatch::{HostImage, HostSync, Rect, ShadowsDispatch};
 use crate::error::{Error, ImageRole, Result};
 use crate::gpu::loader::Vk;
 use ash::vk;
@@ -97,7 +98,14 @@ fn finite_mat(what: &'static str, m: &glam::Mat4) -> Result<()> {
 }
 
 /// Validates a dispatch for a context of `size` writing `output_format`; returns the effective render rect.
-pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, size: [u32; 2], output_format: F, lights: u32) -> Result<Rect> {
+pub(crate) fn dispatch(
+    vk: &Vk,
+    d: &ShadowsDispatch,
+    size: [u32; 2],
+    output_format: F,
+    lights: u32,
+    supported_stages: vk::PipelineStageFlags,
+) -> Result<Rect> {
     if d.light_index >= lights {
         return Err(Error::InvalidLightIndex { index: d.light_index, count: lights });
     }
@@ -124,9 +132,17 @@ pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, size: [u32; 2], output_form
     if !d.normals_unpack_mul.is_finite() || !d.normals_unpack_add.is_finite() {
         return Err(Error::NonFinite("normals_unpack_mul/add"));
     }
-    if !(d.depth_similarity_sigma.is_finite() && d.depth_similarity_sigma > 0.0) {
-        return Err(Error::InvalidSetting { name: "depth_similarity_sigma", range: "finite and > 0" });
+    if !d.depth_similarity_sigma.is_finite() {
+        return Err(Error::NonFinite("depth_similarity_sigma"));
     }
+    if d.depth_similarity_sigma <= 0.0 {
+        return Err(Error::InvalidValue {
+            field: "depth_similarity_sigma",
+            value: d.depth_similarity_sigma.to_string(),
+            allowed: "it must be > 0 (a linear-depth distance in view-space units, FidelityFX default 1)",
+        });
+    }
+    host_sync(&d.sync, supported_stages)?;
     let rect = d.render_rect.unwrap_or(Rect { x: 0, y: 0, width: size[0], height: size[1] });
     if rect.width == 0 || rect.height == 0 {
         return Err(Error::InvalidRenderRect { reason: "zero width or height" });
@@ -138,4 +154,163 @@ pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, size: [u32; 2], output_form
         return Err(Error::InvalidRenderRect { reason: "reaches outside the render size" });
     }
     Ok(rect)
+}
+
+/// Checks `ContextCreateInfo::light_count` (and the C argument of the same name).
+pub(crate) fn light_count(count: u32) -> Result<()> {
+    if (1..=MAX_LIGHT_COUNT).contains(&count) {
+        return Ok(());
+    }
+    Err(Error::InvalidValue { field: "light_count", value: count.to_string(), allowed: "it must be in [1, 64] (MAX_LIGHT_COUNT)" })
+}
+
+/// Checks `ContextCreateInfo::max_frames_in_flight`.
+pub(crate) fn frames_in_flight(count: u32) -> Result<()> {
+    if (1..=MAX_FRAMES_IN_FLIGHT).contains(&count) {
+        return Ok(());
+    }
+    Err(Error::InvalidValue {
+        field: "max_frames_in_flight",
+        value: count.to_string(),
+        allowed: "it must be in [1, 16] (MAX_FRAMES_IN_FLIGHT)",
+    })
+}
+
+/// The declared API version must be a real Vulkan version (variant 0) between dnsr's minimum and what the
+/// device supports (patch levels ignored).
+pub(crate) fn api_version(declared: u32, device: u32, minimum: u32) -> Result<()> {
+    let major_minor = |v: u32| (vk::api_version_major(v), vk::api_version_minor(v));
+    let usable = vk::api_version_variant(declared) == 0
+        && major_minor(declared) >= major_minor(minimum)
+        && major_minor(declared) <= major_minor(device);
+    if usable { Ok(()) } else { Err(Error::UnsupportedApiVersion { declared, required: minimum, device }) }
+}
+
+/// The capabilities of the queue family dnsr records for; it must exist and run compute work.
+pub(crate) fn queue_family(vk: &Vk, index: u32) -> Result<vk::QueueFamilyProperties> {
+    let families = unsafe { vk.instance.get_physical_device_queue_family_properties(vk.physical_device) };
+    let family = families.get(index as usize).ok_or(Error::InvalidQueueFamily {
+        index,
+        reason: "the physical device has no queue family with this index",
+    })?;
+    if !family.queue_flags.contains(vk::QueueFlags::COMPUTE) {
+        return Err(Error::InvalidQueueFamily { index, reason: "the queue family does not support compute" });
+    }
+    Ok(*family)
+}
+
+type S = vk::PipelineStageFlags;
+type A = vk::AccessFlags;
+
+/// Every Vulkan 1.0 pipeline stage bit, plus the ray-tracing shader stage that writes most hit masks.
+const KNOWN_STAGES: S = S::from_raw(0x1_FFFF | S::RAY_TRACING_SHADER_KHR.as_raw());
+/// Every Vulkan 1.0 access bit.
+const KNOWN_ACCESS: A = A::from_raw(0x1_FFFF);
+const SHADER_STAGES: S = S::from_raw(
+    S::VERTEX_SHADER.as_raw()
+        | S::TESSELLATION_CONTROL_SHADER.as_raw()
+        | S::TESSELLATION_EVALUATION_SHADER.as_raw()
+        | S::GEOMETRY_SHADER.as_raw()
+        | S::FRAGMENT_SHADER.as_raw()
+        | S::COMPUTE_SHADER.as_raw()
+        | S::RAY_TRACING_SHADER_KHR.as_raw(),
+);
+const GRAPHICS_STAGES: S = S::from_raw(
+    S::DRAW_INDIRECT.as_raw()
+        | S::VERTEX_INPUT.as_raw()
+        | S::VERTEX_SHADER.as_raw()
+        | S::TESSELLATION_CONTROL_SHADER.as_raw()
+        | S::TESSELLATION_EVALUATION_SHADER.as_raw()
+        | S::GEOMETRY_SHADER.as_raw()
+        | S::FRAGMENT_SHADER.as_raw()
+        | S::EARLY_FRAGMENT_TESTS.as_raw()
+        | S::LATE_FRAGMENT_TESTS.as_raw()
+        | S::COLOR_ATTACHMENT_OUTPUT.as_raw(),
+);
+
+/// The stages that can perform `access` (Vulkan's "supported access types" table, synchronization 1).
+fn stages_for(access: A) -> S {
+    match access {
+        A::INDIRECT_COMMAND_READ => S::DRAW_INDIRECT,
+        A::INDEX_READ | A::VERTEX_ATTRIBUTE_READ => S::VERTEX_INPUT,
+        A::UNIFORM_READ | A::SHADER_READ | A::SHADER_WRITE => SHADER_STAGES,
+        A::INPUT_ATTACHMENT_READ => S::FRAGMENT_SHADER,
+        A::COLOR_ATTACHMENT_READ | A::COLOR_ATTACHMENT_WRITE => S::COLOR_ATTACHMENT_OUTPUT,
+        A::DEPTH_STENCIL_ATTACHMENT_READ | A::DEPTH_STENCIL_ATTACHMENT_WRITE => {
+            S::EARLY_FRAGMENT_TESTS | S::LATE_FRAGMENT_TESTS
+        }
+        A::TRANSFER_READ | A::TRANSFER_WRITE => S::TRANSFER,
+        A::HOST_READ | A::HOST_WRITE => S::HOST,
+        // MEMORY_READ / MEMORY_WRITE: any stage that does work.
+        _ => KNOWN_STAGES & !(S::TOP_OF_PIPE | S::BOTTOM_OF_PIPE),
+    }
+}
+
+/// The stages `HostSync` may name on this device and queue family.
+pub(crate) fn supported_stages(vk: &Vk, family: &vk::QueueFamilyProperties) -> S {
+    let features = unsafe { vk.instance.get_physical_device_features(vk.physical_device) };
+    let mut stages = KNOWN_STAGES;
+    if features.geometry_shader == 0 {
+        stages &= !S::GEOMETRY_SHADER;
+    }
+    if features.tessellation_shader == 0 {
+        stages &= !(S::TESSELLATION_CONTROL_SHADER | S::TESSELLATION_EVALUATION_SHADER);
+    }
+    let ray_tracing = unsafe { vk.instance.enumerate_device_extension_properties(vk.physical_device) }
+        .map(|exts| exts.iter().any(|e| e.extension_name_as_c_str() == Ok(ash::khr::ray_tracing_pipeline::NAME)))
+        .unwrap_or(false);
+    if !ray_tracing {
+        stages &= !S::RAY_TRACING_SHADER_KHR;
+    }
+    if !family.queue_flags.contains(vk::QueueFlags::GRAPHICS) {
+        stages &= !(GRAPHICS_STAGES | S::ALL_GRAPHICS);
+    }
+    stages
+}
+
+/// What `stages` expand to for the access check (ALL_COMMANDS / ALL_GRAPHICS stand for their members).
+fn expand(stages: S, supported: S) -> S {
+    let mut s = stages;
+    if s.contains(S::ALL_COMMANDS) {
+        s |= supported;
+    }
+    if s.contains(S::ALL_GRAPHICS) {
+        s |= GRAPHICS_STAGES & supported;
+    }
+    s
+}
+
+fn stage_access_pair(stage_field: &'static str, stages: S, access_field: &'static str, access: A, supported: S) -> Result<()> {
+    let bad = |field, reason: String| Err(Error::InvalidHostSync { field, reason });
+    let unknown = stages & !KNOWN_STAGES;
+    if !unknown.is_empty() {
+        return bad(stage_field, format!("unknown pipeline stage bits 0x{:x}", unknown.as_raw()));
+    }
+    let unsupported = stages & !supported;
+    if !unsupported.is_empty() {
+        return bad(
+            stage_field,
+            format!("{unsupported:?} is not supported by this device and queue family (or not a stage dnsr accepts)"),
+        );
+    }
+    let unknown = access & !KNOWN_ACCESS;
+    if !unknown.is_empty() {
+        return bad(access_field, format!("unknown access bits 0x{:x}", unknown.as_raw()));
+    }
+    if !access.is_empty() && stages.is_empty() {
+        return bad(access_field, format!("{access:?} is given but {stage_field} is empty"));
+    }
+    let expanded = expand(stages, supported);
+    for bit in (0..32).map(|i| A::from_raw(1 << i)).filter(|&b| access.contains(b)) {
+        if (stages_for(bit) & expanded).is_empty() {
+            return bad(access_field, format!("{bit:?} is not performed by any stage in {stage_field} ({stages:?})"));
+        }
+    }
+    Ok(())
+}
+
+/// Checks that dnsr can put the host's stages and accesses into its two barriers.
+pub(crate) fn host_sync(sync: &HostSync, supported: S) -> Result<()> {
+    stage_access_pair("input_src_stages", sync.input_src_stages, "input_src_access", sync.input_src_access, supported)?;
+    stage_access_pair("output_dst_stages", sync.output_dst_stages, "output_dst_access", sync.output_dst_access, supported)
 }

@@ -76,6 +76,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, flags) == 76, "offsetof(DnsrC
 DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, precision) == 80, "offsetof(DnsrContextCreateInfo, precision)");
 DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, outputFormat) == 84, "offsetof(DnsrContextCreateInfo, outputFormat)");
 DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, lightCount) == 88, "offsetof(DnsrContextCreateInfo, lightCount)");
+DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, maxFramesInFlight) == 92, "offsetof(DnsrContextCreateInfo, maxFramesInFlight)");
 DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, pSettings) == 96, "offsetof(DnsrContextCreateInfo, pSettings)");
 DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, pAllocationCallbacks) == 104, "offsetof(DnsrContextCreateInfo, pAllocationCallbacks)");
 DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, pGpuMemoryCallbacks) == 112, "offsetof(DnsrContextCreateInfo, pGpuMemoryCallbacks)");

@@ -35,7 +35,11 @@ fn code(e: &Error) -> DnsrResult {
         Error::InvalidRenderRect { .. } => DNSR_ERROR_INVALID_RENDER_RECT,
         Error::InvalidSetting { .. } => DNSR_ERROR_INVALID_SETTING,
         Error::InvalidLightIndex { .. } => DNSR_ERROR_INVALID_LIGHT_INDEX,
-        Error::DescriptorCacheFull => DNSR_ERROR_DESCRIPTOR_CACHE_FULL,
+        Error::InvalidValue { .. } => DNSR_ERROR_INVALID_ARGUMENT,
+        Error::OutOfDeviceMemory { .. } => DNSR_ERROR_OUT_OF_DEVICE_MEMORY,
+        Error::InvalidHostSync { .. } => DNSR_ERROR_INVALID_HOST_SYNC,
+        Error::InvalidQueueFamily { .. } => DNSR_ERROR_INVALID_QUEUE_FAMILY,
+        Error::NotResized => DNSR_ERROR_VULKAN,
         Error::TimestampsUnsupported => DNSR_ERROR_TIMESTAMPS_UNSUPPORTED,
         Error::ShaderInterface(_) => DNSR_ERROR_SHADER_INTERFACE,
         Error::Vulkan { .. } => DNSR_ERROR_VULKAN,
@@ -113,8 +117,10 @@ pub(crate) fn guard(f: impl FnOnce(&mut Option<LogSink>) -> Result<DnsrResult, C
     result
 }
 
-/// Rewrites the Rust API's field names in a core error message to the C header's names
-/// (`hit_mask.view` -> `hitMask.view`, `get_device_proc_addr` -> `vulkanFunctions.vkGetDeviceProcAddr`).
+/// Rewrites the Rust API's names in a core error message to the C header's (`hit_mask.view` -> `hitMask.view`,
+/// `get_device_proc_addr` -> `vulkanFunctions.vkGetDeviceProcAddr`, `Context::resize` -> `dnsr_context_resize`).
+/// Only words that start in lower case and contain an underscore are Rust field names; Vulkan and dnsr names
+/// (`VK_KHR_push_descriptor`, `R16_SFLOAT`, `dnsr_...`) pass unchanged.
 fn c_names(message: &str) -> String {
     let special = [
         ("get_instance_proc_addr", "vulkanFunctions.vkGetInstanceProcAddr"),
@@ -122,27 +128,45 @@ fn c_names(message: &str) -> String {
         ("features.float16", "DNSR_FEATURE_FLOAT16"),
         ("features.push_descriptor", "DNSR_FEATURE_PUSH_DESCRIPTOR"),
         ("precision Fp16", "DNSR_PRECISION_FP16"),
+        ("Context::resize", "dnsr_context_resize"),
+        ("(MAX_LIGHT_COUNT)", "(DNSR_MAX_LIGHT_COUNT)"),
+        ("(MAX_FRAMES_IN_FLIGHT)", "(DNSR_MAX_FRAMES_IN_FLIGHT)"),
     ];
     let mut text = message.to_string();
     for (rust, c) in special {
         text = text.replace(rust, c);
     }
     let mut out = String::with_capacity(text.len());
-    let mut upper_next = false;
-    for ch in text.chars() {
-        if ch == '_' && out.chars().last().is_some_and(|c: char| c.is_ascii_lowercase() || c.is_ascii_digit()) {
-            upper_next = true;
-            continue;
-        }
-        if upper_next && ch.is_ascii_lowercase() {
-            out.push(ch.to_ascii_uppercase());
+    let mut rest = text.as_str();
+    while let Some(start) = rest.find(|c: char| c.is_ascii_alphanumeric() || c == '_') {
+        out.push_str(&rest[..start]);
+        rest = &rest[start..];
+        let end = rest.find(|c: char| !(c.is_ascii_alphanumeric() || c == '_')).unwrap_or(rest.len());
+        let word = &rest[..end];
+        if word.starts_with(|c: char| c.is_ascii_lowercase()) && word.contains('_') && !word.starts_with("dnsr_") {
+            out.push_str(&camel(word));
         } else {
-            if upper_next {
-                out.push('_');
-            }
+            out.push_str(word);
+        }
+        rest = &rest[end..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// snake_case -> camelCase, as cbindgen renames fields.
+fn camel(word: &str) -> String {
+    let mut out = String::with_capacity(word.len());
+    let mut upper = false;
+    for ch in word.chars() {
+        if ch == '_' {
+            upper = true;
+        } else if upper {
+            out.push(ch.to_ascii_uppercase());
+            upper = false;
+        } else {
             out.push(ch);
         }
-        upper_next = false;
     }
     out
 }
@@ -180,9 +204,13 @@ mod tests {
     fn rust_field_names_become_c_names() {
         assert_eq!(c_names("hit_mask.view is null"), "hitMask.view is null");
         assert_eq!(c_names("get_device_proc_addr is null"), "vulkanFunctions.vkGetDeviceProcAddr is null");
-        assert_eq!(c_names("setting filter_passes out of range: 1..=4"), "setting filterPasses out of range: 1..=4");
+        assert_eq!(c_names("setting filter_passes is 5; it must be in [1, 4]"), "setting filterPasses is 5; it must be in [1, 4]");
         assert_eq!(c_names("normals_unpack_mul/add contains NaN"), "normalsUnpackMul/add contains NaN");
         assert_eq!(c_names("DNSR_ERROR_X and R16_SFLOAT stay"), "DNSR_ERROR_X and R16_SFLOAT stay");
+        assert_eq!(c_names("enable VK_KHR_push_descriptor"), "enable VK_KHR_push_descriptor");
+        assert_eq!(c_names("call Context::resize again"), "call dnsr_context_resize again");
+        assert_eq!(c_names("sync.input_src_access: x"), "sync.inputSrcAccess: x");
+        assert_eq!(c_names("light_count is 65; [1, 64] (MAX_LIGHT_COUNT)"), "lightCount is 65; [1, 64] (DNSR_MAX_LIGHT_COUNT)");
     }
 
     #[test]

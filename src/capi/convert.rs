@@ -172,6 +172,10 @@ pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo, sink: &mut Option<Lo
         precision: precision_from_c(c.precision)?,
         output_format: c.output_format,
         light_count: c.light_count,
+        max_frames_in_flight: match c.max_frames_in_flight {
+            0 => crate::create_info::DEFAULT_MAX_FRAMES_IN_FLIGHT,
+            n => n,
+        },
         enable_timestamps: c.flags & DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS != 0,
         settings,
         hooks,

@@ -16,6 +16,19 @@ use convert::{create_info_from_c, dispatch_from_c, precision_from_c, settings_fr
 use std::ffi::c_char;
 use types::*;
 
+/// Largest `DnsrContextCreateInfo::lightCount`.
+pub const DNSR_MAX_LIGHT_COUNT: u32 = 64;
+/// Largest `DnsrContextCreateInfo::maxFramesInFlight`.
+pub const DNSR_MAX_FRAMES_IN_FLIGHT: u32 = 16;
+/// What `DnsrContextCreateInfo::maxFramesInFlight` = 0 means.
+pub const DNSR_DEFAULT_MAX_FRAMES_IN_FLIGHT: u32 = 3;
+// cbindgen needs literals; the Rust API's constants are the source.
+const _: () = assert!(
+    DNSR_MAX_LIGHT_COUNT == crate::create_info::MAX_LIGHT_COUNT
+        && DNSR_MAX_FRAMES_IN_FLIGHT == crate::create_info::MAX_FRAMES_IN_FLIGHT
+        && DNSR_DEFAULT_MAX_FRAMES_IN_FLIGHT == crate::create_info::DEFAULT_MAX_FRAMES_IN_FLIGHT
+);
+
 /// Major version of this dnsr build.
 pub const DNSR_VERSION_MAJOR: u32 = 0;
 /// Minor version of this dnsr build.
@@ -225,13 +238,15 @@ pub extern "C" fn dnsr_result_to_string(result: i32) -> *const c_char {
         DNSR_ERROR_INVALID_RENDER_RECT,
         DNSR_ERROR_INVALID_SETTING,
         DNSR_ERROR_INVALID_LIGHT_INDEX,
-        DNSR_ERROR_DESCRIPTOR_CACHE_FULL,
         DNSR_ERROR_TIMESTAMPS_UNSUPPORTED,
         DNSR_ERROR_SHADER_INTERFACE,
         DNSR_ERROR_VULKAN,
         DNSR_ERROR_INTERNAL,
+        DNSR_ERROR_OUT_OF_DEVICE_MEMORY,
+        DNSR_ERROR_INVALID_HOST_SYNC,
+        DNSR_ERROR_INVALID_QUEUE_FAMILY,
     ];
-    let names: [&'static std::ffi::CStr; 21] = [
+    let names: [&'static std::ffi::CStr; 23] = [
         c"DNSR_SUCCESS",
         c"DNSR_NOT_READY",
         c"DNSR_ERROR_INVALID_ARGUMENT",
@@ -248,11 +263,13 @@ pub extern "C" fn dnsr_result_to_string(result: i32) -> *const c_char {
         c"DNSR_ERROR_INVALID_RENDER_RECT",
         c"DNSR_ERROR_INVALID_SETTING",
         c"DNSR_ERROR_INVALID_LIGHT_INDEX",
-        c"DNSR_ERROR_DESCRIPTOR_CACHE_FULL",
         c"DNSR_ERROR_TIMESTAMPS_UNSUPPORTED",
         c"DNSR_ERROR_SHADER_INTERFACE",
         c"DNSR_ERROR_VULKAN",
         c"DNSR_ERROR_INTERNAL",
+        c"DNSR_ERROR_OUT_OF_DEVICE_MEMORY",
+        c"DNSR_ERROR_INVALID_HOST_SYNC",
+        c"DNSR_ERROR_INVALID_QUEUE_FAMILY",
     ];
     all.iter().position(|&r| r as i32 == result).map_or(c"DNSR_RESULT_UNKNOWN", |i| names[i]).as_ptr()
 }

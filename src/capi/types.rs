@@ -81,8 +81,7 @@ pub enum DnsrResult {
     DNSR_ERROR_INVALID_SETTING = -13,
     /// The light index is not below the context's light count.
     DNSR_ERROR_INVALID_LIGHT_INDEX = -14,
-    /// Without push descriptors, more distinct image-view combinations were used than the cache holds.
-    DNSR_ERROR_DESCRIPTOR_CACHE_FULL = -15,
+    // -15 was DNSR_ERROR_DESCRIPTOR_CACHE_FULL (dnsr 0.1.0); descriptor sets are now rewritten every frame.
     /// Timestamps were requested but the queue family cannot write them.
     DNSR_ERROR_TIMESTAMPS_UNSUPPORTED = -16,
     /// SPIR-V reflection failed or does not match dnsr's binding interface.
@@ -91,6 +90,14 @@ pub enum DnsrResult {
     DNSR_ERROR_VULKAN = -18,
     /// A bug in dnsr (a caught panic). The context that reported it should be destroyed.
     DNSR_ERROR_INTERNAL = -19,
+    /// The context would need more device memory than the device has (checked before anything is allocated:
+    /// the largest device-local heap's budget with VK_EXT_memory_budget, else its size).
+    DNSR_ERROR_OUT_OF_DEVICE_MEMORY = -20,
+    /// `sync` names unknown bits, a stage the device or queue family does not support, or an access that no
+    /// given stage performs (Vulkan's "supported access types").
+    DNSR_ERROR_INVALID_HOST_SYNC = -21,
+    /// `queueFamilyIndex` does not exist on the physical device, or the family cannot run compute work.
+    DNSR_ERROR_INVALID_QUEUE_FAMILY = -22,
     /// Forces a 32-bit enum.
     DNSR_RESULT_MAX_ENUM = 0x7FFF_FFFF,
 }
@@ -262,7 +269,9 @@ pub struct DnsrDebugNameCallback {
         Option<unsafe extern "C" fn(user_data: *mut c_void, object_type: VkObjectType, handle: u64, name: *const c_char)>,
 }
 
-/// Every constant of the algorithm. Initialise with `dnsr_settings_init_default` (FidelityFX defaults).
+/// Every constant of the algorithm. Initialise with `dnsr_settings_init_default` (FidelityFX defaults). Each
+/// field is checked against its range (NaN and infinities are refused) by dnsr_context_create and
+/// dnsr_context_set_settings: DNSR_ERROR_INVALID_SETTING names the field, the value and the range.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct DnsrSettings {
@@ -270,37 +279,39 @@ pub struct DnsrSettings {
     pub s_type: DnsrStructureType,
     /// Must be NULL (reserved for extensions).
     pub p_next: *const c_void,
-    /// Filter passes, 1..4 (steps 1, 2, 4, 8 px). Default 3.
+    /// Filter passes (a-trous steps 1, 2, 4, 8 px). Range [1, 4]. Default 3.
     pub filter_passes: u32,
-    /// Relative depth change counted as disocclusion facing the camera. Default 0.01.
+    /// Relative depth change counted as disocclusion where the surface faces the camera, |prev - cur| / cur.
+    /// Range [0, 10]. Default 0.01.
     pub disocclusion_threshold_facing: f32,
-    /// The same at grazing angles. Default 0.1.
+    /// The same at grazing angles. Range [0, 10]. Default 0.1.
     pub disocclusion_threshold_grazing: f32,
-    /// Exponent of (1 - N.V) blending the two thresholds. Default 8.
+    /// Exponent of (1 - N.V) blending the two thresholds. Range [0, 64]. Default 8.
     pub disocclusion_angle_exponent: f32,
-    /// Local-moment Gaussian falloff: w(i) = exp(-falloff i^2 / 81). Default 3.
+    /// Local-moment Gaussian falloff: w(i) = exp(-falloff i^2 / 81). Range [0, 100]. Default 3.
     pub spatial_falloff: f32,
-    /// History clamp half-width in local standard deviations. Default 0.5.
+    /// History clamp half-width in local standard deviations. Range [0, 16]. Default 0.5.
     pub history_clamp_sigmas: f32,
-    /// Sample count multiplied by exp(-d^2 / falloff) for a history d clamp widths away. Default 20.
+    /// Sample count multiplied by exp(-d^2 / falloff) for a history d clamp widths away. Range [1e-3, 1e6].
+    /// Default 20.
     pub history_rejection_falloff: f32,
-    /// Floor of the clamp width in the rejection distance. Default 0.001.
+    /// Floor of the clamp width in the rejection distance. Range [1e-6, 1]. Default 0.001.
     pub history_rejection_min_sigma: f32,
-    /// Variance boost below this many samples. Default 16.
+    /// Variance boost below this many samples. Range [0, 1024]. Default 16.
     pub variance_boost_samples: f32,
-    /// Sample count of full history trust. Default 8.
+    /// Sample count of full history trust. Range [1, 1024]. Default 8.
     pub full_history_samples: f32,
-    /// Current-frame weight with full history trust. Default 0.05.
+    /// Current-frame weight with full history trust. Range [1e-3, 1]. Default 0.05.
     pub min_current_weight: f32,
-    /// Bound on the temporal sample count. Default 32.
+    /// Bound on the temporal sample count. Range [2, 4096]. Default 32.
     pub max_history_samples: f32,
-    /// Cross-tap weight of the 3x3 kernel (corners get its square). Default 2/3.
+    /// Cross-tap weight of the 3x3 kernel (corners get its square). Range [0, 1]. Default 2/3.
     pub kernel_cross_weight: f32,
-    /// Normal edge-stop exponent. Default 32.
+    /// Normal edge-stop exponent. Range [0, 256]. Default 32.
     pub normal_power: f32,
-    /// Output pow(mean, max(contrast - variance, 1)). Default 1.2; 1 disables.
+    /// Output pow(mean, max(contrast - variance, 1)). Range [1, 4]; 1 disables. Default 1.2.
     pub output_contrast: f32,
-    /// Floor of the shadow edge-stop sigma. Default 1e-4.
+    /// Floor of the shadow edge-stop sigma. Range [1e-6, 1]. Default 1e-4.
     pub min_shadow_sigma: f32,
 }
 
@@ -321,9 +332,13 @@ pub struct DnsrContextCreateInfo {
     pub device: VkDevice,
     /// Required. Loader entry points.
     pub vulkan_functions: DnsrVulkanFunctions,
-    /// The apiVersion the host created its instance and device with (VK_MAKE_API_VERSION); at least 1.1.
+    /// The Vulkan version dnsr may use: the apiVersion the host created its instance with, or the device's
+    /// version if that is lower (VK_MAKE_API_VERSION, variant 0). At least 1.1 and at most the device's
+    /// major.minor (patch ignored); anything else is DNSR_ERROR_UNSUPPORTED_API_VERSION.
     pub api_version: u32,
-    /// Queue family of the command buffers dnsr records into (for timestamp support).
+    /// Queue family of the command buffers dnsr records into. Must exist and support compute
+    /// (DNSR_ERROR_INVALID_QUEUE_FAMILY); timestamp support and the stages `DnsrShadowsDispatch::sync` may name
+    /// are checked against it.
     pub queue_family_index: u32,
     /// DNSR_FEATURE_* bits the host enabled on `device`. 0 is valid.
     pub enabled_features: DnsrFeatureFlags,
@@ -337,8 +352,16 @@ pub struct DnsrContextCreateInfo {
     pub precision: DnsrPrecision,
     /// Output image format: VK_FORMAT_R8_UNORM, VK_FORMAT_R16_SFLOAT or VK_FORMAT_R32_SFLOAT.
     pub output_format: VkFormat,
-    /// Number of lights with independent histories, at least 1.
+    /// Number of lights with independent histories, 1..DNSR_MAX_LIGHT_COUNT (64). Device memory grows linearly
+    /// with it (see dnsr_get_memory_requirements); a context that would not fit in the device's memory is refused
+    /// with DNSR_ERROR_OUT_OF_DEVICE_MEMORY before anything is allocated.
     pub light_count: u32,
+    /// How many recorded frames of one light may be in flight on the GPU at once, 1..DNSR_MAX_FRAMES_IN_FLIGHT
+    /// (16); 0 = DNSR_DEFAULT_MAX_FRAMES_IN_FLIGHT (3). Contract: the command buffer holding frame N of a light
+    /// must have completed before frame N + maxFramesInFlight of that light is recorded. Without push
+    /// descriptors dnsr rewrites one of this many descriptor-set slots per light on every record, so it never
+    /// holds a host image view past that frame.
+    pub max_frames_in_flight: u32,
     /// Optional (NULL = FidelityFX defaults). Initial settings.
     pub p_settings: *const DnsrSettings,
     /// Optional. CPU allocation callbacks for every Vulkan object dnsr creates; must outlive the context.
@@ -383,7 +406,12 @@ pub struct DnsrRect {
     pub height: u32,
 }
 
-/// Barriers dnsr emits for the host around its work. All zero = the host emits them itself.
+/// Barriers dnsr emits for the host around its work. All zero = the host emits them itself. Synchronization-1
+/// bits only: Vulkan 1.0 stages (plus VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR where the device supports
+/// ray-tracing pipelines) that the device and the context's queue family support, and access bits that one of
+/// the given stages performs (Vulkan's "supported access types" table; MEMORY_READ/WRITE with any stage but
+/// TOP/BOTTOM_OF_PIPE). Anything else is DNSR_ERROR_INVALID_HOST_SYNC and nothing is recorded. Name only
+/// stages whose features you enabled (dnsr can check support, not enablement).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
 pub struct DnsrHostSync {
@@ -449,7 +477,10 @@ pub struct DnsrShadowsDispatch {
     pub reprojection_matrix: [f32; 16],
     /// Current clip -> world.
     pub view_projection_inverse: [f32; 16],
-    /// Depth edge stop exp(-|dz| / sigma) on linear depth; > 0. FidelityFX default 1.
+    /// Depth edge stop of the filter: a tap's weight is multiplied by exp(-|z_center - z_tap| / sigma), z the
+    /// linear view-space depth from projectionInverse, in your view-space units (metres if your world is in
+    /// metres). Smaller keeps contact shadows sharper across depth steps; larger blurs across them. Finite and
+    /// > 0 (NaN/Inf: DNSR_ERROR_NON_FINITE; <= 0: DNSR_ERROR_INVALID_ARGUMENT). FidelityFX default 1.
     pub depth_similarity_sigma: f32,
     /// Region to denoise when DNSR_DISPATCH_USE_RENDER_RECT is set.
     pub render_rect: DnsrRect,

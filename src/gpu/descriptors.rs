@@ -1,42 +1,60 @@
-//! Descriptor binding without per-frame allocation: push descriptors when the host enabled them, otherwise a
-//! cache of immutable descriptor sets keyed by what they point at (a set is written once and never updated, so
-//! it can never be changed under a command buffer still in flight).
+//! Descriptor binding that never holds a host handle past its frame: push descriptors when the host enabled them,
+//! otherwise a ring of descriptor sets per light, rewritten on every record.
+//!
+//! Why a ring and not a cache: the host's image views are only borrowed for one frame. A render graph with
+//! transient resources destroys its views after the frame and creates new ones, and the driver may hand back the
+//! same handle values; a cache keyed on handles then binds sets that point at destroyed views. Writing a set is a
+//! few microseconds, so every record writes the sets of one ring slot, and a slot is only rewritten after
+//! `max_frames_in_flight` more records of that light, by which time the host guarantees the GPU is done with it.
 
-use crate::error::{vk_check, Error, Result};
+use crate::error::{vk_check, Result};
 use crate::gpu::loader::Vk;
 use crate::gpu::shader::Pipeline;
-use crate::passes::bindings::{Binding, BindingTable, Resource};
+use crate::passes::bindings::{BindingTable, Resource};
 use ash::vk;
 
 /// Most bindings any pass declares.
 pub(crate) const MAX_BINDINGS: usize = 16;
-/// Descriptor sets the cache holds before it reports `Error::DescriptorCacheFull`.
-pub(crate) const CACHE_CAPACITY: u32 = 256;
 
-type Key = [Binding; MAX_BINDINGS];
+/// The descriptor sets one record writes, one per pipeline role (see `SetRole`).
+pub(crate) const SETS_PER_RECORD: usize = 6;
 
-struct Entry {
-    set_layout: vk::DescriptorSetLayout,
-    key: Key,
-    set: vk::DescriptorSet,
+/// Which set of a ring slot a dispatch uses. Filter passes 0..=2 can be intermediate passes; the final pass
+/// (whichever index it has) uses the final filter pipeline's layout and so its own set.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum SetRole {
+    Prepare,
+    Classification,
+    Filter(u32),
+    FilterFinal,
 }
 
-pub(crate) struct Cache {
+impl SetRole {
+    fn index(self) -> usize {
+        match self {
+            SetRole::Prepare => 0,
+            SetRole::Classification => 1,
+            SetRole::Filter(pass) => 2 + pass as usize,
+            SetRole::FilterFinal => SETS_PER_RECORD - 1,
+        }
+    }
+}
+
+/// The layouts of the sets of one ring slot, in `SetRole::index` order.
+pub(crate) type RoleLayouts<'a> = [&'a Pipeline; SETS_PER_RECORD];
+
+pub(crate) struct Ring {
     pool: vk::DescriptorPool,
-    entries: Vec<Entry>,
+    /// `slots` entries per light, light-major.
+    sets: Vec<[vk::DescriptorSet; SETS_PER_RECORD]>,
+    slots: u32,
+    /// Per light: the slot its next record writes.
+    next: Vec<u32>,
 }
 
 pub(crate) enum Binder {
     Push(ash::khr::push_descriptor::DeviceFn),
-    Cache(Cache),
-}
-
-fn key_of(pipeline: &Pipeline, table: &BindingTable) -> Key {
-    let mut key = [Binding::default(); MAX_BINDINGS];
-    for (slot, b) in key.iter_mut().zip(&pipeline.interface.bindings) {
-        *slot = table[b.resource as usize];
-    }
-    key
+    Ring(Ring),
 }
 
 /// Calls `f` with the descriptor writes of `pipeline` for `table` (dst_set left null).
@@ -61,63 +79,95 @@ fn with_writes<R>(pipeline: &Pipeline, table: &BindingTable, sampler: vk::Sample
     f(&writes[..bindings.len()])
 }
 
-impl Binder {
-    pub(crate) fn new(vk: &Vk, push: Option<ash::khr::push_descriptor::DeviceFn>) -> Result<Binder> {
-        if let Some(push) = push {
-            return Ok(Binder::Push(push));
-        }
-        let sizes = [
-            (vk::DescriptorType::SAMPLED_IMAGE, 8),
-            (vk::DescriptorType::STORAGE_IMAGE, 6),
-            (vk::DescriptorType::COMBINED_IMAGE_SAMPLER, 1),
-            (vk::DescriptorType::UNIFORM_BUFFER, 1),
-        ]
-        .map(|(ty, per_set)| vk::DescriptorPoolSize { ty, descriptor_count: per_set * CACHE_CAPACITY });
-        let info = vk::DescriptorPoolCreateInfo::default().max_sets(CACHE_CAPACITY).pool_sizes(&sizes);
-        let pool = vk_check("vkCreateDescriptorPool", unsafe { vk.device.create_descriptor_pool(&info, vk.alloc()) })?;
-        vk.name(pool, "dnsr.descriptor_cache");
-        Ok(Binder::Cache(Cache { pool, entries: Vec::with_capacity(CACHE_CAPACITY as usize) }))
-    }
-
-    /// Everything that can fail, done before any command is recorded: returns the set to bind (null with push
-    /// descriptors).
-    pub(crate) fn prepare(
-        &mut self,
-        device: &ash::Device,
-        pipeline: &Pipeline,
-        table: &BindingTable,
-        sampler: vk::Sampler,
-    ) -> Result<vk::DescriptorSet> {
-        let Binder::Cache(cache) = self else { return Ok(vk::DescriptorSet::null()) };
-        let key = key_of(pipeline, table);
-        if let Some(e) = cache.entries.iter().find(|e| e.set_layout == pipeline.set_layout && e.key == key) {
-            return Ok(e.set);
-        }
-        if cache.entries.len() >= CACHE_CAPACITY as usize {
-            return Err(Error::DescriptorCacheFull);
-        }
-        let info = vk::DescriptorSetAllocateInfo::default()
-            .descriptor_pool(cache.pool)
-            .set_layouts(std::slice::from_ref(&pipeline.set_layout));
-        let set = match unsafe { device.allocate_descriptor_sets(&info) } {
-            Ok(sets) => sets[0],
-            Err(vk::Result::ERROR_OUT_OF_POOL_MEMORY | vk::Result::ERROR_FRAGMENTED_POOL) => {
-                return Err(Error::DescriptorCacheFull);
+impl Ring {
+    fn new(vk: &Vk, layouts: RoleLayouts, lights: u32, slots: u32) -> Result<Ring> {
+        let records = lights * slots;
+        // Pool sizes from the reflected interfaces, so a shader change cannot outgrow the pool.
+        let mut sizes: Vec<vk::DescriptorPoolSize> = Vec::new();
+        for binding in layouts.iter().flat_map(|p| &p.interface.bindings) {
+            match sizes.iter_mut().find(|s| s.ty == binding.descriptor_type) {
+                Some(s) => s.descriptor_count += records,
+                None => sizes.push(vk::DescriptorPoolSize { ty: binding.descriptor_type, descriptor_count: records }),
             }
-            Err(result) => return Err(Error::Vulkan { call: "vkAllocateDescriptorSets", result }),
-        };
-        with_writes(pipeline, table, sampler, |writes| {
-            let writes: [vk::WriteDescriptorSet; MAX_BINDINGS] = std::array::from_fn(|i| match writes.get(i) {
-                Some(w) => w.dst_set(set),
-                None => vk::WriteDescriptorSet::default(),
-            });
-            unsafe { device.update_descriptor_sets(&writes[..pipeline.interface.bindings.len()], &[]) };
-        });
-        cache.entries.push(Entry { set_layout: pipeline.set_layout, key, set });
-        Ok(set)
+        }
+        let max_sets = records * SETS_PER_RECORD as u32;
+        let info = vk::DescriptorPoolCreateInfo::default().max_sets(max_sets).pool_sizes(&sizes);
+        let pool = vk_check("vkCreateDescriptorPool", unsafe { vk.device.create_descriptor_pool(&info, vk.alloc()) })?;
+        vk.name(pool, "dnsr.descriptor_ring");
+        let mut ring = Ring { pool, sets: Vec::with_capacity(records as usize), slots, next: vec![0; lights as usize] };
+        let set_layouts = layouts.map(|p| p.set_layout);
+        let info = vk::DescriptorSetAllocateInfo::default().descriptor_pool(pool).set_layouts(&set_layouts);
+        for _ in 0..records {
+            match unsafe { vk.device.allocate_descriptor_sets(&info) } {
+                Ok(sets) => ring.sets.push(std::array::from_fn(|i| sets[i])),
+                Err(result) => {
+                    ring.destroy(vk);
+                    return Err(crate::error::Error::Vulkan { call: "vkAllocateDescriptorSets", result });
+                }
+            }
+        }
+        Ok(ring)
     }
 
-    /// Records the binding of `table` (or the prepared `set`) for `pipeline`.
+    fn destroy(&mut self, vk: &Vk) {
+        unsafe { vk.device.destroy_descriptor_pool(self.pool, vk.alloc()) };
+        self.pool = vk::DescriptorPool::null();
+        self.sets.clear();
+    }
+}
+
+/// The descriptor sets of one record (all null with push descriptors).
+#[derive(Clone, Copy)]
+pub(crate) struct RecordSets([vk::DescriptorSet; SETS_PER_RECORD]);
+
+impl RecordSets {
+    pub(crate) fn get(&self, role: SetRole) -> vk::DescriptorSet {
+        self.0[role.index()]
+    }
+}
+
+impl Binder {
+    /// Push descriptors when `push` is given; otherwise `slots` ring slots for each of `lights`.
+    pub(crate) fn new(
+        vk: &Vk,
+        push: Option<ash::khr::push_descriptor::DeviceFn>,
+        layouts: RoleLayouts,
+        lights: u32,
+        slots: u32,
+    ) -> Result<Binder> {
+        match push {
+            Some(push) => Ok(Binder::Push(push)),
+            None => Ok(Binder::Ring(Ring::new(vk, layouts, lights, slots)?)),
+        }
+    }
+
+    /// Takes the next ring slot of `light` for one record. Nothing is written yet; `write` fills each set the
+    /// record uses. Infallible, so a record that reaches this point always completes.
+    pub(crate) fn next_record(&mut self, light: u32) -> RecordSets {
+        match self {
+            Binder::Push(_) => RecordSets([vk::DescriptorSet::null(); SETS_PER_RECORD]),
+            Binder::Ring(ring) => {
+                let slot = ring.next[light as usize];
+                ring.next[light as usize] = (slot + 1) % ring.slots;
+                RecordSets(ring.sets[(light * ring.slots + slot) as usize])
+            }
+        }
+    }
+
+    /// Writes `table` into `set` (a no-op with push descriptors, which are written at bind time).
+    pub(crate) fn write(&self, device: &ash::Device, set: vk::DescriptorSet, pipeline: &Pipeline, table: &BindingTable, sampler: vk::Sampler) {
+        if let Binder::Ring(_) = self {
+            with_writes(pipeline, table, sampler, |writes| {
+                let writes: [vk::WriteDescriptorSet; MAX_BINDINGS] = std::array::from_fn(|i| match writes.get(i) {
+                    Some(w) => w.dst_set(set),
+                    None => vk::WriteDescriptorSet::default(),
+                });
+                unsafe { device.update_descriptor_sets(&writes[..pipeline.interface.bindings.len()], &[]) };
+            });
+        }
+    }
+
+    /// Records the binding of `table` (or the written `set`) for `pipeline`.
     pub(crate) fn bind(
         &self,
         device: &ash::Device,
@@ -138,27 +188,15 @@ impl Binder {
                     writes.as_ptr(),
                 )
             }),
-            Binder::Cache(_) => unsafe {
+            Binder::Ring(_) => unsafe {
                 device.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.layout, 0, &[set], &[])
             },
         }
     }
 
-    /// Forgets every cached set. The caller guarantees the GPU no longer uses them.
-    pub(crate) fn clear(&mut self, device: &ash::Device) -> Result<()> {
-        if let Binder::Cache(cache) = self {
-            vk_check("vkResetDescriptorPool", unsafe {
-                device.reset_descriptor_pool(cache.pool, vk::DescriptorPoolResetFlags::empty())
-            })?;
-            cache.entries.clear();
-        }
-        Ok(())
-    }
-
     pub(crate) fn destroy(&mut self, vk: &Vk) {
-        if let Binder::Cache(cache) = self {
-            unsafe { vk.device.destroy_descriptor_pool(cache.pool, vk.alloc()) };
-            cache.pool = vk::DescriptorPool::null();
+        if let Binder::Ring(ring) = self {
+            ring.destroy(vk);
         }
     }
 }

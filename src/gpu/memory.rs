@@ -49,3 +49,34 @@ pub(crate) fn free(vk: &Vk, m: &mut Memory) {
     }
     *m = Memory::default();
 }
+
+/// Refuses a context that needs more device memory than the device has, before anything is allocated: the
+/// largest device-local heap's budget (VK_EXT_memory_budget, when the device supports it) or its size.
+pub(crate) fn check_available(vk: &Vk, needed: u64) -> Result<()> {
+    let has_budget = unsafe { vk.instance.enumerate_device_extension_properties(vk.physical_device) }
+        .map(|exts| exts.iter().any(|e| e.extension_name_as_c_str() == Ok(ash::ext::memory_budget::NAME)))
+        .unwrap_or(false);
+    let mut budget = vk::PhysicalDeviceMemoryBudgetPropertiesEXT::default();
+    let memory = {
+        let mut props = vk::PhysicalDeviceMemoryProperties2::default();
+        if has_budget {
+            props = props.push_next(&mut budget);
+        }
+        unsafe { vk.instance.get_physical_device_memory_properties2(vk.physical_device, &mut props) };
+        props.memory_properties
+    };
+    let heaps = memory.memory_heaps_as_slice();
+    let budget_of = |i: usize| {
+        if has_budget && budget.heap_budget[i] > 0 {
+            budget.heap_budget[i].saturating_sub(budget.heap_usage[i])
+        } else {
+            heaps[i].size
+        }
+    };
+    let device_local = |i: &usize| heaps[*i].flags.contains(vk::MemoryHeapFlags::DEVICE_LOCAL);
+    let available = (0..heaps.len()).filter(device_local).map(budget_of).max().or_else(|| (0..heaps.len()).map(budget_of).max()).unwrap_or(0);
+    if needed > available {
+        return Err(Error::OutOfDeviceMemory { needed, available });
+    }
+    Ok(())
+}

@@ -8,6 +8,18 @@ use crate::{Context, ContextCreateInfo, HostImage, Precision, Rect, ShadowsDispa
 use ash::vk;
 use glam::{Mat4, Vec2, Vec3};
 
+/// The device's API version plus one minor version.
+fn newer_than_device(i: &ContextCreateInfo) -> u32 {
+    let instance = unsafe {
+        ash::Instance::load_with(
+            |name| std::mem::transmute((i.get_instance_proc_addr.unwrap())(i.instance, name.as_ptr())),
+            i.instance,
+        )
+    };
+    let v = unsafe { instance.get_physical_device_properties(i.physical_device) }.api_version;
+    vk::make_api_version(0, vk::api_version_major(v), vk::api_version_minor(v) + 1, 0)
+}
+
 #[test]
 fn bad_create_infos_are_refused_with_specific_errors() {
     let g = gpu();
@@ -24,7 +36,29 @@ fn bad_create_infos_are_refused_with_specific_errors() {
         ("zero width", |i| i.width = 0, |e| matches!(e, Error::ZeroExtent { .. })),
         ("zero height", |i| i.height = 0, |e| matches!(e, Error::ZeroExtent { .. })),
         ("oversized", |i| i.width = 1 << 20, |e| matches!(e, Error::ExtentTooLarge { .. })),
-        ("no lights", |i| i.light_count = 0, |e| matches!(e, Error::InvalidSetting { name: "light_count", .. })),
+        ("no lights", |i| i.light_count = 0, |e| matches!(e, Error::InvalidValue { field: "light_count", .. })),
+        ("65 lights", |i| i.light_count = 65, |e| matches!(e, Error::InvalidValue { field: "light_count", .. })),
+        ("u32::MAX lights", |i| i.light_count = u32::MAX, |e| matches!(e, Error::InvalidValue { field: "light_count", .. })),
+        (
+            "64 lights of 16384x16384 (more than any device has)",
+            |i| {
+                i.light_count = 64;
+                (i.width, i.height) = (16384, 16384);
+            },
+            |e| matches!(e, Error::OutOfDeviceMemory { .. }),
+        ),
+        ("0 frames in flight", |i| i.max_frames_in_flight = 0, |e| matches!(e, Error::InvalidValue { field: "max_frames_in_flight", .. })),
+        ("17 frames in flight", |i| i.max_frames_in_flight = 17, |e| matches!(e, Error::InvalidValue { field: "max_frames_in_flight", .. })),
+        ("api 9.0", |i| i.api_version = vk::make_api_version(0, 9, 0, 0), |e| matches!(e, Error::UnsupportedApiVersion { .. })),
+        ("api 2.0", |i| i.api_version = vk::make_api_version(0, 2, 0, 0), |e| matches!(e, Error::UnsupportedApiVersion { .. })),
+        ("api variant 1", |i| i.api_version = vk::make_api_version(1, 1, 1, 0), |e| matches!(e, Error::UnsupportedApiVersion { .. })),
+        ("api 0xFFFFFFFF", |i| i.api_version = u32::MAX, |e| matches!(e, Error::UnsupportedApiVersion { .. })),
+        (
+            "api one minor above the device",
+            |i| i.api_version = newer_than_device(i),
+            |e| matches!(e, Error::UnsupportedApiVersion { .. }),
+        ),
+        ("queue family 99", |i| i.queue_family_index = 99, |e| matches!(e, Error::InvalidQueueFamily { index: 99, .. })),
         (
             "fp16 without the feature",
             |i| {
@@ -56,7 +90,7 @@ fn bad_create_infos_are_refused_with_specific_errors() {
                 i.enable_timestamps = true;
                 i.queue_family_index = 99;
             },
-            |e| *e == Error::TimestampsUnsupported,
+            |e| matches!(e, Error::InvalidQueueFamily { index: 99, .. }),
         ),
     ];
     for (name, edit, check) in cases {
@@ -163,7 +197,52 @@ fn bad_dispatches_record_nothing() {
         (
             "zero depth sigma",
             |d| d.depth_similarity_sigma = 0.0,
-            |e| matches!(e, Error::InvalidSetting { name: "depth_similarity_sigma", .. }),
+            |e| matches!(e, Error::InvalidValue { field: "depth_similarity_sigma", .. }),
+        ),
+        ("NaN depth sigma", |d| d.depth_similarity_sigma = f32::NAN, |e| *e == Error::NonFinite("depth_similarity_sigma")),
+        (
+            "unknown input stage bit",
+            |d| d.sync.input_src_stages = vk::PipelineStageFlags::from_raw(1 << 30),
+            |e| matches!(e, Error::InvalidHostSync { field: "input_src_stages", .. }),
+        ),
+        (
+            "unknown output access bit",
+            |d| {
+                d.sync.output_dst_stages = vk::PipelineStageFlags::FRAGMENT_SHADER;
+                d.sync.output_dst_access = vk::AccessFlags::from_raw(1 << 29);
+            },
+            |e| matches!(e, Error::InvalidHostSync { field: "output_dst_access", .. }),
+        ),
+        (
+            "colour attachment write from the fragment shader stage",
+            |d| {
+                d.sync.input_src_stages = vk::PipelineStageFlags::FRAGMENT_SHADER;
+                d.sync.input_src_access = vk::AccessFlags::COLOR_ATTACHMENT_WRITE | vk::AccessFlags::SHADER_READ;
+            },
+            |e| matches!(e, Error::InvalidHostSync { field: "input_src_access", .. }),
+        ),
+        (
+            "shader read by the transfer stage",
+            |d| {
+                d.sync.output_dst_stages = vk::PipelineStageFlags::TRANSFER;
+                d.sync.output_dst_access = vk::AccessFlags::SHADER_READ;
+            },
+            |e| matches!(e, Error::InvalidHostSync { field: "output_dst_access", .. }),
+        ),
+        (
+            "access without a stage",
+            |d| d.sync.input_src_access = vk::AccessFlags::SHADER_WRITE,
+            |e| matches!(e, Error::InvalidHostSync { field: "input_src_access", .. }),
+        ),
+        (
+            "ray-tracing stage on a device without ray-tracing pipelines",
+            |d| d.sync.input_src_stages = vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR,
+            |e| matches!(e, Error::InvalidHostSync { field: "input_src_stages", .. }),
+        ),
+        (
+            "mesh shader stage (not accepted)",
+            |d| d.sync.output_dst_stages = vk::PipelineStageFlags::MESH_SHADER_EXT,
+            |e| matches!(e, Error::InvalidHostSync { field: "output_dst_stages", .. }),
         ),
         (
             "empty render rect",
@@ -200,6 +279,9 @@ fn bad_dispatches_record_nothing() {
     let mut s = r.ctx.settings();
     s.normal_power = -1.0;
     assert!(matches!(r.ctx.set_settings(s), Err(Error::InvalidSetting { name: "normal_power", .. })));
+    s.normal_power = f32::NAN;
+    let e = r.ctx.set_settings(s).unwrap_err();
+    assert_eq!(e.to_string(), "setting normal_power is NaN; it must be in [0, 256]");
     assert_eq!(r.ctx.settings(), crate::Settings::default());
     assert!(matches!(r.ctx.reset_history(3), Err(Error::InvalidLightIndex { .. })));
     assert!(matches!(r.ctx.resize(0, 5), Err(Error::ZeroExtent { .. })));

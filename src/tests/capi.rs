@@ -28,6 +28,7 @@ fn create_info(g: &crate::testing::gpu::Gpu, w: u32, h: u32) -> DnsrContextCreat
         precision: DNSR_PRECISION_FP32,
         output_format: vk::Format::R32_SFLOAT,
         light_count: 1,
+        max_frames_in_flight: 0,
         p_settings: std::ptr::null(),
         p_allocation_callbacks: std::ptr::null(),
         p_gpu_memory_callbacks: std::ptr::null(),

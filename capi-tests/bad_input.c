@@ -126,6 +126,14 @@ static void expect_create(const char *name, const DnsrContextCreateInfo *info, D
         expect_create(name, &info, want, mention);                                                                \
     } while (0)
 
+/* The physical device's Vulkan version, patch dropped. */
+static uint32_t device_api_version(const Host *h)
+{
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(h->physicalDevice, &props);
+    return VK_MAKE_API_VERSION(0, VK_API_VERSION_MAJOR(props.apiVersion), VK_API_VERSION_MINOR(props.apiVersion), 0);
+}
+
 static void create_calls(void)
 {
     expect_create("create: NULL pCreateInfo", NULL, DNSR_ERROR_INVALID_ARGUMENT, "pCreateInfo is NULL");
@@ -145,13 +153,36 @@ static void create_calls(void)
     CREATE_CASE("create: apiVersion 1.0", DNSR_ERROR_UNSUPPORTED_API_VERSION, "apiVersion 1.0",
                 info.apiVersion = VK_API_VERSION_1_0);
     CREATE_CASE("create: apiVersion 0", DNSR_ERROR_UNSUPPORTED_API_VERSION, "apiVersion", info.apiVersion = 0);
-    /* A patch number does not lift 1.0 to 1.1 (a version above the device's is legal and accepted). */
+    /* A patch number does not lift 1.0 to 1.1. */
     CREATE_CASE("create: apiVersion 1.0.999", DNSR_ERROR_UNSUPPORTED_API_VERSION, "apiVersion 1.0",
                 info.apiVersion = VK_MAKE_API_VERSION(0, 1, 0, 999));
+    /* Versions the device does not have, and values that are no Vulkan version at all. */
+    CREATE_CASE("create: apiVersion 9.0", DNSR_ERROR_UNSUPPORTED_API_VERSION, "apiVersion 9.0",
+                info.apiVersion = VK_MAKE_API_VERSION(0, 9, 0, 0));
+    CREATE_CASE("create: apiVersion 2.0", DNSR_ERROR_UNSUPPORTED_API_VERSION, "apiVersion 2.0",
+                info.apiVersion = VK_MAKE_API_VERSION(0, 2, 0, 0));
+    CREATE_CASE("create: apiVersion variant 1", DNSR_ERROR_UNSUPPORTED_API_VERSION, "apiVersion",
+                info.apiVersion = VK_MAKE_API_VERSION(1, 1, 1, 0));
+    CREATE_CASE("create: apiVersion 0xFFFFFFFF", DNSR_ERROR_UNSUPPORTED_API_VERSION, "apiVersion",
+                info.apiVersion = 0xFFFFFFFFu);
+    CREATE_CASE("create: apiVersion one minor above the device", DNSR_ERROR_UNSUPPORTED_API_VERSION,
+                "the device supports", info.apiVersion = device_api_version(&host) + VK_MAKE_API_VERSION(0, 0, 1, 0));
+    CREATE_CASE("create: queueFamilyIndex 99", DNSR_ERROR_INVALID_QUEUE_FAMILY, "queueFamilyIndex 99",
+                info.queueFamilyIndex = 99);
+    CREATE_CASE("create: lightCount 65", DNSR_ERROR_INVALID_ARGUMENT, "lightCount is 65", info.lightCount = 65);
+    CREATE_CASE("create: lightCount 100000", DNSR_ERROR_INVALID_ARGUMENT, "DNSR_MAX_LIGHT_COUNT",
+                info.lightCount = 100000);
+    CREATE_CASE("create: lightCount 0xFFFFFFFF", DNSR_ERROR_INVALID_ARGUMENT, "lightCount",
+                info.lightCount = 0xFFFFFFFFu);
+    CREATE_CASE("create: 64 lights at 16384x16384", DNSR_ERROR_OUT_OF_DEVICE_MEMORY, "MiB of device memory",
+                info.lightCount = DNSR_MAX_LIGHT_COUNT;
+                info.width = 16384; info.height = 16384);
+    CREATE_CASE("create: maxFramesInFlight 17", DNSR_ERROR_INVALID_ARGUMENT, "maxFramesInFlight is 17",
+                info.maxFramesInFlight = DNSR_MAX_FRAMES_IN_FLIGHT + 1);
     CREATE_CASE("create: zero width", DNSR_ERROR_INVALID_EXTENT, "zero width", info.width = 0);
     CREATE_CASE("create: zero height", DNSR_ERROR_INVALID_EXTENT, "zero width or height", info.height = 0);
     CREATE_CASE("create: width 1<<20", DNSR_ERROR_INVALID_EXTENT, "exceeds the device limit", info.width = 1u << 20);
-    CREATE_CASE("create: lightCount 0", DNSR_ERROR_INVALID_SETTING, "lightCount", info.lightCount = 0);
+    CREATE_CASE("create: lightCount 0", DNSR_ERROR_INVALID_ARGUMENT, "lightCount is 0", info.lightCount = 0);
     /* Known bits are set next to the unknown one on purpose: the message must name only the unknown bits. */
     CREATE_CASE("create: unknown flag bits", DNSR_ERROR_INVALID_ARGUMENT, "pCreateInfo->flags has unknown bits 0x80",
                 info.flags = DNSR_CONTEXT_CREATE_DEPTH_INVERTED | (1u << 7));
@@ -191,7 +222,7 @@ static void create_calls(void)
     VkAllocationCallbacks no_cpu_free = {NULL, cpu_allocate_never, cpu_reallocate_never, NULL, NULL, NULL};
     CREATE_CASE("create: pAllocationCallbacks without pfnFree", DNSR_ERROR_INVALID_ARGUMENT, "pAllocationCallbacks",
                 info.pAllocationCallbacks = &no_cpu_free);
-    CREATE_CASE("create: timestamps, queueFamilyIndex 99", DNSR_ERROR_TIMESTAMPS_UNSUPPORTED, "timestamp",
+    CREATE_CASE("create: timestamps, queueFamilyIndex 99", DNSR_ERROR_INVALID_QUEUE_FAMILY, "no queue family",
                 info.flags = DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS;
                 info.queueFamilyIndex = 99);
     /* The host's GPU allocator failing is reported as a Vulkan error, with the allocator named. */
@@ -414,10 +445,29 @@ static void dispatch_calls(void)
                   d.motionVectorScale[0] = NAN);
     DISPATCH_CASE("record: NaN normalsUnpackAdd", DNSR_ERROR_NON_FINITE, "normalsUnpack",
                   d.normalsUnpackAdd = NAN);
-    DISPATCH_CASE("record: depthSimilaritySigma 0", DNSR_ERROR_INVALID_SETTING, "depthSimilaritySigma",
+    DISPATCH_CASE("record: depthSimilaritySigma 0", DNSR_ERROR_INVALID_ARGUMENT, "depthSimilaritySigma is 0",
                   d.depthSimilaritySigma = 0.0f);
-    DISPATCH_CASE("record: depthSimilaritySigma NaN", DNSR_ERROR_INVALID_SETTING, "depthSimilaritySigma",
+    DISPATCH_CASE("record: depthSimilaritySigma NaN", DNSR_ERROR_NON_FINITE, "depthSimilaritySigma contains NaN",
                   d.depthSimilaritySigma = NAN);
+
+    /* HostSync: dnsr turns it into barriers, so everything the validation layer would reject is refused first. */
+    DISPATCH_CASE("record: unknown input stage bit", DNSR_ERROR_INVALID_HOST_SYNC, "sync.inputSrcStages: unknown",
+                  d.sync.inputSrcStages = 1u << 30);
+    DISPATCH_CASE("record: unknown output access bit", DNSR_ERROR_INVALID_HOST_SYNC, "sync.outputDstAccess: unknown",
+                  d.sync.outputDstStages = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+                  d.sync.outputDstAccess = 1u << 29);
+    DISPATCH_CASE("record: COLOR_ATTACHMENT_WRITE from FRAGMENT_SHADER", DNSR_ERROR_INVALID_HOST_SYNC,
+                  "COLOR_ATTACHMENT_WRITE is not performed by any stage",
+                  d.sync.inputSrcStages = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+                  d.sync.inputSrcAccess = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT);
+    DISPATCH_CASE("record: SHADER_READ by TRANSFER", DNSR_ERROR_INVALID_HOST_SYNC, "sync.outputDstAccess",
+                  d.sync.outputDstStages = VK_PIPELINE_STAGE_TRANSFER_BIT;
+                  d.sync.outputDstAccess = VK_ACCESS_SHADER_READ_BIT);
+    DISPATCH_CASE("record: access without stage", DNSR_ERROR_INVALID_HOST_SYNC, "inputSrcStages is empty",
+                  d.sync.inputSrcStages = 0;
+                  d.sync.inputSrcAccess = VK_ACCESS_SHADER_WRITE_BIT);
+    DISPATCH_CASE("record: mesh shader stage", DNSR_ERROR_INVALID_HOST_SYNC, "sync.outputDstStages",
+                  d.sync.outputDstStages = VK_PIPELINE_STAGE_MESH_SHADER_BIT_EXT);
 
     DISPATCH_CASE("record: render rect misaligned x", DNSR_ERROR_INVALID_RENDER_RECT, "x must be a multiple of 8",
                   d.flags = DNSR_DISPATCH_USE_RENDER_RECT;

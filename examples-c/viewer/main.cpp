@@ -53,22 +53,29 @@ struct Options {
 
 const char *kUsage =
     "usage: dnsr_viewer [SCENE.gltf|SCENE.glb] [options]\n"
+    "  SCENE                   a glTF 2.0 file (default " VIEWER_DEFAULT_SCENE ")\n"
     "  --headless              render without a window; writes PNGs and report.json to --out\n"
-    "  --frames N              frames to render (headless default 16; window: until closed)\n"
-    "  --size WxH              render size (default 960x540 windowed, 320x192 headless)\n"
+    "  --frames N              frames to render, 1..1000000 (headless default 16; window: until closed)\n"
+    "  --size WxH              render size, 8x8..8192x8192 (default 960x540 windowed, 320x192 headless)\n"
     "  --out DIR               headless output directory (default out/viewer)\n"
-    "  --screenshot FILE       window mode: save the displayed image after --frames N frames and exit\n"
+    "  --screenshot FILE       window mode: save the displayed image (PNG) after --frames N frames and exit\n"
     "  --point-light           a spherical point light instead of the directional light\n"
-    "  --light-angle DEG       angular radius of the light (default 3; sets the penumbra width)\n"
+    "  --light-angle DEG       angular radius of the light, 0..30 (default 3; sets the penumbra width)\n"
     "  --light-motion          start with the light moving (key L toggles it)\n"
-    "  --reference-samples N   shadow rays per pixel of the reference (default 256)\n"
+    "  --reference-samples N   shadow rays per pixel of the reference, 1..65536 (default 256)\n"
     "  --view NAME             window mode: first view (noisy, denoised, reference, composite, tiles, or dnsr's\n"
-    "                          debug views classification, samples, variance, disocclusion)\n"
-    "  --orbit-speed DEG       headless: camera orbit per frame in degrees (default 0.25; 0 = static)\n"
-    "  --validate              enable VK_LAYER_KHRONOS_validation; any message makes the exit status 1\n"
+    "                          debug views classification, samples, variance, disocclusion; keys 1-9)\n"
+    "  --orbit-speed DEG       headless: camera orbit per frame in degrees, -45..45 (default 0.25; 0 = static)\n"
+    "  --validate              enable VK_LAYER_KHRONOS_validation; any validation message makes the exit status 1\n"
+    "                          (the Vulkan loader's own notices are shown but not counted)\n"
+    "  -h, --help              print this and exit\n"
     "environment: VIEWER_DEVICE=<substring of the device name> picks a Vulkan device (default: the first)\n"
-    "window keys: drag orbit, scroll zoom, R reset view, 1 noisy, 2 denoised, 3 reference, 4 composite,\n"
-    "             5 hit-mask density per tile, L toggle light motion, Esc/Q quit\n";
+    "window keys: left-drag orbit, scroll zoom, R reset view (a camera cut: dnsr's history restarts),\n"
+    "             1 noisy, 2 denoised, 3 reference (accumulates while nothing moves), 4 composite,\n"
+    "             5 hit-mask density per tile, 6 dnsr tile classification, 7 dnsr sample count,\n"
+    "             8 dnsr variance, 9 dnsr disocclusion, L toggle light motion, Esc/Q quit\n"
+    "exit status: 0 success, 1 a Vulkan/dnsr failure or (with --validate) a validation message,\n"
+    "             2 a bad command line or a scene the viewer cannot load\n";
 
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;

@@ -1,14 +1,25 @@
 // scene_gltf.cpp: glTF loading with tinygltf (Debian's shared libtinygltf), then our own validation of every
 // accessor before a single byte is read: tinygltf parses the JSON and loads the buffers, but it does not check
 // that an accessor fits inside its buffer view, that indices are in range, or that positions are finite.
+//
+// Before tinygltf sees anything, the path is stat()ed (only a regular file is read: a directory made tinygltf
+// allocate 2^63 bytes, a FIFO blocked in open()) and the JSON's top level is scanned for the glTF version and the
+// required extensions (tinygltf reads glTF 2.0 only, and met glTF 1.0 or Draco files with messages about
+// whatever it tripped on first).
 #include "scene_gltf.h"
 
 #include <tiny_gltf.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cstdio>
-#include <fstream>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
 
 namespace {
 
@@ -326,28 +337,295 @@ private:
     int skippedMode_ = 0;
 };
 
+// ---- The file itself, and what kind of glTF it is ----
+
+// Reads `path` whole, refusing anything that is not a regular file. stat() first, never open(): opening a FIFO
+// blocks until a writer comes, and a directory opens fine but then reads as a file of absurd length.
+std::vector<unsigned char> readSceneFile(const std::string &path)
+{
+    struct stat st;
+    if (::stat(path.c_str(), &st) != 0) fail(path, std::string("cannot open file: ") + std::strerror(errno));
+    const char *kind = S_ISREG(st.st_mode)    ? nullptr
+                       : S_ISDIR(st.st_mode)  ? "a directory"
+                       : S_ISFIFO(st.st_mode) ? "a FIFO (named pipe)"
+                       : S_ISSOCK(st.st_mode) ? "a socket"
+                       : S_ISCHR(st.st_mode)  ? "a character device"
+                       : S_ISBLK(st.st_mode)  ? "a block device"
+                                              : "not a regular file";
+    if (kind) throw SceneError(path + " is " + kind + ", not a glTF file");
+    if (st.st_size == 0) fail(path, "the file is empty");
+    // tinygltf takes the length as an unsigned int.
+    if (static_cast<unsigned long long>(st.st_size) > std::numeric_limits<unsigned int>::max())
+        fail(path, "the file is larger than 4 GiB");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(path, "cannot open file");
+    std::vector<unsigned char> data(static_cast<size_t>(st.st_size));
+    in.read(reinterpret_cast<char *>(data.data()), static_cast<std::streamsize>(data.size()));
+    if (static_cast<size_t>(in.gcount()) != data.size()) fail(path, "cannot read the whole file (did it change?)");
+    return data;
+}
+
+// What the top level of a glTF's JSON says about its version and extensions.
+struct GltfHeader {
+    bool hasAssetVersion = false;
+    bool assetVersionIsString = false;
+    std::string assetVersion;
+    std::string gltf1Sign;  // the first top-level member shaped as in glTF 1.0, described; empty if none
+    std::string objectNotArray;  // the first member that glTF 2.0 makes an array but this file an object
+    std::vector<std::string> required, used;
+};
+
+// Just enough JSON to fill a GltfHeader: the members named above are read, every other value is skipped without
+// recursion (no depth limit needed). scan() returns false for anything it cannot follow; the caller then
+// concludes nothing and leaves the error message to tinygltf's full parser.
+class HeaderScanner {
+public:
+    HeaderScanner(const unsigned char *begin, const unsigned char *end)
+        : p_(reinterpret_cast<const char *>(begin)), end_(reinterpret_cast<const char *>(end))
+    {
+        if (end_ - p_ >= 3 && std::memcmp(p_, "\xEF\xBB\xBF", 3) == 0) p_ += 3;  // a UTF-8 byte order mark
+    }
+
+    bool scan(GltfHeader &h)
+    {
+        // The members that glTF 2.0 makes arrays and glTF 1.0 made objects keyed by id.
+        static const char *const arrays[] = {"accessors", "animations", "buffers",  "bufferViews", "cameras",
+                                             "images",    "materials",  "meshes",   "nodes",       "samplers",
+                                             "scenes",    "skins",      "textures"};
+        bool ok = members([&](const std::string &key) {
+            if (key == "asset" && peek('{'))
+                return members([&](const std::string &k) {
+                    if (k != "version") return skipValue();
+                    h.hasAssetVersion = true;
+                    h.assetVersionIsString = peek('"');
+                    return h.assetVersionIsString ? string(&h.assetVersion) : skipValue();
+                });
+            if ((key == "extensionsRequired" || key == "extensionsUsed") && peek('[')) {
+                std::vector<std::string> &list = key == "extensionsRequired" ? h.required : h.used;
+                return elements([&] {
+                    if (!peek('"')) return skipValue();
+                    list.emplace_back();
+                    return string(&list.back());
+                });
+            }
+            if (h.objectNotArray.empty() && peek('{') &&
+                std::find(std::begin(arrays), std::end(arrays), key) != std::end(arrays))
+                h.objectNotArray = key;
+            if (key == "version") h.gltf1Sign = "a top-level \"version\"";  // the plainest sign: named first
+            else if (h.gltf1Sign.empty() && key == "scene" && peek('"'))
+                h.gltf1Sign = "\"scene\" is a string (an id)";
+            else if (h.gltf1Sign.empty() && h.objectNotArray == key)
+                h.gltf1Sign = "\"" + key + "\" is an object keyed by id";
+            return skipValue();
+        });
+        skipSpace();
+        return ok && p_ == end_;
+    }
+
+private:
+    void skipSpace()
+    {
+        while (p_ < end_ && (*p_ == ' ' || *p_ == '\t' || *p_ == '\n' || *p_ == '\r')) ++p_;
+    }
+    bool peek(char c)
+    {
+        skipSpace();
+        return p_ < end_ && *p_ == c;
+    }
+    bool eat(char c)
+    {
+        if (!peek(c)) return false;
+        ++p_;
+        return true;
+    }
+
+    // A JSON string; escapes are decoded as far as names need (\uXXXX beyond ASCII becomes '?').
+    bool string(std::string *out)
+    {
+        if (!eat('"')) return false;
+        while (p_ < end_) {
+            char c = *p_++;
+            if (c == '"') return true;
+            if (static_cast<unsigned char>(c) < 0x20) return false;
+            if (c == '\\') {
+                if (p_ >= end_) return false;
+                c = *p_++;
+                if (c == 'u') {
+                    unsigned code = 0;
+                    for (int i = 0; i < 4; i++, ++p_) {
+                        if (p_ >= end_ || !std::isxdigit(static_cast<unsigned char>(*p_))) return false;
+                        code = code * 16 + unsigned(std::isdigit(static_cast<unsigned char>(*p_))
+                                                        ? *p_ - '0'
+                                                        : std::tolower(static_cast<unsigned char>(*p_)) - 'a' + 10);
+                    }
+                    c = code < 0x80 ? static_cast<char>(code) : '?';
+                } else {
+                    const char *from = "\"\\/bfnrt", *to = "\"\\/\b\f\n\r\t";
+                    const char *at = std::strchr(from, c);
+                    if (!at || !c) return false;
+                    c = to[at - from];
+                }
+            }
+            if (out) *out += c;
+        }
+        return false;
+    }
+
+    // Any value, nested or not, by counting brackets (strings are read properly, so brackets inside them do not
+    // count). Lenient about the grammar between the brackets: tinygltf checks that.
+    bool skipValue()
+    {
+        size_t depth = 0;
+        do {
+            skipSpace();
+            if (p_ >= end_) return false;
+            char c = *p_;
+            if (c == '"') {
+                if (!string(nullptr)) return false;
+            } else if (c == '{' || c == '[') {
+                depth++, p_++;
+            } else if (c == '}' || c == ']' || c == ',' || c == ':') {
+                if (depth == 0) return false;
+                if (c == '}' || c == ']') depth--;
+                p_++;
+            } else {  // number, true, false, null
+                const char *start = p_;
+                while (p_ < end_ && (std::isalnum(static_cast<unsigned char>(*p_)) || *p_ == '+' || *p_ == '-' ||
+                                     *p_ == '.'))
+                    ++p_;
+                if (p_ == start) return false;
+            }
+        } while (depth > 0);
+        return true;
+    }
+
+    // An object: onMember(key) is called with the input at the member's value, and must consume it.
+    template <class F> bool members(F &&onMember)
+    {
+        if (!eat('{')) return false;
+        if (eat('}')) return true;
+        for (;;) {
+            std::string key;
+            if (!peek('"') || !string(&key) || !eat(':') || !onMember(key)) return false;
+            if (!eat(',')) return eat('}');
+        }
+    }
+
+    // An array: onElement() is called with the input at each element, and must consume it.
+    template <class F> bool elements(F &&onElement)
+    {
+        if (!eat('[')) return false;
+        if (eat(']')) return true;
+        for (;;) {
+            if (!onElement()) return false;
+            if (!eat(',')) return eat(']');
+        }
+    }
+
+    const char *p_;
+    const char *end_;
+};
+
+// Compression extensions: their meshes have no plain vertex data (unless the file carries a fallback).
+const char *compressionName(const std::string &extension)
+{
+    if (extension == "KHR_draco_mesh_compression") return "Draco compression";
+    if (extension == "EXT_meshopt_compression" || extension == "KHR_meshopt_compression") return "meshopt compression";
+    return nullptr;
+}
+
+// Required extensions that change only what the viewer does not draw anyway (textures, the finer points of
+// materials, the file's own lights): the geometry, all that the shadows need, loads correctly without them.
+bool ignorableExtension(const std::string &extension)
+{
+    auto starts = [&](const char *prefix) { return extension.rfind(prefix, 0) == 0; };
+    return starts("KHR_materials_") || starts("KHR_texture_") || starts("EXT_texture_") ||
+           extension == "KHR_lights_punctual";
+}
+
+// A name from the file, made safe for a one-line message.
+std::string printable(const std::string &s)
+{
+    std::string out;
+    for (char c : s.substr(0, 40)) out += (c >= 0x20 && c < 0x7f) ? c : '?';
+    return s.size() > 40 ? out + "..." : out;
+}
+
+// Throws for a file that is not glTF 2.0 or that requires an extension the viewer lacks.
+void refuseUnsupported(const std::string &path, const GltfHeader &h)
+{
+    const std::string reads = " is not supported (dnsr_viewer reads glTF 2.0)";
+    if (h.hasAssetVersion && !h.assetVersionIsString)
+        fail(path, "asset.version is not a string (glTF 2.0 files say \"version\": \"2.0\")");
+    if (h.hasAssetVersion && h.assetVersion.rfind("2.", 0) != 0)
+        fail(path, "glTF " + printable(h.assetVersion) + reads);
+    if (!h.hasAssetVersion && !h.gltf1Sign.empty())
+        fail(path, "glTF 1.0" + reads + ": no asset.version, and " + h.gltf1Sign + " as in glTF 1.0");
+    if (!h.hasAssetVersion) fail(path, "no asset.version (a glTF 2.0 file has \"asset\": {\"version\": \"2.0\"})");
+    if (!h.objectNotArray.empty())  // in a file that says it is glTF 2.x
+        fail(path, "\"" + h.objectNotArray + "\" is an object (keyed by id, as in glTF 1.0), but glTF " +
+                       printable(h.assetVersion) + " wants an array");
+    for (const std::string &e : h.required) {
+        if (const char *name = compressionName(e)) fail(path, std::string(name) + " (" + e + ") is not supported");
+        if (!ignorableExtension(e))
+            fail(path, "the file requires extension " + printable(e) + ", which dnsr_viewer does not support");
+    }
+}
+
 }  // namespace
 
 Scene loadGltfScene(const std::string &path)
 {
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe) fail(path, "cannot open file");
-    char magic[4] = {};
-    probe.read(magic, 4);
+    std::vector<unsigned char> data = readSceneFile(path);
     // Decide by content rather than extension: a .glb starts with "glTF".
-    bool binary = probe.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;
-    probe.close();
+    bool binary = data.size() >= 4 && std::memcmp(data.data(), "glTF", 4) == 0;
 
-    tinygltf::TinyGLTF gltf;
-    gltf.SetImageLoader(skipImage, nullptr);
-    tinygltf::Model model;
-    std::string err, warn;
-    bool ok = binary ? gltf.LoadBinaryFromFile(&model, &err, &warn, path)
-                     : gltf.LoadASCIIFromFile(&model, &err, &warn, path);
-    if (!ok) fail(path, err.empty() ? "tinygltf could not load the file" : err);
+    // The JSON: all of a .gltf; the first chunk of a .glb (header: magic, version, length; then the chunk's length
+    // and type). A header that does not add up is left to tinygltf to report.
+    const unsigned char *json = data.data(), *jsonEnd = data.data() + data.size();
+    if (binary) {
+        uint32_t word[4] = {};
+        std::memcpy(word, data.data() + 4, std::min<size_t>(data.size() - 4, sizeof word));
+        if (data.size() >= 8 && word[0] == 1)
+            fail(path, "glTF 1.0 is not supported (dnsr_viewer reads glTF 2.0): a version 1 binary glTF file");
+        if (data.size() >= 8 && word[0] != 2)
+            fail(path, "binary glTF version " + std::to_string(word[0]) + " is not supported (dnsr_viewer reads "
+                       "glTF 2.0)");
+        bool jsonChunk = data.size() >= 20 && word[3] == 0x4E4F534Au && word[2] <= data.size() - 20;  // "JSON"
+        json = jsonChunk ? data.data() + 20 : nullptr;
+        jsonEnd = jsonChunk ? json + word[2] : nullptr;
+    }
+    GltfHeader header;
+    bool scanned = json && HeaderScanner(json, jsonEnd).scan(header);
+    if (scanned) refuseUnsupported(path, header);
+
+    // Compression named only in extensionsUsed: a conforming file then also carries uncompressed data, which is
+    // what gets loaded. If that fails, the compression is the real reason.
+    std::string usedCompression;
+    for (const std::string &e : header.used)
+        if (compressionName(e) && usedCompression.empty()) usedCompression = e;
 
     Scene scene;
-    Loader(path, model, scene).run();
+    try {
+        tinygltf::TinyGLTF gltf;
+        gltf.SetImageLoader(skipImage, nullptr);
+        tinygltf::Model model;
+        std::string err, warn;
+        // The bytes already read, so tinygltf opens no scene file itself; buffer URIs resolve next to the file.
+        const std::string baseDir = std::filesystem::path(path).parent_path().string();
+        bool ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, data.data(),
+                                                     static_cast<unsigned int>(data.size()), baseDir)
+                         : gltf.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char *>(data.data()),
+                                                    static_cast<unsigned int>(data.size()), baseDir);
+        if (!ok) fail(path, err.empty() ? "tinygltf could not load the file" : err);
+        Loader(path, model, scene).run();
+    } catch (const SceneError &e) {
+        if (usedCompression.empty()) throw;
+        std::string reason = e.what();
+        if (reason.rfind(path + ": ", 0) == 0) reason.erase(0, path.size() + 2);
+        fail(path, std::string(compressionName(usedCompression)) + " (" + usedCompression +
+                       ") is not supported, and the file's uncompressed fallback does not load: " + reason);
+    }
 
     scene.boundsMin = scene.boundsMax = scene.positions[0];
     for (const Vec3 &p : scene.positions) {

@@ -35,6 +35,8 @@ struct Scene {
     size_t triangleCount() const { return positions.size() / 3; }
 };
 
-// Throws SceneError (never crashes) for a missing or malformed file, an accessor that does not fit its buffer
-// view, indices out of range, non-finite positions or transforms, or a scene without triangles.
+// Throws SceneError (never crashes or blocks) for a path that is not a regular file (directory, FIFO, device),
+// a missing or malformed file, glTF other than 2.0 (1.0 is named as such), an extension the viewer lacks that
+// the file requires (Draco and meshopt compression are named), an accessor that does not fit its buffer view,
+// indices out of range, non-finite positions or transforms, or a scene without triangles.
 Scene loadGltfScene(const std::string &path);

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Tests of the dnsr viewer: builds it against target/release/libdnsr.so, renders the default scene headless on
 # lavapipe with the validation layer (any message fails), checks the images and that dnsr beats the 1-spp input
-# against the many-ray reference, takes a window-mode screenshot under Xvfb, and feeds it broken glTF files
-# (each must give exit status 2 and a one-line message, never a crash).
+# against the many-ray reference, checks that --validate counts validation messages only (not the Vulkan loader's
+# notices) and that --help describes every option and key, takes a window-mode screenshot under Xvfb, and feeds
+# it broken or unsupported scene files, also through an AddressSanitizer + UBSan build (each must give exit
+# status 2 and a one-line message, never a crash or a hang; unsupported kinds of file must be named as such).
 #
 #   examples-c/viewer/test.sh            (VIEWER_DEVICE=<substring of a device name> picks another device)
 set -euo pipefail
@@ -26,6 +28,31 @@ elif [[ ! -f target/release/libdnsr.so ]]; then
 fi
 cmake -S examples-c/viewer -B "$build" -DCMAKE_BUILD_TYPE=Release -DDNSR_LIB="$PWD/target/release/libdnsr.so" >/dev/null
 cmake --build "$build" -j "$(nproc)" >/dev/null
+# The same viewer with AddressSanitizer and UBSan, for the bad-input cases only (they never reach Vulkan, so no
+# driver leaks to suppress). A Debug build: a few seconds.
+asan_build=build/viewer-asan
+asan_viewer="$asan_build/dnsr_viewer"
+cmake -S examples-c/viewer -B "$asan_build" -DCMAKE_BUILD_TYPE=Debug -DDNSR_VIEWER_SANITIZE=ON \
+  -DDNSR_LIB="$PWD/target/release/libdnsr.so" >/dev/null
+cmake --build "$asan_build" -j "$(nproc)" >/dev/null
+
+# ---- --help: every option main.cpp parses, every key it handles, every view name ----
+help=$("$viewer" --help) || fail "--help exited with status $?"
+options=$(grep -o 'a == "-[-a-z]*"' examples-c/viewer/main.cpp | cut -d'"' -f2)
+[[ $(wc -w <<<"$options") -ge 10 ]] || fail "found only $(wc -w <<<"$options") options in main.cpp: update this test"
+for opt in $options; do grep -qF -- "$opt" <<<"$help" || fail "--help does not list $opt"; done
+keys=$(grep -o 'case GLFW_KEY_[A-Z0-9]*' examples-c/viewer/main.cpp | sed 's/case GLFW_KEY_//')
+[[ $(wc -w <<<"$keys") -ge 12 ]] || fail "found only $(wc -w <<<"$keys") keys in main.cpp: update this test"
+for key in $keys; do
+  word=$key
+  [[ $key == ESCAPE ]] && word=Esc
+  # A key is described when it stands alone followed by its meaning: "6 dnsr tile classification", "Esc/Q quit".
+  grep -qE "(^|[ ,/])$word([ /])" <<<"$help" || fail "--help does not describe key $word"
+done
+for view in noisy denoised reference composite tiles classification samples variance disocclusion; do
+  grep -qw -- "$view" <<<"$help" || fail "--help does not name the view $view"
+done
+echo "help: lists $(wc -w <<<"$options") options and $(wc -w <<<"$keys") keys"
 
 # Prints "min max" of a PNG's samples (8-bit, as png_write.cpp writes them: filter 0, stored deflate).
 png_range() {
@@ -78,6 +105,30 @@ PY
 ) || fail "report.json check failed"
 echo "headless: $quality"
 [[ $quality == ok* ]] || fail "denoised RMSE is not below 0.7x the noisy RMSE"
+
+# ---- --validate counts validation messages, not the Vulkan loader's notices ----
+# With VK_INSTANCE_LAYERS naming the layer, the loader warns through the same debug messenger that it adds the
+# layer from the environment (pMessageIdName "Loader Message", type GENERAL): that is no validation failure.
+status=0
+VK_INSTANCE_LAYERS=VK_LAYER_KHRONOS_validation "$viewer" --headless --validate --frames 2 --size 32x32 \
+  --out "$tmp/env-layers" > "$tmp/env-layers.log" 2>&1 || status=$?
+(( status == 0 )) ||
+  { cat "$tmp/env-layers.log"; fail "--validate with VK_INSTANCE_LAYERS set exited with status $status"; }
+notices=$(grep -c '^loader notice' "$tmp/env-layers.log" || true)
+# The control: real validation-layer messages must still count. Best-practices validation (switched on here
+# through the environment) reports the viewer's use of VK_EXT_debug_utils, a debugging extension.
+status=0
+VK_INSTANCE_LAYERS=VK_LAYER_KHRONOS_validation VK_LAYER_ENABLES=VK_VALIDATION_FEATURE_ENABLE_BEST_PRACTICES_EXT \
+  "$viewer" --headless --validate --frames 1 --size 16x16 --out "$tmp/best-practices" \
+  > "$tmp/best-practices.log" 2>&1 || status=$?
+counted=$(grep -c '^validation: ' "$tmp/best-practices.log" || true)
+if (( counted > 0 )); then
+  (( status == 1 )) || { cat "$tmp/best-practices.log"; fail "$counted validation message(s) but exit status $status"; }
+  control="$counted best-practices message(s) still fail it"
+else
+  control="control skipped: best-practices validation reported nothing here"
+fi
+echo "validate: VK_INSTANCE_LAYERS set: status 0 ($notices loader notice(s) shown, not counted); $control"
 
 # ---- Window mode under Xvfb (24-bit screen: Vulkan presentation needs a true-colour visual) ----
 window="skipped (no xvfb-run)"
@@ -155,19 +206,105 @@ with open(os.path.join(out, "not_json.gltf"), "w") as f:
     f.write("{ this is not json")
 with open(os.path.join(out, "truncated.glb"), "wb") as f:
     f.write(b"glTF" + struct.pack("<II", 2, 4096) + b"\x10\0\0\0JSON{")
+
+# Files that are valid, but not what the viewer reads: each must be named for what it is.
+def write_json(name, doc):
+    with open(os.path.join(out, name), "w") as f:
+        json.dump(doc, f)
+
+def glb(name, doc, version=2):
+    text = json.dumps(doc).encode()
+    text += b" " * ((4 - len(text) % 4) % 4)
+    with open(os.path.join(out, name), "wb") as f:
+        if version == 1:  # KHR_binary_glTF: magic, version, length, content length, content format 0 (JSON)
+            f.write(b"glTF" + struct.pack("<IIII", 1, 20 + len(text), len(text), 0) + text)
+        else:
+            f.write(b"glTF" + struct.pack("<III", 2, 20 + len(text), len(text)) + b"JSON" + text)
+
+# glTF 1.0: objects keyed by id where 2.0 has arrays, and "scene" an id.
+gltf1 = {
+    "asset": {"version": "1.0"},
+    "scene": "defaultScene",
+    "scenes": {"defaultScene": {"nodes": ["node_1"]}},
+    "nodes": {"node_1": {"meshes": ["mesh_1"], "children": []}},
+    "meshes": {"mesh_1": {"primitives": [{"attributes": {"POSITION": "accessor_pos"}, "mode": 4}]}},
+    "accessors": {"accessor_pos": {"bufferView": "view_1", "byteOffset": 0, "byteStride": 12,
+                                   "componentType": 5126, "count": 3, "type": "VEC3"}},
+    "bufferViews": {"view_1": {"buffer": "buffer_1", "byteOffset": 0, "byteLength": 36, "target": 34962}},
+    "buffers": {"buffer_1": {"uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(36)).decode(),
+                             "byteLength": 36, "type": "arraybuffer"}},
+}
+write_json("gltf1.gltf", gltf1)
+glb("gltf1.glb", gltf1, version=1)
+# Older still: no "asset" object, a top-level "version" instead.
+gltf1_old = {k: v for k, v in gltf1.items() if k != "asset"}
+gltf1_old["version"] = "1.0"
+write_json("gltf1_top_level_version.gltf", gltf1_old)
+
+# Draco: the primitive's data is in the extension's compressed buffer view; its accessors have no bufferView.
+draco = gltf(tri, indices=[0, 1, 2])
+for a in draco["accessors"]:
+    del a["bufferView"]
+draco["meshes"][0]["primitives"][0]["extensions"] = {
+    "KHR_draco_mesh_compression": {"bufferView": 0, "attributes": {"POSITION": 0}}}
+draco["extensionsUsed"] = ["KHR_draco_mesh_compression"]
+write_json("draco_used_no_fallback.gltf", draco)  # the compression only "used": no fallback data either
+draco["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+write_json("draco_required.gltf", draco)
+glb("draco_required.glb", draco)
+
+# meshopt: a buffer view whose bytes live compressed in another buffer (no fallback buffer data).
+meshopt = gltf(tri)
+meshopt["buffers"].append({"byteLength": 36, "extensions": {"EXT_meshopt_compression": {"fallback": True}}})
+meshopt["bufferViews"][0] = {"buffer": 1, "byteOffset": 0, "byteLength": 36, "extensions": {
+    "EXT_meshopt_compression": {"buffer": 0, "byteOffset": 0, "byteLength": 36, "byteStride": 12,
+                                "mode": "ATTRIBUTES", "count": 3}}}
+meshopt["extensionsUsed"] = meshopt["extensionsRequired"] = ["EXT_meshopt_compression"]
+write_json("meshopt_required.gltf", meshopt)
+
+# An extension the viewer has never heard of, required.
+unknown = gltf(tri)
+unknown["extensionsUsed"] = unknown["extensionsRequired"] = ["EXT_made_up_geometry"]
+write_json("unknown_required_extension.gltf", unknown)
 PY
+# Not files at all: a directory (tinygltf used to ask for 2^63 bytes) and a FIFO (open() used to block forever).
+mkdir "$tmp/bad/directory.gltf"
+mkfifo "$tmp/bad/fifo.gltf"
+
+# The message each of these must give (the other cases: any one-line message).
+declare -A expect=(
+  [directory.gltf]="directory.gltf is a directory, not a glTF file"
+  [fifo.gltf]="fifo.gltf is a FIFO (named pipe), not a glTF file"
+  [gltf1.gltf]="glTF 1.0 is not supported (dnsr_viewer reads glTF 2.0)"
+  [gltf1.glb]="glTF 1.0 is not supported (dnsr_viewer reads glTF 2.0)"
+  [gltf1_top_level_version.gltf]="glTF 1.0 is not supported (dnsr_viewer reads glTF 2.0)"
+  [draco_required.gltf]="Draco compression (KHR_draco_mesh_compression) is not supported"
+  [draco_required.glb]="Draco compression (KHR_draco_mesh_compression) is not supported"
+  [draco_used_no_fallback.gltf]="Draco compression (KHR_draco_mesh_compression) is not supported"
+  [meshopt_required.gltf]="meshopt compression (EXT_meshopt_compression) is not supported"
+  [unknown_required_extension.gltf]="requires extension EXT_made_up_geometry"
+)
 bad=0
-for scene in "$tmp"/bad/*.gltf "$tmp"/bad/*.glb "$tmp/bad/does_not_exist.gltf"; do
-  status=0
-  "$viewer" "$scene" --headless --frames 1 --size 16x16 --out "$tmp/bad-out" > "$tmp/bad.out" 2> "$tmp/bad.err" \
-    || status=$?
-  name=$(basename "$scene")
-  (( status < 128 )) || fail "$name: crashed (status $status): $(cat "$tmp/bad.err")"
-  (( status == 2 )) || fail "$name: exit status $status, expected 2: $(cat "$tmp/bad.err")"
-  lines=$(wc -l < "$tmp/bad.err")
-  [[ $lines -eq 1 ]] || fail "$name: expected a one-line message, got $lines lines: $(cat "$tmp/bad.err")"
-  echo "bad input $name: $(cat "$tmp/bad.err")"
-  bad=$((bad + 1))
+for v in "$viewer" "$asan_viewer"; do
+  [[ $v == "$asan_viewer" ]] && label=" (ASan+UBSan)" || label=""
+  for scene in "$tmp"/bad/*.gltf "$tmp"/bad/*.glb "$tmp/bad/does_not_exist.gltf"; do
+    status=0
+    # timeout: a viewer that hangs (as on the FIFO) fails the test instead of stalling it.
+    timeout 20 "$v" "$scene" --headless --frames 1 --size 16x16 --out "$tmp/bad-out" > "$tmp/bad.out" \
+      2> "$tmp/bad.err" || status=$?
+    name=$(basename "$scene")$label
+    (( status != 124 )) || fail "$name: still running after 20 s (hangs)"
+    (( status < 128 )) || fail "$name: crashed (status $status): $(cat "$tmp/bad.err")"
+    (( status == 2 )) || fail "$name: exit status $status, expected 2: $(cat "$tmp/bad.err")"
+    lines=$(wc -l < "$tmp/bad.err")
+    [[ $lines -eq 1 ]] || fail "$name: expected a one-line message, got $lines lines: $(cat "$tmp/bad.err")"
+    want=${expect[$(basename "$scene")]:-}
+    [[ -z $want ]] || grep -qF -- "$want" "$tmp/bad.err" ||
+      fail "$name: the message should say '$want': $(cat "$tmp/bad.err")"
+    [[ -n $label ]] || echo "bad input $name: $(cat "$tmp/bad.err")"
+    bad=$((bad + 1))
+  done
 done
 
-echo "viewer tests: ok (headless 160x96, 8 frames, validation clean: ${quality#ok }; ${window}; ${bad} bad inputs rejected with status 2; $((SECONDS - start)) s)"
+echo "viewer tests: ok (headless 160x96, 8 frames, validation clean: ${quality#ok }; ${window}; ${bad} bad inputs" \
+  "rejected with status 2, half of them by the ASan+UBSan build; $((SECONDS - start)) s)"

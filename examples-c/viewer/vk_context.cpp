@@ -14,10 +14,29 @@ void vkCheck(VkResult result, const char *call)
 
 namespace {
 
-VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT,
-                                                   VkDebugUtilsMessageTypeFlagsEXT,
+// The Vulkan loader reports through the same messenger: loader_log() in the loader's log.c sends every message
+// with pMessageIdName "Loader Message" and messageIdNumber 0, type GENERAL (GENERAL | VALIDATION for its own
+// checks of API usage, PERFORMANCE for performance notes). With VK_INSTANCE_LAYERS set it warns, for example,
+// "env var 'VK_INSTANCE_LAYERS' defined and adding layers ...": a remark about the environment, not about what the
+// viewer did. Such GENERAL-only loader warnings (and infos) are shown but not counted. Loader errors, the loader's
+// VALIDATION messages and everything from the validation layer (whose messages carry a VUID or another id of
+// their own) still count.
+bool isLoaderNotice(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
+                    const VkDebugUtilsMessengerCallbackDataEXT *data)
+{
+    return types == VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT &&
+           severity < VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT && data->messageIdNumber == 0 &&
+           data->pMessageIdName && std::strcmp(data->pMessageIdName, "Loader Message") == 0;
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                   VkDebugUtilsMessageTypeFlagsEXT types,
                                                    const VkDebugUtilsMessengerCallbackDataEXT *data, void *user)
 {
+    if (isLoaderNotice(severity, types, data)) {
+        std::fprintf(stderr, "loader notice (not a validation message): %s\n", data->pMessage);
+        return VK_FALSE;
+    }
     static_cast<VulkanContext *>(user)->validationMessages++;
     std::fprintf(stderr, "validation: %s\n", data->pMessage);
     return VK_FALSE;
@@ -52,8 +71,8 @@ void VulkanContext::createInstance(const VulkanContextOptions &options)
     info.pApplicationInfo = &app;
     std::vector<const char *> extensions = options.instanceExtensions;
 
-    // Validation: the Khronos layer with synchronization validation; every warning or error is counted, and the
-    // viewer exits non-zero when there was any.
+    // Validation: the Khronos layer with synchronization validation; every warning or error is counted (the
+    // loader's own notices excepted, see isLoaderNotice), and the viewer exits non-zero when there was any.
     const char *layer = "VK_LAYER_KHRONOS_validation";
     VkValidationFeatureEnableEXT sync = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
     auto features = vkStruct<VkValidationFeaturesEXT>(VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT);

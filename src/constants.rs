@@ -97,7 +97,6 @@ pub(crate) const GLSL_FLAGS: &[(&str, u32)] = &[
     ("DNSR_PASS_WRITE_INTERNAL", PASS_WRITE_INTERNAL),
     ("DNSR_TILE_CLEARED", crate::passes::TILE_CLEARED),
     ("DNSR_TILE_LIT", crate::passes::TILE_LIT),
-    ("DNSR_MAX_FILTER_STEP", crate::passes::filter::MAX_STEP),
     ("DNSR_DEBUG_VIEW_NONE", crate::dispatch::DebugView::None as u32),
     ("DNSR_DEBUG_VIEW_TILE_CLASSIFICATION", crate::dispatch::DebugView::TileClassification as u32),
     ("DNSR_DEBUG_VIEW_SAMPLE_COUNT", crate::dispatch::DebugView::SampleCount as u32),

@@ -12,10 +12,6 @@ use crate::create_info::Precision;
 use crate::dispatch::DebugView;
 use ash::vk;
 
-/// Tap step of the widest pass (steps double each pass); sizes the shader's shared-memory apron through the
-/// generated DNSR_MAX_FILTER_STEP.
-pub(crate) const MAX_STEP: u32 = 1 << (crate::settings::MAX_FILTER_PASSES - 1);
-
 pub(crate) fn shader(precision: Precision, final_output: Option<vk::Format>) -> Option<&'static str> {
     let fp16 = precision == Precision::Fp16;
     Some(match (final_output, fp16) {

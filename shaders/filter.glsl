@@ -72,14 +72,21 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
         float normal_power = settings.y;
         vec2 c = dnsr_read_filter_input(p);
         vec3 nc = dnsr_read_normal(p);
-        // 3x3 Gaussian of the variance over receivers.
+        // The 3x3 neighbourhood at step 1: the variance blur's footprint, and the taps of the first pass.
+        float nb_depth[9];
+        vec2 nb_signal[9];
+        bool nb_receiver[9];
         float vsum = 0.0, vweight = 0.0;
         for (int j = -1; j <= 1; ++j) {
             for (int i = -1; i <= 1; ++i) {
+                int k = (j + 1) * 3 + (i + 1);
                 ivec2 q = p + ivec2(i, j);
-                if (!dnsr_inside(q) || !dnsr_is_receiver(dnsr_read_depth(q))) continue;
+                nb_depth[k] = dnsr_inside(q) ? dnsr_read_depth(q) : 0.0;
+                nb_receiver[k] = dnsr_inside(q) && dnsr_is_receiver(nb_depth[k]);
+                nb_signal[k] = nb_receiver[k] ? dnsr_read_filter_input(q) : vec2(0.0);
+                if (!nb_receiver[k]) continue;
                 float w = 1.0 / float(4 << (abs(i) + abs(j)));
-                vsum += w * dnsr_read_filter_input(q).y;
+                vsum += w * nb_signal[k].y;
                 vweight += w;
             }
         }
@@ -93,9 +100,17 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
                 if (i == 0 && j == 0) continue;
                 ivec2 q = p + ivec2(i, j) * step;
                 if (!dnsr_inside(q)) continue;
-                float zq = dnsr_tap_depth(q);
+                int k = (j + 1) * 3 + (i + 1);
+                float zq;
+                vec2 n;
+                if (step == 1) {
+                    zq = nb_receiver[k] ? dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(q)), nb_depth[k]) : -1.0;
+                    n = nb_signal[k];
+                } else {
+                    zq = dnsr_tap_depth(q);
+                    n = zq < 0.0 ? vec2(0.0) : dnsr_read_filter_input(q);
+                }
                 if (zq < 0.0) continue;
-                vec2 n = dnsr_read_filter_input(q);
                 float w = kernel[abs(i)] * kernel[abs(j)]
                         * exp(-abs(c.x - n.x) * inv_sigma)
                         * exp(-abs(zc - zq) * inv_depth_sigma)

@@ -56,7 +56,18 @@ static bool device_has_extension(VkPhysicalDevice pd, const char *name)
     return found;
 }
 
-static void create_instance(Host *h)
+static void create_instance_without_layers(Host *h)
+{
+    VkApplicationInfo app = {
+        .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
+        .pApplicationName = "dnsr-capi-tests",
+        .apiVersion = VK_API_VERSION_1_2,
+    };
+    VkInstanceCreateInfo info = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, .pApplicationInfo = &app};
+    VK_CHECK(vkCreateInstance(&info, NULL, &h->instance));
+}
+
+static void create_instance(Host *h, bool rawHandles)
 {
     const char *layer = "VK_LAYER_KHRONOS_validation";
     CHECK(has_layer(layer), "%s is not installed (apt-get install vulkan-validationlayers)", layer);
@@ -72,11 +83,14 @@ static void create_instance(Host *h)
         .pUserData = h,
     };
     /* Chained into the instance create info too, so messages of vkCreateInstance/vkDestroyInstance count. */
+    VkValidationFeatureDisableEXT disables[] = {VK_VALIDATION_FEATURE_DISABLE_UNIQUE_HANDLES_EXT};
     VkValidationFeaturesEXT features = {
         .sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT,
         .pNext = &messenger,
         .enabledValidationFeatureCount = 1,
         .pEnabledValidationFeatures = enables,
+        .disabledValidationFeatureCount = rawHandles ? 1u : 0u,
+        .pDisabledValidationFeatures = disables,
     };
     VkApplicationInfo app = {
         .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
@@ -99,6 +113,7 @@ static void create_instance(Host *h)
     VK_CHECK(create(h->instance, &messenger, NULL, &h->messenger));
     h->setObjectName =
         (PFN_vkSetDebugUtilsObjectNameEXT)vkGetInstanceProcAddr(h->instance, "vkSetDebugUtilsObjectNameEXT");
+    h->layers = true;
 }
 
 static void pick_device(Host *h)
@@ -133,7 +148,7 @@ static void pick_device(Host *h)
     CHECK(h->queueFamily != UINT32_MAX, "%s has no compute queue", h->deviceName);
 }
 
-static void create_device(Host *h)
+static void create_device(Host *h, bool allShaderStages)
 {
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(h->physicalDevice, &props);
@@ -161,6 +176,12 @@ static void create_device(Host *h)
     };
     VkPhysicalDeviceFeatures2 e2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &e12};
     e2.features.pipelineStatisticsQuery = h->pipelineStatistics;
+    if (allShaderStages) {
+        h->geometryShader = f2.features.geometryShader == VK_TRUE;
+        h->tessellationShader = f2.features.tessellationShader == VK_TRUE;
+        e2.features.geometryShader = f2.features.geometryShader;
+        e2.features.tessellationShader = f2.features.tessellationShader;
+    }
 
     const char *extensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
     float priority = 1.0f;
@@ -192,12 +213,27 @@ static void create_device(Host *h)
 
 void host_create(Host *h)
 {
+    host_create_with(h, NULL);
+}
+
+void host_create_with(Host *h, const HostOptions *options)
+{
+    HostOptions defaults;
+    memset(&defaults, 0, sizeof defaults);
+    const HostOptions *o = options ? options : &defaults;
     memset(h, 0, sizeof *h);
-    create_instance(h);
+    if (o->noLayers)
+        create_instance_without_layers(h);
+    else
+        create_instance(h, o->rawHandles);
     pick_device(h);
-    create_device(h);
-    printf("device: %s (features 0x%x, pipeline statistics %s)\n", h->deviceName, h->features,
-           h->pipelineStatistics ? "yes" : "no");
+    create_device(h, o->allShaderStages);
+    printf("device: %s (features 0x%x, pipeline statistics %s)%s%s%s\n", h->deviceName, h->features,
+           h->pipelineStatistics ? "yes" : "no", o->noLayers ? ", no layers" : "",
+           o->rawHandles ? ", validation without unique handles" : "",
+           o->allShaderStages ? (h->geometryShader && h->tessellationShader ? ", geometry+tessellation on"
+                                                                             : ", geometry/tessellation partly off")
+                              : "");
     host_expect_clean(h, "host_create");
 }
 

@@ -70,7 +70,25 @@ typedef struct Host {
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName;
     /* WARNING and ERROR messages the validation layer sent so far. */
     unsigned validationMessages;
+    /* The validation layer is loaded (false after host_create_with(.noLayers = true)). */
+    bool layers;
+    /* geometryShader / tessellationShader are enabled (only with HostOptions.allShaderStages). */
+    bool geometryShader;
+    bool tessellationShader;
 } Host;
+
+/* What host_create_with changes from host_create's defaults (all false = host_create). */
+typedef struct HostOptions {
+    /* No layer at all: the application sees the driver's own handles, as a shipping engine does. */
+    bool noLayers;
+    /* The validation layer without its unique-handle wrapping (VK_VALIDATION_FEATURE_DISABLE_UNIQUE_HANDLES_EXT):
+     * the application and the layer see the driver's handle values, so a value the driver reuses for a new
+     * object is the same value the layer tracks. */
+    bool rawHandles;
+    /* Also enable geometryShader and tessellationShader where the device has them, so that every pipeline stage
+     * the device supports is legal in a barrier. */
+    bool allShaderStages;
+} HostOptions;
 
 /* A 2D image with its memory and view, resting in `layout` between uses. */
 typedef struct HostImage {
@@ -96,6 +114,8 @@ typedef struct HostBuffer {
  * picks the device whose name contains $DNSR_DEVICE (default: the first), creates a device with a compute queue
  * and every optional feature dnsr can use that the device has, plus pipelineStatisticsQuery when available. */
 void host_create(Host *h);
+/* host_create with options (NULL = host_create). */
+void host_create_with(Host *h, const HostOptions *options);
 /* Destroys everything host_create made; fails if the validation layer reported anything (leaks included). */
 void host_destroy(Host *h);
 /* Fails the test if any validation message arrived (`where` names the step). */

@@ -19,5 +19,6 @@ status=0
 
 summary=$(grep -E '^[0-9]+% tests passed' "$build/ctest.out" || echo "no CTest summary")
 cases=$(grep -ohE 'bad_input: [0-9]+ cases run' "$build/Testing/Temporary/LastTest.log" | grep -oE '[0-9]+' || echo "?")
-echo "capi-tests: ${summary}; bad_input: ${cases} misuse cases run; device: ${DNSR_DEVICE}"
+fuzz=$(grep -ohE 'fuzz: [0-9]+ calls, [0-9]+ succeeded, [0-9]+ refused' "$build/Testing/Temporary/LastTest.log" || echo "fuzz: ?")
+echo "capi-tests: ${summary}; bad_input: ${cases} misuse cases run; ${fuzz}; device: ${DNSR_DEVICE}"
 exit "$status"

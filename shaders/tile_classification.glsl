@@ -19,6 +19,8 @@ shared vec2 s_hsum[DNSR_WINDOW_ROWS][8];
 shared float s_quad_key[8][8];
 shared vec2 s_quad_velocity[8][8];
 shared uint s_tile_has_receiver[2];
+// dnsr_uniform_state of the group's two tiles (the receiver test aside), computed once per tile.
+shared uint s_uniform[2];
 // First tile of the group's window (same for every invocation of the group).
 ivec2 g_window_base;
 
@@ -27,6 +29,7 @@ ivec2 dnsr_tile_count() { return (dnsr_get_extent() + DNSR_TILE_SIZE - 1) / DNSR
 // Bits of a tile whose pixels lie inside the render rectangle (0 for a tile outside it).
 uint dnsr_tile_valid_bits(ivec2 tile) {
     if (any(lessThan(tile, ivec2(0))) || any(greaterThanEqual(tile, dnsr_tile_count()))) return 0u;
+    if (all(lessThanEqual((tile + 1) * DNSR_TILE_SIZE, dnsr_get_extent()))) return 0xFFFFFFFFu;
     ivec2 n = min(dnsr_get_extent() - tile * DNSR_TILE_SIZE, DNSR_TILE_SIZE);
     uint row = n.x >= 8 ? 0xFFu : ((1u << uint(n.x)) - 1u);
     uint bits = 0u;
@@ -103,20 +106,39 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     s_quad_velocity[lid.y][lid.x] = receiver ? dnsr_read_velocity(p) : vec2(0.0);
     barrier();
     if (receiver) atomicOr(s_tile_has_receiver[lid.y / 4], 1u);
+    if (thread < 2) s_uniform[thread] = dnsr_uniform_state(thread);
+    barrier();
+    // No receiver in either tile (sky): both tiles are cleared, and no moments are needed.
+    if ((s_tile_has_receiver[0] | s_tile_has_receiver[1]) == 0u) {
+        if (!inside) return;
+        if (lid.x == 0 && (lid.y & 3) == 0) dnsr_write_tile_meta(p / DNSR_TILE_SIZE, DNSR_TILE_CLEARED | DNSR_TILE_LIT);
+        dnsr_write_reprojection(p, vec2(1.0, 0.0));
+        dnsr_write_moments(p, vec3(0.0));
+        return;
+    }
 
     // Horizontal Gaussian over three window rows per invocation. (Skipping it for groups whose tiles are all
     // uniform was measured slower on an H200: the extra uniformity test costs more than the pass.)
     dnsr_init_moment_weights();
+    // Window pixel columns origin.x - 8 .. origin.x + 15 as bits 0..23 of a row; pixel columns outside the
+    // render rectangle are masked out of both the lit count and the weight.
+    int first_column = max(8 - origin.x, 0);
+    int end_column = min(dnsr_get_extent().x - origin.x + 8, 24);
+    uint columns_inside = ((1u << uint(end_column)) - 1u) & ~((1u << uint(first_column)) - 1u);
     for (int k = 0; k < 3; ++k) {
         int row = lid.y + 8 * k;
         int y = origin.y - DNSR_MOMENT_RADIUS + row;
         vec2 sum = vec2(0.0);
         if (y >= 0 && y < dnsr_get_extent().y) {
+            int wy = (y >> 2) - g_window_base.y;
+            uint shift = uint(8 * (y & 3));
+            uint lit = ((s_words[wy][0] >> shift) & 0xFFu) | (((s_words[wy][1] >> shift) & 0xFFu) << 8)
+                     | (((s_words[wy][2] >> shift) & 0xFFu) << 16);
+            lit &= columns_inside;
             for (int i = -DNSR_MOMENT_RADIUS; i <= DNSR_MOMENT_RADIUS; ++i) {
-                int x = p.x + i;
-                if (x < 0 || x >= dnsr_get_extent().x) continue;
+                uint b = uint(lid.x + 8 + i);
                 float w = dnsr_moment_weight(i);
-                sum += w * vec2(dnsr_window_lit(ivec2(x, y), g_window_base), 1.0);
+                sum += w * vec2(float((lit >> b) & 1u), float((columns_inside >> b) & 1u));
             }
         }
         s_hsum[row][lid.x] = sum;
@@ -127,7 +149,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     int tile_row = lid.y / 4;
     ivec2 tile = p / DNSR_TILE_SIZE;
     bool tile_writer = lid.x == 0 && (lid.y & 3) == 0;
-    uint uniform_state = s_tile_has_receiver[tile_row] == 0u ? 1u : dnsr_uniform_state(tile_row);
+    uint uniform_state = s_tile_has_receiver[tile_row] == 0u ? 1u : s_uniform[tile_row];
     float max_samples = dnsr_get_temporal_settings().z;
 
     if (uniform_state != 0u) {

@@ -54,7 +54,7 @@ vec3 dnsr_read_normal(ivec2 p) {
 layout(set = 0, binding = 1) uniform utexture2D dnsr_hit_mask;
 layout(set = 0, binding = 2, r32ui) uniform writeonly uimage2D dnsr_tile_mask_out;
 
-ivec2 dnsr_get_tile_offset() { return dnsr_get_offset() / ivec2(8, 4); }
+ivec2 dnsr_get_tile_offset() { return dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT); }
 uint dnsr_read_hit_mask(ivec2 tile) { return texelFetch(dnsr_hit_mask, tile + dnsr_get_tile_offset(), 0).r; }
 void dnsr_write_tile_mask(ivec2 tile, uint lit_bits) { imageStore(dnsr_tile_mask_out, tile + dnsr_get_tile_offset(), uvec4(lit_bits)); }
 #endif
@@ -70,7 +70,7 @@ layout(set = 0, binding = 11) uniform sampler2D dnsr_history;
 layout(set = 0, binding = 12, DNSR_INTERMEDIATE_FORMAT) uniform writeonly image2D dnsr_reprojection;
 layout(set = 0, binding = 13, r32ui) uniform writeonly uimage2D dnsr_tile_meta_out;
 
-ivec2 dnsr_get_tile_offset() { return dnsr_get_offset() / ivec2(8, 4); }
+ivec2 dnsr_get_tile_offset() { return dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT); }
 uint dnsr_read_tile_mask(ivec2 tile) { return texelFetch(dnsr_tile_mask, tile + dnsr_get_tile_offset(), 0).r; }
 // Screen-uv displacement from this pixel to where its surface was last frame (prev_uv = uv + velocity).
 vec2 dnsr_read_velocity(ivec2 p) {
@@ -102,7 +102,7 @@ layout(set = 0, binding = 18) uniform texture2D dnsr_debug_moments;
 
 int dnsr_get_filter_step() { return int(dnsr_push.pass.x); }
 bool dnsr_get_write_internal() { return (dnsr_push.pass.y & DNSR_PASS_WRITE_INTERNAL) != 0u; }
-uint dnsr_read_tile_meta(ivec2 tile) { return texelFetch(dnsr_tile_meta, tile + dnsr_get_offset() / ivec2(8, 4), 0).r; }
+uint dnsr_read_tile_meta(ivec2 tile) { return texelFetch(dnsr_tile_meta, tile + dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT), 0).r; }
 vec2 dnsr_read_filter_input(ivec2 p) { return texelFetch(dnsr_filter_input, p + dnsr_get_offset(), 0).xy; }
 void dnsr_write_filter_output(ivec2 p, vec2 mean_var) { imageStore(dnsr_filter_output, p + dnsr_get_offset(), vec4(mean_var, 0.0, 0.0)); }
 #ifdef DNSR_FINAL_PASS

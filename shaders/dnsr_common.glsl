@@ -2,9 +2,10 @@
 #ifndef DNSR_COMMON_GLSL
 #define DNSR_COMMON_GLSL
 
-// Tiles are 8x4 pixels packed into one uint; bit (y % 4) * 8 + (x % 8).
-const ivec2 DNSR_TILE_SIZE = ivec2(8, 4);
-uint dnsr_tile_bit(ivec2 p) { return uint((p.y & 3) * 8 + (p.x & 7)); }
+// Tiles are DNSR_TILE_WIDTH x DNSR_TILE_HEIGHT (8x4) pixels packed into one uint; bit (y % 4) * 8 + (x % 8).
+const ivec2 DNSR_TILE_SIZE = ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT);
+const ivec2 DNSR_GROUP_SIZE = ivec2(DNSR_GROUP_WIDTH, DNSR_GROUP_HEIGHT);
+uint dnsr_tile_bit(ivec2 p) { return uint((p.y % DNSR_TILE_HEIGHT) * DNSR_TILE_WIDTH + (p.x % DNSR_TILE_WIDTH)); }
 
 bool dnsr_inside(ivec2 p) { return all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, dnsr_get_extent())); }
 

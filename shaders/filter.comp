@@ -4,5 +4,5 @@
 #include "dnsr_common.glsl"
 #include "filter.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = DNSR_GROUP_WIDTH, local_size_y = DNSR_GROUP_HEIGHT) in;
 void main() { dnsr_filter(ivec2(gl_WorkGroupID.xy), ivec2(gl_LocalInvocationID.xy)); }

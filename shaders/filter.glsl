@@ -42,7 +42,7 @@ vec2 dnsr_cleared_value(bool receiver, uint meta) {
 
 void dnsr_filter(ivec2 gid, ivec2 lid) {
     int step = dnsr_get_filter_step();
-    ivec2 origin = gid * 8;
+    ivec2 origin = gid * DNSR_GROUP_SIZE;
     ivec2 p = origin + lid;
 
     // Both tiles of the group cleared (uniform or no receivers): nothing to filter, no neighbourhood to read.

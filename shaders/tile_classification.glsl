@@ -4,9 +4,9 @@
 #ifndef DNSR_TILE_CLASSIFICATION_GLSL
 #define DNSR_TILE_CLASSIFICATION_GLSL
 
-// Local moments use a 17x17 window (radius 8). Not a runtime setting: the shared tile window below is sized
-// for it, and the uniform-tile test looks at exactly this neighbourhood.
-const int DNSR_MOMENT_RADIUS = 8;
+// Local moments use a 17x17 window (radius DNSR_MOMENT_RADIUS = 8, generated from the host's constant). Not a
+// runtime setting: the shared tile window below is sized for it, and the uniform-tile test looks at exactly this
+// neighbourhood.
 // Tile words around the group: tile columns tx0-1..tx0+1, tile rows ty0-2..ty0+3 (pixel rows y0-8..y0+15).
 const ivec2 DNSR_WINDOW_TILES = ivec2(3, 6);
 const int DNSR_WINDOW_ROWS = 24;
@@ -14,10 +14,10 @@ const int DNSR_WINDOW_ROWS = 24;
 shared uint s_words[6][3];
 // Horizontal pass of the separable Gaussian for the group's 8 columns over its 24 window rows:
 // x = weighted lit count, y = weight of the taps inside the render rectangle.
-shared vec2 s_hsum[DNSR_WINDOW_ROWS][8];
+shared vec2 s_hsum[DNSR_WINDOW_ROWS][DNSR_GROUP_WIDTH];
 // Closeness key (smaller = closer to the camera) and velocity of each pixel, for the 2x2 quad vote.
-shared float s_quad_key[8][8];
-shared vec2 s_quad_velocity[8][8];
+shared float s_quad_key[DNSR_GROUP_HEIGHT][DNSR_GROUP_WIDTH];
+shared vec2 s_quad_velocity[DNSR_GROUP_HEIGHT][DNSR_GROUP_WIDTH];
 shared uint s_tile_has_receiver[2];
 // dnsr_uniform_state of the group's two tiles (the receiver test aside), computed once per tile.
 shared uint s_uniform[2];
@@ -85,9 +85,9 @@ uint dnsr_uniform_state(int tile_row_in_group) {
 void dnsr_scale_moments(inout vec3 m, float f) { m.y *= f; m.z *= f; }
 
 void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
-    ivec2 origin = gid * 8;
+    ivec2 origin = gid * DNSR_GROUP_SIZE;
     ivec2 p = origin + lid;
-    int thread = lid.y * 8 + lid.x;
+    int thread = lid.y * DNSR_GROUP_WIDTH + lid.x;
     g_window_base = dnsr_window_base_tile(origin);
     bool inside = dnsr_inside(p);
     bool inverted = dnsr_get_is_depth_inverted();

@@ -59,7 +59,7 @@ gpu_block! {
         motion_normals: [f32; 4],
         /// xy: render rectangle offset in pixels; zw: render rectangle extent in pixels.
         rect: [u32; 4],
-        /// x: DNSR_FLAG_* bits; y: frame index (informational only); zw: unused.
+        /// x: DNSR_FLAG_* bits; yzw: unused (nothing depends on the host's frame index).
         flags: [u32; 4],
         /// xy: 1 / rect extent; zw: unused.
         inv_extent: [f32; 4],
@@ -104,6 +104,16 @@ pub(crate) const GLSL_FLAGS: &[(&str, u32)] = &[
     ("DNSR_DEBUG_VIEW_DISOCCLUSION", crate::dispatch::DebugView::Disocclusion as u32),
 ];
 
+/// Sizes shared by shaders and host, as plain GLSL ints (usable in `layout(local_size_x = ...)` and array sizes).
+#[cfg_attr(not(test), allow(dead_code))]
+pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
+    ("DNSR_TILE_WIDTH", crate::passes::TILE[0]),
+    ("DNSR_TILE_HEIGHT", crate::passes::TILE[1]),
+    ("DNSR_GROUP_WIDTH", crate::passes::GROUP[0]),
+    ("DNSR_GROUP_HEIGHT", crate::passes::GROUP[1]),
+    ("DNSR_MOMENT_RADIUS", crate::passes::MOMENT_RADIUS),
+];
+
 /// The complete text of `shaders/generated/dnsr_constants.glsl`.
 #[cfg_attr(not(test), allow(dead_code))]
 pub(crate) fn generated_glsl() -> String {
@@ -117,6 +127,10 @@ pub(crate) fn generated_glsl() -> String {
     s.push('\n');
     for (name, value) in GLSL_FLAGS {
         let _ = writeln!(s, "#define {name} {value}u");
+    }
+    s.push('\n');
+    for (name, value) in GLSL_INTS {
+        let _ = writeln!(s, "#define {name} {value}");
     }
     s.push_str("\n#endif\n");
     s

@@ -5,13 +5,14 @@ use crate::create_info::{ContextCreateInfo, EnabledFeatures, Precision};
 use crate::dispatch::{HitMaskConvention, ShadowsDispatch};
 use crate::error::{vk_check, Error, Result};
 use crate::gpu::barrier;
-use crate::gpu::descriptors::{Binder, RecordSets, SetRole};
+use crate::gpu::descriptors::{Binder, RecordSets, ROLES};
 use crate::gpu::image::{check_internal_format, color_range, InternalImage};
 use crate::gpu::memory::{self, Memory};
 use crate::host::ResourceKind;
 use crate::gpu::loader::Vk;
 use crate::gpu::shader::{variant, Pipeline};
-use crate::passes::bindings::{image, BindingTable};
+use crate::passes::bindings::image;
+use crate::passes::{FramePasses, Pass, Role};
 use crate::passes::{filter, prepare, tile_classification, FrameViews};
 use crate::settings::{check_filter_passes, Settings, MAX_FILTER_PASSES};
 use crate::state::{intermediate_format, LightState, DEPTH_FORMAT, MOMENTS_FORMAT, TILE_FORMAT};
@@ -32,18 +33,6 @@ pub fn memory_requirements(width: u32, height: u32, precision: Precision, filter
 /// Lowest Vulkan version dnsr runs on (SPIR-V 1.3, samplerless texel fetches).
 pub const MIN_API_VERSION: u32 = vk::API_VERSION_1_1;
 
-/// Everything a frame binds, written before recording.
-struct FrameBindings {
-    tables: [BindingTable; 2],
-    filter_tables: [BindingTable; MAX_FILTER_PASSES as usize],
-    sets: RecordSets,
-}
-
-/// The descriptor-set role of filter pass `pass` of `passes`.
-fn filter_role(pass: u32, passes: u32) -> SetRole {
-    if filter::is_final(pass, passes) { SetRole::FilterFinal } else { SetRole::Filter(pass) }
-}
-
 struct Pipelines {
     prepare: Pipeline,
     classification: Pipeline,
@@ -56,12 +45,12 @@ impl Pipelines {
         [&mut self.prepare, &mut self.classification, &mut self.filter, &mut self.filter_final]
     }
 
-    fn for_role(&self, role: SetRole) -> &Pipeline {
+    fn for_role(&self, role: Role) -> &Pipeline {
         match role {
-            SetRole::Prepare => &self.prepare,
-            SetRole::Classification => &self.classification,
-            SetRole::Filter(_) => &self.filter,
-            SetRole::FilterFinal => &self.filter_final,
+            Role::Prepare => &self.prepare,
+            Role::Classification => &self.classification,
+            Role::Filter(_) => &self.filter,
+            Role::FilterFinal => &self.filter_final,
         }
     }
 }
@@ -155,8 +144,7 @@ impl Context {
         };
         // On any error below, dropping `ctx` releases what was created so far.
         let pipelines = ctx.pipelines.insert(ctx.create_pipelines(push.is_some())?);
-        let roles = [SetRole::Prepare, SetRole::Classification, SetRole::Filter(0), SetRole::Filter(1), SetRole::Filter(2), SetRole::FilterFinal];
-        let layouts = roles.map(|r| pipelines.for_role(r));
+        let layouts = ROLES.map(|r| pipelines.for_role(r));
         ctx.binder = Some(Binder::new(&ctx.vk, push, layouts, info.light_count, info.max_frames_in_flight)?);
         ctx.create_sampler_and_constants()?;
         if info.enable_timestamps {
@@ -323,27 +311,17 @@ impl Context {
         }
     }
 
-    /// Binding tables of every pass of a frame with the given ping-pong parity, written into the light's next
-    /// ring slot (nothing to write with push descriptors). Called only once the dispatch is validated: it cannot
-    /// fail, and it advances the ring.
-    fn bind_frame(&mut self, d: &ShadowsDispatch, parity: usize, run_prepare: bool) -> FrameBindings {
-        let passes = self.settings.filter_passes;
-        let views = self.frame_views(d, parity);
-        let tables = [prepare::bindings(&views), tile_classification::bindings(&views)];
-        let filter_tables: [BindingTable; MAX_FILTER_PASSES as usize] = std::array::from_fn(|p| filter::bindings(&views, p as u32, passes));
+    /// Writes the bindings of the frame's enabled passes into the light's next descriptor ring slot (nothing to
+    /// write with push descriptors). Called only once the dispatch is validated: it cannot fail, and it
+    /// advances the ring.
+    fn write_descriptors(&mut self, light: u32, passes: &FramePasses) -> RecordSets {
         let pipelines = self.pipelines.as_ref().expect("created");
         let binder = self.binder.as_mut().expect("created");
-        let sets = binder.next_record(d.light_index);
-        let dev = &self.vk.device;
-        if run_prepare {
-            binder.write(dev, sets.get(SetRole::Prepare), &pipelines.prepare, &tables[0], self.sampler);
+        let sets = binder.next_record(light);
+        for pass in passes.iter().filter(|p| p.enabled) {
+            binder.write(&self.vk.device, sets.get(pass.role), pipelines.for_role(pass.role), &pass.bindings, self.sampler);
         }
-        binder.write(dev, sets.get(SetRole::Classification), &pipelines.classification, &tables[1], self.sampler);
-        for p in 0..passes {
-            let role = filter_role(p, passes);
-            binder.write(dev, sets.get(role), pipelines.for_role(role), &filter_tables[p as usize], self.sampler);
-        }
-        FrameBindings { tables, filter_tables, sets }
+        sets
     }
 
     /// Records the denoiser for one light into `cmd`, which the host is recording (outside a render pass).
@@ -361,12 +339,12 @@ impl Context {
         }
         let rect = validate::dispatch(&self.vk, d, self.size, self.output_format, self.light_count, self.supported_stages)?;
         let extent = [rect.width, rect.height];
-        let passes = self.settings.filter_passes;
         let run_prepare = d.hit_mask_convention == HitMaskConvention::OccludedBits;
 
         // Everything that can fail was checked above. Nothing below fails.
-        let parity = self.lights[d.light_index as usize].parity;
-        let FrameBindings { tables, filter_tables, sets } = self.bind_frame(d, parity, run_prepare);
+        let views = self.frame_views(d, self.lights[d.light_index as usize].parity);
+        let passes = crate::passes::frame(&views, self.settings.filter_passes, run_prepare, d.debug_view);
+        let sets = self.write_descriptors(d.light_index, &passes);
         let pipelines = self.pipelines.as_ref().expect("created");
         let dev = &self.vk.device;
 
@@ -381,7 +359,7 @@ impl Context {
             rect: [rect.x, rect.y, rect.width, rect.height],
             flags: [
                 (if reset { FLAG_RESET } else { 0 }) | (if self.depth_inverted { FLAG_DEPTH_INVERTED } else { 0 }),
-                d.frame_index,
+                0,
                 0,
                 0,
             ],
@@ -391,7 +369,7 @@ impl Context {
         self.settings.write_to(&mut c);
 
         self.frames_recorded += 1;
-        let first_query = self.timestamps.as_mut().map(|t| t.begin(dev, cmd, self.frames_recorded, passes));
+        let first_query = self.timestamps.as_mut().map(|t| t.begin(dev, cmd, self.frames_recorded, self.settings.filter_passes));
         let pool = self.timestamps.as_ref().map_or(vk::QueryPool::null(), |t| t.pool);
         let stamp = |index: u32| {
             if let Some(first) = first_query {
@@ -460,34 +438,28 @@ impl Context {
             &[],
         );
 
-        let dispatch = |p: &Pipeline, table: &BindingTable, set: vk::DescriptorSet, groups: [u32; 3]| unsafe {
-            dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, p.pipeline);
-            binder_ref(&self.binder).bind(dev, cmd, p, table, self.sampler, set);
-            dev.cmd_dispatch(cmd, groups[0], groups[1], groups[2]);
-        };
-
+        // The frame's passes in order; a barrier wherever a pass touches what an earlier one wrote, or writes
+        // what an earlier one read, since the last barrier.
+        let binder = binder_ref(&self.binder);
+        let mut hazards = Hazards::default();
         stamp(0);
-        if run_prepare {
-            dispatch(&pipelines.prepare, &tables[0], sets.get(SetRole::Prepare), prepare::group_count(extent));
-            barrier::compute_to_compute(dev, cmd);
-        }
-        stamp(1);
-        let classification_set = sets.get(SetRole::Classification);
-        dispatch(&pipelines.classification, &tables[1], classification_set, tile_classification::group_count(extent));
-        stamp(2);
-        for p in 0..passes {
-            barrier::compute_to_compute(dev, cmd);
-            let role = filter_role(p, passes);
-            let pipeline = pipelines.for_role(role);
-            let push = filter::push_constants(p, passes, d.debug_view);
-            unsafe {
-                dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.pipeline);
-                dev.cmd_push_constants(cmd, pipeline.layout, vk::ShaderStageFlags::COMPUTE, 0, bytemuck::bytes_of(&push));
+        for (index, pass) in passes.iter().enumerate() {
+            if pass.enabled {
+                let pipeline = pipelines.for_role(pass.role);
+                if hazards.needs_barrier(pipeline, pass) {
+                    barrier::compute_to_compute(dev, cmd);
+                }
+                let groups = pass.group_count(extent);
+                unsafe {
+                    dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.pipeline);
+                    if let Some(push) = &pass.push {
+                        dev.cmd_push_constants(cmd, pipeline.layout, vk::ShaderStageFlags::COMPUTE, 0, bytemuck::bytes_of(push));
+                    }
+                }
+                binder.bind(dev, cmd, pipeline, &pass.bindings, self.sampler, sets.get(pass.role));
+                unsafe { dev.cmd_dispatch(cmd, groups[0], groups[1], groups[2]) };
             }
-            binder_ref(&self.binder).bind(dev, cmd, pipeline, &filter_tables[p as usize], self.sampler, sets.get(role));
-            let groups = filter::group_count(extent);
-            unsafe { dev.cmd_dispatch(cmd, groups[0], groups[1], groups[2]) };
-            stamp(3 + p);
+            stamp(index as u32 + 1);
         }
 
         if output_transition || !d.sync.output_dst_stages.is_empty() {
@@ -561,6 +533,43 @@ impl Context {
     pub(crate) fn recording_state(&self, light: usize) -> (u64, usize, bool) {
         let l = &self.lights[light];
         (self.frames_recorded, l.parity, l.initialized)
+    }
+}
+
+/// Images the passes recorded since the last barrier read and wrote (fixed capacity: no allocation).
+#[derive(Default)]
+struct Hazards {
+    read: [vk::ImageView; 2 * crate::gpu::descriptors::MAX_BINDINGS],
+    written: [vk::ImageView; 2 * crate::gpu::descriptors::MAX_BINDINGS],
+    reads: usize,
+    writes: usize,
+}
+
+impl Hazards {
+    /// Whether `pass` must wait for the passes since the last barrier (read-after-write, write-after-write or
+    /// write-after-read on one of its images); records its own accesses either way.
+    fn needs_barrier(&mut self, pipeline: &Pipeline, pass: &Pass) -> bool {
+        let accesses = || {
+            pipeline.interface.bindings.iter().filter_map(|b| {
+                let view = pass.bindings[b.resource as usize].view;
+                (view != vk::ImageView::null()).then_some((view, b.descriptor_type == vk::DescriptorType::STORAGE_IMAGE))
+            })
+        };
+        let (new_reads, new_writes) = accesses().fold((0, 0), |(r, w), (_, write)| if write { (r, w + 1) } else { (r + 1, w) });
+        let full = self.reads + new_reads > self.read.len() || self.writes + new_writes > self.written.len();
+        let conflict = full
+            || accesses().any(|(view, write)| {
+                self.written[..self.writes].contains(&view) || (write && self.read[..self.reads].contains(&view))
+            });
+        if conflict {
+            (self.reads, self.writes) = (0, 0);
+        }
+        for (view, write) in accesses() {
+            let (list, n) = if write { (&mut self.written, &mut self.writes) } else { (&mut self.read, &mut self.reads) };
+            list[*n] = view;
+            *n += 1;
+        }
+        conflict
     }
 }
 

@@ -32,4 +32,10 @@ struct DnsrFilterPush {
 #define DNSR_DEBUG_VIEW_VARIANCE 3u
 #define DNSR_DEBUG_VIEW_DISOCCLUSION 4u
 
+#define DNSR_TILE_WIDTH 8
+#define DNSR_TILE_HEIGHT 4
+#define DNSR_GROUP_WIDTH 8
+#define DNSR_GROUP_HEIGHT 8
+#define DNSR_MOMENT_RADIUS 8
+
 #endif

@@ -11,36 +11,30 @@ use crate::error::{vk_check, Result};
 use crate::gpu::loader::Vk;
 use crate::gpu::shader::Pipeline;
 use crate::passes::bindings::{BindingTable, Resource};
+use crate::passes::Role;
 use ash::vk;
 
 /// Most bindings any pass declares.
 pub(crate) const MAX_BINDINGS: usize = 16;
 
-/// The descriptor sets one record writes, one per pipeline role (see `SetRole`).
+/// The descriptor sets one record writes, one per pipeline role.
 pub(crate) const SETS_PER_RECORD: usize = 6;
 
-/// Which set of a ring slot a dispatch uses. Filter passes 0..=2 can be intermediate passes; the final pass
-/// (whichever index it has) uses the final filter pipeline's layout and so its own set.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum SetRole {
-    Prepare,
-    Classification,
-    Filter(u32),
-    FilterFinal,
-}
-
-impl SetRole {
-    fn index(self) -> usize {
-        match self {
-            SetRole::Prepare => 0,
-            SetRole::Classification => 1,
-            SetRole::Filter(pass) => 2 + pass as usize,
-            SetRole::FilterFinal => SETS_PER_RECORD - 1,
-        }
+/// The set of a ring slot that a pipeline role uses.
+fn set_index(role: Role) -> usize {
+    match role {
+        Role::Prepare => 0,
+        Role::Classification => 1,
+        Role::Filter(pass) => 2 + pass as usize,
+        Role::FilterFinal => SETS_PER_RECORD - 1,
     }
 }
 
-/// The layouts of the sets of one ring slot, in `SetRole::index` order.
+/// Every role, in set order.
+pub(crate) const ROLES: [Role; SETS_PER_RECORD] =
+    [Role::Prepare, Role::Classification, Role::Filter(0), Role::Filter(1), Role::Filter(2), Role::FilterFinal];
+
+/// The pipelines whose layouts the sets of one ring slot have, in `ROLES` order.
 pub(crate) type RoleLayouts<'a> = [&'a Pipeline; SETS_PER_RECORD];
 
 pub(crate) struct Ring {
@@ -121,8 +115,8 @@ impl Ring {
 pub(crate) struct RecordSets([vk::DescriptorSet; SETS_PER_RECORD]);
 
 impl RecordSets {
-    pub(crate) fn get(&self, role: SetRole) -> vk::DescriptorSet {
-        self.0[role.index()]
+    pub(crate) fn get(&self, role: Role) -> vk::DescriptorSet {
+        self.0[set_index(role)]
     }
 }
 

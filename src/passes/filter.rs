@@ -5,8 +5,8 @@
 //! pass 3 tmp -> (output only). The reprojection image is free once pass 0 consumed it, so three passes need no
 //! extra image.
 
-use super::bindings::{BindingTable, Resource};
-use super::{groups, internal, FrameViews};
+use super::bindings::Resource;
+use super::{internal, FrameViews, Grid, Pass, Role};
 use crate::constants::{FilterPush, PASS_WRITE_INTERNAL};
 use crate::create_info::Precision;
 use crate::dispatch::DebugView;
@@ -41,7 +41,8 @@ pub(crate) fn is_final(pass: u32, passes: u32) -> bool {
     pass + 1 == passes
 }
 
-pub(crate) fn bindings(v: &FrameViews, pass: u32, passes: u32) -> BindingTable {
+/// Filter pass `pass` of `passes`: one invocation per pixel.
+pub(crate) fn pass(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView) -> Pass {
     let mut t = v.base_table();
     t[Resource::TileMeta as usize] = internal(v.tile_meta);
     t[Resource::FilterInput as usize] = internal(input(v, pass));
@@ -50,15 +51,14 @@ pub(crate) fn bindings(v: &FrameViews, pass: u32, passes: u32) -> BindingTable {
         t[Resource::Output as usize] = internal(v.output);
         t[Resource::DebugMoments as usize] = internal(v.moments);
     }
-    t
+    let role = if is_final(pass, passes) { Role::FilterFinal } else { Role::Filter(pass) };
+    let push = Some(push_constants(pass, passes, debug_view));
+    Pass { role, bindings: t, grid: Grid::Pixels, push, enabled: true }
 }
 
-pub(crate) fn push_constants(pass: u32, passes: u32, debug_view: DebugView) -> FilterPush {
+fn push_constants(pass: u32, passes: u32, debug_view: DebugView) -> FilterPush {
     let write_internal = pass == 0 || !is_final(pass, passes);
     let view = if is_final(pass, passes) { debug_view as u32 } else { 0 };
     FilterPush { pass: [1 << pass, if write_internal { PASS_WRITE_INTERNAL } else { 0 }, pass, view] }
 }
 
-pub(crate) fn group_count(extent: [u32; 2]) -> [u32; 3] {
-    groups(extent, [8, 8])
-}

@@ -1,12 +1,101 @@
-//! One file per pass: which shader variant it runs, what it binds, how many groups it dispatches.
+//! One file per pass, each describing its pass once, as data: which pipeline it runs, what it binds (reads are
+//! sampled images, writes storage images, as the shader declares them), its group size and what its groups
+//! cover, its push constants. `frame` lists a frame's passes in order; the recorder in context.rs derives
+//! bindings, barriers, dispatches and timestamps from that list, so fusing or splitting passes is a change here.
 
 pub(crate) mod bindings;
 pub(crate) mod filter;
 pub(crate) mod prepare;
 pub(crate) mod tile_classification;
 
+use crate::constants::FilterPush;
+use crate::dispatch::DebugView;
+use crate::settings::MAX_FILTER_PASSES;
 use ash::vk;
 use bindings::{image, Binding, BindingTable, Resource};
+
+/// Pixels of one hit-mask tile (one uint32): 8 x 4. Generated into GLSL as DNSR_TILE_SIZE.
+pub(crate) const TILE: [u32; 2] = [8, 4];
+/// Invocations of every pass's workgroup, x by y: one invocation per pixel of two stacked tiles (per tile in
+/// prepare). Generated into GLSL as the shaders' local size.
+pub(crate) const GROUP: [u32; 2] = [8, 8];
+/// Radius of the local-moment window (17x17) of tile classification and its uniform-tile test. Generated into
+/// GLSL; the CPU reference uses the same constant.
+pub(crate) const MOMENT_RADIUS: u32 = 8;
+
+// What the shaders' layouts assume of these sizes: a group is one tile wide and two tiles tall (classification
+// decides two tiles per group, its window is one tile column either side and two tile rows above and below),
+// and the moment radius is one tile width.
+const _: () = assert!(GROUP[0] == TILE[0] && GROUP[1] == 2 * TILE[1] && MOMENT_RADIUS == TILE[0] && TILE[0] * TILE[1] == 32);
+
+/// Which pipeline a pass runs, and so which descriptor set of a ring slot it uses. Filter passes 0..=2 can be
+/// intermediate passes; the last filter pass (whichever index it has) runs the final pipeline, which writes the
+/// host's output.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Role {
+    Prepare,
+    Classification,
+    Filter(u32),
+    FilterFinal,
+}
+
+/// What one group of a pass covers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Grid {
+    /// `GROUP` pixels of the render rectangle.
+    Pixels,
+    /// `GROUP` tiles of the render rectangle.
+    Tiles,
+}
+
+/// One compute pass of a frame.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Pass {
+    pub role: Role,
+    /// Every resource the pass binds; unset entries stay null.
+    pub bindings: BindingTable,
+    pub grid: Grid,
+    pub push: Option<FilterPush>,
+    /// A disabled pass is not dispatched; its timestamp is still written, so its time reads as zero.
+    pub enabled: bool,
+}
+
+impl Pass {
+    /// Groups covering the render rectangle `extent` (pixels).
+    pub(crate) fn group_count(&self, extent: [u32; 2]) -> [u32; 3] {
+        let covered = match self.grid {
+            Grid::Pixels => extent,
+            Grid::Tiles => [extent[0].div_ceil(TILE[0]), extent[1].div_ceil(TILE[1])],
+        };
+        [covered[0].div_ceil(GROUP[0]), covered[1].div_ceil(GROUP[1]), 1]
+    }
+}
+
+/// Most passes one frame records: prepare, classification and every filter pass.
+pub(crate) const MAX_PASSES: usize = 2 + MAX_FILTER_PASSES as usize;
+
+/// The passes of one frame, in recording order (a fixed array: the recording path allocates nothing).
+pub(crate) struct FramePasses {
+    passes: [Pass; MAX_PASSES],
+    count: usize,
+}
+
+impl FramePasses {
+    pub(crate) fn iter(&self) -> impl Iterator<Item = &Pass> {
+        self.passes[..self.count].iter()
+    }
+}
+
+/// The frame: prepare (skipped when the host's mask already holds lit bits), tile classification, then
+/// `filter_passes` a-trous passes, the last one writing the host's output (or a debug view).
+pub(crate) fn frame(v: &FrameViews, filter_passes: u32, run_prepare: bool, debug_view: DebugView) -> FramePasses {
+    let mut passes = [prepare::pass(v, run_prepare); MAX_PASSES];
+    passes[1] = tile_classification::pass(v);
+    for p in 0..filter_passes {
+        passes[2 + p as usize] = filter::pass(v, p, filter_passes, debug_view);
+    }
+    FramePasses { passes, count: 2 + filter_passes as usize }
+}
 
 /// Tile metadata bit: the tile needs no temporal or spatial work; its value is in `TILE_LIT`.
 pub(crate) const TILE_CLEARED: u32 = 1 << 0;
@@ -52,7 +141,3 @@ fn internal(view: vk::ImageView) -> Binding {
     image(view, GENERAL)
 }
 
-/// Number of `group`-sized groups covering `extent`.
-pub(crate) fn groups(extent: [u32; 2], group: [u32; 2]) -> [u32; 3] {
-    [extent[0].div_ceil(group[0]), extent[1].div_ceil(group[1]), 1]
-}

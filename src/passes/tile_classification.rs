@@ -1,8 +1,8 @@
 //! tile classification: uniform-tile skip, reprojection, disocclusion, temporal moments and the history blend.
 //! Shader: shaders/tile_classification.comp (core in shaders/tile_classification.glsl).
 
-use super::bindings::{BindingTable, Resource};
-use super::{groups, internal, FrameViews};
+use super::bindings::Resource;
+use super::{internal, FrameViews, Grid, Pass, Role};
 use crate::create_info::Precision;
 
 pub(crate) fn shader(precision: Precision) -> &'static str {
@@ -12,7 +12,8 @@ pub(crate) fn shader(precision: Precision) -> &'static str {
     }
 }
 
-pub(crate) fn bindings(v: &FrameViews) -> BindingTable {
+/// One invocation per pixel, two tiles per group (ceil(H/8) group rows, not FFX's ceil(H/4)).
+pub(crate) fn pass(v: &FrameViews) -> Pass {
     let mut t = v.base_table();
     t[Resource::TileMask as usize] = v.tile_mask;
     t[Resource::Velocity as usize] = v.velocity;
@@ -23,10 +24,5 @@ pub(crate) fn bindings(v: &FrameViews) -> BindingTable {
     t[Resource::History as usize] = internal(v.history);
     t[Resource::Reprojection as usize] = internal(v.reprojection);
     t[Resource::TileMetaOut as usize] = internal(v.tile_meta);
-    t
-}
-
-/// 8x8 pixels per group (two tiles), over the render rectangle: ceil(H/8) rows, not FFX's ceil(H/4).
-pub(crate) fn group_count(extent: [u32; 2]) -> [u32; 3] {
-    groups(extent, [8, 8])
+    Pass { role: Role::Classification, bindings: t, grid: Grid::Pixels, push: None, enabled: true }
 }

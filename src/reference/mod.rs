@@ -92,7 +92,7 @@ pub trait Write {
 // ---- helpers shared by the passes (shaders/dnsr_common.glsl) ----
 
 /// Tile size in pixels.
-pub const TILE: Coord = [8, 4];
+pub const TILE: Coord = [crate::passes::TILE[0] as i32, crate::passes::TILE[1] as i32];
 
 /// Bit of pixel `p` within its tile word.
 pub fn tile_bit(p: Coord) -> u32 {

@@ -6,7 +6,7 @@ use crate::passes::{TILE_CLEARED, TILE_LIT};
 use glam::{DVec2, DVec3, DVec4};
 
 /// Radius of the local-moment window (17x17).
-pub const MOMENT_RADIUS: i32 = 8;
+pub const MOMENT_RADIUS: i32 = crate::passes::MOMENT_RADIUS as i32;
 
 fn tile_count<Io: Read + ?Sized>(io: &Io) -> Coord {
     let e = io.extent();

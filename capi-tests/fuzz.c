@@ -972,7 +972,7 @@ static bool create_legal(const DnsrContextCreateInfo *i)
 #if NEW_API
     if (i->lightCount > DNSR_MAX_LIGHT_COUNT || i->maxFramesInFlight > DNSR_MAX_FRAMES_IN_FLIGHT) return false;
 #endif
-    if (i->flags & ~(DnsrContextCreateFlags)(DNSR_CONTEXT_CREATE_DEPTH_INVERTED | DNSR_CONTEXT_CREATE_INFINITE_FAR |
+    if (i->flags & ~(DnsrContextCreateFlags)(DNSR_CONTEXT_CREATE_DEPTH_INVERTED |
                                               DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS))
         return false;
     if ((i->flags & DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS) && families[i->queueFamilyIndex].timestampValidBits == 0)
@@ -1001,7 +1001,7 @@ static void create_call(uint32_t iteration, bool must_succeed)
     info.enabledFeatures = host.features & rnd32();
     info.outputFormat = chance(80) ? VK_FORMAT_R32_SFLOAT : PICK(output_formats); /* see pool_create */
     info.precision = (info.enabledFeatures & DNSR_FEATURE_FLOAT16) && chance(40) ? DNSR_PRECISION_FP16 : DNSR_PRECISION_FP32;
-    info.flags = rnd32() & (DNSR_CONTEXT_CREATE_DEPTH_INVERTED | DNSR_CONTEXT_CREATE_INFINITE_FAR |
+    info.flags = rnd32() & (DNSR_CONTEXT_CREATE_DEPTH_INVERTED |
                             (chance(30) ? DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS : 0u));
     info.lightCount = 1 + rnd(MAX_LIGHTS);
     if (chance(30)) info.apiVersion = VK_API_VERSION_1_1 + rnd(100); /* 1.1.x: legal, below the host's 1.2 */

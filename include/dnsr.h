@@ -760,14 +760,13 @@ typedef struct DnsrDeviceRequirements {
    */
   uint32_t optionalExtensionCount;
   /**
-   * Their names (static storage): "VK_KHR_push_descriptor" (-> DNSR_FEATURE_PUSH_DESCRIPTOR) and
-   * "VK_EXT_subgroup_size_control" (core in Vulkan 1.3; -> DNSR_FEATURE_SUBGROUP_SIZE_CONTROL). FLOAT16 needs
+   * Their names (static storage): "VK_KHR_push_descriptor" (-> DNSR_FEATURE_PUSH_DESCRIPTOR). FLOAT16 needs
    * no extension on Vulkan 1.2+ (VK_KHR_shader_float16_int8 + VK_KHR_16bit_storage before).
    */
   const char *const *ppOptionalExtensionNames;
   /**
    * DNSR_FEATURE_* bits dnsr can use: FLOAT16 = shaderFloat16 + storageBuffer16BitAccess (for
-   * DNSR_PRECISION_FP16), PUSH_DESCRIPTOR, SUBGROUP_SIZE_CONTROL.
+   * DNSR_PRECISION_FP16) and PUSH_DESCRIPTOR.
    */
   DnsrFeatureFlags optionalFeatures;
 } DnsrDeviceRequirements;
@@ -966,11 +965,6 @@ typedef struct DnsrReferenceCallbacks {
 #define DNSR_FEATURE_PUSH_DESCRIPTOR (1 << 1)
 
 /**
- * `subgroupSizeControl` is enabled (accepted; current shaders do not need it).
- */
-#define DNSR_FEATURE_SUBGROUP_SIZE_CONTROL (1 << 2)
-
-/**
  * Forces 32 bits.
  */
 #define DNSR_FEATURE_MAX_ENUM 2147483647
@@ -979,11 +973,6 @@ typedef struct DnsrReferenceCallbacks {
  * Reverse-Z: depth 1 is near, 0 is far (sky).
  */
 #define DNSR_CONTEXT_CREATE_DEPTH_INVERTED (1 << 0)
-
-/**
- * The projection has an infinite far plane.
- */
-#define DNSR_CONTEXT_CREATE_INFINITE_FAR (1 << 1)
 
 /**
  * Record GPU timestamps around each pass (read with `dnsr_context_get_timings`).

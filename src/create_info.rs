@@ -14,19 +14,14 @@ pub struct EnabledFeatures {
     /// VK_KHR_push_descriptor is enabled. Without it dnsr keeps a cache of descriptor sets per distinct set of
     /// host image views.
     pub push_descriptor: bool,
-    /// `subgroupSizeControl` (VK 1.3 / VK_EXT_subgroup_size_control) is enabled. Accepted and recorded; the
-    /// current shaders are subgroup-size agnostic and do not need it.
-    pub subgroup_size_control: bool,
 }
 
-/// Depth conventions of the host's depth buffer.
+/// Depth conventions of the host's depth buffer. An infinite far plane needs no flag: sky is still depth 1 (0
+/// with `inverted`), and the infinite linear depth it has counts as disoccluded wherever it is compared.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct DepthFlags {
     /// Depth 1 is near and 0 is far (reverse-Z).
     pub inverted: bool,
-    /// The projection has an infinite far plane. Sky is still depth 1 (or 0 when inverted); this flag documents
-    /// that linear depth may be infinite there, which dnsr handles.
-    pub infinite_far: bool,
 }
 
 /// Arithmetic precision of the filter passes.

@@ -114,12 +114,12 @@ pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo, sink: &mut Option<Lo
     *sink = log;
     check_type(c.s_type, DNSR_STRUCTURE_TYPE_CONTEXT_CREATE_INFO, "DNSR_STRUCTURE_TYPE_CONTEXT_CREATE_INFO", WHAT)?;
     check_no_next(c.p_next, WHAT)?;
-    let known_features = DNSR_FEATURE_FLOAT16 | DNSR_FEATURE_PUSH_DESCRIPTOR | DNSR_FEATURE_SUBGROUP_SIZE_CONTROL;
+    let known_features = DNSR_FEATURE_FLOAT16 | DNSR_FEATURE_PUSH_DESCRIPTOR;
     if c.enabled_features & !known_features != 0 {
         let unknown = c.enabled_features & !known_features;
         return Err(CallError::InvalidArgument(format!("pCreateInfo->enabledFeatures has unknown bits {unknown:#x}")));
     }
-    let known_flags = DNSR_CONTEXT_CREATE_DEPTH_INVERTED | DNSR_CONTEXT_CREATE_INFINITE_FAR | DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS;
+    let known_flags = DNSR_CONTEXT_CREATE_DEPTH_INVERTED | DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS;
     if c.flags & !known_flags != 0 {
         let unknown = c.flags & !known_flags;
         return Err(CallError::InvalidArgument(format!("pCreateInfo->flags has unknown bits {unknown:#x}")));
@@ -161,13 +161,11 @@ pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo, sink: &mut Option<Lo
         features: EnabledFeatures {
             float16: c.enabled_features & DNSR_FEATURE_FLOAT16 != 0,
             push_descriptor: c.enabled_features & DNSR_FEATURE_PUSH_DESCRIPTOR != 0,
-            subgroup_size_control: c.enabled_features & DNSR_FEATURE_SUBGROUP_SIZE_CONTROL != 0,
         },
         width: c.width,
         height: c.height,
         depth: DepthFlags {
             inverted: c.flags & DNSR_CONTEXT_CREATE_DEPTH_INVERTED != 0,
-            infinite_far: c.flags & DNSR_CONTEXT_CREATE_INFINITE_FAR != 0,
         },
         precision: precision_from_c(c.precision)?,
         output_format: c.output_format,

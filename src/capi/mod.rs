@@ -194,11 +194,11 @@ pub extern "C" fn dnsr_get_memory_requirements(
 }
 
 /// Optional device extensions, as static C strings.
-struct ExtensionNames([*const c_char; 2]);
+struct ExtensionNames([*const c_char; 1]);
 // SAFETY: pointers to static string literals.
 unsafe impl Sync for ExtensionNames {}
 static OPTIONAL_EXTENSIONS: ExtensionNames =
-    ExtensionNames([c"VK_KHR_push_descriptor".as_ptr(), c"VK_EXT_subgroup_size_control".as_ptr()]);
+    ExtensionNames([c"VK_KHR_push_descriptor".as_ptr()]);
 
 /// What the host must create its instance and device with (see DnsrDeviceRequirements).
 #[unsafe(no_mangle)]
@@ -212,7 +212,7 @@ pub extern "C" fn dnsr_get_device_requirements(p_requirements: *mut DnsrDeviceRe
         out.pp_required_extension_names = std::ptr::null();
         out.optional_extension_count = OPTIONAL_EXTENSIONS.0.len() as u32;
         out.pp_optional_extension_names = OPTIONAL_EXTENSIONS.0.as_ptr();
-        out.optional_features = DNSR_FEATURE_FLOAT16 | DNSR_FEATURE_PUSH_DESCRIPTOR | DNSR_FEATURE_SUBGROUP_SIZE_CONTROL;
+        out.optional_features = DNSR_FEATURE_FLOAT16 | DNSR_FEATURE_PUSH_DESCRIPTOR;
         Ok(DnsrResult::DNSR_SUCCESS)
     })
 }

@@ -123,8 +123,7 @@ pub type DnsrFeatureFlags = u32;
 pub const DNSR_FEATURE_FLOAT16: DnsrFeatureFlags = 1 << 0;
 /// VK_KHR_push_descriptor is enabled.
 pub const DNSR_FEATURE_PUSH_DESCRIPTOR: DnsrFeatureFlags = 1 << 1;
-/// `subgroupSizeControl` is enabled (accepted; current shaders do not need it).
-pub const DNSR_FEATURE_SUBGROUP_SIZE_CONTROL: DnsrFeatureFlags = 1 << 2;
+// 1 << 2 was DNSR_FEATURE_SUBGROUP_SIZE_CONTROL (dnsr 0.1.0): the shaders are subgroup-size agnostic.
 /// Forces 32 bits.
 pub const DNSR_FEATURE_MAX_ENUM: DnsrFeatureFlags = 0x7FFF_FFFF;
 
@@ -132,8 +131,7 @@ pub const DNSR_FEATURE_MAX_ENUM: DnsrFeatureFlags = 0x7FFF_FFFF;
 pub type DnsrContextCreateFlags = u32;
 /// Reverse-Z: depth 1 is near, 0 is far (sky).
 pub const DNSR_CONTEXT_CREATE_DEPTH_INVERTED: DnsrContextCreateFlags = 1 << 0;
-/// The projection has an infinite far plane.
-pub const DNSR_CONTEXT_CREATE_INFINITE_FAR: DnsrContextCreateFlags = 1 << 1;
+// 1 << 1 was DNSR_CONTEXT_CREATE_INFINITE_FAR (dnsr 0.1.0): an infinite far plane needs no flag.
 /// Record GPU timestamps around each pass (read with `dnsr_context_get_timings`).
 pub const DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS: DnsrContextCreateFlags = 1 << 2;
 /// Forces 32 bits.
@@ -528,11 +526,10 @@ pub struct DnsrDeviceRequirements {
     pub pp_required_extension_names: *const *const c_char,
     /// Device extensions dnsr uses when enabled (declare them in `enabledFeatures`).
     pub optional_extension_count: u32,
-    /// Their names (static storage): "VK_KHR_push_descriptor" (-> DNSR_FEATURE_PUSH_DESCRIPTOR) and
-    /// "VK_EXT_subgroup_size_control" (core in Vulkan 1.3; -> DNSR_FEATURE_SUBGROUP_SIZE_CONTROL). FLOAT16 needs
+    /// Their names (static storage): "VK_KHR_push_descriptor" (-> DNSR_FEATURE_PUSH_DESCRIPTOR). FLOAT16 needs
     /// no extension on Vulkan 1.2+ (VK_KHR_shader_float16_int8 + VK_KHR_16bit_storage before).
     pub pp_optional_extension_names: *const *const c_char,
     /// DNSR_FEATURE_* bits dnsr can use: FLOAT16 = shaderFloat16 + storageBuffer16BitAccess (for
-    /// DNSR_PRECISION_FP16), PUSH_DESCRIPTOR, SUBGROUP_SIZE_CONTROL.
+    /// DNSR_PRECISION_FP16) and PUSH_DESCRIPTOR.
     pub optional_features: DnsrFeatureFlags,
 }

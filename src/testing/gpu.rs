@@ -212,7 +212,7 @@ impl Gpu {
             command_pool,
             debug,
             messages,
-            features: EnabledFeatures { float16, push_descriptor, subgroup_size_control: false },
+            features: EnabledFeatures { float16, push_descriptor },
             device_name,
             api_version,
         }

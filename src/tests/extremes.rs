@@ -68,7 +68,6 @@ fn depth_conventions_and_projections() {
     for (what, cam) in cases {
         let mut info = g.create_info(w, h);
         info.depth.inverted = cam.inverted;
-        info.depth.infinite_far = cam.infinite_far;
         let mut r = runner(&g, &info);
         // Sky at the sides (plane narrower than the view), then the full plane.
         let f = render(w, h, &cam, &cam, cam.eye.x.abs() + 2.0, &smooth, 1);

@@ -10,37 +10,13 @@ use ash::vk;
 use glam::{Mat4, Vec2, Vec3};
 use std::sync::Arc;
 
-/// Calls `$m!` with every field `Settings` and `DnsrSettings` share: the one list both conversions use.
-macro_rules! setting_fields {
-    ($m:ident) => {
-        $m!(
-            filter_passes,
-            disocclusion_threshold_facing,
-            disocclusion_threshold_grazing,
-            disocclusion_angle_exponent,
-            spatial_falloff,
-            history_clamp_sigmas,
-            history_rejection_falloff,
-            history_rejection_min_sigma,
-            variance_boost_samples,
-            full_history_samples,
-            min_current_weight,
-            max_history_samples,
-            kernel_cross_weight,
-            normal_power,
-            output_contrast,
-            min_shadow_sigma
-        )
-    };
-}
-
 pub(crate) fn settings_from_c(s: &DnsrSettings, what: &str) -> Result<Settings, CallError> {
     check_type(s.s_type, DNSR_STRUCTURE_TYPE_SETTINGS, "DNSR_STRUCTURE_TYPE_SETTINGS", what)?;
     check_no_next(s.p_next, what)?;
     macro_rules! from_c {
         ($($f:ident),*) => { Settings { $($f: s.$f),* } };
     }
-    Ok(setting_fields!(from_c))
+    Ok(crate::settings::for_each_setting!(from_c))
 }
 
 pub(crate) fn settings_to_c(s: &Settings) -> DnsrSettings {
@@ -49,7 +25,7 @@ pub(crate) fn settings_to_c(s: &Settings) -> DnsrSettings {
             DnsrSettings { s_type: DNSR_STRUCTURE_TYPE_SETTINGS, p_next: std::ptr::null(), $($f: s.$f),* }
         };
     }
-    setting_fields!(to_c)
+    crate::settings::for_each_setting!(to_c)
 }
 
 pub(crate) fn precision_from_c(p: DnsrPrecision) -> Result<Precision, CallError> {

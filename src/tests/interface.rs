@@ -334,8 +334,7 @@ fn header_documents_every_setting_range() {
     let header = String::from_utf8(generated_header()).unwrap();
     let block = &header[header.find("typedef struct DnsrSettings").unwrap()..];
     let block = &block[..block.find("} DnsrSettings;").unwrap()];
-    let ranges = crate::settings::FLOAT_RANGES.iter().map(|&(name, _, _, range)| (name, range));
-    for (name, range) in ranges.chain([("filter_passes", crate::settings::FILTER_PASSES_RANGE)]) {
+    for &(name, range) in crate::settings::RANGES {
         let field = format!(" {};", c_field(name));
         let at = block.find(&field).unwrap_or_else(|| panic!("DnsrSettings has no field {field}"));
         let doc = &block[block[..at].rfind("/**").unwrap()..at];

@@ -322,7 +322,7 @@ static uint32_t texel_bytes(VkFormat f)
     }
 }
 
-static VkImageMemoryBarrier transition(VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to)
+VkImageMemoryBarrier host_transition(VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to)
 {
     VkImageMemoryBarrier b = {
         .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
@@ -338,7 +338,7 @@ static VkImageMemoryBarrier transition(VkImage image, VkImageAspectFlags aspect,
     return b;
 }
 
-static void full_barrier_with(VkCommandBuffer cmd, const VkImageMemoryBarrier *images, uint32_t count)
+void host_cmd_full_barrier_with(VkCommandBuffer cmd, const VkImageMemoryBarrier *images, uint32_t count)
 {
     VkMemoryBarrier m = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
@@ -351,7 +351,7 @@ static void full_barrier_with(VkCommandBuffer cmd, const VkImageMemoryBarrier *i
 
 void host_cmd_full_barrier(VkCommandBuffer cmd)
 {
-    full_barrier_with(cmd, NULL, 0);
+    host_cmd_full_barrier_with(cmd, NULL, 0);
 }
 
 void host_cmd_host_read_barrier(VkCommandBuffer cmd)
@@ -410,8 +410,8 @@ void host_image_create(Host *h, HostImage *img, VkFormat format, uint32_t width,
     img->layout = layout;
 
     VkCommandBuffer cmd = host_begin(h);
-    VkImageMemoryBarrier b = transition(img->image, aspect_of(format), VK_IMAGE_LAYOUT_UNDEFINED, layout);
-    full_barrier_with(cmd, &b, 1);
+    VkImageMemoryBarrier b = host_transition(img->image, aspect_of(format), VK_IMAGE_LAYOUT_UNDEFINED, layout);
+    host_cmd_full_barrier_with(cmd, &b, 1);
     host_submit(h, cmd);
 }
 
@@ -500,14 +500,14 @@ void host_cmd_copy(VkCommandBuffer cmd, const HostImage *img, const HostBuffer *
         .imageSubresource = {aspect, 0, 0, 1},
         .imageExtent = {img->width, img->height, 1},
     };
-    VkImageMemoryBarrier b = transition(img->image, aspect, img->layout, transfer);
-    full_barrier_with(cmd, img->layout != transfer ? &b : NULL, img->layout != transfer ? 1u : 0u);
+    VkImageMemoryBarrier b = host_transition(img->image, aspect, img->layout, transfer);
+    host_cmd_full_barrier_with(cmd, img->layout != transfer ? &b : NULL, img->layout != transfer ? 1u : 0u);
     if (toImage)
         vkCmdCopyBufferToImage(cmd, buf->buffer, img->image, transfer, 1, &region);
     else
         vkCmdCopyImageToBuffer(cmd, img->image, transfer, buf->buffer, 1, &region);
-    b = transition(img->image, aspect, transfer, img->layout);
-    full_barrier_with(cmd, img->layout != transfer ? &b : NULL, img->layout != transfer ? 1u : 0u);
+    b = host_transition(img->image, aspect, transfer, img->layout);
+    host_cmd_full_barrier_with(cmd, img->layout != transfer ? &b : NULL, img->layout != transfer ? 1u : 0u);
 }
 
 void host_upload(Host *h, const HostImage *img, const void *data, size_t bytes)

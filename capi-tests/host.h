@@ -143,6 +143,10 @@ VkCommandBuffer host_begin(Host *h);
 void host_submit(Host *h, VkCommandBuffer cmd);
 /* An all-commands, all-memory barrier (test plumbing only). */
 void host_cmd_full_barrier(VkCommandBuffer cmd);
+/* The same, carrying image layout transitions. */
+void host_cmd_full_barrier_with(VkCommandBuffer cmd, const VkImageMemoryBarrier *images, uint32_t count);
+/* A layout transition of mip 0 / layer 0 (all memory accesses before -> all after). */
+VkImageMemoryBarrier host_transition(VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to);
 /* Makes transfer writes (readback copies) visible to the host once the queue is idle. */
 void host_cmd_host_read_barrier(VkCommandBuffer cmd);
 /* Copies between an image and a buffer at `offset`, moving the image to the transfer layout and back to its

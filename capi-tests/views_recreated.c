@@ -305,33 +305,6 @@ static DnsrHostImage frame_desc(const Frame *f, enum Role r, VkImageLayout layou
     return d;
 }
 
-static void barrier(VkCommandBuffer cmd, const VkImageMemoryBarrier *images, uint32_t count)
-{
-    VkMemoryBarrier m = {
-        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
-        .srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT,
-        .dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT,
-    };
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &m, 0, NULL,
-                         count, images);
-}
-
-static VkImageMemoryBarrier transition(VkImage image, VkImageLayout from, VkImageLayout to)
-{
-    VkImageMemoryBarrier b = {
-        .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
-        .srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT,
-        .dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT,
-        .oldLayout = from,
-        .newLayout = to,
-        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .image = image,
-        .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1},
-    };
-    return b;
-}
-
 /* ------------------------------------------------------------------------------------------------------------- */
 
 static void identity(float m[16])
@@ -362,8 +335,8 @@ static void run_batch(DnsrContext ctx, Frame *frames, uint32_t count, uint32_t f
     for (uint32_t i = 0; i < count; i++)
         for (unsigned r = 0; r < IMAGES_PER_FRAME; r++)
             b[i * IMAGES_PER_FRAME + r] =
-                transition(frames[i].image[r], VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-    barrier(cmd, b, count * IMAGES_PER_FRAME);
+                host_transition(frames[i].image[r], VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    host_cmd_full_barrier_with(cmd, b, count * IMAGES_PER_FRAME);
     const VkImageSubresourceRange color = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     for (uint32_t i = 0; i < count; i++) {
         const Frame *f = &frames[i];
@@ -381,9 +354,9 @@ static void run_batch(DnsrContext ctx, Frame *frames, uint32_t count, uint32_t f
         vkCmdClearColorImage(cmd, f->image[OUTPUT], dst, &sentinel, 1, &color);
         for (unsigned r = 0; r < IMAGES_PER_FRAME; r++)
             b[i * IMAGES_PER_FRAME + r] =
-                transition(f->image[r], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, r == OUTPUT ? out_layout : read);
+                host_transition(f->image[r], VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, r == OUTPUT ? out_layout : read);
     }
-    barrier(cmd, b, count * IMAGES_PER_FRAME);
+    host_cmd_full_barrier_with(cmd, b, count * IMAGES_PER_FRAME);
 
     for (uint32_t i = 0; i < count; i++) {
         const Frame *f = &frames[i];
@@ -414,7 +387,7 @@ static void run_batch(DnsrContext ctx, Frame *frames, uint32_t count, uint32_t f
               stats.viewsCreated, dnsr_result_to_string(r), dnsr_last_error_message());
     }
 
-    barrier(cmd, NULL, 0);
+    host_cmd_full_barrier_with(cmd, NULL, 0);
     for (uint32_t i = 0; i < count; i++) {
         VkBufferImageCopy region = {
             .bufferOffset = (VkDeviceSize)i * W * H * sizeof(float),

@@ -7,7 +7,7 @@ CARGO ?= cargo
 # `make test DNSR_DEVICE=NVIDIA`.
 DNSR_DEVICE ?= llvmpipe
 
-.PHONY: all demo demo-synthetic viewer test bench accuracy generate shaders header deps clean
+.PHONY: all demo demo-synthetic viewer test bench bench-smoke accuracy generate shaders header deps clean
 
 all: test
 
@@ -35,6 +35,9 @@ demo-synthetic: deps
 test: deps
 	env -u VK_LOADER_DEBUG DNSR_DEVICE="$(DNSR_DEVICE)" $(CARGO) test --release
 	$(CARGO) build --release --features demo --bins
+	@# The benchmark at a tiny size, every scene, preset and precision, under validation: it must run cleanly and
+	@# write valid bench.json / bench.md (no timing is checked).
+	$(MAKE) bench-smoke
 	@# dnsr loads Vulkan through the host's vkGetInstanceProcAddr: the shared library must not link the loader.
 	@if ldd target/release/libdnsr.so | grep -q libvulkan; then echo "libdnsr.so links libvulkan"; exit 1; fi
 	@echo "libdnsr.so does not link libvulkan"
@@ -49,9 +52,25 @@ test: deps
 accuracy: deps
 	$(CARGO) run --release --features demo --bin dnsr-accuracy -- --out docs
 
-# Median GPU timings per pass on synthetic scenes (run it on the GPU you want numbers for).
+# The benchmark (BENCHMARKS.md): every size x scene x preset x precision, each after a warm-up (>= 20 frames and 1 s,
+# then until the GPU time is stable) over 200 timed frames, with the copy roofline and the byte model; writes
+# out/bench/bench.json and bench.md. Run it on the GPU you want numbers for (DNSR_DEVICE=<name> picks one);
+# BENCH_ARGS restricts it, e.g. BENCH_ARGS="--sizes 3840x2160 --presets balanced".
+BENCH_ARGS ?=
 bench: deps
-	$(CARGO) run --release --features demo --bin dnsr-bench
+	$(CARGO) run --release --features demo --bin dnsr-bench -- --out out/bench $(BENCH_ARGS)
+
+# Part of `make test`: dnsr-bench at 64x32 with validation, then a check of its JSON.
+bench-smoke:
+	$(CARGO) build --release --features demo --bin dnsr-bench
+	env -u VK_LOADER_DEBUG DNSR_DEVICE="$(DNSR_DEVICE)" target/release/dnsr-bench --sizes 64x32 --frames 3 --warmup 1 \
+		--warmup-ms 0 --copy-mib 8 --copy-runs 3 --validation --out out/bench-smoke > /dev/null
+	python3 -c 'import json, math; d = json.load(open("out/bench-smoke/bench.json")); \
+		r = d["results"]; n = 4 * 3 * (1 if d["device"]["float16"] is False else 2); \
+		assert len(r) == n, f"{len(r)} results instead of {n}"; \
+		assert all(math.isfinite(x["total"]["median_ms"]) and len(x["passes"]) == 2 + x["filter_passes"] for x in r); \
+		assert d["copy_bandwidth"]["gbps_median"] > 0; \
+		open("out/bench-smoke/bench.md").read(); print(f"bench smoke: {len(r)} configurations, valid bench.json")'
 
 # Regenerates every generated, committed file: shaders/generated/dnsr_constants.glsl, shaders/spv/*.spv (needs
 # glslc), include/dnsr.h (cbindgen) and capi-tests/generated/layout.h. `make test` fails when any is stale.

@@ -1,86 +1,215 @@
-//! GPU timings of dnsr's passes on synthetic scenes, from GPU timestamps: median over many frames.
+//! The benchmark to quote: GPU time of every dnsr pass (median and p95 from GPU timestamps), against the
+//! device's copy bandwidth and a per-pass byte model, plus the CPU time to record a frame and dnsr's memory per
+//! pixel, over sizes x scenes x presets x precisions. Writes bench.json and bench.md (see BENCHMARKS.md).
 //!
-//! `cargo run --release --features demo --bin dnsr-bench -- [--frames N] [--sizes 1920x1080,3840x2160] [--fp16]`
-//! Prints a Markdown table: device, size, scene, per-pass and total median milliseconds.
+//! `cargo run --release --features demo --bin dnsr-bench -- [options]`; `--help` lists them.
 
-use dnsr::ash::vk;
+mod bench;
+
+use bench::device::{command_line, commit, utc, DeviceInfo};
+use bench::report::{precision_name, preset_name, Report, Summary};
+use bench::run::Warmup;
+use bench::scenes::{build, SceneId, ALL_SCENES};
 use dnsr::testing::gpu::{Gpu, GpuOptions};
-use dnsr::testing::scene::{render, Camera};
-use dnsr::testing::Runner;
-use dnsr::{PassTimings, Precision};
+use dnsr::{Precision, Preset};
+use std::path::PathBuf;
+use std::time::Instant;
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(|a, b| a.total_cmp(b));
-    v[v.len() / 2]
+const USAGE: &str = "usage: dnsr-bench [options]
+
+  --sizes WxH[,WxH...]        render sizes (default 1920x1080,2560x1440,3840x2160)
+  --scenes a[,b...]           penumbra-heavy, typical, all-lit, sky-90 (default: all)
+  --presets a[,b...]          fast, balanced, quality (default: all)
+  --precisions a[,b...]       fp32, fp16 (default: both; fp16 is skipped when the device lacks it)
+  --fp16                      same as --precisions fp16
+  --frames N                  timed frames per configuration (default 200)
+  --warmup N                  at least this many warm-up frames before timing (default 20)
+  --warmup-ms T               and at least T ms of back-to-back warm-up frames, then until the GPU time is stable
+                              (median of the last 10 frames within 2% of the 10 before; at most 5 T); 0: exactly N
+                              frames (default 1000)
+  --copy-mib N                size of each buffer of the copy-bandwidth kernel in MiB (default 256)
+  --copy-runs N               timed runs of the copy kernel, median reported (default 10)
+  --out DIR                   where bench.json and bench.md go (default out/bench)
+  --validation                enable the Vulkan validation layer; any message fails the run (exit 1)
+
+The device is the first whose name contains $DNSR_DEVICE (any device when unset). The commit recorded is
+$DNSR_COMMIT, else `git rev-parse HEAD` of the working directory.";
+
+fn usage(msg: &str) -> ! {
+    if !msg.is_empty() {
+        eprintln!("dnsr-bench: {msg}\n");
+    }
+    eprintln!("{USAGE}");
+    std::process::exit(2);
+}
+
+fn list<T>(value: Option<String>, flag: &str, parse: impl Fn(&str) -> Option<T>) -> Vec<T> {
+    let value = value.unwrap_or_else(|| usage(&format!("{flag} needs a value")));
+    let items: Vec<T> = value
+        .split(',')
+        .map(|s| parse(s.trim()).unwrap_or_else(|| usage(&format!("{flag}: cannot use {s:?}"))))
+        .collect();
+    if items.is_empty() {
+        usage(&format!("{flag}: empty list"));
+    }
+    items
+}
+
+fn number(value: Option<String>, flag: &str, min: usize) -> usize {
+    value
+        .and_then(|v| v.parse().ok())
+        .filter(|&n| n >= min)
+        .unwrap_or_else(|| usage(&format!("{flag} needs a whole number >= {min}")))
 }
 
 fn parse_size(s: &str) -> Option<(u32, u32)> {
     let (w, h) = s.split_once('x')?;
-    Some((w.parse().ok()?, h.parse().ok()?))
+    Some((w.parse().ok().filter(|&w| w > 0)?, h.parse().ok().filter(|&h| h > 0)?))
 }
 
-fn main() {
-    let mut frames = 160usize;
-    let mut sizes = vec![(1920u32, 1080u32), (2560, 1440), (3840, 2160)];
-    let mut precision = Precision::Fp32;
+fn parse_preset(s: &str) -> Option<Preset> {
+    [Preset::Fast, Preset::Balanced, Preset::Quality].into_iter().find(|&p| preset_name(p) == s)
+}
+
+fn parse_precision(s: &str) -> Option<Precision> {
+    [Precision::Fp32, Precision::Fp16].into_iter().find(|&p| precision_name(p) == s)
+}
+
+struct Options {
+    sizes: Vec<(u32, u32)>,
+    scenes: Vec<SceneId>,
+    presets: Vec<Preset>,
+    precisions: Vec<Precision>,
+    frames: usize,
+    warmup: usize,
+    warmup_ms: usize,
+    copy_mib: usize,
+    copy_runs: usize,
+    out: PathBuf,
+    validation: bool,
+}
+
+fn parse_args() -> Options {
+    let mut o = Options {
+        sizes: vec![(1920, 1080), (2560, 1440), (3840, 2160)],
+        scenes: ALL_SCENES.to_vec(),
+        presets: vec![Preset::Fast, Preset::Balanced, Preset::Quality],
+        precisions: vec![Precision::Fp32, Precision::Fp16],
+        frames: 200,
+        warmup: 20,
+        warmup_ms: 1000,
+        copy_mib: 256,
+        copy_runs: 10,
+        out: PathBuf::from("out/bench"),
+        validation: false,
+    };
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
-            "--frames" => frames = args.next().and_then(|v| v.parse().ok()).filter(|&n| n > 0).unwrap_or_else(|| usage()),
-            "--sizes" => {
-                sizes = args.next().unwrap_or_else(|| usage()).split(',').map(|s| parse_size(s).unwrap_or_else(|| usage())).collect()
+            "--sizes" => o.sizes = list(args.next(), "--sizes", parse_size),
+            "--scenes" => o.scenes = list(args.next(), "--scenes", SceneId::parse),
+            "--presets" => o.presets = list(args.next(), "--presets", parse_preset),
+            "--precisions" => o.precisions = list(args.next(), "--precisions", parse_precision),
+            "--fp16" => o.precisions = vec![Precision::Fp16],
+            "--frames" => o.frames = number(args.next(), "--frames", 1),
+            "--warmup" => o.warmup = number(args.next(), "--warmup", 0),
+            "--warmup-ms" => o.warmup_ms = number(args.next(), "--warmup-ms", 0),
+            "--copy-mib" => o.copy_mib = number(args.next(), "--copy-mib", 1),
+            "--copy-runs" => o.copy_runs = number(args.next(), "--copy-runs", 1),
+            "--out" => o.out = PathBuf::from(args.next().unwrap_or_else(|| usage("--out needs a directory"))),
+            "--validation" => o.validation = true,
+            "-h" | "--help" => {
+                println!("{USAGE}");
+                std::process::exit(0);
             }
-            "--fp16" => precision = Precision::Fp16,
-            _ => usage(),
+            other => usage(&format!("unknown argument {other:?}")),
         }
     }
-    let gpu = Gpu::new(GpuOptions { validation: false, ..Default::default() });
-    if precision == Precision::Fp16 && !gpu.features.float16 {
-        eprintln!("the device lacks shaderFloat16 / 16-bit storage");
-        std::process::exit(1);
-    }
-    println!("device: {} ({:?}, push descriptors {})\n", gpu.device_name, precision, gpu.features.push_descriptor);
-    println!("| size | scene | prepare | tile classification | filter 0 | filter 1 | filter 2 | total (ms, median of {frames}) |");
-    println!("|---|---|---|---|---|---|---|---|");
-    // Penumbra-heavy: a smooth field between 0.2 and 0.8 everywhere, so no tile is uniform.
-    let penumbra = |x: f64, z: f64| 0.5 + 0.3 * (x * 0.9).sin() * (z * 0.7).cos();
-    for &(w, h) in &sizes {
-        let scenes: [(&str, f64, &dyn Fn(f64, f64) -> f64); 3] =
-            [("penumbra-heavy", 1e9, &penumbra), ("all lit", 1e9, &|_, _| 1.0), ("90% sky", 0.6, &penumbra)];
-        for (name, half_width, field) in scenes {
-            let mut info = gpu.create_info(w, h);
-            info.enable_timestamps = true;
-            info.precision = precision;
-            info.output_format = vk::Format::R16_SFLOAT;
-            let mut r = Runner::new(&gpu, &info).expect("context");
-            let cam = Camera::above(0.0, 0.0, 10.0);
-            let f = render(w, h, &cam, &cam, half_width, field, 1);
-            r.frame(&f, true);
-            let d = r.dispatch(&f);
-            let cmd = gpu.command_buffer();
-            let mut samples: Vec<PassTimings> = Vec::with_capacity(frames);
-            for _ in 0..frames + 8 {
-                gpu.submit_with(cmd, |cmd| r.ctx.record_shadows(cmd, &d).expect("record"));
-                samples.push(r.ctx.timings().expect("timings").expect("completed frame"));
-            }
-            gpu.free_command_buffer(cmd);
-            let s = &samples[8..]; // warm-up frames dropped
-            let m = |f: fn(&PassTimings) -> f64| median(s.iter().map(f).collect());
-            println!(
-                "| {w}x{h} | {name} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} |",
-                m(|t| t.prepare_ms),
-                m(|t| t.tile_classification_ms),
-                m(|t| t.filter_ms[0]),
-                m(|t| t.filter_ms[1]),
-                m(|t| t.filter_ms[2]),
-                m(|t| t.total_ms)
-            );
-            println!("<!-- internal memory {:.1} MB ({:.2} B/px) -->", r.ctx.memory_bytes() as f64 / 1e6, r.ctx.memory_bytes() as f64 / (w * h) as f64);
-        }
-    }
+    o
 }
 
-fn usage() -> ! {
-    eprintln!("usage: dnsr-bench [--frames N] [--sizes WxH[,WxH...]] [--fp16]");
-    std::process::exit(2);
+fn fail(msg: String) -> ! {
+    eprintln!("dnsr-bench: {msg}");
+    std::process::exit(1);
+}
+
+fn main() {
+    let opts = parse_args();
+    let started = Instant::now();
+    let date = utc(std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs()));
+    let gpu = Gpu::new(GpuOptions { validation: opts.validation, ..Default::default() });
+    let device = DeviceInfo::query(&gpu);
+    eprintln!("dnsr-bench: {} (Vulkan {}, driver {})", device.name, device.api_version, device.driver());
+
+    let mut skipped = Vec::new();
+    let mut precisions = opts.precisions.clone();
+    if !gpu.features.float16 && precisions.contains(&Precision::Fp16) {
+        precisions.retain(|&p| p != Precision::Fp16);
+        skipped.push("fp16: the device lacks shaderFloat16 + storageBuffer16BitAccess".to_string());
+        eprintln!("dnsr-bench: skipping fp16 (the device lacks shaderFloat16 + storageBuffer16BitAccess)");
+    }
+
+    let copy = bench::copy::measure(&gpu, (opts.copy_mib as u64) << 20, opts.copy_runs).unwrap_or_else(|e| fail(format!("copy kernel: {e}")));
+    eprintln!("dnsr-bench: copy bandwidth {:.1} GB/s (read + write, median of {})", copy.gbps(copy.median_ms()), copy.runs_ms.len());
+
+    let mut results = Vec::new();
+    for &size in &opts.sizes {
+        for &scene in &opts.scenes {
+            let t = Instant::now();
+            let gpu_scene = build(&gpu, scene, size.0, size.1);
+            eprintln!("dnsr-bench: {}x{} {}: {} frames generated in {:.1} s", size.0, size.1, scene.id(), gpu_scene.frames.len(), t.elapsed().as_secs_f64());
+            for &precision in &precisions {
+                for &preset in &opts.presets {
+                    let warmup = Warmup { frames: opts.warmup, min_ms: opts.warmup_ms as f64 };
+                    let run = bench::run::run(&gpu, &gpu_scene, size, preset, precision, warmup, opts.frames).unwrap_or_else(|e| {
+                        fail(format!("{}x{} {} {} {}: {e}", size.0, size.1, scene.id(), preset_name(preset), precision_name(precision)))
+                    });
+                    let s = Summary::new(size, scene, preset, precision, run, gpu_scene.coverage);
+                    eprintln!(
+                        "dnsr-bench: {}x{} {} {} {}: total {:.3} ms median, {:.3} ms p95 (warm-up {} frames, {:.0} ms{})",
+                        size.0,
+                        size.1,
+                        scene.id(),
+                        preset_name(preset),
+                        precision_name(precision),
+                        s.total.median_ms,
+                        s.total.p95_ms,
+                        s.warmup.frames,
+                        s.warmup.ms,
+                        if s.warmup.stable || opts.warmup_ms == 0 { "" } else { ", not stable" }
+                    );
+                    results.push(s);
+                }
+            }
+            gpu_scene.destroy(&gpu);
+        }
+    }
+
+    let report = Report {
+        device: &device,
+        commit: commit(),
+        command_line: command_line(),
+        date,
+        warmup: opts.warmup,
+        warmup_ms: opts.warmup_ms,
+        frames: opts.frames,
+        copy: &copy,
+        results: &results,
+        skipped: &skipped,
+        wall_s: started.elapsed().as_secs_f64(),
+    };
+    let md = report.markdown();
+    std::fs::create_dir_all(&opts.out).unwrap_or_else(|e| fail(format!("cannot create {}: {e}", opts.out.display())));
+    for (name, text) in [("bench.json", report.json().to_pretty()), ("bench.md", md.clone())] {
+        let path = opts.out.join(name);
+        std::fs::write(&path, text).unwrap_or_else(|e| fail(format!("cannot write {}: {e}", path.display())));
+    }
+    println!("{md}");
+    eprintln!("dnsr-bench: wrote {} and {}", opts.out.join("bench.json").display(), opts.out.join("bench.md").display());
+    if opts.validation {
+        let messages = gpu.take_messages();
+        if !messages.is_empty() {
+            fail(format!("{} validation message(s):\n{}", messages.len(), messages.join("\n")));
+        }
+    }
 }

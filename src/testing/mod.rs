@@ -5,6 +5,7 @@ pub mod fields;
 pub mod gpu;
 pub mod images;
 pub mod scene;
+pub mod typical;
 
 use crate::{Context, ContextCreateInfo, HostSync, ShadowsDispatch};
 use ash::vk;

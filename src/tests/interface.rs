@@ -63,6 +63,16 @@ fn bless_spirv_matches_glslc() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// dnsr-bench's copy kernel (the copy roofline it compares every pass with) is committed next to its source.
+#[test]
+fn bless_bench_copy_spirv_matches_glslc() {
+    let out = std::env::temp_dir().join(format!("dnsr-bench-copy-{}.spv", std::process::id()));
+    compile("bench/copy.comp", &[], &out);
+    let fresh = std::fs::read(&out).unwrap();
+    std::fs::remove_file(&out).ok();
+    compare_or_bless(&root().join("shaders/bench/copy.spv"), &fresh);
+}
+
 #[test]
 fn reflected_interfaces_match_what_the_host_binds() {
     use Resource::*;

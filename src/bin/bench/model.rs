@@ -1,0 +1,251 @@
+//! The bytes each pass reads and writes by design: every texel a pass touches counted once (perfect reuse of
+//! neighbouring taps in the caches), nothing for constants or push constants. This is the traffic of the
+//! current passes, not the algorithm's floor (DESIGN.md puts that near 30-40 B/px for a whole frame).
+//!
+//! `MODEL` is the one table to update when a format or a pass changes. Each row: which pass, which resource,
+//! bytes per unit with the fp32 and the fp16 path, read or write, which pixels it covers (bytes are per pixel
+//! of that class, per tile for `Tiles`), and in which filter passes it applies. The bench measures the size of
+//! every pixel class on the device (through dnsr's debug views) and multiplies out.
+
+use super::json::Json;
+use dnsr::Precision;
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Pass {
+    Prepare,
+    TileClassification,
+    /// Every filter pass (see `When`).
+    Filter,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Access {
+    Read,
+    Write,
+}
+
+/// Which pixels a row covers. Every class stays measurable whether or not the table uses it today.
+#[allow(dead_code)]
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Pixels {
+    /// One unit per 8x4 tile (bytes per tile).
+    Tiles,
+    /// Every pixel of the render rectangle.
+    All,
+    /// Receivers: 0 < depth < 1 (not sky).
+    Receivers,
+    /// Receivers in tiles that tile classification did not clear: the temporal path
+    /// (`DebugView::TileClassification` shows 0.5 there).
+    Active,
+    /// Active receivers that reuse last frame's history: not disoccluded, reset or rejected
+    /// (`DebugView::Disocclusion` shows 0 there).
+    History,
+    /// Pixels of the 8x8 groups (two tiles) with at least one tile not cleared: the filter skips the other
+    /// groups, tile classification writes them early.
+    ActiveGroups,
+    /// Receivers in those groups.
+    ActiveGroupReceivers,
+}
+
+/// In which filter passes a filter row applies (other passes' rows always apply).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum When {
+    Always,
+    /// Pass 0 (it writes the next frame's history) and every pass but the last.
+    WritesIntermediate,
+    /// The last pass (it writes the host output).
+    FinalPass,
+}
+
+pub struct Row {
+    pub pass: Pass,
+    pub resource: &'static str,
+    pub fp32: f64,
+    pub fp16: f64,
+    pub access: Access,
+    pub pixels: Pixels,
+    pub when: When,
+}
+
+const fn row(pass: Pass, resource: &'static str, fp32: f64, fp16: f64, access: Access, pixels: Pixels, when: When) -> Row {
+    Row { pass, resource, fp32, fp16, access, pixels, when }
+}
+
+use Access::*;
+use Pass::*;
+use Pixels::*;
+use When::*;
+
+/// Host inputs as the bench binds them: hit mask R32_UINT, depth R32_SFLOAT, velocity R32G32_SFLOAT, normals
+/// R32G32B32A32_SFLOAT; output R16_SFLOAT. Internal formats from src/state.rs.
+pub const MODEL: &[Row] = &[
+    row(Prepare, "hit mask (host, R32_UINT)", 4.0, 4.0, Read, Tiles, Always),
+    row(Prepare, "tile mask (R32_UINT)", 4.0, 4.0, Write, Tiles, Always),
+    row(TileClassification, "tile mask (R32_UINT)", 4.0, 4.0, Read, Tiles, Always),
+    row(TileClassification, "depth (host, R32_SFLOAT)", 4.0, 4.0, Read, All, Always),
+    row(TileClassification, "velocity (host, R32G32_SFLOAT)", 8.0, 8.0, Read, ActiveGroupReceivers, Always),
+    row(TileClassification, "normals (host, R32G32B32A32_SFLOAT)", 16.0, 16.0, Read, Active, Always),
+    row(TileClassification, "previous depth copy (R32_SFLOAT)", 4.0, 4.0, Read, Active, Always),
+    row(TileClassification, "previous moments (R32G32B32A32_SFLOAT)", 16.0, 16.0, Read, History, Always),
+    row(TileClassification, "history (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Read, History, Always),
+    row(TileClassification, "depth copy (R32_SFLOAT)", 4.0, 4.0, Write, All, Always),
+    row(TileClassification, "moments (R32G32B32A32_SFLOAT)", 16.0, 16.0, Write, All, Always),
+    row(TileClassification, "reprojection (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Write, All, Always),
+    row(TileClassification, "tile meta (R32_UINT)", 4.0, 4.0, Write, Tiles, Always),
+    row(Filter, "tile meta (R32_UINT)", 4.0, 4.0, Read, Tiles, Always),
+    row(Filter, "depth (host, R32_SFLOAT)", 4.0, 4.0, Read, All, Always),
+    row(Filter, "normals (host, R32G32B32A32_SFLOAT)", 16.0, 16.0, Read, ActiveGroups, Always),
+    row(Filter, "filter input (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Read, ActiveGroups, Always),
+    row(Filter, "filter output (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Write, All, WritesIntermediate),
+    row(Filter, "output (host, R16_SFLOAT)", 2.0, 2.0, Write, All, FinalPass),
+];
+
+/// Size of every pixel class in one frame (averaged over the frames measured).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PixelCounts {
+    pub all: f64,
+    pub tiles: f64,
+    pub receivers: f64,
+    pub active: f64,
+    pub history: f64,
+    pub active_groups: f64,
+    pub active_group_receivers: f64,
+}
+
+impl PixelCounts {
+    pub fn get(&self, p: Pixels) -> f64 {
+        match p {
+            Tiles => self.tiles,
+            All => self.all,
+            Receivers => self.receivers,
+            Active => self.active,
+            History => self.history,
+            ActiveGroups => self.active_groups,
+            ActiveGroupReceivers => self.active_group_receivers,
+        }
+    }
+
+    /// Fractions of all pixels (tiles: count).
+    pub fn to_json(self) -> Json {
+        let f = |n: f64| Json::from(n / self.all.max(1.0));
+        Json::obj([
+            ("pixels", self.all.into()),
+            ("tiles", self.tiles.into()),
+            ("receivers", f(self.receivers)),
+            ("active", f(self.active)),
+            ("history", f(self.history)),
+            ("active_groups", f(self.active_groups)),
+            ("active_group_receivers", f(self.active_group_receivers)),
+        ])
+    }
+}
+
+/// One timed pass of a frame.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum PassId {
+    Prepare,
+    TileClassification,
+    Filter(u32),
+}
+
+impl PassId {
+    pub fn name(self) -> String {
+        match self {
+            PassId::Prepare => "prepare".into(),
+            PassId::TileClassification => "tile classification".into(),
+            PassId::Filter(k) => format!("filter {k}"),
+        }
+    }
+
+    fn applies(self, r: &Row, filter_passes: u32) -> bool {
+        match (self, r.pass) {
+            (PassId::Prepare, Prepare) | (PassId::TileClassification, TileClassification) => true,
+            (PassId::Filter(k), Filter) => match r.when {
+                Always => true,
+                WritesIntermediate => k == 0 || k + 1 < filter_passes,
+                FinalPass => k + 1 == filter_passes,
+            },
+            _ => false,
+        }
+    }
+}
+
+/// (bytes read, bytes written) of one pass in a frame with these pixel counts.
+pub fn pass_bytes(pass: PassId, filter_passes: u32, precision: Precision, counts: &PixelCounts) -> (f64, f64) {
+    let (mut read, mut write) = (0.0, 0.0);
+    for r in MODEL.iter().filter(|r| pass.applies(r, filter_passes)) {
+        let per = if precision == Precision::Fp16 { r.fp16 } else { r.fp32 };
+        let bytes = per * counts.get(r.pixels);
+        match r.access {
+            Read => read += bytes,
+            Write => write += bytes,
+        }
+    }
+    (read, write)
+}
+
+pub fn pixels_doc(p: Pixels) -> &'static str {
+    match p {
+        Tiles => "per 8x4 tile",
+        All => "every pixel",
+        Receivers => "receivers (not sky)",
+        Active => "receivers in tiles not cleared",
+        History => "active receivers reusing history",
+        ActiveGroups => "pixels of 8x8 groups with a tile not cleared",
+        ActiveGroupReceivers => "receivers in 8x8 groups with a tile not cleared",
+    }
+}
+
+fn when_doc(w: When) -> &'static str {
+    match w {
+        Always => "every pass",
+        WritesIntermediate => "pass 0 and every pass but the last",
+        FinalPass => "last pass",
+    }
+}
+
+fn pass_doc(p: Pass) -> &'static str {
+    match p {
+        Prepare => "prepare",
+        TileClassification => "tile classification",
+        Filter => "filter",
+    }
+}
+
+pub fn model_json() -> Json {
+    Json::Arr(
+        MODEL
+            .iter()
+            .map(|r| {
+                Json::obj([
+                    ("pass", pass_doc(r.pass).into()),
+                    ("resource", r.resource.into()),
+                    ("bytes_fp32", r.fp32.into()),
+                    ("bytes_fp16", r.fp16.into()),
+                    ("access", (if r.access == Read { "read" } else { "write" }).into()),
+                    ("pixels", format!("{:?}", r.pixels).into()),
+                    ("pixels_meaning", pixels_doc(r.pixels).into()),
+                    ("filter_passes", (if r.pass == Filter { when_doc(r.when) } else { "-" }).into()),
+                ])
+            })
+            .collect(),
+    )
+}
+
+/// The table as Markdown.
+pub fn model_markdown() -> String {
+    let mut s = String::from("| pass | resource | B fp32 | B fp16 | access | per | filter passes |\n|---|---|---|---|---|---|---|\n");
+    for r in MODEL {
+        s += &format!(
+            "| {} | {} | {} | {} | {} | {} | {} |\n",
+            pass_doc(r.pass),
+            r.resource,
+            r.fp32,
+            r.fp16,
+            if r.access == Read { "read" } else { "write" },
+            pixels_doc(r.pixels),
+            if r.pass == Filter { when_doc(r.when) } else { "" }
+        );
+    }
+    s
+}

@@ -1,0 +1,216 @@
+//! One configuration (size, scene, preset, precision): the byte model's pixel classes measured through dnsr's
+//! debug views, the warm-up, then the timed frames.
+
+use super::model::PixelCounts;
+use super::scenes::GpuScene;
+use super::stats::median;
+use dnsr::ash::vk;
+use dnsr::testing::f16_to_f32;
+use dnsr::testing::gpu::{Gpu, TestImage};
+use dnsr::{Context, DebugView, HostSync, PassTimings, Precision, Preset, Settings, ShadowsDispatch};
+use std::time::Instant;
+
+/// How the bench submits frames, as the report states it.
+pub const SUBMISSION: &str = "One primary command buffer per frame, reset and re-recorded (ONE_TIME_SUBMIT), holding \
+only Context::record_shadows (dnsr's barriers, constants update, passes and timestamps); vkQueueSubmit to one \
+queue, then vkQueueWaitIdle before the next frame is recorded, so frames never overlap. GPU times come from dnsr's \
+own timestamps (Context::timings, read after each wait): per pass, and total from before the first pass to after \
+the last. Record CPU time is the wall time around Context::record_shadows. Inputs are a cycle of precomputed \
+frames resident in GPU memory (uploaded once); frame i binds cycle frame i mod N, so no upload or copy runs in the \
+timed command buffers. Each configuration gets a fresh Context; its first 2N frames (untimed, history reset at frame \
+0) measure the byte model's pixel classes through dnsr's debug views; then the warm-up (at least --warmup frames and \
+--warmup-ms of back-to-back frames, then until the median of the last 10 frames is within 2% of the 10 before, at \
+most 5x --warmup-ms), then the timed frames. The output is R16_SFLOAT, resting in SHADER_READ_ONLY_OPTIMAL; HostSync \
+names compute-shader writes of the inputs and compute-shader reads of the output, as an engine's would.";
+
+const READ: vk::ImageLayout = vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL;
+
+pub struct ConfigRun {
+    /// Timings of the timed frames (warm-up dropped).
+    pub timings: Vec<PassTimings>,
+    /// Wall microseconds of each timed frame's record_shadows.
+    pub record_us: Vec<f64>,
+    pub counts: PixelCounts,
+    pub memory_bytes: u64,
+    pub filter_passes: u32,
+    pub warmup: WarmupDone,
+}
+
+fn dispatch(scene: &GpuScene, index: usize, output: &TestImage) -> ShadowsDispatch {
+    let f = &scene.frames[index % scene.frames.len()];
+    let g = &scene.gbuffers[f.gbuffer];
+    ShadowsDispatch {
+        hit_mask: scene.masks[f.mask].host(),
+        depth: g.depth.host(),
+        velocity: g.velocity.host(),
+        normals: g.normals.host(),
+        output: output.host(),
+        eye: f.eye,
+        projection_inverse: f.projection_inverse,
+        reprojection_matrix: f.reprojection,
+        view_projection_inverse: f.view_projection_inverse,
+        sync: HostSync {
+            input_src_stages: vk::PipelineStageFlags::COMPUTE_SHADER,
+            input_src_access: vk::AccessFlags::SHADER_WRITE,
+            output_dst_stages: vk::PipelineStageFlags::COMPUTE_SHADER,
+            output_dst_access: vk::AccessFlags::SHADER_READ,
+        },
+        reset: index == 0,
+        ..Default::default()
+    }
+}
+
+pub fn run(
+    gpu: &Gpu,
+    scene: &GpuScene,
+    (w, h): (u32, u32),
+    preset: Preset,
+    precision: Precision,
+    warmup: Warmup,
+    frames: usize,
+) -> Result<ConfigRun, String> {
+    let mut info = gpu.create_info(w, h);
+    info.enable_timestamps = true;
+    info.precision = precision;
+    info.output_format = vk::Format::R16_SFLOAT;
+    info.settings = Settings::preset(preset);
+    let mut ctx = Context::new(&info).map_err(|e| format!("Context::new: {e}"))?;
+    let output = gpu.image(vk::Format::R16_SFLOAT, w, h, READ);
+    let cmd = gpu.command_buffer();
+    let result = measure(gpu, &mut ctx, scene, &output, cmd, warmup, frames);
+    unsafe { gpu.device.device_wait_idle().ok() };
+    gpu.free_command_buffer(cmd);
+    let memory_bytes = ctx.memory_bytes();
+    drop(ctx);
+    gpu.destroy_image(&output);
+    let (timings, record_us, counts, warmup) = result?;
+    Ok(ConfigRun { timings, record_us, counts, memory_bytes, filter_passes: Settings::preset(preset).filter_passes, warmup })
+}
+
+/// How long to warm up before the timed frames.
+#[derive(Clone, Copy)]
+pub struct Warmup {
+    /// At least this many frames.
+    pub frames: usize,
+    /// At least this much wall time of back-to-back frames (GPU clocks ramp up from idle over hundreds of ms);
+    /// past it, until the median GPU total of the last 10 frames is within 2% of the 10 before, for at most five
+    /// times this long. 0: exactly `frames` frames.
+    pub min_ms: f64,
+}
+
+/// What the warm-up took.
+#[derive(Clone, Copy, Default)]
+pub struct WarmupDone {
+    pub frames: usize,
+    pub ms: f64,
+    /// The stability test passed (false: the time cap or min_ms = 0 ended it).
+    pub stable: bool,
+}
+
+type Measured = (Vec<PassTimings>, Vec<f64>, PixelCounts, WarmupDone);
+
+fn measure(
+    gpu: &Gpu,
+    ctx: &mut Context,
+    scene: &GpuScene,
+    output: &TestImage,
+    cmd: vk::CommandBuffer,
+    warmup: Warmup,
+    frames: usize,
+) -> Result<Measured, String> {
+    let mut recorded = 0u64;
+    let mut frame = |ctx: &mut Context, d: &ShadowsDispatch| -> Result<(PassTimings, f64), String> {
+        let elapsed = gpu.submit_with(cmd, |cmd| {
+            let t0 = Instant::now();
+            let r = ctx.record_shadows(cmd, d);
+            (r, t0.elapsed())
+        });
+        elapsed.0.map_err(|e| format!("record_shadows: {e}"))?;
+        recorded += 1;
+        let t = ctx.timings().map_err(|e| format!("timings: {e}"))?.ok_or("no timings after the frame completed")?;
+        if t.frame != recorded {
+            return Err(format!("timings are of frame {} instead of {recorded}", t.frame));
+        }
+        Ok((t, elapsed.1.as_secs_f64() * 1e6))
+    };
+
+    // Pixel classes first (they need read-backs, which leave the GPU idle): one cycle of the sequence with the
+    // tile-classification view, one with the disocclusion view. Frame 0 resets the history.
+    let (w, h) = (output.width as usize, output.height as usize);
+    let n = scene.frames.len();
+    let mut counts = PixelCounts::default();
+    let mut index = 0;
+    for view in [DebugView::TileClassification, DebugView::Disocclusion] {
+        for _ in 0..n {
+            let d = ShadowsDispatch { debug_view: view, ..dispatch(scene, index, output) };
+            index += 1;
+            frame(ctx, &d)?;
+            let raw = gpu.download(output);
+            let px: Vec<f32> = raw.chunks_exact(2).map(|c| f16_to_f32(u16::from_le_bytes([c[0], c[1]]))).collect();
+            if view == DebugView::Disocclusion {
+                counts.history -= px.iter().filter(|&&v| v == 1.0).count() as f64;
+                continue;
+            }
+            // 0.75 sky, 0.5 receiver in a tile not cleared, 0 / 1 receiver in a cleared tile.
+            counts.receivers += px.iter().filter(|&&v| v != 0.75).count() as f64;
+            let active = px.iter().filter(|&&v| v == 0.5).count() as f64;
+            counts.active += active;
+            counts.history += active;
+            for gy in (0..h).step_by(8) {
+                for gx in (0..w).step_by(8) {
+                    let (gw, gh) = (8.min(w - gx), 8.min(h - gy));
+                    let rows = || (gy..gy + gh).map(|y| &px[y * w + gx..y * w + gx + gw]);
+                    if rows().any(|r| r.contains(&0.5)) {
+                        counts.active_groups += (gw * gh) as f64;
+                        counts.active_group_receivers += rows().flatten().filter(|&&v| v != 0.75).count() as f64;
+                    }
+                }
+            }
+        }
+    }
+    let scale = 1.0 / n as f64;
+    counts.receivers *= scale;
+    counts.active *= scale;
+    counts.history = (counts.history * scale).max(0.0);
+    counts.active_groups *= scale;
+    counts.active_group_receivers *= scale;
+    counts.all = (w * h) as f64;
+    counts.tiles = (w.div_ceil(8) * h.div_ceil(4)) as f64;
+
+    // Warm-up, continuing the sequence.
+    let started = Instant::now();
+    let mut totals = Vec::new();
+    let mut done = WarmupDone::default();
+    loop {
+        let ms = started.elapsed().as_secs_f64() * 1e3;
+        let enough_frames = totals.len() >= warmup.frames;
+        if enough_frames && warmup.min_ms <= 0.0 {
+            break;
+        }
+        if enough_frames && ms >= warmup.min_ms && totals.len() >= 20 {
+            let k = totals.len();
+            let (last, before) = (median(&totals[k - 10..]), median(&totals[k - 20..k - 10]));
+            if (last - before).abs() <= 0.02 * before {
+                done.stable = true;
+                break;
+            }
+        }
+        if enough_frames && ms >= 5.0 * warmup.min_ms {
+            break;
+        }
+        let (t, _) = frame(ctx, &dispatch(scene, index, output))?;
+        index += 1;
+        totals.push(t.total_ms);
+    }
+    done.frames = totals.len();
+    done.ms = started.elapsed().as_secs_f64() * 1e3;
+
+    let (mut timings, mut record_us) = (Vec::with_capacity(frames), Vec::with_capacity(frames));
+    for _ in 0..frames {
+        let (t, us) = frame(ctx, &dispatch(scene, index, output))?;
+        index += 1;
+        timings.push(t);
+        record_us.push(us);
+    }
+    Ok((timings, record_us, counts, done))
+}

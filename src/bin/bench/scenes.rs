@@ -1,0 +1,189 @@
+//! The benchmark scenes and their frames, resident in GPU memory for the whole measurement.
+
+use dnsr::ash::vk;
+use dnsr::glam::{Mat4, Vec3};
+use dnsr::testing::gpu::{Gpu, TestImage};
+use dnsr::testing::scene::{hash01, render, Camera, FrameInputs};
+use dnsr::testing::typical::{coverage, typical_frame, TYPICAL_CYCLE};
+
+/// Masks drawn for a static scene: a fresh 1-spp mask every frame, replayed cyclically.
+pub const STATIC_CYCLE: usize = 8;
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum SceneId {
+    PenumbraHeavy,
+    Typical,
+    AllLit,
+    Sky90,
+}
+
+pub const ALL_SCENES: [SceneId; 4] = [SceneId::PenumbraHeavy, SceneId::Typical, SceneId::AllLit, SceneId::Sky90];
+
+impl SceneId {
+    /// The name on the command line and in bench.json.
+    pub fn id(self) -> &'static str {
+        match self {
+            SceneId::PenumbraHeavy => "penumbra-heavy",
+            SceneId::Typical => "typical",
+            SceneId::AllLit => "all-lit",
+            SceneId::Sky90 => "sky-90",
+        }
+    }
+
+    /// The name in the tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            SceneId::PenumbraHeavy => "penumbra-heavy",
+            SceneId::Typical => "typical",
+            SceneId::AllLit => "all lit",
+            SceneId::Sky90 => "90% sky",
+        }
+    }
+
+    pub fn description(self) -> &'static str {
+        match self {
+            SceneId::PenumbraHeavy => {
+                "static camera straight above a ground plane filling the image; visibility 0.5 + 0.3 sin(0.9x) cos(0.7z) \
+                 (0.2..0.8) everywhere, so no tile is uniform; a fresh 1-spp mask every frame (8 masks replayed)"
+            }
+            SceneId::Typical => {
+                "src/testing/typical.rs: boxes on a ground plane under a large area light, perspective camera panning \
+                 sideways every frame (about 1% of the width per frame, 16-frame back-and-forth cycle): about 10% sky, \
+                 30% penumbra, lit and shadowed ground, roofs and walls; disocclusion strips at the entering image \
+                 edge and behind box edges"
+            }
+            SceneId::AllLit => "the penumbra-heavy camera and plane, visibility 1 everywhere (every tile cleared)",
+            SceneId::Sky90 => {
+                "the penumbra-heavy camera and field, the plane cut to a strip (|x| < 0.6) covering about 10% of \
+                 the image; the rest is sky"
+            }
+        }
+    }
+
+    pub fn parse(s: &str) -> Option<SceneId> {
+        ALL_SCENES.into_iter().find(|sc| sc.id() == s)
+    }
+}
+
+/// Matrices of one frame and which resident images it binds.
+pub struct Frame {
+    pub mask: usize,
+    pub gbuffer: usize,
+    pub eye: Vec3,
+    pub projection_inverse: Mat4,
+    pub reprojection: Mat4,
+    pub view_projection_inverse: Mat4,
+}
+
+/// Depth (R32_SFLOAT), velocity (R32G32_SFLOAT), normals (R32G32B32A32_SFLOAT).
+pub struct GBuffer {
+    pub depth: TestImage,
+    pub velocity: TestImage,
+    pub normals: TestImage,
+}
+
+pub struct GpuScene {
+    pub masks: Vec<TestImage>,
+    pub gbuffers: Vec<GBuffer>,
+    pub frames: Vec<Frame>,
+    /// Fractions of the pixels (mean over the frames): sky, lit, shadowed, penumbra (visibility within 0.02 of
+    /// 1, of 0, in between).
+    pub coverage: [f64; 4],
+}
+
+const READ: vk::ImageLayout = vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL;
+
+fn upload(gpu: &Gpu, format: vk::Format, w: u32, h: u32, bytes: &[u8]) -> TestImage {
+    let img = gpu.image(format, w, h, READ);
+    gpu.upload(&img, bytes);
+    img
+}
+
+fn upload_gbuffer(gpu: &Gpu, f: &FrameInputs) -> GBuffer {
+    let (w, h) = (f.width, f.height);
+    GBuffer {
+        depth: upload(gpu, vk::Format::R32_SFLOAT, w, h, bytemuck_f32(&f.depth)),
+        velocity: upload(gpu, vk::Format::R32G32_SFLOAT, w, h, bytemuck_f32(f.velocity.as_flattened())),
+        normals: upload(gpu, vk::Format::R32G32B32A32_SFLOAT, w, h, bytemuck_f32(f.normals.as_flattened())),
+    }
+}
+
+fn upload_mask(gpu: &Gpu, w: u32, h: u32, mask: &[u32]) -> TestImage {
+    upload(gpu, vk::Format::R32_UINT, w.div_ceil(8), h.div_ceil(4), bytemuck::cast_slice(mask))
+}
+
+fn bytemuck_f32(v: &[f32]) -> &[u8] {
+    bytemuck::cast_slice(v)
+}
+
+/// A 1-spp hit mask of `f`'s visibility drawn with another seed (the rule of `scene::render`).
+fn redraw_mask(f: &FrameInputs, seed: u64) -> Vec<u32> {
+    let tw = f.width.div_ceil(8);
+    let mut mask = vec![0u32; f.mask.len()];
+    for y in 0..f.height {
+        for x in 0..f.width {
+            let i = (y * f.width + x) as usize;
+            if f.receiver[i] && hash01(seed, x, y) >= f.truth[i] as f64 {
+                mask[((y / 4) * tw + x / 8) as usize] |= 1 << ((y % 4) * 8 + (x % 8));
+            }
+        }
+    }
+    mask
+}
+
+fn frame_of(f: &FrameInputs, mask: usize, gbuffer: usize) -> Frame {
+    Frame {
+        mask,
+        gbuffer,
+        eye: f.eye,
+        projection_inverse: f.projection_inverse,
+        reprojection: f.reprojection,
+        view_projection_inverse: f.view_projection_inverse,
+    }
+}
+
+/// Generates `scene` at `w` x `h` and uploads every frame of its cycle.
+pub fn build(gpu: &Gpu, scene: SceneId, w: u32, h: u32) -> GpuScene {
+    let penumbra = |x: f64, z: f64| 0.5 + 0.3 * (x * 0.9).sin() * (z * 0.7).cos();
+    let static_scene = |half_width: f64, field: &dyn Fn(f64, f64) -> f64| {
+        let cam = Camera::above(0.0, 0.0, 10.0);
+        let f = render(w, h, &cam, &cam, half_width, field, 1);
+        let masks = (0..STATIC_CYCLE as u64)
+            .map(|k| if k == 0 { upload_mask(gpu, w, h, &f.mask) } else { upload_mask(gpu, w, h, &redraw_mask(&f, k + 1)) })
+            .collect();
+        let frames = (0..STATIC_CYCLE).map(|k| frame_of(&f, k, 0)).collect();
+        GpuScene { masks, gbuffers: vec![upload_gbuffer(gpu, &f)], frames, coverage: coverage(&f) }
+    };
+    match scene {
+        SceneId::PenumbraHeavy => static_scene(1e9, &penumbra),
+        SceneId::AllLit => static_scene(1e9, &|_, _| 1.0),
+        SceneId::Sky90 => static_scene(0.6, &penumbra),
+        SceneId::Typical => {
+            let mut s = GpuScene { masks: Vec::new(), gbuffers: Vec::new(), frames: Vec::new(), coverage: [0.0; 4] };
+            for k in 0..TYPICAL_CYCLE {
+                let f = typical_frame(w, h, k, k as u64 + 1);
+                s.masks.push(upload_mask(gpu, w, h, &f.mask));
+                s.gbuffers.push(upload_gbuffer(gpu, &f));
+                s.frames.push(frame_of(&f, k, k));
+                for (c, v) in s.coverage.iter_mut().zip(coverage(&f)) {
+                    *c += v / TYPICAL_CYCLE as f64;
+                }
+            }
+            s
+        }
+    }
+}
+
+impl GpuScene {
+    pub fn destroy(self, gpu: &Gpu) {
+        unsafe { gpu.device.device_wait_idle().ok() };
+        for m in &self.masks {
+            gpu.destroy_image(m);
+        }
+        for g in &self.gbuffers {
+            for img in [&g.depth, &g.velocity, &g.normals] {
+                gpu.destroy_image(img);
+            }
+        }
+    }
+}

@@ -133,6 +133,12 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     int first_column = max(8 - origin.x, 0);
     int end_column = min(dnsr_get_extent().x - origin.x + 8, 24);
     uint columns_inside = ((1u << uint(end_column)) - 1u) & ~((1u << uint(first_column)) - 1u);
+    // Weight of the taps inside the rectangle: the same for every row, and the full window away from its edges.
+    uint own = uint(lid.x + DNSR_MOMENT_RADIUS);
+    float inside_weight = 0.0;
+    for (int i = -DNSR_MOMENT_RADIUS; i <= DNSR_MOMENT_RADIUS; ++i) {
+        inside_weight += dnsr_moment_weight(i) * float((columns_inside >> uint(int(own) + i)) & 1u);
+    }
     for (int k = 0; k < 3; ++k) {
         int row = lid.y + 8 * k;
         int y = origin.y - DNSR_MOMENT_RADIUS + row;
@@ -143,11 +149,13 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             uint lit = ((s_words[wy][0] >> shift) & 0xFFu) | (((s_words[wy][1] >> shift) & 0xFFu) << 8)
                      | (((s_words[wy][2] >> shift) & 0xFFu) << 16);
             lit &= columns_inside;
-            for (int i = -DNSR_MOMENT_RADIUS; i <= DNSR_MOMENT_RADIUS; ++i) {
-                uint b = uint(lid.x + 8 + i);
-                float w = dnsr_moment_weight(i);
-                sum += w * vec2(float((lit >> b) & 1u), float((columns_inside >> b) & 1u));
+            // Symmetric weights: one multiply per distance.
+            float lit_sum = dnsr_moment_weight(0) * float((lit >> own) & 1u);
+            for (int i = 1; i <= DNSR_MOMENT_RADIUS; ++i) {
+                float pair = float(((lit >> (own - uint(i))) & 1u) + ((lit >> (own + uint(i))) & 1u));
+                lit_sum += dnsr_moment_weight(i) * pair;
             }
+            sum = vec2(lit_sum, inside_weight);
         }
         s_hsum[row][lid.x] = sum;
     }

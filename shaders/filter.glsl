@@ -111,9 +111,9 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
                     n = zq < 0.0 ? vec2(0.0) : dnsr_read_filter_input(q);
                 }
                 if (zq < 0.0) continue;
+                // The shadow and depth edge stops share one exp.
                 float w = kernel[abs(i)] * kernel[abs(j)]
-                        * exp(-abs(c.x - n.x) * inv_sigma)
-                        * exp(-abs(zc - zq) * inv_depth_sigma)
+                        * exp(-(abs(c.x - n.x) * inv_sigma + abs(zc - zq) * inv_depth_sigma))
                         * pow(max(dot(nc, dnsr_read_normal(q)), 0.0), normal_power);
                 weight_sum += w;
                 mean_sum += w * n.x;

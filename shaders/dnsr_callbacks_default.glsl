@@ -87,6 +87,10 @@ void dnsr_write_depth_copy(ivec2 p, float depth) { imageStore(dnsr_depth_copy, p
 void dnsr_write_moments(ivec2 p, vec3 m) { imageStore(dnsr_moments, p + dnsr_get_offset(), vec4(m, 0.0)); }
 void dnsr_write_reprojection(ivec2 p, vec2 mean_var) { imageStore(dnsr_reprojection, p + dnsr_get_offset(), vec4(mean_var, 0.0, 0.0)); }
 void dnsr_write_tile_meta(ivec2 tile, uint meta) { imageStore(dnsr_tile_meta_out, tile + dnsr_get_tile_offset(), uvec4(meta)); }
+// The host's output, written here for cleared tiles only (their final value is known; later filter passes skip
+// them).
+layout(set = 0, binding = 17, DNSR_OUTPUT_FORMAT) uniform writeonly image2D dnsr_output;
+void dnsr_write_output(ivec2 p, float shadow) { imageStore(dnsr_output, p + dnsr_get_offset(), vec4(shadow)); }
 #endif
 
 #ifdef DNSR_PASS_FILTER
@@ -102,6 +106,7 @@ layout(set = 0, binding = 18) uniform texture2D dnsr_debug_moments;
 
 int dnsr_get_filter_step() { return int(dnsr_push.pass.x); }
 bool dnsr_get_write_internal() { return (dnsr_push.pass.y & DNSR_PASS_WRITE_INTERNAL) != 0u; }
+bool dnsr_get_skip_cleared() { return (dnsr_push.pass.y & DNSR_PASS_SKIP_CLEARED) != 0u; }
 uint dnsr_read_tile_meta(ivec2 tile) { return texelFetch(dnsr_tile_meta, tile + dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT), 0).r; }
 vec2 dnsr_read_filter_input(ivec2 p) { return texelFetch(dnsr_filter_input, p + dnsr_get_offset(), 0).xy; }
 void dnsr_write_filter_output(ivec2 p, vec2 mean_var) { imageStore(dnsr_filter_output, p + dnsr_get_offset(), vec4(mean_var, 0.0, 0.0)); }

@@ -50,6 +50,9 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     uint meta_top = dnsr_read_tile_meta(tile);
     uint meta_bottom = origin.y + 4 < dnsr_get_extent().y ? dnsr_read_tile_meta(tile + ivec2(0, 1)) : meta_top;
     if ((meta_top & meta_bottom & DNSR_TILE_CLEARED) != 0u) {
+        // Cleared values are already where this pass would write them (classification wrote the output and the
+        // reprojection image): nothing to do.
+        if (dnsr_get_skip_cleared()) return;
         if (!dnsr_inside(p)) return;
         bool receiver = dnsr_is_receiver(dnsr_read_depth(p));
         uint meta = lid.y < 4 ? meta_top : meta_bottom;

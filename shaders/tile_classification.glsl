@@ -120,6 +120,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         }
         dnsr_write_reprojection(p, vec2(receiver ? value : 1.0, 0.0));
         dnsr_write_moments(p, receiver ? vec3(value, 0.0, dnsr_get_temporal_settings().z) : vec3(0.0));
+        dnsr_write_output(p, receiver ? value : 1.0);
         return;
     }
 
@@ -174,6 +175,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         if (tile_writer) dnsr_write_tile_meta(tile, DNSR_TILE_CLEARED | (uniform_state == 1u ? DNSR_TILE_LIT : 0u));
         dnsr_write_reprojection(p, vec2(receiver ? value : 1.0, 0.0));
         dnsr_write_moments(p, receiver ? vec3(value, 0.0, max_samples) : vec3(0.0));
+        dnsr_write_output(p, receiver ? value : 1.0);
         return;
     }
     if (tile_writer) dnsr_write_tile_meta(tile, 0u);

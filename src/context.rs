@@ -157,7 +157,7 @@ impl Context {
     fn create_pipelines(&self, push: bool) -> Result<Pipelines> {
         let names = [
             prepare::SHADER,
-            tile_classification::shader(self.precision),
+            tile_classification::shader(self.precision, self.output_format).expect("output format checked"),
             filter::shader(self.precision, None).expect("non-final variant exists"),
             filter::shader(self.precision, Some(self.output_format)).expect("output format checked"),
         ];

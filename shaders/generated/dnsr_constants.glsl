@@ -24,6 +24,7 @@ struct DnsrFilterPush {
 #define DNSR_FLAG_RESET 1u
 #define DNSR_FLAG_DEPTH_INVERTED 2u
 #define DNSR_PASS_WRITE_INTERNAL 1u
+#define DNSR_PASS_SKIP_CLEARED 2u
 #define DNSR_TILE_CLEARED 1u
 #define DNSR_TILE_LIT 2u
 #define DNSR_DEBUG_VIEW_NONE 0u

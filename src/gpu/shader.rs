@@ -31,8 +31,12 @@ macro_rules! variant {
 /// Every SPIR-V module dnsr embeds. `cargo test spirv_is_current` recompiles each with glslc and compares.
 pub(crate) const VARIANTS: &[ShaderVariant] = &[
     variant!("prepare", "prepare.comp", []),
-    variant!("tile_classification", "tile_classification.comp", []),
-    variant!("tile_classification_fp16", "tile_classification.comp", ["DNSR_FP16"]),
+    variant!("tile_classification_r8", "tile_classification.comp", ["DNSR_OUTPUT_FORMAT=r8"]),
+    variant!("tile_classification_r16f", "tile_classification.comp", ["DNSR_OUTPUT_FORMAT=r16f"]),
+    variant!("tile_classification_r32f", "tile_classification.comp", ["DNSR_OUTPUT_FORMAT=r32f"]),
+    variant!("tile_classification_r8_fp16", "tile_classification.comp", ["DNSR_OUTPUT_FORMAT=r8", "DNSR_FP16"]),
+    variant!("tile_classification_r16f_fp16", "tile_classification.comp", ["DNSR_OUTPUT_FORMAT=r16f", "DNSR_FP16"]),
+    variant!("tile_classification_r32f_fp16", "tile_classification.comp", ["DNSR_OUTPUT_FORMAT=r32f", "DNSR_FP16"]),
     variant!("filter", "filter.comp", []),
     variant!("filter_fp16", "filter.comp", ["DNSR_FP16"]),
     variant!("filter_final_r8", "filter.comp", ["DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r8"]),

@@ -3,11 +3,12 @@
 //!
 //! Intermediates: pass 0 reprojection -> history, pass 1 history -> reprojection, pass 2 reprojection -> tmp,
 //! pass 3 tmp -> (output only). The reprojection image is free once pass 0 consumed it, so three passes need no
-//! extra image.
+//! extra image. Tile classification already wrote the cleared tiles' values into the reprojection image and the
+//! output, so a pass that writes only there skips groups whose two tiles are cleared.
 
 use super::bindings::Resource;
 use super::{internal, FrameViews, Grid, Pass, Role};
-use crate::constants::{FilterPush, PASS_WRITE_INTERNAL};
+use crate::constants::{FilterPush, PASS_SKIP_CLEARED, PASS_WRITE_INTERNAL};
 use crate::create_info::Precision;
 use crate::dispatch::DebugView;
 use ash::vk;
@@ -52,13 +53,20 @@ pub(crate) fn pass(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView
         t[Resource::DebugMoments as usize] = internal(v.moments);
     }
     let role = if is_final(pass, passes) { Role::FilterFinal } else { Role::Filter(pass) };
-    let push = Some(push_constants(pass, passes, debug_view));
+    let push = Some(push_constants(v, pass, passes, debug_view));
     Pass { role, bindings: t, grid: Grid::Pixels, push, enabled: true }
 }
 
-fn push_constants(pass: u32, passes: u32, debug_view: DebugView) -> FilterPush {
-    let write_internal = pass == 0 || !is_final(pass, passes);
-    let view = if is_final(pass, passes) { debug_view as u32 } else { 0 };
-    FilterPush { pass: [1 << pass, if write_internal { PASS_WRITE_INTERNAL } else { 0 }, pass, view] }
+fn push_constants(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView) -> FilterPush {
+    let last = is_final(pass, passes);
+    let write_internal = pass == 0 || !last;
+    // Groups of two cleared tiles can be skipped when everything the pass writes there already holds the cleared
+    // value: tile classification wrote it into the reprojection image and (without a debug view) the output.
+    let internal_in_place = !write_internal || output(v, pass) == v.reprojection;
+    let output_in_place = !last || debug_view == DebugView::None;
+    let flags = (if write_internal { PASS_WRITE_INTERNAL } else { 0 })
+        | (if internal_in_place && output_in_place { PASS_SKIP_CLEARED } else { 0 });
+    let view = if last { debug_view as u32 } else { 0 };
+    FilterPush { pass: [1 << pass, flags, pass, view] }
 }
 

@@ -4,12 +4,19 @@
 use super::bindings::Resource;
 use super::{internal, FrameViews, Grid, Pass, Role};
 use crate::create_info::Precision;
+use ash::vk;
 
-pub(crate) fn shader(precision: Precision) -> &'static str {
-    match precision {
-        Precision::Fp32 => "tile_classification",
-        Precision::Fp16 => "tile_classification_fp16",
-    }
+/// The variant for a precision and the context's output format (it writes the output of cleared tiles).
+pub(crate) fn shader(precision: Precision, output: vk::Format) -> Option<&'static str> {
+    Some(match (output, precision) {
+        (vk::Format::R8_UNORM, Precision::Fp32) => "tile_classification_r8",
+        (vk::Format::R16_SFLOAT, Precision::Fp32) => "tile_classification_r16f",
+        (vk::Format::R32_SFLOAT, Precision::Fp32) => "tile_classification_r32f",
+        (vk::Format::R8_UNORM, Precision::Fp16) => "tile_classification_r8_fp16",
+        (vk::Format::R16_SFLOAT, Precision::Fp16) => "tile_classification_r16f_fp16",
+        (vk::Format::R32_SFLOAT, Precision::Fp16) => "tile_classification_r32f_fp16",
+        _ => return None,
+    })
 }
 
 /// One invocation per pixel, two tiles per group (ceil(H/8) group rows, not FFX's ceil(H/4)).
@@ -24,5 +31,6 @@ pub(crate) fn pass(v: &FrameViews) -> Pass {
     t[Resource::History as usize] = internal(v.history);
     t[Resource::Reprojection as usize] = internal(v.reprojection);
     t[Resource::TileMetaOut as usize] = internal(v.tile_meta);
+    t[Resource::Output as usize] = internal(v.output);
     Pass { role: Role::Classification, bindings: t, grid: Grid::Pixels, push: None, enabled: true }
 }

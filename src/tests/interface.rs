@@ -79,8 +79,11 @@ fn reflected_interfaces_match_what_the_host_binds() {
     let expect: &[(&str, &[Resource], u32)] = &[
         ("prepare", &[Constants, HitMask, TileMaskOut], 0),
         (
-            "tile_classification",
-            &[Constants, TileMask, Depth, Velocity, Normals, PreviousDepth, DepthCopy, PreviousMoments, Moments, History, Reprojection, TileMetaOut],
+            "tile_classification_r16f",
+            &[
+                Constants, TileMask, Depth, Velocity, Normals, PreviousDepth, DepthCopy, PreviousMoments, Moments, History,
+                Reprojection, TileMetaOut, Output,
+            ],
             0,
         ),
         ("filter", &[Constants, Depth, Normals, TileMeta, FilterInput, FilterOutput], 16),

@@ -233,7 +233,7 @@ mod hooks {
         assert!(log.iter().any(|(k, _)| *k == ResourceKind::Buffer));
         assert_eq!(gpu_alloc.live.load(Ordering::SeqCst), 0, "GPU allocations leaked");
         let names = names.lock().unwrap();
-        for expect in ["dnsr.light0.history", "dnsr.light0.moments_1", "dnsr.tile_classification", "dnsr.constants"] {
+        for expect in ["dnsr.light0.history", "dnsr.light0.moments_1", "dnsr.tile_classification_r32f", "dnsr.constants"] {
             assert!(names.iter().any(|(_, n)| n == expect), "no object named {expect}: {names:?}");
         }
         assert!(names.iter().any(|(t, _)| *t == vk::ObjectType::PIPELINE));

@@ -45,6 +45,8 @@ pub enum Pixels {
     ActiveGroups,
     /// Receivers in those groups.
     ActiveGroupReceivers,
+    /// Pixels of the other groups (both tiles cleared): tile classification writes their final output.
+    ClearedGroups,
 }
 
 /// In which filter passes a filter row applies (other passes' rows always apply).
@@ -92,6 +94,7 @@ pub const MODEL: &[Row] = &[
     row(TileClassification, "moments (R32G32B32A32_SFLOAT)", 16.0, 16.0, Write, All, Always),
     row(TileClassification, "reprojection (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Write, All, Always),
     row(TileClassification, "tile meta (R32_UINT)", 4.0, 4.0, Write, Tiles, Always),
+    row(TileClassification, "output (host, R16_SFLOAT)", 2.0, 2.0, Write, ClearedGroups, Always),
     row(Filter, "tile meta (R32_UINT)", 4.0, 4.0, Read, Tiles, Always),
     row(Filter, "depth (host, R32_SFLOAT)", 4.0, 4.0, Read, All, Always),
     row(Filter, "normals (host, R32G32B32A32_SFLOAT)", 16.0, 16.0, Read, ActiveGroups, Always),
@@ -122,6 +125,7 @@ impl PixelCounts {
             History => self.history,
             ActiveGroups => self.active_groups,
             ActiveGroupReceivers => self.active_group_receivers,
+            ClearedGroups => self.all - self.active_groups,
         }
     }
 
@@ -170,12 +174,22 @@ impl PassId {
     }
 }
 
+/// Whether filter pass `k` of `passes` skips groups whose two tiles are cleared (dnsr's src/passes/filter.rs:
+/// pass 1, and a final pass after the first, write only what tile classification already wrote there).
+fn skips_cleared(k: u32, passes: u32) -> bool {
+    k == 1 || (k > 0 && k + 1 == passes)
+}
+
 /// (bytes read, bytes written) of one pass in a frame with these pixel counts.
 pub fn pass_bytes(pass: PassId, filter_passes: u32, precision: Precision, counts: &PixelCounts) -> (f64, f64) {
     let (mut read, mut write) = (0.0, 0.0);
     for r in MODEL.iter().filter(|r| pass.applies(r, filter_passes)) {
         let per = if precision == Precision::Fp16 { r.fp16 } else { r.fp32 };
-        let bytes = per * counts.get(r.pixels);
+        let pixels = match pass {
+            PassId::Filter(k) if r.pixels == All && skips_cleared(k, filter_passes) => ActiveGroups,
+            _ => r.pixels,
+        };
+        let bytes = per * counts.get(pixels);
         match r.access {
             Read => read += bytes,
             Write => write += bytes,
@@ -193,6 +207,7 @@ pub fn pixels_doc(p: Pixels) -> &'static str {
         History => "active receivers reusing history",
         ActiveGroups => "pixels of 8x8 groups with a tile not cleared",
         ActiveGroupReceivers => "receivers in 8x8 groups with a tile not cleared",
+        ClearedGroups => "pixels of 8x8 groups whose two tiles are cleared",
     }
 }
 

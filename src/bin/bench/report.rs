@@ -387,7 +387,7 @@ impl Report<'_> {
         for sc in ALL_SCENES {
             s += &format!("- {}: {}\n", sc.name(), sc.description());
         }
-        s += "\n## Byte model\n\nBytes per unit: per pixel of the class named (per tile for tiles), each texel counted once per pass.\n\n";
+        s += "\n## Byte model\n\nBytes per unit: per pixel of the class named (per tile for tiles), each texel counted once per pass. Filter passes that skip groups of two cleared tiles (pass 1, and a final pass after the first) count \"every pixel\" rows over the pixels of groups with a tile not cleared only.\n\n";
         s += &model_markdown();
         s
     }

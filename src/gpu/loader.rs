@@ -14,6 +14,9 @@ pub(crate) struct Vk {
     /// `vkCmdPushDescriptorSetKHR`, when the host enabled VK_KHR_push_descriptor.
     pub push_descriptor: Option<ash::khr::push_descriptor::DeviceFn>,
     pub hooks: HostHooks,
+    /// Optimal-tiling features of every format dnsr accepts or creates, queried once: validating a dispatch
+    /// then makes no driver call.
+    format_features: Vec<(vk::Format, vk::FormatFeatureFlags)>,
 }
 
 impl Vk {
@@ -51,7 +54,12 @@ impl Vk {
         } else {
             None
         };
-        Ok(Vk { instance, device, physical_device: info.physical_device, push_descriptor, hooks: info.hooks.clone() })
+        let physical_device = info.physical_device;
+        let format_features = crate::validate::KNOWN_FORMATS
+            .iter()
+            .map(|&f| (f, unsafe { instance.get_physical_device_format_properties(physical_device, f) }.optimal_tiling_features))
+            .collect();
+        Ok(Vk { instance, device, physical_device, push_descriptor, hooks: info.hooks.clone(), format_features })
     }
 
     /// The host's CPU allocation callbacks, for every create/destroy call.
@@ -69,7 +77,10 @@ impl Vk {
     }
 
     pub(crate) fn format_features(&self, format: vk::Format) -> vk::FormatFeatureFlags {
-        unsafe { self.instance.get_physical_device_format_properties(self.physical_device, format) }
-            .optimal_tiling_features
+        match self.format_features.iter().find(|(f, _)| *f == format) {
+            Some(&(_, features)) => features,
+            None => unsafe { self.instance.get_physical_device_format_properties(self.physical_device, format) }
+                .optimal_tiling_features,
+        }
     }
 }

@@ -13,6 +13,12 @@ bool dnsr_inside(ivec2 p) { return all(greaterThanEqual(p, ivec2(0))) && all(les
 // NaN depth fails both comparisons and counts as sky.
 bool dnsr_is_receiver(float depth) { return depth > 0.0 && depth < 1.0; }
 
+// The (mean, variance) every pass stores for sky and other non-receivers: lit, and a negative variance that marks
+// "no receiver", so the filter's variance blur tells receivers apart without reading depth. Receivers' variances
+// are never negative.
+const vec2 DNSR_SKY_SIGNAL = vec2(1.0, -1.0);
+bool dnsr_is_receiver_signal(vec2 signal) { return signal.y >= 0.0; }
+
 // Vulkan NDC: uv (0,0) is the top-left corner and maps to ndc (-1,-1).
 vec2 dnsr_uv_to_ndc(vec2 uv) { return uv * 2.0 - 1.0; }
 vec2 dnsr_pixel_uv(ivec2 p) { return (vec2(p) + 0.5) * dnsr_get_inv_extent(); }

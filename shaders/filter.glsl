@@ -37,7 +37,7 @@ void dnsr_filter_write(ivec2 p, vec2 result, bool receiver, uint meta) {
 
 // Value of a pixel in a cleared tile: sky is lit, receivers take the tile's value.
 vec2 dnsr_cleared_value(bool receiver, uint meta) {
-    return vec2(!receiver || (meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0, 0.0);
+    return receiver ? vec2((meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0, 0.0) : DNSR_SKY_SIGNAL;
 }
 
 void dnsr_filter(ivec2 gid, ivec2 lid) {
@@ -66,7 +66,7 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
 
     vec2 result;
     if (zc < 0.0) {
-        result = vec2(1.0, 0.0);
+        result = DNSR_SKY_SIGNAL;
     } else if ((meta & DNSR_TILE_CLEARED) != 0u) {
         result = dnsr_cleared_value(true, meta);
     } else {
@@ -75,19 +75,16 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
         float normal_power = settings.y;
         vec2 c = dnsr_read_filter_input(p);
         vec3 nc = dnsr_read_normal(p);
-        // The 3x3 neighbourhood at step 1: the variance blur's footprint, and the taps of the first pass.
-        float nb_depth[9];
+        // The 3x3 neighbourhood at step 1: the variance blur's footprint (receivers told apart by their signal,
+        // see DNSR_SKY_SIGNAL), and the taps of the first pass.
         vec2 nb_signal[9];
-        bool nb_receiver[9];
         float vsum = 0.0, vweight = 0.0;
         for (int j = -1; j <= 1; ++j) {
             for (int i = -1; i <= 1; ++i) {
                 int k = (j + 1) * 3 + (i + 1);
                 ivec2 q = p + ivec2(i, j);
-                nb_depth[k] = dnsr_inside(q) ? dnsr_read_depth(q) : 0.0;
-                nb_receiver[k] = dnsr_inside(q) && dnsr_is_receiver(nb_depth[k]);
-                nb_signal[k] = nb_receiver[k] ? dnsr_read_filter_input(q) : vec2(0.0);
-                if (!nb_receiver[k]) continue;
+                nb_signal[k] = dnsr_inside(q) ? dnsr_read_filter_input(q) : DNSR_SKY_SIGNAL;
+                if (!dnsr_is_receiver_signal(nb_signal[k])) continue;
                 float w = 1.0 / float(4 << (abs(i) + abs(j)));
                 vsum += w * nb_signal[k].y;
                 vweight += w;
@@ -107,7 +104,7 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
                 float zq;
                 vec2 n;
                 if (step == 1) {
-                    zq = nb_receiver[k] ? dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(q)), nb_depth[k]) : -1.0;
+                    zq = dnsr_is_receiver_signal(nb_signal[k]) ? dnsr_tap_depth(q) : -1.0;
                     n = nb_signal[k];
                 } else {
                     zq = dnsr_tap_depth(q);

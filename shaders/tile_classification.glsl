@@ -118,7 +118,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         if (lid.x == 0 && (lid.y & 3) == 0) {
             dnsr_write_tile_meta(p / DNSR_TILE_SIZE, DNSR_TILE_CLEARED | (state == 1u ? DNSR_TILE_LIT : 0u));
         }
-        dnsr_write_reprojection(p, vec2(receiver ? value : 1.0, 0.0));
+        dnsr_write_reprojection(p, receiver ? vec2(value, 0.0) : DNSR_SKY_SIGNAL);
         dnsr_write_moments(p, receiver ? vec3(value, 0.0, dnsr_get_temporal_settings().z) : vec3(0.0));
         dnsr_write_output(p, receiver ? value : 1.0);
         return;
@@ -173,14 +173,14 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         // Cleared tile: the value is known exactly; keep the state of the next frame consistent with it.
         float value = uniform_state == 1u ? 1.0 : 0.0;
         if (tile_writer) dnsr_write_tile_meta(tile, DNSR_TILE_CLEARED | (uniform_state == 1u ? DNSR_TILE_LIT : 0u));
-        dnsr_write_reprojection(p, vec2(receiver ? value : 1.0, 0.0));
+        dnsr_write_reprojection(p, receiver ? vec2(value, 0.0) : DNSR_SKY_SIGNAL);
         dnsr_write_moments(p, receiver ? vec3(value, 0.0, max_samples) : vec3(0.0));
         dnsr_write_output(p, receiver ? value : 1.0);
         return;
     }
     if (tile_writer) dnsr_write_tile_meta(tile, 0u);
     if (!receiver) {
-        dnsr_write_reprojection(p, vec2(1.0, 0.0));
+        dnsr_write_reprojection(p, DNSR_SKY_SIGNAL);
         dnsr_write_moments(p, vec3(0.0));
         return;
     }

@@ -1,6 +1,6 @@
 //! filter (shaders/filter.glsl): one pass of the edge-avoiding a-trous filter, 3x3 taps at +-step.
 
-use super::{inside, is_receiver, linear_depth, pixel_uv, uv_to_ndc, Coord, Read, Write, TILE};
+use super::{inside, SKY_SIGNAL, is_receiver, linear_depth, pixel_uv, uv_to_ndc, Coord, Read, Write, TILE};
 use crate::passes::{TILE_CLEARED, TILE_LIT};
 use glam::DVec2;
 
@@ -70,7 +70,7 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
             let p = [x, y];
             let meta = io.read_tile_meta([x / TILE[0], y / TILE[1]]);
             let result = match receiver_depth(io, p) {
-                None => DVec2::new(1.0, 0.0),
+                None => SKY_SIGNAL,
                 Some(_) if meta & TILE_CLEARED != 0 => DVec2::new(if meta & TILE_LIT != 0 { 1.0 } else { 0.0 }, 0.0),
                 Some(zc) => filter_pixel(io, p, zc),
             };

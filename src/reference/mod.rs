@@ -91,6 +91,10 @@ pub trait Write {
 
 // ---- helpers shared by the passes (shaders/dnsr_common.glsl) ----
 
+/// The (mean, variance) every pass stores for sky and non-receivers: lit, with a negative variance that marks
+/// "no receiver" so that the filter's variance blur needs no depth read to tell receivers apart.
+pub const SKY_SIGNAL: glam::DVec2 = glam::DVec2::new(1.0, -1.0);
+
 /// Tile size in pixels.
 pub const TILE: Coord = [crate::passes::TILE[0] as i32, crate::passes::TILE[1] as i32];
 

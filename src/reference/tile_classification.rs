@@ -1,7 +1,7 @@
 //! tile classification (shaders/tile_classification.glsl): uniform-tile skip, reprojection, disocclusion,
 //! temporal moments and the history blend, pixel by pixel in f64.
 
-use super::{inside, is_receiver, linear_depth, pixel_uv, tile_bit, uv_to_ndc, Coord, Read, Write, TILE};
+use super::{inside, SKY_SIGNAL, is_receiver, linear_depth, pixel_uv, tile_bit, uv_to_ndc, Coord, Read, Write, TILE};
 use crate::passes::{TILE_CLEARED, TILE_LIT};
 use glam::{DVec2, DVec3, DVec4};
 
@@ -211,9 +211,9 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
                     let (moments, result) = if state != 0 {
                         let value = if state == 1 { 1.0 } else { 0.0 };
                         let m = if receiver { DVec3::new(value, 0.0, max_samples) } else { DVec3::ZERO };
-                        (m, DVec2::new(if receiver { value } else { 1.0 }, 0.0))
+                        (m, if receiver { DVec2::new(value, 0.0) } else { SKY_SIGNAL })
                     } else if !receiver {
-                        (DVec3::ZERO, DVec2::new(1.0, 0.0))
+                        (DVec3::ZERO, SKY_SIGNAL)
                     } else {
                         temporal(io, p, depth)
                     };

@@ -101,15 +101,9 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
                 ivec2 q = p + ivec2(i, j) * step;
                 if (!dnsr_inside(q)) continue;
                 int k = (j + 1) * 3 + (i + 1);
-                float zq;
-                vec2 n;
-                if (step == 1) {
-                    zq = dnsr_is_receiver_signal(nb_signal[k]) ? dnsr_tap_depth(q) : -1.0;
-                    n = nb_signal[k];
-                } else {
-                    zq = dnsr_tap_depth(q);
-                    n = zq < 0.0 ? vec2(0.0) : dnsr_read_filter_input(q);
-                }
+                // Depth is read whatever the signal says, so that its fetch does not wait for the signal's.
+                float zq = dnsr_tap_depth(q);
+                vec2 n = step == 1 ? nb_signal[k] : (zq < 0.0 ? vec2(0.0) : dnsr_read_filter_input(q));
                 if (zq < 0.0) continue;
                 // The shadow and depth edge stops share one exp.
                 float w = kernel[abs(i)] * kernel[abs(j)]

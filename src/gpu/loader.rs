@@ -55,9 +55,8 @@ impl Vk {
             None
         };
         let physical_device = info.physical_device;
-        let format_features = crate::validate::KNOWN_FORMATS
-            .iter()
-            .map(|&f| (f, unsafe { instance.get_physical_device_format_properties(physical_device, f) }.optimal_tiling_features))
+        let format_features = crate::validate::known_formats()
+            .map(|f| (f, unsafe { instance.get_physical_device_format_properties(physical_device, f) }.optimal_tiling_features))
             .collect();
         Ok(Vk { instance, device, physical_device, push_descriptor, hooks: info.hooks.clone(), format_features })
     }

@@ -107,6 +107,29 @@ pub struct FrameInputs {
     pub eye: Vec3,
 }
 
+impl FrameInputs {
+    /// A frame with every pixel sky at `sky_depth`, normals up, no motion, an empty mask and truth 1, for the
+    /// given (f64) matrices: clip -> view, current and previous world -> clip; `eye` in the same world space.
+    pub fn blank(width: u32, height: u32, sky_depth: f32, proj: DMat4, vp: DMat4, vp_prev: DMat4, eye: Vec3) -> FrameInputs {
+        let n = (width * height) as usize;
+        let vp_inv = vp.inverse();
+        FrameInputs {
+            width,
+            height,
+            depth: vec![sky_depth; n],
+            normals: vec![[0.0, 1.0, 0.0, 0.0]; n],
+            velocity: vec![[0.0; 2]; n],
+            mask: vec![0; (width.div_ceil(8) * height.div_ceil(4)) as usize],
+            truth: vec![1.0; n],
+            receiver: vec![false; n],
+            projection_inverse: proj.inverse().as_mat4(),
+            reprojection: (vp_prev * vp_inv).as_mat4(),
+            view_projection_inverse: vp_inv.as_mat4(),
+            eye,
+        }
+    }
+}
+
 /// A deterministic per-pixel random number in [0, 1).
 pub fn hash01(seed: u64, x: u32, y: u32) -> f64 {
     let mut z = seed ^ ((x as u64) << 32 | y as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
@@ -134,23 +157,9 @@ pub fn render(
     let vp = proj * cam.view(origin);
     let vp_prev = prev.projection(aspect) * prev.view(origin);
     let vp_inv = vp.inverse();
-    let n = (width * height) as usize;
-    let (tw, th) = (width.div_ceil(8), height.div_ceil(4));
-    let mut f = FrameInputs {
-        width,
-        height,
-        depth: vec![0.0; n],
-        normals: vec![[0.0, 1.0, 0.0, 0.0]; n],
-        velocity: vec![[0.0; 2]; n],
-        mask: vec![0; (tw * th) as usize],
-        truth: vec![1.0; n],
-        receiver: vec![false; n],
-        projection_inverse: proj.inverse().as_mat4(),
-        reprojection: (vp_prev * vp_inv).as_mat4(),
-        view_projection_inverse: vp_inv.as_mat4(),
-        eye: (cam.eye - origin).as_vec3(),
-    };
+    let tw = width.div_ceil(8);
     let sky_depth = if cam.inverted { 0.0 } else { 1.0 };
+    let mut f = FrameInputs::blank(width, height, sky_depth, proj, vp, vp_prev, (cam.eye - origin).as_vec3());
     for y in 0..height {
         for x in 0..width {
             let i = (y * width + x) as usize;

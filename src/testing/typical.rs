@@ -229,23 +229,8 @@ pub fn typical_frame(width: u32, height: u32, k: usize, seed: u64) -> FrameInput
     let (proj, vp) = view_projection(aspect, DVec3::ZERO);
     let (_, vp_prev) = view_projection(aspect, prev_eye - origin);
     let vp_inv = vp.inverse();
-    let n = (width * height) as usize;
-    let tw = width.div_ceil(8);
-    let th = height.div_ceil(4);
-    let mut f = FrameInputs {
-        width,
-        height,
-        depth: vec![1.0; n],
-        normals: vec![[0.0, 1.0, 0.0, 0.0]; n],
-        velocity: vec![[0.0; 2]; n],
-        mask: vec![0; (tw * th) as usize],
-        truth: vec![1.0; n],
-        receiver: vec![false; n],
-        projection_inverse: proj.inverse().as_mat4(),
-        reprojection: (vp_prev * vp_inv).as_mat4(),
-        view_projection_inverse: vp_inv.as_mat4(),
-        eye: glam::Vec3::ZERO,
-    };
+    let (tw, th) = (width.div_ceil(8), height.div_ceil(4));
+    let mut f = FrameInputs::blank(width, height, 1.0, proj, vp, vp_prev, glam::Vec3::ZERO);
 
     // One band of whole tile rows per job.
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).min(64) as u32;

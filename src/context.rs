@@ -5,7 +5,7 @@ use crate::create_info::{ContextCreateInfo, EnabledFeatures, Precision};
 use crate::dispatch::{HitMaskConvention, ShadowsDispatch};
 use crate::error::{vk_check, Error, Result};
 use crate::gpu::barrier;
-use crate::gpu::descriptors::{Binder, RecordSets, ROLES};
+use crate::gpu::descriptors::{roles, Binder, RecordSets};
 use crate::gpu::image::{check_internal_format, color_range, InternalImage};
 use crate::gpu::memory::{self, Memory};
 use crate::host::ResourceKind;
@@ -144,7 +144,7 @@ impl Context {
         };
         // On any error below, dropping `ctx` releases what was created so far.
         let pipelines = ctx.pipelines.insert(ctx.create_pipelines(push.is_some())?);
-        let layouts = ROLES.map(|r| pipelines.for_role(r));
+        let layouts = roles().map(|r| pipelines.for_role(r));
         ctx.binder = Some(Binder::new(&ctx.vk, push, layouts, info.light_count, info.max_frames_in_flight)?);
         ctx.create_sampler_and_constants()?;
         if info.enable_timestamps {

@@ -232,14 +232,11 @@ const SHADER_STAGES: S = S::from_raw(
         | S::COMPUTE_SHADER.as_raw()
         | S::RAY_TRACING_SHADER_KHR.as_raw(),
 );
+/// The stages of a graphics pipeline: its shader stages and its fixed-function ones.
 const GRAPHICS_STAGES: S = S::from_raw(
-    S::DRAW_INDIRECT.as_raw()
+    (SHADER_STAGES.as_raw() & !(S::COMPUTE_SHADER.as_raw() | S::RAY_TRACING_SHADER_KHR.as_raw()))
+        | S::DRAW_INDIRECT.as_raw()
         | S::VERTEX_INPUT.as_raw()
-        | S::VERTEX_SHADER.as_raw()
-        | S::TESSELLATION_CONTROL_SHADER.as_raw()
-        | S::TESSELLATION_EVALUATION_SHADER.as_raw()
-        | S::GEOMETRY_SHADER.as_raw()
-        | S::FRAGMENT_SHADER.as_raw()
         | S::EARLY_FRAGMENT_TESTS.as_raw()
         | S::LATE_FRAGMENT_TESTS.as_raw()
         | S::COLOR_ATTACHMENT_OUTPUT.as_raw(),
@@ -273,10 +270,7 @@ pub(crate) fn supported_stages(vk: &Vk, family: &vk::QueueFamilyProperties) -> S
     if features.tessellation_shader == 0 {
         stages &= !(S::TESSELLATION_CONTROL_SHADER | S::TESSELLATION_EVALUATION_SHADER);
     }
-    let ray_tracing = unsafe { vk.instance.enumerate_device_extension_properties(vk.physical_device) }
-        .map(|exts| exts.iter().any(|e| e.extension_name_as_c_str() == Ok(ash::khr::ray_tracing_pipeline::NAME)))
-        .unwrap_or(false);
-    if !ray_tracing {
+    if !vk.supports_extension(ash::khr::ray_tracing_pipeline::NAME) {
         stages &= !S::RAY_TRACING_SHADER_KHR;
     }
     if !family.queue_flags.contains(vk::QueueFlags::GRAPHICS) {

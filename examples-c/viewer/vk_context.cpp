@@ -150,7 +150,7 @@ void VulkanContext::pickDevice(const VulkanContextOptions &options)
 }
 
 // Creates the device with every extension dnsr requires, plus VK_KHR_push_descriptor when dnsr can use it and
-// the device has it (dnsr then needs no descriptor-set cache).
+// the device has it (dnsr then writes its descriptors into the command buffer instead of its own sets).
 void VulkanContext::createDevice(const VulkanContextOptions &options)
 {
     DnsrDeviceRequirements req{};

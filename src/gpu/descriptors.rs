@@ -18,7 +18,7 @@ use ash::vk;
 pub(crate) const MAX_BINDINGS: usize = 16;
 
 /// The descriptor sets one record writes, one per pipeline role.
-pub(crate) const SETS_PER_RECORD: usize = 6;
+pub(crate) const SETS_PER_RECORD: usize = crate::passes::MAX_PASSES;
 
 /// The set of a ring slot that a pipeline role uses.
 fn set_index(role: Role) -> usize {
@@ -30,11 +30,17 @@ fn set_index(role: Role) -> usize {
     }
 }
 
-/// Every role, in set order.
-pub(crate) const ROLES: [Role; SETS_PER_RECORD] =
-    [Role::Prepare, Role::Classification, Role::Filter(0), Role::Filter(1), Role::Filter(2), Role::FilterFinal];
+/// Every role, in set order: every filter pass but the last can be an intermediate pass, and one final pass.
+pub(crate) fn roles() -> [Role; SETS_PER_RECORD] {
+    std::array::from_fn(|i| match i {
+        0 => Role::Prepare,
+        1 => Role::Classification,
+        _ if i == SETS_PER_RECORD - 1 => Role::FilterFinal,
+        _ => Role::Filter(i as u32 - 2),
+    })
+}
 
-/// The pipelines whose layouts the sets of one ring slot have, in `ROLES` order.
+/// The pipelines whose layouts the sets of one ring slot have, in `roles()` order.
 pub(crate) type RoleLayouts<'a> = [&'a Pipeline; SETS_PER_RECORD];
 
 pub(crate) struct Ring {

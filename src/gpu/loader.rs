@@ -75,6 +75,13 @@ impl Vk {
         }
     }
 
+    /// Whether the physical device offers a device extension (creation-time queries only).
+    pub(crate) fn supports_extension(&self, name: &std::ffi::CStr) -> bool {
+        unsafe { self.instance.enumerate_device_extension_properties(self.physical_device) }
+            .map(|exts| exts.iter().any(|e| e.extension_name_as_c_str() == Ok(name)))
+            .unwrap_or(false)
+    }
+
     pub(crate) fn format_features(&self, format: vk::Format) -> vk::FormatFeatureFlags {
         match self.format_features.iter().find(|(f, _)| *f == format) {
             Some(&(_, features)) => features,

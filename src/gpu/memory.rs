@@ -53,9 +53,7 @@ pub(crate) fn free(vk: &Vk, m: &mut Memory) {
 /// Refuses a context that needs more device memory than the device has, before anything is allocated: the
 /// largest device-local heap's budget (VK_EXT_memory_budget, when the device supports it) or its size.
 pub(crate) fn check_available(vk: &Vk, needed: u64) -> Result<()> {
-    let has_budget = unsafe { vk.instance.enumerate_device_extension_properties(vk.physical_device) }
-        .map(|exts| exts.iter().any(|e| e.extension_name_as_c_str() == Ok(ash::ext::memory_budget::NAME)))
-        .unwrap_or(false);
+    let has_budget = vk.supports_extension(ash::ext::memory_budget::NAME);
     let mut budget = vk::PhysicalDeviceMemoryBudgetPropertiesEXT::default();
     let memory = {
         let mut props = vk::PhysicalDeviceMemoryProperties2::default();

@@ -1,7 +1,9 @@
-// filter: one pass of the edge-avoiding a-trous filter (3x3 taps at +-step). Every tap is read straight from the
-// images through the texture cache. (A shared-memory apron sized for the widest step was 3-5x slower on an H100:
-// 1.40 / 1.65 / 2.20 ms against 0.46 / 0.44 / 0.41 ms per pass at 4K; the loads before its barrier serialise and
-// its 14 KB per 64 invocations limit occupancy, while neighbouring groups share taps in L1 anyway.)
+// filter: one pass of the edge-avoiding a-trous filter (3x3 taps at +-step). A step-1 pass reads its group's
+// pixels and a one-pixel apron into shared memory once (every tap and the variance blur come from there); later
+// passes read every tap straight from the images through the texture cache. (On an H100 at 4K the apron took the
+// step-1 pass from 0.344 to 0.256 ms but slowed the later passes, where it serves only the variance blur, from
+// 0.383 / 0.371 to 0.408 / 0.431 ms: their taps cannot wait for a barrier. An apron sized for the widest step was
+// 3-5x slower still: its loads serialise before the barrier and its 14 KB per 64 invocations limit occupancy.)
 #ifndef DNSR_FILTER_GLSL
 #define DNSR_FILTER_GLSL
 
@@ -40,6 +42,27 @@ vec2 dnsr_cleared_value(bool receiver, uint meta) {
     return receiver ? vec2((meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0, 0.0) : DNSR_SKY_SIGNAL;
 }
 
+// The group's pixels and a one-pixel apron: every pixel's 3x3 neighbourhood (its taps and variance-blur footprint
+// in a step-1 pass), read from the images once per group instead of nine times per pixel.
+const ivec2 DNSR_APRON_SIZE = DNSR_GROUP_SIZE + 2;
+const int DNSR_APRON_COUNT = DNSR_APRON_SIZE.x * DNSR_APRON_SIZE.y;
+shared vec2 dnsr_apron_signal[DNSR_APRON_COUNT];
+shared float dnsr_apron_depth[DNSR_APRON_COUNT];
+shared vec3 dnsr_apron_normal[DNSR_APRON_COUNT];
+
+int dnsr_apron_index(ivec2 lid) { return (lid.y + 1) * DNSR_APRON_SIZE.x + lid.x + 1; }
+
+void dnsr_load_apron(ivec2 origin, int invocation) {
+    for (int i = invocation; i < DNSR_APRON_COUNT; i += DNSR_GROUP_SIZE.x * DNSR_GROUP_SIZE.y) {
+        ivec2 q = origin - 1 + ivec2(i % DNSR_APRON_SIZE.x, i / DNSR_APRON_SIZE.x);
+        bool inside = dnsr_inside(q);
+        dnsr_apron_signal[i] = inside ? dnsr_read_filter_input(q) : DNSR_SKY_SIGNAL;
+        float z = inside ? dnsr_tap_depth(q) : -1.0;
+        dnsr_apron_depth[i] = z;
+        dnsr_apron_normal[i] = z >= 0.0 ? dnsr_read_normal(q) : vec3(0.0);
+    }
+}
+
 void dnsr_filter(ivec2 gid, ivec2 lid) {
     int step = dnsr_get_filter_step();
     ivec2 origin = gid * DNSR_GROUP_SIZE;
@@ -60,9 +83,17 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
         return;
     }
 
+    // The whole group reaches this barrier: the branch above depends on the group alone, the step on the pass.
+    bool step_one = step == 1;
+    if (step_one) {
+        dnsr_load_apron(origin, lid.y * DNSR_GROUP_SIZE.x + lid.x);
+        barrier();
+    }
+
     if (!dnsr_inside(p)) return;
     uint meta = lid.y < 4 ? meta_top : meta_bottom;
-    float zc = dnsr_tap_depth(p);
+    int center = dnsr_apron_index(lid);
+    float zc = step_one ? dnsr_apron_depth[center] : dnsr_tap_depth(p);
 
     vec2 result;
     if (zc < 0.0) {
@@ -73,20 +104,18 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
         vec4 settings = dnsr_get_filter_settings();
         float kernel[2] = float[2](1.0, settings.x);
         float normal_power = settings.y;
-        vec2 c = dnsr_read_filter_input(p);
-        vec3 nc = dnsr_read_normal(p);
-        // The 3x3 neighbourhood at step 1: the variance blur's footprint (receivers told apart by their signal,
-        // see DNSR_SKY_SIGNAL), and the taps of the first pass.
-        vec2 nb_signal[9];
+        vec2 c = step_one ? dnsr_apron_signal[center] : dnsr_read_filter_input(p);
+        vec3 nc = step_one ? dnsr_apron_normal[center] : dnsr_read_normal(p);
+        // Variance blur over the 3x3 receivers (told apart by their signal, see DNSR_SKY_SIGNAL).
         float vsum = 0.0, vweight = 0.0;
         for (int j = -1; j <= 1; ++j) {
             for (int i = -1; i <= 1; ++i) {
-                int k = (j + 1) * 3 + (i + 1);
                 ivec2 q = p + ivec2(i, j);
-                nb_signal[k] = dnsr_inside(q) ? dnsr_read_filter_input(q) : DNSR_SKY_SIGNAL;
-                if (!dnsr_is_receiver_signal(nb_signal[k])) continue;
+                vec2 s = step_one ? dnsr_apron_signal[center + j * DNSR_APRON_SIZE.x + i]
+                                  : (dnsr_inside(q) ? dnsr_read_filter_input(q) : DNSR_SKY_SIGNAL);
+                if (!dnsr_is_receiver_signal(s)) continue;
                 float w = 1.0 / float(4 << (abs(i) + abs(j)));
-                vsum += w * nb_signal[k].y;
+                vsum += w * s.y;
                 vweight += w;
             }
         }
@@ -100,15 +129,25 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
                 if (i == 0 && j == 0) continue;
                 ivec2 q = p + ivec2(i, j) * step;
                 if (!dnsr_inside(q)) continue;
-                int k = (j + 1) * 3 + (i + 1);
-                // Depth is read whatever the signal says, so that its fetch does not wait for the signal's.
-                float zq = dnsr_tap_depth(q);
-                vec2 n = step == 1 ? nb_signal[k] : (zq < 0.0 ? vec2(0.0) : dnsr_read_filter_input(q));
+                float zq;
+                vec2 n;
+                vec3 nq;
+                if (step_one) {
+                    int k = center + j * DNSR_APRON_SIZE.x + i;
+                    zq = dnsr_apron_depth[k];
+                    n = dnsr_apron_signal[k];
+                    nq = dnsr_apron_normal[k];
+                } else {
+                    // Depth is read whatever the signal says, so that its fetch does not wait for the signal's.
+                    zq = dnsr_tap_depth(q);
+                    n = zq < 0.0 ? vec2(0.0) : dnsr_read_filter_input(q);
+                    nq = zq < 0.0 ? vec3(0.0) : dnsr_read_normal(q);
+                }
                 if (zq < 0.0) continue;
                 // The shadow and depth edge stops share one exp.
                 float w = kernel[abs(i)] * kernel[abs(j)]
                         * exp(-(abs(c.x - n.x) * inv_sigma + abs(zc - zq) * inv_depth_sigma))
-                        * pow(max(dot(nc, dnsr_read_normal(q)), 0.0), normal_power);
+                        * pow(max(dot(nc, nq), 0.0), normal_power);
                 weight_sum += w;
                 mean_sum += w * n.x;
                 var_sum += w * w * n.y;

@@ -98,6 +98,8 @@ layout(push_constant) uniform DnsrPushBlock { DnsrFilterPush dnsr_push; };
 layout(set = 0, binding = 14) uniform utexture2D dnsr_tile_meta;
 layout(set = 0, binding = 15) uniform texture2D dnsr_filter_input;
 layout(set = 0, binding = 16, DNSR_INTERMEDIATE_FORMAT) uniform writeonly image2D dnsr_filter_output;
+layout(set = 0, binding = 19) uniform texture2D dnsr_guide;
+layout(set = 0, binding = 20, rgba32f) uniform writeonly image2D dnsr_guide_out;
 #ifdef DNSR_FINAL_PASS
 layout(set = 0, binding = 17, DNSR_OUTPUT_FORMAT) uniform writeonly image2D dnsr_output;
 // This frame's moments, read only by the debug views.
@@ -107,6 +109,10 @@ layout(set = 0, binding = 18) uniform texture2D dnsr_debug_moments;
 int dnsr_get_filter_step() { return int(dnsr_push.pass.x); }
 bool dnsr_get_write_internal() { return (dnsr_push.pass.y & DNSR_PASS_WRITE_INTERNAL) != 0u; }
 bool dnsr_get_skip_cleared() { return (dnsr_push.pass.y & DNSR_PASS_SKIP_CLEARED) != 0u; }
+bool dnsr_get_write_guide() { return (dnsr_push.pass.y & DNSR_PASS_WRITE_GUIDE) != 0u; }
+// The filter's own per-pixel geometry, written by the first pass for the later ones: (linear depth or -1, normal).
+vec4 dnsr_read_guide(ivec2 p) { return texelFetch(dnsr_guide, p + dnsr_get_offset(), 0); }
+void dnsr_write_guide(ivec2 p, float linear_depth, vec3 normal) { imageStore(dnsr_guide_out, p + dnsr_get_offset(), vec4(linear_depth, normal)); }
 uint dnsr_read_tile_meta(ivec2 tile) { return texelFetch(dnsr_tile_meta, tile + dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT), 0).r; }
 vec2 dnsr_read_filter_input(ivec2 p) { return texelFetch(dnsr_filter_input, p + dnsr_get_offset(), 0).xy; }
 void dnsr_write_filter_output(ivec2 p, vec2 mean_var) { imageStore(dnsr_filter_output, p + dnsr_get_offset(), vec4(mean_var, 0.0, 0.0)); }

@@ -1,9 +1,10 @@
-// filter: one pass of the edge-avoiding a-trous filter (3x3 taps at +-step). A step-1 pass reads its group's
-// pixels and a one-pixel apron into shared memory once (every tap and the variance blur come from there); later
-// passes read every tap straight from the images through the texture cache. (On an H100 at 4K the apron took the
-// step-1 pass from 0.344 to 0.256 ms but slowed the later passes, where it serves only the variance blur, from
-// 0.383 / 0.371 to 0.408 / 0.431 ms: their taps cannot wait for a barrier. An apron sized for the widest step was
-// 3-5x slower still: its loads serialise before the barrier and its 14 KB per 64 invocations limit occupancy.)
+// filter: one pass of the edge-avoiding a-trous filter (3x3 taps at +-step), in two variants. The first pass
+// (step 1) reads its group and a one-pixel apron into shared memory once and writes the guide (linear depth and
+// normal per pixel); the later passes (DNSR_LATER_PASS) fetch every tap, guide and signal, straight from the
+// images through the texture cache. Why two variants, on an H100 at 4K (BENCHMARKS.md change log): one shader
+// holding both paths slowed the later passes from 0.383 / 0.371 to 0.454 / 0.477 ms although they never touch
+// the apron, and an apron for their variance blur alone slowed them too (their taps cannot wait for a barrier).
+// An apron sized for the widest step was 3-5x slower still.
 #ifndef DNSR_FILTER_GLSL
 #define DNSR_FILTER_GLSL
 
@@ -42,15 +43,15 @@ vec2 dnsr_cleared_value(bool receiver, uint meta) {
     return receiver ? vec2((meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0, 0.0) : DNSR_SKY_SIGNAL;
 }
 
-// The group's pixels and a one-pixel apron: every pixel's 3x3 neighbourhood (its taps and variance-blur footprint
-// in a step-1 pass), read from the images once per group instead of nine times per pixel.
+#ifndef DNSR_LATER_PASS
+// The first pass (step 1) reads its group's pixels and a one-pixel apron into shared memory once: every pixel's
+// 3x3 neighbourhood, its taps and its variance-blur footprint, instead of nine fetches per pixel. It writes the
+// guide the later passes read.
 const ivec2 DNSR_APRON_SIZE = DNSR_GROUP_SIZE + 2;
 const int DNSR_APRON_COUNT = DNSR_APRON_SIZE.x * DNSR_APRON_SIZE.y;
 shared vec2 dnsr_apron_signal[DNSR_APRON_COUNT];
 shared float dnsr_apron_depth[DNSR_APRON_COUNT];
 shared vec3 dnsr_apron_normal[DNSR_APRON_COUNT];
-
-int dnsr_apron_index(ivec2 lid) { return (lid.y + 1) * DNSR_APRON_SIZE.x + lid.x + 1; }
 
 void dnsr_load_apron(ivec2 origin, int invocation) {
     for (int i = invocation; i < DNSR_APRON_COUNT; i += DNSR_GROUP_SIZE.x * DNSR_GROUP_SIZE.y) {
@@ -62,6 +63,56 @@ void dnsr_load_apron(ivec2 origin, int invocation) {
         dnsr_apron_normal[i] = z >= 0.0 ? dnsr_read_normal(q) : vec3(0.0);
     }
 }
+
+int dnsr_apron_index(ivec2 lid, int i, int j) { return (lid.y + 1 + j) * DNSR_APRON_SIZE.x + lid.x + 1 + i; }
+
+// (linear depth or -1, normal) of the pixel itself.
+vec4 dnsr_center_guide(ivec2 p, ivec2 lid) {
+    int k = dnsr_apron_index(lid, 0, 0);
+    return vec4(dnsr_apron_depth[k], dnsr_apron_normal[k]);
+}
+vec2 dnsr_center_signal(ivec2 p, ivec2 lid) { return dnsr_apron_signal[dnsr_apron_index(lid, 0, 0)]; }
+// The variance blur's neighbour (i, j) at step 1 (DNSR_SKY_SIGNAL outside the rectangle).
+vec2 dnsr_blur_signal(ivec2 p, ivec2 lid, int i, int j) { return dnsr_apron_signal[dnsr_apron_index(lid, i, j)]; }
+// Tap (i, j): its signal, and its guide (linear depth or -1, normal).
+void dnsr_tap(ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal, out vec4 guide) {
+    int k = dnsr_apron_index(lid, i, j);
+    signal = dnsr_apron_signal[k];
+    guide = vec4(dnsr_apron_depth[k], dnsr_apron_normal[k]);
+}
+
+// Whether a pixel of a tile that is not cleared can tap this group in a later pass: its tiles and the tiles of the
+// eight neighbouring groups (a later pass reaches at most DNSR_GROUP_SIZE pixels). Called by the whole group.
+shared uint dnsr_neighbour_meta[3 * 6];
+bool dnsr_group_is_tapped(ivec2 tile, ivec2 lid) {
+    ivec2 tiles = (dnsr_get_extent() + DNSR_TILE_SIZE - 1) / DNSR_TILE_SIZE;
+    if (lid.x < 3 && lid.y < 6) {
+        ivec2 t = tile + lid - ivec2(1, 2);
+        bool inside = all(greaterThanEqual(t, ivec2(0))) && all(lessThan(t, tiles));
+        dnsr_neighbour_meta[lid.y * 3 + lid.x] = inside ? dnsr_read_tile_meta(t) : DNSR_TILE_CLEARED;
+    }
+    barrier();
+    uint all_cleared = DNSR_TILE_CLEARED;
+    for (int i = 0; i < 3 * 6; ++i) all_cleared &= dnsr_neighbour_meta[i];
+    return all_cleared == 0u;
+}
+#else
+// The later passes (step 2 and up) fetch every tap from the images through the texture cache: a tap is the guide
+// the first pass wrote and the signal. (An apron for their variance blur slowed them: their taps cannot wait for
+// a barrier.)
+vec4 dnsr_center_guide(ivec2 p, ivec2 lid) { return dnsr_read_guide(p); }
+vec2 dnsr_center_signal(ivec2 p, ivec2 lid) { return dnsr_read_filter_input(p); }
+vec2 dnsr_blur_signal(ivec2 p, ivec2 lid, int i, int j) {
+    ivec2 q = p + ivec2(i, j);
+    return dnsr_inside(q) ? dnsr_read_filter_input(q) : DNSR_SKY_SIGNAL;
+}
+void dnsr_tap(ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal, out vec4 guide) {
+    ivec2 q = p + ivec2(i, j) * step;
+    // Both fetches at once: the signal's does not wait for the guide's.
+    guide = dnsr_read_guide(q);
+    signal = dnsr_read_filter_input(q);
+}
+#endif
 
 void dnsr_filter(ivec2 gid, ivec2 lid) {
     int step = dnsr_get_filter_step();
@@ -76,24 +127,33 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
         // Cleared values are already where this pass would write them (classification wrote the output and the
         // reprojection image): nothing to do.
         if (dnsr_get_skip_cleared()) return;
+#ifndef DNSR_LATER_PASS
+        // The guide is needed here only where a later pass taps this group from a tile it filters.
+        bool guide = dnsr_get_write_guide() && dnsr_group_is_tapped(tile, lid);
+#endif
         if (!dnsr_inside(p)) return;
         bool receiver = dnsr_is_receiver(dnsr_read_depth(p));
         uint meta = lid.y < 4 ? meta_top : meta_bottom;
+#ifndef DNSR_LATER_PASS
+        if (guide) dnsr_write_guide(p, dnsr_tap_depth(p), receiver ? dnsr_read_normal(p) : vec3(0.0));
+#endif
         dnsr_filter_write(p, dnsr_cleared_value(receiver, meta), receiver, meta);
         return;
     }
 
-    // The whole group reaches this barrier: the branch above depends on the group alone, the step on the pass.
-    bool step_one = step == 1;
-    if (step_one) {
-        dnsr_load_apron(origin, lid.y * DNSR_GROUP_SIZE.x + lid.x);
-        barrier();
-    }
+#ifndef DNSR_LATER_PASS
+    // The whole group reaches this barrier: the branch above depends on the group alone.
+    dnsr_load_apron(origin, lid.y * DNSR_GROUP_SIZE.x + lid.x);
+    barrier();
+#endif
 
     if (!dnsr_inside(p)) return;
     uint meta = lid.y < 4 ? meta_top : meta_bottom;
-    int center = dnsr_apron_index(lid);
-    float zc = step_one ? dnsr_apron_depth[center] : dnsr_tap_depth(p);
+    vec4 guide = dnsr_center_guide(p, lid);
+    float zc = guide.x;
+#ifndef DNSR_LATER_PASS
+    if (dnsr_get_write_guide()) dnsr_write_guide(p, zc, guide.yzw);
+#endif
 
     vec2 result;
     if (zc < 0.0) {
@@ -104,15 +164,13 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
         vec4 settings = dnsr_get_filter_settings();
         float kernel[2] = float[2](1.0, settings.x);
         float normal_power = settings.y;
-        vec2 c = step_one ? dnsr_apron_signal[center] : dnsr_read_filter_input(p);
-        vec3 nc = step_one ? dnsr_apron_normal[center] : dnsr_read_normal(p);
+        vec2 c = dnsr_center_signal(p, lid);
+        vec3 nc = guide.yzw;
         // Variance blur over the 3x3 receivers (told apart by their signal, see DNSR_SKY_SIGNAL).
         float vsum = 0.0, vweight = 0.0;
         for (int j = -1; j <= 1; ++j) {
             for (int i = -1; i <= 1; ++i) {
-                ivec2 q = p + ivec2(i, j);
-                vec2 s = step_one ? dnsr_apron_signal[center + j * DNSR_APRON_SIZE.x + i]
-                                  : (dnsr_inside(q) ? dnsr_read_filter_input(q) : DNSR_SKY_SIGNAL);
+                vec2 s = dnsr_blur_signal(p, lid, i, j);
                 if (!dnsr_is_receiver_signal(s)) continue;
                 float w = 1.0 / float(4 << (abs(i) + abs(j)));
                 vsum += w * s.y;
@@ -129,25 +187,15 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
                 if (i == 0 && j == 0) continue;
                 ivec2 q = p + ivec2(i, j) * step;
                 if (!dnsr_inside(q)) continue;
-                float zq;
                 vec2 n;
-                vec3 nq;
-                if (step_one) {
-                    int k = center + j * DNSR_APRON_SIZE.x + i;
-                    zq = dnsr_apron_depth[k];
-                    n = dnsr_apron_signal[k];
-                    nq = dnsr_apron_normal[k];
-                } else {
-                    // Depth is read whatever the signal says, so that its fetch does not wait for the signal's.
-                    zq = dnsr_tap_depth(q);
-                    n = zq < 0.0 ? vec2(0.0) : dnsr_read_filter_input(q);
-                    nq = zq < 0.0 ? vec3(0.0) : dnsr_read_normal(q);
-                }
+                vec4 g;
+                dnsr_tap(p, lid, i, j, step, n, g);
+                float zq = g.x;
                 if (zq < 0.0) continue;
                 // The shadow and depth edge stops share one exp.
                 float w = kernel[abs(i)] * kernel[abs(j)]
                         * exp(-(abs(c.x - n.x) * inv_sigma + abs(zc - zq) * inv_depth_sigma))
-                        * pow(max(dot(nc, nq), 0.0), normal_power);
+                        * pow(max(dot(nc, g.yzw), 0.0), normal_power);
                 weight_sum += w;
                 mean_sum += w * n.x;
                 var_sum += w * w * n.y;

@@ -91,6 +91,8 @@ pub(crate) const PASS_WRITE_INTERNAL: u32 = 1 << 0;
 /// Filter pass flag: groups whose two tiles are cleared write nothing (what the pass would write there is
 /// already in place).
 pub(crate) const PASS_SKIP_CLEARED: u32 = 1 << 1;
+/// Filter pass flag: write the guide (linear depth and normal) that the later passes read per tap.
+pub(crate) const PASS_WRITE_GUIDE: u32 = 1 << 2;
 
 /// Binding names shared by shaders and host. The host finds each binding's number through reflection.
 #[cfg_attr(not(test), allow(dead_code))]
@@ -99,6 +101,7 @@ pub(crate) const GLSL_FLAGS: &[(&str, u32)] = &[
     ("DNSR_FLAG_DEPTH_INVERTED", FLAG_DEPTH_INVERTED),
     ("DNSR_PASS_WRITE_INTERNAL", PASS_WRITE_INTERNAL),
     ("DNSR_PASS_SKIP_CLEARED", PASS_SKIP_CLEARED),
+    ("DNSR_PASS_WRITE_GUIDE", PASS_WRITE_GUIDE),
     ("DNSR_TILE_CLEARED", crate::passes::TILE_CLEARED),
     ("DNSR_TILE_LIT", crate::passes::TILE_LIT),
     ("DNSR_DEBUG_VIEW_NONE", crate::dispatch::DebugView::None as u32),

@@ -36,21 +36,32 @@ pub const MIN_API_VERSION: u32 = vk::API_VERSION_1_1;
 struct Pipelines {
     prepare: Pipeline,
     classification: Pipeline,
-    filter: Pipeline,
+    filter_first: Pipeline,
+    filter_later: Pipeline,
     filter_final: Pipeline,
+    filter_only: Pipeline,
 }
 
 impl Pipelines {
-    fn all_mut(&mut self) -> [&mut Pipeline; 4] {
-        [&mut self.prepare, &mut self.classification, &mut self.filter, &mut self.filter_final]
+    fn all_mut(&mut self) -> [&mut Pipeline; 6] {
+        [
+            &mut self.prepare,
+            &mut self.classification,
+            &mut self.filter_first,
+            &mut self.filter_later,
+            &mut self.filter_final,
+            &mut self.filter_only,
+        ]
     }
 
     fn for_role(&self, role: Role) -> &Pipeline {
         match role {
             Role::Prepare => &self.prepare,
             Role::Classification => &self.classification,
-            Role::Filter(_) => &self.filter,
+            Role::Filter(0) => &self.filter_first,
+            Role::Filter(_) => &self.filter_later,
             Role::FilterFinal => &self.filter_final,
+            Role::FilterOnly => &self.filter_only,
         }
     }
 }
@@ -158,10 +169,12 @@ impl Context {
         let names = [
             prepare::SHADER,
             tile_classification::shader(self.precision, self.output_format).expect("output format checked"),
-            filter::shader(self.precision, None).expect("non-final variant exists"),
-            filter::shader(self.precision, Some(self.output_format)).expect("output format checked"),
+            filter::shader(self.precision, None, false).expect("non-final variant exists"),
+            filter::shader(self.precision, None, true).expect("non-final variant exists"),
+            filter::shader(self.precision, Some(self.output_format), true).expect("output format checked"),
+            filter::shader(self.precision, Some(self.output_format), false).expect("output format checked"),
         ];
-        let mut made: Vec<Pipeline> = Vec::with_capacity(4);
+        let mut made: Vec<Pipeline> = Vec::with_capacity(names.len());
         for name in names {
             match Pipeline::new(&self.vk, name, variant(name).spirv, push) {
                 Ok(p) => made.push(p),
@@ -172,8 +185,15 @@ impl Context {
             }
         }
         let mut it = made.into_iter();
-        let mut next = || it.next().expect("four pipelines");
-        Ok(Pipelines { prepare: next(), classification: next(), filter: next(), filter_final: next() })
+        let mut next = || it.next().expect("one pipeline per name");
+        Ok(Pipelines {
+            prepare: next(),
+            classification: next(),
+            filter_first: next(),
+            filter_later: next(),
+            filter_final: next(),
+            filter_only: next(),
+        })
     }
 
     fn create_sampler_and_constants(&mut self) -> Result<()> {
@@ -308,6 +328,7 @@ impl Context {
             depth_copy: light.depth[cur].view,
             previous_moments: light.moments[cur ^ 1].view,
             moments: light.moments[cur].view,
+            guide: light.guide.view,
         }
     }
 
@@ -386,7 +407,7 @@ impl Context {
             vk::AccessFlags::empty(),
             vk::AccessFlags::SHADER_WRITE,
         );
-        let mut images = [vk::ImageMemoryBarrier::default(); 10];
+        let mut images = [vk::ImageMemoryBarrier::default(); 12];
         let mut count = 0;
         if output_transition {
             images[count] = to_general;

@@ -9,6 +9,9 @@ use ash::vk;
 pub(crate) const TILE_FORMAT: vk::Format = vk::Format::R32_UINT;
 pub(crate) const DEPTH_FORMAT: vk::Format = vk::Format::R32_SFLOAT;
 pub(crate) const MOMENTS_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
+/// The filter's geometry per pixel (linear depth, -1 for sky; unit normal): one texel per tap for the passes after
+/// the first instead of a depth and a normal fetch, each decoded again.
+pub(crate) const GUIDE_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
 
 pub(crate) fn intermediate_format(precision: Precision) -> vk::Format {
     match precision {
@@ -31,6 +34,7 @@ fn image_specs(extent: [u32; 2], precision: Precision, with_tmp: bool) -> impl I
         (DEPTH_FORMAT, extent, "depth_copy_1"),
         (MOMENTS_FORMAT, extent, "moments_0"),
         (MOMENTS_FORMAT, extent, "moments_1"),
+        (GUIDE_FORMAT, extent, "guide"),
     ]
     .into_iter()
     .chain(with_tmp.then_some((rg, extent, "filter_tmp")))
@@ -56,6 +60,8 @@ pub(crate) struct LightState {
     pub reprojection: InternalImage,
     pub history: InternalImage,
     pub tmp: Option<InternalImage>,
+    /// Written by the first filter pass, read by the later ones (within one frame).
+    pub guide: InternalImage,
     /// Ping-pong pairs indexed by `parity` (current) and `parity ^ 1` (previous frame).
     pub depth: [InternalImage; 2],
     pub moments: [InternalImage; 2],
@@ -89,6 +95,7 @@ impl LightState {
             history: next(),
             depth: [next(), next()],
             moments: [next(), next()],
+            guide: next(),
             tmp,
             parity: 0,
             initialized: false,
@@ -101,6 +108,7 @@ impl LightState {
             .into_iter()
             .chain(self.depth.iter())
             .chain(self.moments.iter())
+            .chain([&self.guide])
             .chain(self.tmp.iter())
     }
 
@@ -113,6 +121,7 @@ impl LightState {
             .into_iter()
             .chain(self.depth.iter_mut())
             .chain(self.moments.iter_mut())
+            .chain([&mut self.guide])
             .chain(self.tmp.iter_mut())
         {
             img.destroy(vk);

@@ -17,8 +17,9 @@ use ash::vk;
 /// Most bindings any pass declares.
 pub(crate) const MAX_BINDINGS: usize = 16;
 
-/// The descriptor sets one record writes, one per pipeline role.
-pub(crate) const SETS_PER_RECORD: usize = crate::passes::MAX_PASSES;
+/// The descriptor sets one record writes, one per pipeline role: every pass of the longest frame, and the single
+/// pass of a one-pass frame.
+pub(crate) const SETS_PER_RECORD: usize = crate::passes::MAX_PASSES + 1;
 
 /// The set of a ring slot that a pipeline role uses.
 fn set_index(role: Role) -> usize {
@@ -26,16 +27,19 @@ fn set_index(role: Role) -> usize {
         Role::Prepare => 0,
         Role::Classification => 1,
         Role::Filter(pass) => 2 + pass as usize,
-        Role::FilterFinal => SETS_PER_RECORD - 1,
+        Role::FilterFinal => SETS_PER_RECORD - 2,
+        Role::FilterOnly => SETS_PER_RECORD - 1,
     }
 }
 
-/// Every role, in set order: every filter pass but the last can be an intermediate pass, and one final pass.
+/// Every role, in set order: every filter pass but the last can be an intermediate pass, one final pass after
+/// them, and the single pass of a one-pass frame.
 pub(crate) fn roles() -> [Role; SETS_PER_RECORD] {
     std::array::from_fn(|i| match i {
         0 => Role::Prepare,
         1 => Role::Classification,
-        _ if i == SETS_PER_RECORD - 1 => Role::FilterFinal,
+        _ if i == SETS_PER_RECORD - 2 => Role::FilterFinal,
+        _ if i == SETS_PER_RECORD - 1 => Role::FilterOnly,
         _ => Role::Filter(i as u32 - 2),
     })
 }

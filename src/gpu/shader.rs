@@ -45,6 +45,14 @@ pub(crate) const VARIANTS: &[ShaderVariant] = &[
     variant!("filter_final_r8_fp16", "filter.comp", ["DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r8", "DNSR_FP16"]),
     variant!("filter_final_r16f_fp16", "filter.comp", ["DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r16f", "DNSR_FP16"]),
     variant!("filter_final_r32f_fp16", "filter.comp", ["DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r32f", "DNSR_FP16"]),
+    variant!("filter_later", "filter.comp", ["DNSR_LATER_PASS"]),
+    variant!("filter_later_fp16", "filter.comp", ["DNSR_LATER_PASS", "DNSR_FP16"]),
+    variant!("filter_later_final_r8", "filter.comp", ["DNSR_LATER_PASS", "DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r8"]),
+    variant!("filter_later_final_r16f", "filter.comp", ["DNSR_LATER_PASS", "DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r16f"]),
+    variant!("filter_later_final_r32f", "filter.comp", ["DNSR_LATER_PASS", "DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r32f"]),
+    variant!("filter_later_final_r8_fp16", "filter.comp", ["DNSR_LATER_PASS", "DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r8", "DNSR_FP16"]),
+    variant!("filter_later_final_r16f_fp16", "filter.comp", ["DNSR_LATER_PASS", "DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r16f", "DNSR_FP16"]),
+    variant!("filter_later_final_r32f_fp16", "filter.comp", ["DNSR_LATER_PASS", "DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r32f", "DNSR_FP16"]),
 ];
 
 pub(crate) fn variant(name: &str) -> &'static ShaderVariant {

@@ -25,9 +25,11 @@ pub(crate) enum Resource {
     FilterOutput,
     Output,
     DebugMoments,
+    Guide,
+    GuideOut,
 }
 
-pub(crate) const RESOURCE_COUNT: usize = Resource::DebugMoments as usize + 1;
+pub(crate) const RESOURCE_COUNT: usize = Resource::GuideOut as usize + 1;
 
 /// (GLSL name, resource, descriptor type the shader must declare it as).
 const TABLE: [(&str, Resource, vk::DescriptorType); RESOURCE_COUNT] = [
@@ -50,6 +52,8 @@ const TABLE: [(&str, Resource, vk::DescriptorType); RESOURCE_COUNT] = [
     ("dnsr_filter_output", Resource::FilterOutput, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_output", Resource::Output, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_debug_moments", Resource::DebugMoments, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_guide", Resource::Guide, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_guide_out", Resource::GuideOut, vk::DescriptorType::STORAGE_IMAGE),
 ];
 
 impl Resource {

@@ -8,22 +8,35 @@
 
 use super::bindings::Resource;
 use super::{internal, FrameViews, Grid, Pass, Role};
-use crate::constants::{FilterPush, PASS_SKIP_CLEARED, PASS_WRITE_INTERNAL};
+use crate::constants::{FilterPush, PASS_SKIP_CLEARED, PASS_WRITE_GUIDE, PASS_WRITE_INTERNAL};
 use crate::create_info::Precision;
 use crate::dispatch::DebugView;
 use ash::vk;
 
-pub(crate) fn shader(precision: Precision, final_output: Option<vk::Format>) -> Option<&'static str> {
+/// The variant of the first pass (`later` false: step 1, shared-memory apron, writes the guide) or of a later pass
+/// (reads the guide), intermediate or final.
+pub(crate) fn shader(precision: Precision, final_output: Option<vk::Format>, later: bool) -> Option<&'static str> {
     let fp16 = precision == Precision::Fp16;
+    let names: [&'static str; 8] = if later {
+        [
+            "filter_later", "filter_later_fp16", "filter_later_final_r8", "filter_later_final_r16f", "filter_later_final_r32f",
+            "filter_later_final_r8_fp16", "filter_later_final_r16f_fp16", "filter_later_final_r32f_fp16",
+        ]
+    } else {
+        [
+            "filter", "filter_fp16", "filter_final_r8", "filter_final_r16f", "filter_final_r32f", "filter_final_r8_fp16",
+            "filter_final_r16f_fp16", "filter_final_r32f_fp16",
+        ]
+    };
     Some(match (final_output, fp16) {
-        (None, false) => "filter",
-        (None, true) => "filter_fp16",
-        (Some(vk::Format::R8_UNORM), false) => "filter_final_r8",
-        (Some(vk::Format::R16_SFLOAT), false) => "filter_final_r16f",
-        (Some(vk::Format::R32_SFLOAT), false) => "filter_final_r32f",
-        (Some(vk::Format::R8_UNORM), true) => "filter_final_r8_fp16",
-        (Some(vk::Format::R16_SFLOAT), true) => "filter_final_r16f_fp16",
-        (Some(vk::Format::R32_SFLOAT), true) => "filter_final_r32f_fp16",
+        (None, false) => names[0],
+        (None, true) => names[1],
+        (Some(vk::Format::R8_UNORM), false) => names[2],
+        (Some(vk::Format::R16_SFLOAT), false) => names[3],
+        (Some(vk::Format::R32_SFLOAT), false) => names[4],
+        (Some(vk::Format::R8_UNORM), true) => names[5],
+        (Some(vk::Format::R16_SFLOAT), true) => names[6],
+        (Some(vk::Format::R32_SFLOAT), true) => names[7],
         _ => return None,
     })
 }
@@ -48,11 +61,18 @@ pub(crate) fn pass(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView
     t[Resource::TileMeta as usize] = internal(v.tile_meta);
     t[Resource::FilterInput as usize] = internal(input(v, pass));
     t[Resource::FilterOutput as usize] = internal(output(v, pass));
+    // The first pass writes the guide, the later ones read it; both are bound so one shader serves every pass.
+    t[Resource::Guide as usize] = internal(v.guide);
+    t[Resource::GuideOut as usize] = internal(v.guide);
     if is_final(pass, passes) {
         t[Resource::Output as usize] = internal(v.output);
         t[Resource::DebugMoments as usize] = internal(v.moments);
     }
-    let role = if is_final(pass, passes) { Role::FilterFinal } else { Role::Filter(pass) };
+    let role = match (is_final(pass, passes), pass) {
+        (true, 0) => Role::FilterOnly,
+        (true, _) => Role::FilterFinal,
+        (false, _) => Role::Filter(pass),
+    };
     let push = Some(push_constants(v, pass, passes, debug_view));
     Pass { role, bindings: t, grid: Grid::Pixels, push, enabled: true }
 }
@@ -65,7 +85,8 @@ fn push_constants(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView)
     let internal_in_place = !write_internal || output(v, pass) == v.reprojection;
     let output_in_place = !last || debug_view == DebugView::None;
     let flags = (if write_internal { PASS_WRITE_INTERNAL } else { 0 })
-        | (if internal_in_place && output_in_place { PASS_SKIP_CLEARED } else { 0 });
+        | (if internal_in_place && output_in_place { PASS_SKIP_CLEARED } else { 0 })
+        | (if pass == 0 && passes > 1 { PASS_WRITE_GUIDE } else { 0 });
     let view = if last { debug_view as u32 } else { 0 };
     FilterPush { pass: [1 << pass, flags, pass, view] }
 }

@@ -29,14 +29,17 @@ pub(crate) const MOMENT_RADIUS: u32 = 8;
 const _: () = assert!(GROUP[0] == TILE[0] && GROUP[1] == 2 * TILE[1] && MOMENT_RADIUS == TILE[0] && TILE[0] * TILE[1] == 32);
 
 /// Which pipeline a pass runs, and so which descriptor set of a ring slot it uses. Filter passes 0..=2 can be
-/// intermediate passes; the last filter pass (whichever index it has) runs the final pipeline, which writes the
-/// host's output.
+/// intermediate passes; the last filter pass runs a final pipeline, which writes the host's output. Pass 0 runs
+/// the first pass's variant (step 1 from shared memory, writes the guide), the others the later passes' variant.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Role {
     Prepare,
     Classification,
     Filter(u32),
+    /// The last of two or more passes.
     FilterFinal,
+    /// A single filter pass: the first pass's variant writing the output.
+    FilterOnly,
 }
 
 /// What one group of a pass covers.
@@ -124,6 +127,7 @@ pub(crate) struct FrameViews {
     pub depth_copy: vk::ImageView,
     pub previous_moments: vk::ImageView,
     pub moments: vk::ImageView,
+    pub guide: vk::ImageView,
 }
 
 impl FrameViews {

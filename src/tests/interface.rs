@@ -86,8 +86,13 @@ fn reflected_interfaces_match_what_the_host_binds() {
             ],
             0,
         ),
-        ("filter", &[Constants, Depth, Normals, TileMeta, FilterInput, FilterOutput], 16),
-        ("filter_final_r16f_fp16", &[Constants, Depth, Normals, TileMeta, FilterInput, FilterOutput, Output, DebugMoments], 16),
+        ("filter", &[Constants, Depth, Normals, TileMeta, FilterInput, FilterOutput, Guide, GuideOut], 16),
+        ("filter_later", &[Constants, Depth, Normals, TileMeta, FilterInput, FilterOutput, Guide, GuideOut], 16),
+        (
+            "filter_final_r16f_fp16",
+            &[Constants, Depth, Normals, TileMeta, FilterInput, FilterOutput, Output, DebugMoments, Guide, GuideOut],
+            16,
+        ),
     ];
     for (name, resources, push) in expect {
         let v = VARIANTS.iter().find(|v| v.name == *name).unwrap();

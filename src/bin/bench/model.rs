@@ -57,6 +57,12 @@ pub enum When {
     WritesIntermediate,
     /// The last pass (it writes the host output).
     FinalPass,
+    /// Pass 0 (step 1 from shared memory).
+    FirstPass,
+    /// Pass 0 when later passes follow (it writes the guide they read).
+    FirstOfSeveral,
+    /// Every pass after the first (taps read the guide).
+    LaterPasses,
 }
 
 pub struct Row {
@@ -96,8 +102,11 @@ pub const MODEL: &[Row] = &[
     row(TileClassification, "tile meta (R32_UINT)", 4.0, 4.0, Write, Tiles, Always),
     row(TileClassification, "output (host, R16_SFLOAT)", 2.0, 2.0, Write, ClearedGroups, Always),
     row(Filter, "tile meta (R32_UINT)", 4.0, 4.0, Read, Tiles, Always),
-    row(Filter, "depth (host, R32_SFLOAT)", 4.0, 4.0, Read, All, Always),
-    row(Filter, "normals (host, R32G32B32A32_SFLOAT)", 16.0, 16.0, Read, ActiveGroups, Always),
+    row(Filter, "depth (host, R32_SFLOAT)", 4.0, 4.0, Read, All, FirstPass),
+    row(Filter, "depth (host, R32_SFLOAT)", 4.0, 4.0, Read, ClearedGroups, LaterPasses),
+    row(Filter, "normals (host, R32G32B32A32_SFLOAT)", 16.0, 16.0, Read, ActiveGroups, FirstPass),
+    row(Filter, "guide (R32G32B32A32_SFLOAT)", 16.0, 16.0, Write, ActiveGroups, FirstOfSeveral),
+    row(Filter, "guide (R32G32B32A32_SFLOAT)", 16.0, 16.0, Read, ActiveGroups, LaterPasses),
     row(Filter, "filter input (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Read, ActiveGroups, Always),
     row(Filter, "filter output (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Write, All, WritesIntermediate),
     row(Filter, "output (host, R16_SFLOAT)", 2.0, 2.0, Write, All, FinalPass),
@@ -168,6 +177,9 @@ impl PassId {
                 Always => true,
                 WritesIntermediate => k == 0 || k + 1 < filter_passes,
                 FinalPass => k + 1 == filter_passes,
+                FirstPass => k == 0,
+                FirstOfSeveral => k == 0 && filter_passes > 1,
+                LaterPasses => k > 0,
             },
             _ => false,
         }
@@ -187,6 +199,7 @@ pub fn pass_bytes(pass: PassId, filter_passes: u32, precision: Precision, counts
         let per = if precision == Precision::Fp16 { r.fp16 } else { r.fp32 };
         let pixels = match pass {
             PassId::Filter(k) if r.pixels == All && skips_cleared(k, filter_passes) => ActiveGroups,
+            PassId::Filter(k) if r.pixels == ClearedGroups && skips_cleared(k, filter_passes) => continue,
             _ => r.pixels,
         };
         let bytes = per * counts.get(pixels);
@@ -216,6 +229,9 @@ fn when_doc(w: When) -> &'static str {
         Always => "every pass",
         WritesIntermediate => "pass 0 and every pass but the last",
         FinalPass => "last pass",
+        FirstPass => "pass 0",
+        FirstOfSeveral => "pass 0 of two or more",
+        LaterPasses => "every pass after the first",
     }
 }
 

@@ -19,6 +19,10 @@ pub(crate) const TILE: [u32; 2] = [8, 4];
 /// Invocations of every pass's workgroup, x by y: one invocation per pixel of two stacked tiles (per tile in
 /// prepare). Generated into GLSL as the shaders' local size.
 pub(crate) const GROUP: [u32; 2] = [8, 8];
+/// Invocations of a later filter pass's workgroup: 2x2 blocks of `GROUP` pixels. Those passes share nothing
+/// between invocations; fewer, larger groups launch faster where most blocks are cleared and return at once.
+/// Generated into GLSL.
+pub(crate) const LATER_FILTER_GROUP: [u32; 2] = [16, 16];
 /// Radius of the local-moment window (17x17) of tile classification and its uniform-tile test. Generated into
 /// GLSL; the CPU reference uses the same constant.
 pub(crate) const MOMENT_RADIUS: u32 = 8;
@@ -27,6 +31,7 @@ pub(crate) const MOMENT_RADIUS: u32 = 8;
 // decides two tiles per group, its window is one tile column either side and two tile rows above and below),
 // and the moment radius is one tile width.
 const _: () = assert!(GROUP[0] == TILE[0] && GROUP[1] == 2 * TILE[1] && MOMENT_RADIUS == TILE[0] && TILE[0] * TILE[1] == 32);
+const _: () = assert!(LATER_FILTER_GROUP[0] % GROUP[0] == 0 && LATER_FILTER_GROUP[1] % GROUP[1] == 0);
 
 /// Which pipeline a pass runs, and so which descriptor set of a ring slot it uses. Filter passes 0..=2 can be
 /// intermediate passes; the last filter pass runs a final pipeline, which writes the host's output. Pass 0 runs
@@ -42,12 +47,12 @@ pub(crate) enum Role {
     FilterOnly,
 }
 
-/// What one group of a pass covers.
+/// What one invocation of a pass covers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Grid {
-    /// `GROUP` pixels of the render rectangle.
+    /// A pixel of the render rectangle.
     Pixels,
-    /// `GROUP` tiles of the render rectangle.
+    /// A tile of the render rectangle.
     Tiles,
 }
 
@@ -58,6 +63,8 @@ pub(crate) struct Pass {
     /// Every resource the pass binds; unset entries stay null.
     pub bindings: BindingTable,
     pub grid: Grid,
+    /// Invocations per workgroup, x by y (the shader's local size).
+    pub group: [u32; 2],
     pub push: Option<FilterPush>,
     /// A disabled pass is not dispatched; its timestamp is still written, so its time reads as zero.
     pub enabled: bool,
@@ -70,7 +77,7 @@ impl Pass {
             Grid::Pixels => extent,
             Grid::Tiles => [extent[0].div_ceil(TILE[0]), extent[1].div_ceil(TILE[1])],
         };
-        [covered[0].div_ceil(GROUP[0]), covered[1].div_ceil(GROUP[1]), 1]
+        [covered[0].div_ceil(self.group[0]), covered[1].div_ceil(self.group[1]), 1]
     }
 }
 

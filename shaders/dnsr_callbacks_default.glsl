@@ -96,7 +96,8 @@ void dnsr_write_output(ivec2 p, float shadow) { imageStore(dnsr_output, p + dnsr
 #ifdef DNSR_PASS_FILTER
 layout(push_constant) uniform DnsrPushBlock { DnsrFilterPush dnsr_push; };
 layout(set = 0, binding = 14) uniform utexture2D dnsr_tile_meta;
-layout(set = 0, binding = 15) uniform texture2D dnsr_filter_input;
+// A sampler so that the later passes can gather the variances of 2x2 texels in one fetch.
+layout(set = 0, binding = 15) uniform sampler2D dnsr_filter_input;
 layout(set = 0, binding = 16, DNSR_INTERMEDIATE_FORMAT) uniform writeonly image2D dnsr_filter_output;
 layout(set = 0, binding = 19) uniform texture2D dnsr_guide;
 layout(set = 0, binding = 20, rgba32f) uniform writeonly image2D dnsr_guide_out;
@@ -115,6 +116,10 @@ vec4 dnsr_read_guide(ivec2 p) { return texelFetch(dnsr_guide, p + dnsr_get_offse
 void dnsr_write_guide(ivec2 p, float linear_depth, vec3 normal) { imageStore(dnsr_guide_out, p + dnsr_get_offset(), vec4(linear_depth, normal)); }
 uint dnsr_read_tile_meta(ivec2 tile) { return texelFetch(dnsr_tile_meta, tile + dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT), 0).r; }
 vec2 dnsr_read_filter_input(ivec2 p) { return texelFetch(dnsr_filter_input, p + dnsr_get_offset(), 0).xy; }
+// Variances of the 2x2 texels around the texel corner at the top left of pixel `corner`.
+vec4 dnsr_gather_filter_variance(ivec2 corner) {
+    return textureGather(dnsr_filter_input, vec2(corner + dnsr_get_offset()) * dnsr_constants.inv_extent.zw, 1);
+}
 void dnsr_write_filter_output(ivec2 p, vec2 mean_var) { imageStore(dnsr_filter_output, p + dnsr_get_offset(), vec4(mean_var, 0.0, 0.0)); }
 #ifdef DNSR_FINAL_PASS
 void dnsr_write_output(ivec2 p, float shadow) { imageStore(dnsr_output, p + dnsr_get_offset(), vec4(shadow)); }

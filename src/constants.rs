@@ -61,7 +61,7 @@ gpu_block! {
         rect: [u32; 4],
         /// x: DNSR_FLAG_* bits; yzw: unused (nothing depends on the host's frame index).
         flags: [u32; 4],
-        /// xy: 1 / rect extent; zw: unused.
+        /// xy: 1 / rect extent; zw: 1 / size of the internal images (the context's size).
         inv_extent: [f32; 4],
         /// x: disocclusion threshold at N.V = 1; y: at grazing; z: (1 - N.V) exponent; w: history clamp width in sigmas.
         disocclusion: [f32; 4],

@@ -384,7 +384,7 @@ impl Context {
                 0,
                 0,
             ],
-            inv_extent: [1.0 / rect.width as f32, 1.0 / rect.height as f32, 0.0, 0.0],
+            inv_extent: [1.0 / rect.width as f32, 1.0 / rect.height as f32, 1.0 / self.size[0] as f32, 1.0 / self.size[1] as f32],
             ..Default::default()
         };
         self.settings.write_to(&mut c);

@@ -48,7 +48,7 @@ const TABLE: [(&str, Resource, vk::DescriptorType); RESOURCE_COUNT] = [
     ("dnsr_reprojection", Resource::Reprojection, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_tile_meta_out", Resource::TileMetaOut, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_tile_meta", Resource::TileMeta, vk::DescriptorType::SAMPLED_IMAGE),
-    ("dnsr_filter_input", Resource::FilterInput, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_filter_input", Resource::FilterInput, vk::DescriptorType::COMBINED_IMAGE_SAMPLER),
     ("dnsr_filter_output", Resource::FilterOutput, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_output", Resource::Output, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_debug_moments", Resource::DebugMoments, vk::DescriptorType::SAMPLED_IMAGE),

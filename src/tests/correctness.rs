@@ -290,6 +290,59 @@ fn render_rect_writes_only_inside_and_lit_bit_masks_skip_prepare() {
     g.assert_clean();
 }
 
+/// `f` placed at `rect` inside a `w` x `h` frame whose other pixels hold a different noisy scene (rect offsets
+/// are tile-aligned, so `f`'s mask words copy over whole).
+fn embed(f: &FrameInputs, w: u32, h: u32, rect: crate::Rect) -> FrameInputs {
+    let mut big = static_frame(w, h, &|x, z| 1.0 - smooth(z, x), 99);
+    for y in 0..f.height {
+        for x in 0..f.width {
+            let (i, j) = ((y * f.width + x) as usize, ((y + rect.y) * w + x + rect.x) as usize);
+            big.depth[j] = f.depth[i];
+            big.normals[j] = f.normals[i];
+            big.velocity[j] = f.velocity[i];
+        }
+    }
+    let (tw, big_tw) = (f.width.div_ceil(8), w.div_ceil(8));
+    for ty in 0..f.height.div_ceil(4) {
+        for tx in 0..tw {
+            big.mask[((ty + rect.y / 4) * big_tw + tx + rect.x / 8) as usize] = f.mask[(ty * tw + tx) as usize];
+        }
+    }
+    FrameInputs { projection_inverse: f.projection_inverse, reprojection: f.reprojection, ..big }
+}
+
+#[test]
+fn a_render_rect_denoises_like_a_context_of_its_size() {
+    // Internal images are addressed at the rectangle's offset and sampled in the context's size (the history,
+    // the later filter passes' variance gathers): a rectangle inside a larger context must give the output of
+    // a context of exactly its size, for every filter pass count.
+    let g = gpu();
+    let (w, h) = (48, 40);
+    let rect = crate::Rect { x: 8, y: 12, width: 29, height: 21 };
+    for precision in precisions(&g) {
+        for passes in [1, 3, 4] {
+            let mut small = runner(&g, rect.width, rect.height, precision);
+            let mut big = runner(&g, w, h, precision);
+            small.ctx.set_settings(crate::Settings { filter_passes: passes, ..small.ctx.settings() }).unwrap();
+            big.ctx.set_settings(crate::Settings { filter_passes: passes, ..big.ctx.settings() }).unwrap();
+            for frame in 0..4 {
+                let f = static_frame(rect.width, rect.height, &smooth, frame + 20);
+                let out_small = small.frame(&f, frame == 0);
+                let b = embed(&f, w, h, rect);
+                let d = crate::ShadowsDispatch { render_rect: Some(rect), reset: frame == 0, ..big.dispatch(&b) };
+                let out_big = big.run(&b, &d).unwrap();
+                for y in 0..rect.height {
+                    for x in 0..rect.width {
+                        let (a, o) = (out_small[(y * rect.width + x) as usize], out_big[((y + rect.y) * w + x + rect.x) as usize]);
+                        assert!((a - o).abs() <= 1e-6, "{precision:?} {passes} passes frame {frame} ({x},{y}): {a} vs {o}");
+                    }
+                }
+            }
+        }
+    }
+    g.assert_clean();
+}
+
 #[test]
 fn every_output_format_and_filter_pass_count_works() {
     let g = gpu();

@@ -43,18 +43,23 @@ vec2 dnsr_cleared_value(bool receiver, uint meta) {
     return receiver ? vec2((meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0, 0.0) : DNSR_SKY_SIGNAL;
 }
 
+// Invocations of a filter group: several 8x8 blocks (two tiles each), which keeps the number of groups to launch
+// low where most blocks are cleared and return at once.
+const ivec2 DNSR_FILTER_GROUP_SIZE = ivec2(DNSR_FILTER_GROUP_WIDTH, DNSR_FILTER_GROUP_HEIGHT);
+const int DNSR_FILTER_INVOCATIONS = DNSR_FILTER_GROUP_WIDTH * DNSR_FILTER_GROUP_HEIGHT;
+
 #ifndef DNSR_LATER_PASS
 // The first pass (step 1) reads its group's pixels and a one-pixel apron into shared memory once: every pixel's
 // 3x3 neighbourhood, its taps and its variance-blur footprint, instead of nine fetches per pixel. It writes the
 // guide the later passes read.
-const ivec2 DNSR_APRON_SIZE = DNSR_GROUP_SIZE + 2;
+const ivec2 DNSR_APRON_SIZE = DNSR_FILTER_GROUP_SIZE + 2;
 const int DNSR_APRON_COUNT = DNSR_APRON_SIZE.x * DNSR_APRON_SIZE.y;
 shared vec2 dnsr_apron_signal[DNSR_APRON_COUNT];
 shared float dnsr_apron_depth[DNSR_APRON_COUNT];
 shared vec3 dnsr_apron_normal[DNSR_APRON_COUNT];
 
 void dnsr_load_apron(ivec2 origin, int invocation) {
-    for (int i = invocation; i < DNSR_APRON_COUNT; i += DNSR_GROUP_SIZE.x * DNSR_GROUP_SIZE.y) {
+    for (int i = invocation; i < DNSR_APRON_COUNT; i += DNSR_FILTER_INVOCATIONS) {
         ivec2 q = origin - 1 + ivec2(i % DNSR_APRON_SIZE.x, i / DNSR_APRON_SIZE.x);
         bool inside = dnsr_inside(q);
         dnsr_apron_signal[i] = inside ? dnsr_read_filter_input(q) : DNSR_SKY_SIGNAL;
@@ -66,11 +71,6 @@ void dnsr_load_apron(ivec2 origin, int invocation) {
 
 int dnsr_apron_index(ivec2 lid, int i, int j) { return (lid.y + 1 + j) * DNSR_APRON_SIZE.x + lid.x + 1 + i; }
 
-// (linear depth or -1, normal) of the pixel itself.
-vec4 dnsr_center_guide(ivec2 p, ivec2 lid) {
-    int k = dnsr_apron_index(lid, 0, 0);
-    return vec4(dnsr_apron_depth[k], dnsr_apron_normal[k]);
-}
 vec2 dnsr_center_signal(ivec2 p, ivec2 lid) { return dnsr_apron_signal[dnsr_apron_index(lid, 0, 0)]; }
 // Variances of the 3x3 neighbourhood, row by row (the sky's -1 outside the rectangle).
 void dnsr_variance_neighbourhood(ivec2 p, ivec2 lid, vec2 c, out float v[9]) {
@@ -83,26 +83,26 @@ void dnsr_tap(ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal, out v
     guide = vec4(dnsr_apron_depth[k], dnsr_apron_normal[k]);
 }
 
-// Whether a pixel of a tile that is not cleared can tap this group in a later pass: its tiles and the tiles of the
-// eight neighbouring groups (a later pass reaches at most DNSR_GROUP_SIZE pixels). Called by the whole group.
-shared uint dnsr_neighbour_meta[3 * 6];
-bool dnsr_group_is_tapped(ivec2 tile, ivec2 lid) {
-    ivec2 tiles = (dnsr_get_extent() + DNSR_TILE_SIZE - 1) / DNSR_TILE_SIZE;
-    if (lid.x < 3 && lid.y < 6) {
-        ivec2 t = tile + lid - ivec2(1, 2);
-        bool inside = all(greaterThanEqual(t, ivec2(0))) && all(lessThan(t, tiles));
-        dnsr_neighbour_meta[lid.y * 3 + lid.x] = inside ? dnsr_read_tile_meta(t) : DNSR_TILE_CLEARED;
-    }
-    barrier();
+// Tile metadata of the group's tiles and of one block beyond it on every side: a later pass reaches at most one
+// block (its step is at most DNSR_GROUP_SIZE), so these say which cleared blocks a later pass taps.
+const ivec2 DNSR_BLOCK_TILES = DNSR_GROUP_SIZE / DNSR_TILE_SIZE;
+const ivec2 DNSR_META_TILES = (DNSR_FILTER_GROUP_SIZE / DNSR_GROUP_SIZE + 2) * DNSR_BLOCK_TILES;
+shared uint dnsr_meta[DNSR_META_TILES.y][DNSR_META_TILES.x];
+
+bool dnsr_block_cleared(ivec2 m) { return (dnsr_meta[m.y][m.x] & dnsr_meta[m.y + 1][m.x] & DNSR_TILE_CLEARED) != 0u; }
+
+// Whether a tile that is not cleared lies within one block of the block whose top tile is dnsr_meta[m.y][m.x].
+bool dnsr_block_is_tapped(ivec2 m) {
     uint all_cleared = DNSR_TILE_CLEARED;
-    for (int i = 0; i < 3 * 6; ++i) all_cleared &= dnsr_neighbour_meta[i];
+    for (int r = -DNSR_BLOCK_TILES.y; r < 2 * DNSR_BLOCK_TILES.y; ++r) {
+        for (int c = -DNSR_BLOCK_TILES.x; c < 2 * DNSR_BLOCK_TILES.x; ++c) all_cleared &= dnsr_meta[m.y + r][m.x + c];
+    }
     return all_cleared == 0u;
 }
 #else
 // The later passes (step 2 and up) fetch every tap from the images through the texture cache: a tap is the guide
 // the first pass wrote and the signal. (An apron for their variance blur slowed them: their taps cannot wait for
 // a barrier.)
-vec4 dnsr_center_guide(ivec2 p, ivec2 lid) { return dnsr_read_guide(p); }
 vec2 dnsr_center_signal(ivec2 p, ivec2 lid) { return dnsr_read_filter_input(p); }
 // Variances of the 3x3 neighbourhood, row by row (the sky's -1 outside the rectangle): four gathers of 2x2
 // texels instead of eight fetches.
@@ -125,98 +125,133 @@ void dnsr_tap(ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal, out v
 }
 #endif
 
-void dnsr_filter(ivec2 gid, ivec2 lid) {
-    int step = dnsr_get_filter_step();
-    ivec2 origin = gid * DNSR_GROUP_SIZE;
-    ivec2 p = origin + lid;
+// The filtered (mean, variance) of receiver p (linear depth zc, normal nc) in a tile that is not cleared.
+vec2 dnsr_filter_receiver(ivec2 p, ivec2 lid, int step, float zc, vec3 nc) {
+    vec4 settings = dnsr_get_filter_settings();
+    float kernel[2] = float[2](1.0, settings.x);
+    float normal_power = settings.y;
+    vec2 c = dnsr_center_signal(p, lid);
+    // Variance blur over the 3x3 receivers (told apart by their signal, see DNSR_SKY_SIGNAL).
+    float v[9];
+    dnsr_variance_neighbourhood(p, lid, c, v);
+    float vsum = 0.0, vweight = 0.0;
+    for (int j = -1; j <= 1; ++j) {
+        for (int i = -1; i <= 1; ++i) {
+            float s = v[(j + 1) * 3 + i + 1];
+            if (!dnsr_is_receiver_signal(vec2(0.0, s))) continue;
+            float w = 1.0 / float(4 << (abs(i) + abs(j)));
+            vsum += w * s;
+            vweight += w;
+        }
+    }
+    float inv_sigma = 1.0 / max(sqrt(max(vsum / vweight, 0.0)), settings.w);
+    float inv_depth_sigma = 1.0 / dnsr_get_depth_similarity_sigma();
+    float weight_sum = 1.0;
+    float mean_sum = c.x;
+    float var_sum = c.y;
+    for (int j = -1; j <= 1; ++j) {
+        for (int i = -1; i <= 1; ++i) {
+            if (i == 0 && j == 0) continue;
+            if (!dnsr_inside(p + ivec2(i, j) * step)) continue;
+            vec2 n;
+            vec4 g;
+            dnsr_tap(p, lid, i, j, step, n, g);
+            float zq = g.x;
+            if (zq < 0.0) continue;
+            // The shadow and depth edge stops share one exp.
+            float w = kernel[abs(i)] * kernel[abs(j)]
+                    * exp(-(abs(c.x - n.x) * inv_sigma + abs(zc - zq) * inv_depth_sigma))
+                    * pow(max(dot(nc, g.yzw), 0.0), normal_power);
+            weight_sum += w;
+            mean_sum += w * n.x;
+            var_sum += w * w * n.y;
+        }
+    }
+    return vec2(clamp(mean_sum / weight_sum, 0.0, 1.0), max(var_sum / (weight_sum * weight_sum), 0.0));
+}
 
-    // Both tiles of the group cleared (uniform or no receivers): nothing to filter, no neighbourhood to read.
+// Pixel p of a block that is not cleared (its tile's metadata `meta`, its guide).
+void dnsr_filter_active(ivec2 p, ivec2 lid, int step, uint meta, vec4 guide) {
+    float zc = guide.x;
+    vec2 result = zc < 0.0 ? DNSR_SKY_SIGNAL
+                : ((meta & DNSR_TILE_CLEARED) != 0u ? dnsr_cleared_value(true, meta)
+                                                   : dnsr_filter_receiver(p, lid, step, zc, guide.yzw));
+    dnsr_filter_write(p, result, zc >= 0.0, meta);
+}
+
+#ifndef DNSR_LATER_PASS
+// The first pass over a group of DNSR_FILTER_GROUP_SIZE pixels.
+void dnsr_filter(ivec2 gid, ivec2 lid) {
+    ivec2 origin = gid * DNSR_FILTER_GROUP_SIZE;
+    ivec2 p = origin + lid;
+    int invocation = lid.y * DNSR_FILTER_GROUP_SIZE.x + lid.x;
+
+    ivec2 tiles = (dnsr_get_extent() + DNSR_TILE_SIZE - 1) / DNSR_TILE_SIZE;
+    ivec2 base_tile = origin / DNSR_TILE_SIZE - DNSR_BLOCK_TILES;
+    for (int i = invocation; i < DNSR_META_TILES.x * DNSR_META_TILES.y; i += DNSR_FILTER_INVOCATIONS) {
+        ivec2 m = ivec2(i % DNSR_META_TILES.x, i / DNSR_META_TILES.x);
+        ivec2 t = base_tile + m;
+        bool inside = all(greaterThanEqual(t, ivec2(0))) && all(lessThan(t, tiles));
+        // Tiles outside the rectangle count as cleared: they hold no pixel to filter.
+        dnsr_meta[m.y][m.x] = inside ? dnsr_read_tile_meta(t) : DNSR_TILE_CLEARED;
+    }
+    barrier();
+
+    // The apron is loaded when any block of the group is not cleared (the whole group decides alike, so the
+    // barrier is reached by every invocation or by none).
+    bool any_active = false;
+    for (int by = 0; by < DNSR_FILTER_GROUP_SIZE.y / DNSR_GROUP_SIZE.y; ++by) {
+        for (int bx = 0; bx < DNSR_FILTER_GROUP_SIZE.x / DNSR_GROUP_SIZE.x; ++bx) {
+            any_active = any_active || !dnsr_block_cleared((ivec2(bx, by) + 1) * DNSR_BLOCK_TILES);
+        }
+    }
+    if (any_active) {
+        dnsr_load_apron(origin, invocation);
+        barrier();
+    }
+
+    if (!dnsr_inside(p)) return;
+    ivec2 m = (lid / DNSR_GROUP_SIZE + 1) * DNSR_BLOCK_TILES;
+    uint meta = dnsr_meta[m.y + (lid.y % DNSR_GROUP_SIZE.y) / DNSR_TILE_SIZE.y][m.x];
+    if (dnsr_block_cleared(m)) {
+        // Cleared values are already where this pass would write them (classification wrote the output and the
+        // reprojection image): nothing to do.
+        if (dnsr_get_skip_cleared()) return;
+        bool receiver = dnsr_is_receiver(dnsr_read_depth(p));
+        // The guide is needed here only where a later pass taps this block from a tile it filters.
+        if (dnsr_get_write_guide() && dnsr_block_is_tapped(m)) {
+            dnsr_write_guide(p, dnsr_tap_depth(p), receiver ? dnsr_read_normal(p) : vec3(0.0));
+        }
+        dnsr_filter_write(p, dnsr_cleared_value(receiver, meta), receiver, meta);
+        return;
+    }
+    int k = dnsr_apron_index(lid, 0, 0);
+    vec4 guide = vec4(dnsr_apron_depth[k], dnsr_apron_normal[k]);
+    if (dnsr_get_write_guide()) dnsr_write_guide(p, guide.x, guide.yzw);
+    dnsr_filter_active(p, lid, 1, meta, guide);
+}
+#else
+// A later pass over a group of DNSR_FILTER_GROUP_SIZE pixels: each 8x8 block on its own.
+void dnsr_filter(ivec2 gid, ivec2 lid) {
+    ivec2 origin = gid * DNSR_FILTER_GROUP_SIZE + (lid / DNSR_GROUP_SIZE) * DNSR_GROUP_SIZE;
+    ivec2 p = gid * DNSR_FILTER_GROUP_SIZE + lid;
+    if (!dnsr_inside(p)) return;
+
+    // Both tiles of the block cleared (uniform or no receivers): nothing to filter, no neighbourhood to read.
     ivec2 tile = origin / DNSR_TILE_SIZE;
     uint meta_top = dnsr_read_tile_meta(tile);
-    uint meta_bottom = origin.y + 4 < dnsr_get_extent().y ? dnsr_read_tile_meta(tile + ivec2(0, 1)) : meta_top;
+    uint meta_bottom = origin.y + DNSR_TILE_SIZE.y < dnsr_get_extent().y ? dnsr_read_tile_meta(tile + ivec2(0, 1)) : meta_top;
+    uint meta = p.y - origin.y < DNSR_TILE_SIZE.y ? meta_top : meta_bottom;
     if ((meta_top & meta_bottom & DNSR_TILE_CLEARED) != 0u) {
         // Cleared values are already where this pass would write them (classification wrote the output and the
         // reprojection image): nothing to do.
         if (dnsr_get_skip_cleared()) return;
-#ifndef DNSR_LATER_PASS
-        // The guide is needed here only where a later pass taps this group from a tile it filters.
-        bool guide = dnsr_get_write_guide() && dnsr_group_is_tapped(tile, lid);
-#endif
-        if (!dnsr_inside(p)) return;
         bool receiver = dnsr_is_receiver(dnsr_read_depth(p));
-        uint meta = lid.y < 4 ? meta_top : meta_bottom;
-#ifndef DNSR_LATER_PASS
-        if (guide) dnsr_write_guide(p, dnsr_tap_depth(p), receiver ? dnsr_read_normal(p) : vec3(0.0));
-#endif
         dnsr_filter_write(p, dnsr_cleared_value(receiver, meta), receiver, meta);
         return;
     }
-
-#ifndef DNSR_LATER_PASS
-    // The whole group reaches this barrier: the branch above depends on the group alone.
-    dnsr_load_apron(origin, lid.y * DNSR_GROUP_SIZE.x + lid.x);
-    barrier();
-#endif
-
-    if (!dnsr_inside(p)) return;
-    uint meta = lid.y < 4 ? meta_top : meta_bottom;
-    vec4 guide = dnsr_center_guide(p, lid);
-    float zc = guide.x;
-#ifndef DNSR_LATER_PASS
-    if (dnsr_get_write_guide()) dnsr_write_guide(p, zc, guide.yzw);
-#endif
-
-    vec2 result;
-    if (zc < 0.0) {
-        result = DNSR_SKY_SIGNAL;
-    } else if ((meta & DNSR_TILE_CLEARED) != 0u) {
-        result = dnsr_cleared_value(true, meta);
-    } else {
-        vec4 settings = dnsr_get_filter_settings();
-        float kernel[2] = float[2](1.0, settings.x);
-        float normal_power = settings.y;
-        vec2 c = dnsr_center_signal(p, lid);
-        vec3 nc = guide.yzw;
-        // Variance blur over the 3x3 receivers (told apart by their signal, see DNSR_SKY_SIGNAL).
-        float v[9];
-        dnsr_variance_neighbourhood(p, lid, c, v);
-        float vsum = 0.0, vweight = 0.0;
-        for (int j = -1; j <= 1; ++j) {
-            for (int i = -1; i <= 1; ++i) {
-                float s = v[(j + 1) * 3 + i + 1];
-                if (!dnsr_is_receiver_signal(vec2(0.0, s))) continue;
-                float w = 1.0 / float(4 << (abs(i) + abs(j)));
-                vsum += w * s;
-                vweight += w;
-            }
-        }
-        float inv_sigma = 1.0 / max(sqrt(max(vsum / vweight, 0.0)), settings.w);
-        float inv_depth_sigma = 1.0 / dnsr_get_depth_similarity_sigma();
-        float weight_sum = 1.0;
-        float mean_sum = c.x;
-        float var_sum = c.y;
-        for (int j = -1; j <= 1; ++j) {
-            for (int i = -1; i <= 1; ++i) {
-                if (i == 0 && j == 0) continue;
-                ivec2 q = p + ivec2(i, j) * step;
-                if (!dnsr_inside(q)) continue;
-                vec2 n;
-                vec4 g;
-                dnsr_tap(p, lid, i, j, step, n, g);
-                float zq = g.x;
-                if (zq < 0.0) continue;
-                // The shadow and depth edge stops share one exp.
-                float w = kernel[abs(i)] * kernel[abs(j)]
-                        * exp(-(abs(c.x - n.x) * inv_sigma + abs(zc - zq) * inv_depth_sigma))
-                        * pow(max(dot(nc, g.yzw), 0.0), normal_power);
-                weight_sum += w;
-                mean_sum += w * n.x;
-                var_sum += w * w * n.y;
-            }
-        }
-        result = vec2(clamp(mean_sum / weight_sum, 0.0, 1.0), max(var_sum / (weight_sum * weight_sum), 0.0));
-    }
-    dnsr_filter_write(p, result, zc >= 0.0, meta);
+    dnsr_filter_active(p, lid, dnsr_get_filter_step(), meta, dnsr_read_guide(p));
 }
+#endif
 
 #endif

@@ -19,10 +19,9 @@ pub(crate) const TILE: [u32; 2] = [8, 4];
 /// Invocations of every pass's workgroup, x by y: one invocation per pixel of two stacked tiles (per tile in
 /// prepare). Generated into GLSL as the shaders' local size.
 pub(crate) const GROUP: [u32; 2] = [8, 8];
-/// Invocations of a later filter pass's workgroup: 2x2 blocks of `GROUP` pixels. Those passes share nothing
-/// between invocations; fewer, larger groups launch faster where most blocks are cleared and return at once.
-/// Generated into GLSL.
-pub(crate) const LATER_FILTER_GROUP: [u32; 2] = [16, 16];
+/// Invocations of a filter pass's workgroup: 2x2 blocks of `GROUP` pixels. Fewer, larger groups launch faster
+/// where most blocks are cleared and return at once. Generated into GLSL.
+pub(crate) const FILTER_GROUP: [u32; 2] = [16, 16];
 /// Radius of the local-moment window (17x17) of tile classification and its uniform-tile test. Generated into
 /// GLSL; the CPU reference uses the same constant.
 pub(crate) const MOMENT_RADIUS: u32 = 8;
@@ -31,7 +30,10 @@ pub(crate) const MOMENT_RADIUS: u32 = 8;
 // decides two tiles per group, its window is one tile column either side and two tile rows above and below),
 // and the moment radius is one tile width.
 const _: () = assert!(GROUP[0] == TILE[0] && GROUP[1] == 2 * TILE[1] && MOMENT_RADIUS == TILE[0] && TILE[0] * TILE[1] == 32);
-const _: () = assert!(LATER_FILTER_GROUP[0] % GROUP[0] == 0 && LATER_FILTER_GROUP[1] % GROUP[1] == 0);
+// The filter works on whole blocks, and its widest step reaches no further than the neighbouring block (the first
+// pass writes the guide of the cleared blocks within that reach).
+const _: () = assert!(FILTER_GROUP[0] % GROUP[0] == 0 && FILTER_GROUP[1] % GROUP[1] == 0);
+const _: () = assert!(1 << (MAX_FILTER_PASSES - 1) <= GROUP[0] && 1 << (MAX_FILTER_PASSES - 1) <= GROUP[1]);
 
 /// Which pipeline a pass runs, and so which descriptor set of a ring slot it uses. Filter passes 0..=2 can be
 /// intermediate passes; the last filter pass runs a final pipeline, which writes the host's output. Pass 0 runs

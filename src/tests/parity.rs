@@ -32,7 +32,7 @@ fn random_frame(w: u32, h: u32, seed: u64, frame: u64) -> FrameInputs {
             f.receiver[i] = !sky;
             // Regions wide enough for uniform tiles (+-8 px): top-left lit, a bottom band shadowed, the rest noise
             // with a probability that varies across the image.
-            let (lit_w, lit_h, band) = if w >= 96 { (56, 40, 24) } else { (24, 12, 12) };
+            let (lit_w, lit_h, band) = if w >= 96 { (56, 44, 24) } else { (24, 12, 12) };
             let lit = if x < lit_w && y < lit_h {
                 true
             } else if y + band >= h {

@@ -4,7 +4,12 @@
 
 // Tiles are DNSR_TILE_WIDTH x DNSR_TILE_HEIGHT (8x4) pixels packed into one uint; bit (y % 4) * 8 + (x % 8).
 const ivec2 DNSR_TILE_SIZE = ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT);
+// A block: two stacked tiles, the unit of the cleared-or-not decision the filter reads.
 const ivec2 DNSR_GROUP_SIZE = ivec2(DNSR_GROUP_WIDTH, DNSR_GROUP_HEIGHT);
+// The workgroup of classification and the filter passes: several blocks, so that few groups are launched where most
+// blocks are cleared and return at once.
+const ivec2 DNSR_WIDE_GROUP_SIZE = ivec2(DNSR_WIDE_GROUP_WIDTH, DNSR_WIDE_GROUP_HEIGHT);
+const int DNSR_WIDE_GROUP_INVOCATIONS = DNSR_WIDE_GROUP_WIDTH * DNSR_WIDE_GROUP_HEIGHT;
 uint dnsr_tile_bit(ivec2 p) { return uint((p.y % DNSR_TILE_HEIGHT) * DNSR_TILE_WIDTH + (p.x % DNSR_TILE_WIDTH)); }
 
 bool dnsr_inside(ivec2 p) { return all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, dnsr_get_extent())); }

@@ -4,5 +4,5 @@
 #include "dnsr_common.glsl"
 #include "filter.glsl"
 
-layout(local_size_x = DNSR_FILTER_GROUP_WIDTH, local_size_y = DNSR_FILTER_GROUP_HEIGHT) in;
+layout(local_size_x = DNSR_WIDE_GROUP_WIDTH, local_size_y = DNSR_WIDE_GROUP_HEIGHT) in;
 void main() { dnsr_filter(ivec2(gl_WorkGroupID.xy), ivec2(gl_LocalInvocationID.xy)); }

@@ -43,23 +43,18 @@ vec2 dnsr_cleared_value(bool receiver, uint meta) {
     return receiver ? vec2((meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0, 0.0) : DNSR_SKY_SIGNAL;
 }
 
-// Invocations of a filter group: several 8x8 blocks (two tiles each), which keeps the number of groups to launch
-// low where most blocks are cleared and return at once.
-const ivec2 DNSR_FILTER_GROUP_SIZE = ivec2(DNSR_FILTER_GROUP_WIDTH, DNSR_FILTER_GROUP_HEIGHT);
-const int DNSR_FILTER_INVOCATIONS = DNSR_FILTER_GROUP_WIDTH * DNSR_FILTER_GROUP_HEIGHT;
-
 #ifndef DNSR_LATER_PASS
 // The first pass (step 1) reads its group's pixels and a one-pixel apron into shared memory once: every pixel's
 // 3x3 neighbourhood, its taps and its variance-blur footprint, instead of nine fetches per pixel. It writes the
 // guide the later passes read.
-const ivec2 DNSR_APRON_SIZE = DNSR_FILTER_GROUP_SIZE + 2;
+const ivec2 DNSR_APRON_SIZE = DNSR_WIDE_GROUP_SIZE + 2;
 const int DNSR_APRON_COUNT = DNSR_APRON_SIZE.x * DNSR_APRON_SIZE.y;
 shared vec2 dnsr_apron_signal[DNSR_APRON_COUNT];
 shared float dnsr_apron_depth[DNSR_APRON_COUNT];
 shared vec3 dnsr_apron_normal[DNSR_APRON_COUNT];
 
 void dnsr_load_apron(ivec2 origin, int invocation) {
-    for (int i = invocation; i < DNSR_APRON_COUNT; i += DNSR_FILTER_INVOCATIONS) {
+    for (int i = invocation; i < DNSR_APRON_COUNT; i += DNSR_WIDE_GROUP_INVOCATIONS) {
         ivec2 q = origin - 1 + ivec2(i % DNSR_APRON_SIZE.x, i / DNSR_APRON_SIZE.x);
         bool inside = dnsr_inside(q);
         dnsr_apron_signal[i] = inside ? dnsr_read_filter_input(q) : DNSR_SKY_SIGNAL;
@@ -86,7 +81,7 @@ void dnsr_tap(ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal, out v
 // Tile metadata of the group's tiles and of one block beyond it on every side: a later pass reaches at most one
 // block (its step is at most DNSR_GROUP_SIZE), so these say which cleared blocks a later pass taps.
 const ivec2 DNSR_BLOCK_TILES = DNSR_GROUP_SIZE / DNSR_TILE_SIZE;
-const ivec2 DNSR_META_TILES = (DNSR_FILTER_GROUP_SIZE / DNSR_GROUP_SIZE + 2) * DNSR_BLOCK_TILES;
+const ivec2 DNSR_META_TILES = (DNSR_WIDE_GROUP_SIZE / DNSR_GROUP_SIZE + 2) * DNSR_BLOCK_TILES;
 shared uint dnsr_meta[DNSR_META_TILES.y][DNSR_META_TILES.x];
 
 bool dnsr_block_cleared(ivec2 m) { return (dnsr_meta[m.y][m.x] & dnsr_meta[m.y + 1][m.x] & DNSR_TILE_CLEARED) != 0u; }
@@ -180,15 +175,15 @@ void dnsr_filter_active(ivec2 p, ivec2 lid, int step, uint meta, vec4 guide) {
 }
 
 #ifndef DNSR_LATER_PASS
-// The first pass over a group of DNSR_FILTER_GROUP_SIZE pixels.
+// The first pass over a group of DNSR_WIDE_GROUP_SIZE pixels.
 void dnsr_filter(ivec2 gid, ivec2 lid) {
-    ivec2 origin = gid * DNSR_FILTER_GROUP_SIZE;
+    ivec2 origin = gid * DNSR_WIDE_GROUP_SIZE;
     ivec2 p = origin + lid;
-    int invocation = lid.y * DNSR_FILTER_GROUP_SIZE.x + lid.x;
+    int invocation = lid.y * DNSR_WIDE_GROUP_SIZE.x + lid.x;
 
     ivec2 tiles = (dnsr_get_extent() + DNSR_TILE_SIZE - 1) / DNSR_TILE_SIZE;
     ivec2 base_tile = origin / DNSR_TILE_SIZE - DNSR_BLOCK_TILES;
-    for (int i = invocation; i < DNSR_META_TILES.x * DNSR_META_TILES.y; i += DNSR_FILTER_INVOCATIONS) {
+    for (int i = invocation; i < DNSR_META_TILES.x * DNSR_META_TILES.y; i += DNSR_WIDE_GROUP_INVOCATIONS) {
         ivec2 m = ivec2(i % DNSR_META_TILES.x, i / DNSR_META_TILES.x);
         ivec2 t = base_tile + m;
         bool inside = all(greaterThanEqual(t, ivec2(0))) && all(lessThan(t, tiles));
@@ -200,8 +195,8 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     // The apron is loaded when any block of the group is not cleared (the whole group decides alike, so the
     // barrier is reached by every invocation or by none).
     bool any_active = false;
-    for (int by = 0; by < DNSR_FILTER_GROUP_SIZE.y / DNSR_GROUP_SIZE.y; ++by) {
-        for (int bx = 0; bx < DNSR_FILTER_GROUP_SIZE.x / DNSR_GROUP_SIZE.x; ++bx) {
+    for (int by = 0; by < DNSR_WIDE_GROUP_SIZE.y / DNSR_GROUP_SIZE.y; ++by) {
+        for (int bx = 0; bx < DNSR_WIDE_GROUP_SIZE.x / DNSR_GROUP_SIZE.x; ++bx) {
             any_active = any_active || !dnsr_block_cleared((ivec2(bx, by) + 1) * DNSR_BLOCK_TILES);
         }
     }
@@ -231,10 +226,10 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     dnsr_filter_active(p, lid, 1, meta, guide);
 }
 #else
-// A later pass over a group of DNSR_FILTER_GROUP_SIZE pixels: each 8x8 block on its own.
+// A later pass over a group of DNSR_WIDE_GROUP_SIZE pixels: each 8x8 block on its own.
 void dnsr_filter(ivec2 gid, ivec2 lid) {
-    ivec2 origin = gid * DNSR_FILTER_GROUP_SIZE + (lid / DNSR_GROUP_SIZE) * DNSR_GROUP_SIZE;
-    ivec2 p = gid * DNSR_FILTER_GROUP_SIZE + lid;
+    ivec2 origin = gid * DNSR_WIDE_GROUP_SIZE + (lid / DNSR_GROUP_SIZE) * DNSR_GROUP_SIZE;
+    ivec2 p = gid * DNSR_WIDE_GROUP_SIZE + lid;
     if (!dnsr_inside(p)) return;
 
     // Both tiles of the block cleared (uniform or no receivers): nothing to filter, no neighbourhood to read.

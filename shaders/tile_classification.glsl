@@ -1,26 +1,29 @@
-// tile classification: one 8x8 group = two 8x4 tiles. Decides per tile whether temporal work is needed at all
-// (no receiver, or a uniform +-8 px neighbourhood), and for the rest reprojects, tracks temporal moments and
-// blends the clamped history with the current 1-spp sample.
+// tile classification: decides per 8x4 tile whether temporal work is needed at all (no receiver, or a uniform
+// +-8 px neighbourhood), and for the rest reprojects, tracks temporal moments and blends the clamped history with
+// the current 1-spp sample.
 #ifndef DNSR_TILE_CLASSIFICATION_GLSL
 #define DNSR_TILE_CLASSIFICATION_GLSL
 
 // Local moments use a 17x17 window (radius DNSR_MOMENT_RADIUS = 8, generated from the host's constant). Not a
 // runtime setting: the shared tile window below is sized for it, and the uniform-tile test looks at exactly this
 // neighbourhood.
-// Tile words around the group: tile columns tx0-1..tx0+1, tile rows ty0-2..ty0+3 (pixel rows y0-8..y0+15).
-const ivec2 DNSR_WINDOW_TILES = ivec2(3, 6);
-const int DNSR_WINDOW_ROWS = 24;
+//
+// One group covers DNSR_WIDE_GROUP_SIZE pixels (several blocks of two tiles each). Tile words around the group:
+// its tile columns and one more either side, its tile rows and two more above and below (8 px each way).
+const ivec2 DNSR_GROUP_TILES = DNSR_WIDE_GROUP_SIZE / DNSR_TILE_SIZE;
+const ivec2 DNSR_WINDOW_TILES = DNSR_GROUP_TILES + ivec2(2, 4);
+const int DNSR_WINDOW_ROWS = DNSR_WIDE_GROUP_SIZE.y + 2 * DNSR_MOMENT_RADIUS;
 
-shared uint s_words[6][3];
-// Horizontal pass of the separable Gaussian for the group's 8 columns over its 24 window rows:
+shared uint s_words[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
+// Horizontal pass of the separable Gaussian for the group's columns over its window rows:
 // x = weighted lit count, y = weight of the taps inside the render rectangle.
-shared vec2 s_hsum[DNSR_WINDOW_ROWS][DNSR_GROUP_WIDTH];
+shared vec2 s_hsum[DNSR_WINDOW_ROWS][DNSR_WIDE_GROUP_WIDTH];
 // Closeness key (smaller = closer to the camera) and velocity of each pixel, for the 2x2 quad vote.
-shared float s_quad_key[DNSR_GROUP_HEIGHT][DNSR_GROUP_WIDTH];
-shared vec2 s_quad_velocity[DNSR_GROUP_HEIGHT][DNSR_GROUP_WIDTH];
-shared uint s_tile_has_receiver[2];
-// dnsr_uniform_state of the group's two tiles (the receiver test aside), computed once per tile.
-shared uint s_uniform[2];
+shared float s_quad_key[DNSR_WIDE_GROUP_HEIGHT][DNSR_WIDE_GROUP_WIDTH];
+shared vec2 s_quad_velocity[DNSR_WIDE_GROUP_HEIGHT][DNSR_WIDE_GROUP_WIDTH];
+shared uint s_tile_has_receiver[DNSR_GROUP_TILES.y][DNSR_GROUP_TILES.x];
+// dnsr_uniform_state of the group's tiles (the receiver test aside), computed once per tile.
+shared uint s_uniform[DNSR_GROUP_TILES.y][DNSR_GROUP_TILES.x];
 // First tile of the group's window (same for every invocation of the group).
 ivec2 g_window_base;
 
@@ -67,13 +70,13 @@ vec2 dnsr_local_moments(ivec2 lid) {
     return vec2(mean, max(mean - mean * mean, 0.0));
 }
 
-// 0: mixed, 1: every valid bit within +-8 px of the tile is lit, 2: every one is shadowed.
-uint dnsr_uniform_state(int tile_row_in_group) {
+// 0: mixed, 1: every valid bit within +-8 px of the group's tile `t` is lit, 2: every one is shadowed.
+uint dnsr_uniform_state(ivec2 t) {
     bool all_lit = true, all_shadow = true;
     for (int r = 0; r < 5; ++r) {
         for (int c = 0; c < 3; ++c) {
-            uint word = s_words[tile_row_in_group + r][c];
-            uint valid = dnsr_tile_valid_bits(g_window_base + ivec2(c, tile_row_in_group + r));
+            uint word = s_words[t.y + r][t.x + c];
+            uint valid = dnsr_tile_valid_bits(g_window_base + t + ivec2(c, r));
             all_lit = all_lit && (word & valid) == valid;
             all_shadow = all_shadow && (word & valid) == 0u;
         }
@@ -81,74 +84,82 @@ uint dnsr_uniform_state(int tile_row_in_group) {
     return all_lit ? 1u : (all_shadow ? 2u : 0u);
 }
 
+// 0: the group's tile `t` needs temporal work, 1: cleared lit (no receiver, or all lit), 2: cleared shadowed.
+uint dnsr_tile_state(ivec2 t) { return s_tile_has_receiver[t.y][t.x] == 0u ? 1u : s_uniform[t.y][t.x]; }
+
 // Scales a Welford state (mean kept) to represent `f` times as many samples.
 void dnsr_scale_moments(inout vec3 m, float f) { m.y *= f; m.z *= f; }
 
+// A pixel of a cleared tile: its value is known exactly; keep the state of the next frame consistent with it.
+void dnsr_write_cleared(ivec2 p, bool receiver, uint state, bool tile_writer) {
+    float value = state == 1u ? 1.0 : 0.0;
+    if (tile_writer) dnsr_write_tile_meta(p / DNSR_TILE_SIZE, DNSR_TILE_CLEARED | (state == 1u ? DNSR_TILE_LIT : 0u));
+    dnsr_write_reprojection(p, receiver ? vec2(value, 0.0) : DNSR_SKY_SIGNAL);
+    dnsr_write_moments(p, receiver ? vec3(value, 0.0, dnsr_get_temporal_settings().z) : vec3(0.0));
+    dnsr_write_output(p, receiver ? value : 1.0);
+}
+
 void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
-    ivec2 origin = gid * DNSR_GROUP_SIZE;
+    ivec2 origin = gid * DNSR_WIDE_GROUP_SIZE;
     ivec2 p = origin + lid;
-    int thread = lid.y * DNSR_GROUP_WIDTH + lid.x;
+    int thread = lid.y * DNSR_WIDE_GROUP_WIDTH + lid.x;
     g_window_base = dnsr_window_base_tile(origin);
     bool inside = dnsr_inside(p);
     bool inverted = dnsr_get_is_depth_inverted();
+    ivec2 own_tile = lid / DNSR_TILE_SIZE;
+    bool tile_writer = all(equal(lid % DNSR_TILE_SIZE, ivec2(0)));
 
     if (thread < DNSR_WINDOW_TILES.x * DNSR_WINDOW_TILES.y) {
-        ivec2 w = ivec2(thread % 3, thread / 3);
+        ivec2 w = ivec2(thread % DNSR_WINDOW_TILES.x, thread / DNSR_WINDOW_TILES.x);
         ivec2 tile = g_window_base + w;
         s_words[w.y][w.x] = dnsr_tile_valid_bits(tile) != 0u ? dnsr_read_tile_mask(tile) : 0u;
     }
-    if (thread < 2) s_tile_has_receiver[thread] = 0u;
+    if (tile_writer) s_tile_has_receiver[own_tile.y][own_tile.x] = 0u;
 
     float depth = inside ? dnsr_read_depth(p) : 0.0;
     bool receiver = inside && dnsr_is_receiver(depth);
     if (inside) dnsr_write_depth_copy(p, depth);
     s_quad_key[lid.y][lid.x] = receiver ? (inverted ? -depth : depth) : 1e30;
     barrier();
-    if (receiver) atomicOr(s_tile_has_receiver[lid.y / 4], 1u);
-    if (thread < 2) s_uniform[thread] = dnsr_uniform_state(thread);
+    if (receiver) atomicOr(s_tile_has_receiver[own_tile.y][own_tile.x], 1u);
+    if (tile_writer) s_uniform[own_tile.y][own_tile.x] = dnsr_uniform_state(own_tile);
     barrier();
-    // Both tiles cleared (no receiver, or a uniform neighbourhood): their values are known exactly and no
-    // moments are needed. Same condition for the whole group, so the barrier below stays uniform.
-    uint state0 = s_tile_has_receiver[0] == 0u ? 1u : s_uniform[0];
-    uint state1 = s_tile_has_receiver[1] == 0u ? 1u : s_uniform[1];
-    if (state0 != 0u && state1 != 0u) {
-        if (!inside) return;
-        uint state = lid.y < 4 ? state0 : state1;
-        float value = state == 1u ? 1.0 : 0.0;
-        if (lid.x == 0 && (lid.y & 3) == 0) {
-            dnsr_write_tile_meta(p / DNSR_TILE_SIZE, DNSR_TILE_CLEARED | (state == 1u ? DNSR_TILE_LIT : 0u));
-        }
-        dnsr_write_reprojection(p, receiver ? vec2(value, 0.0) : DNSR_SKY_SIGNAL);
-        dnsr_write_moments(p, receiver ? vec3(value, 0.0, dnsr_get_temporal_settings().z) : vec3(0.0));
-        dnsr_write_output(p, receiver ? value : 1.0);
+    // Every tile of the group cleared (no receiver, or a uniform neighbourhood): their values are known exactly
+    // and no moments are needed. Same condition for the whole group, so the barrier below stays uniform.
+    bool all_cleared = true;
+    for (int ty = 0; ty < DNSR_GROUP_TILES.y; ++ty) {
+        for (int tx = 0; tx < DNSR_GROUP_TILES.x; ++tx) all_cleared = all_cleared && dnsr_tile_state(ivec2(tx, ty)) != 0u;
+    }
+    if (all_cleared) {
+        if (inside) dnsr_write_cleared(p, receiver, dnsr_tile_state(own_tile), tile_writer);
         return;
     }
 
-    // Read by the quad vote after the next barrier; cleared groups never need it.
+    // Read by the quad vote after the next barrier.
     s_quad_velocity[lid.y][lid.x] = receiver ? dnsr_read_velocity(p) : vec2(0.0);
 
-    // Horizontal Gaussian over three window rows per invocation.
+    // Horizontal Gaussian over DNSR_WINDOW_ROWS / height window rows per invocation.
     dnsr_init_moment_weights();
-    // Window pixel columns origin.x - 8 .. origin.x + 15 as bits 0..23 of a row; pixel columns outside the
+    // Window pixel columns origin.x - 8 .. origin.x + width + 7 as the bits of a row; pixel columns outside the
     // render rectangle are masked out of both the lit count and the weight.
-    int first_column = max(8 - origin.x, 0);
-    int end_column = min(dnsr_get_extent().x - origin.x + 8, 24);
-    uint columns_inside = ((1u << uint(end_column)) - 1u) & ~((1u << uint(first_column)) - 1u);
+    int first_column = max(DNSR_MOMENT_RADIUS - origin.x, 0);
+    int end_column = min(dnsr_get_extent().x - origin.x + DNSR_MOMENT_RADIUS, 32);
+    uint below_end = end_column >= 32 ? 0xFFFFFFFFu : (1u << uint(end_column)) - 1u;
+    uint columns_inside = below_end & ~((1u << uint(first_column)) - 1u);
     // Weight of the taps inside the rectangle: the same for every row, and the full window away from its edges.
     uint own = uint(lid.x + DNSR_MOMENT_RADIUS);
     float inside_weight = 0.0;
     for (int i = -DNSR_MOMENT_RADIUS; i <= DNSR_MOMENT_RADIUS; ++i) {
         inside_weight += dnsr_moment_weight(i) * float((columns_inside >> uint(int(own) + i)) & 1u);
     }
-    for (int k = 0; k < 3; ++k) {
-        int row = lid.y + 8 * k;
+    for (int row = lid.y; row < DNSR_WINDOW_ROWS; row += DNSR_WIDE_GROUP_HEIGHT) {
         int y = origin.y - DNSR_MOMENT_RADIUS + row;
         vec2 sum = vec2(0.0);
         if (y >= 0 && y < dnsr_get_extent().y) {
             int wy = (y >> 2) - g_window_base.y;
             uint shift = uint(8 * (y & 3));
-            uint lit = ((s_words[wy][0] >> shift) & 0xFFu) | (((s_words[wy][1] >> shift) & 0xFFu) << 8)
-                     | (((s_words[wy][2] >> shift) & 0xFFu) << 16);
+            uint lit = 0u;
+            for (int c = 0; c < DNSR_WINDOW_TILES.x; ++c) lit |= ((s_words[wy][c] >> shift) & 0xFFu) << uint(8 * c);
             lit &= columns_inside;
             // Symmetric weights: one multiply per distance.
             float lit_sum = dnsr_moment_weight(0) * float((lit >> own) & 1u);
@@ -163,22 +174,14 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     barrier();
     if (!inside) return;
 
-    int tile_row = lid.y / 4;
-    ivec2 tile = p / DNSR_TILE_SIZE;
-    bool tile_writer = lid.x == 0 && (lid.y & 3) == 0;
-    uint uniform_state = s_tile_has_receiver[tile_row] == 0u ? 1u : s_uniform[tile_row];
+    uint uniform_state = dnsr_tile_state(own_tile);
     float max_samples = dnsr_get_temporal_settings().z;
 
     if (uniform_state != 0u) {
-        // Cleared tile: the value is known exactly; keep the state of the next frame consistent with it.
-        float value = uniform_state == 1u ? 1.0 : 0.0;
-        if (tile_writer) dnsr_write_tile_meta(tile, DNSR_TILE_CLEARED | (uniform_state == 1u ? DNSR_TILE_LIT : 0u));
-        dnsr_write_reprojection(p, receiver ? vec2(value, 0.0) : DNSR_SKY_SIGNAL);
-        dnsr_write_moments(p, receiver ? vec3(value, 0.0, max_samples) : vec3(0.0));
-        dnsr_write_output(p, receiver ? value : 1.0);
+        dnsr_write_cleared(p, receiver, uniform_state, tile_writer);
         return;
     }
-    if (tile_writer) dnsr_write_tile_meta(tile, 0u);
+    if (tile_writer) dnsr_write_tile_meta(p / DNSR_TILE_SIZE, 0u);
     if (!receiver) {
         dnsr_write_reprojection(p, DNSR_SKY_SIGNAL);
         dnsr_write_moments(p, vec3(0.0));

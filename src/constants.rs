@@ -118,8 +118,8 @@ pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
     ("DNSR_TILE_HEIGHT", crate::passes::TILE[1]),
     ("DNSR_GROUP_WIDTH", crate::passes::GROUP[0]),
     ("DNSR_GROUP_HEIGHT", crate::passes::GROUP[1]),
-    ("DNSR_FILTER_GROUP_WIDTH", crate::passes::FILTER_GROUP[0]),
-    ("DNSR_FILTER_GROUP_HEIGHT", crate::passes::FILTER_GROUP[1]),
+    ("DNSR_WIDE_GROUP_WIDTH", crate::passes::WIDE_GROUP[0]),
+    ("DNSR_WIDE_GROUP_HEIGHT", crate::passes::WIDE_GROUP[1]),
     ("DNSR_MOMENT_RADIUS", crate::passes::MOMENT_RADIUS),
 ];
 

@@ -7,7 +7,7 @@
 //! output, so a pass that writes only there skips groups whose two tiles are cleared.
 
 use super::bindings::Resource;
-use super::{internal, FrameViews, Grid, Pass, Role, FILTER_GROUP};
+use super::{internal, FrameViews, Grid, Pass, Role, WIDE_GROUP};
 use crate::constants::{FilterPush, PASS_SKIP_CLEARED, PASS_WRITE_GUIDE, PASS_WRITE_INTERNAL};
 use crate::create_info::Precision;
 use crate::dispatch::DebugView;
@@ -74,7 +74,7 @@ pub(crate) fn pass(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView
         (false, _) => Role::Filter(pass),
     };
     let push = Some(push_constants(v, pass, passes, debug_view));
-    Pass { role, bindings: t, grid: Grid::Pixels, group: FILTER_GROUP, push, enabled: true }
+    Pass { role, bindings: t, grid: Grid::Pixels, group: WIDE_GROUP, push, enabled: true }
 }
 
 fn push_constants(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView) -> FilterPush {

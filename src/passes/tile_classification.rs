@@ -32,5 +32,5 @@ pub(crate) fn pass(v: &FrameViews) -> Pass {
     t[Resource::Reprojection as usize] = internal(v.reprojection);
     t[Resource::TileMetaOut as usize] = internal(v.tile_meta);
     t[Resource::Output as usize] = internal(v.output);
-    Pass { role: Role::Classification, bindings: t, grid: Grid::Pixels, group: super::GROUP, push: None, enabled: true }
+    Pass { role: Role::Classification, bindings: t, grid: Grid::Pixels, group: super::WIDE_GROUP, push: None, enabled: true }
 }

@@ -6,7 +6,7 @@ use crate::dispatch::{HitMaskConvention, ShadowsDispatch};
 use crate::error::{vk_check, Error, Result};
 use crate::gpu::barrier;
 use crate::gpu::descriptors::{roles, Binder, RecordSets};
-use crate::gpu::image::{check_internal_format, color_range, InternalImage};
+use crate::gpu::image::{check_internal_format, color_range};
 use crate::gpu::memory::{self, Memory};
 use crate::host::ResourceKind;
 use crate::gpu::loader::Vk;
@@ -14,7 +14,7 @@ use crate::gpu::shader::{variant, Pipeline};
 use crate::passes::bindings::image;
 use crate::passes::{FramePasses, Pass, Role};
 use crate::passes::{filter, prepare, tile_classification, FrameViews};
-use crate::settings::{check_filter_passes, Settings, MAX_FILTER_PASSES};
+use crate::settings::{check_filter_passes, Settings};
 use crate::state::{intermediate_format, LightState, DEPTH_FORMAT, MOMENTS_FORMAT, TILE_FORMAT};
 use crate::timestamps::{PassTimings, Timestamps};
 use crate::validate;
@@ -26,7 +26,7 @@ pub fn memory_requirements(width: u32, height: u32, precision: Precision, filter
     validate::extent("render size", width, height, u32::MAX)?;
     check_filter_passes(filter_passes)?;
     validate::light_count(light_count)?;
-    let per_light = crate::state::texel_bytes([width, height], precision, filter_passes == MAX_FILTER_PASSES);
+    let per_light = crate::state::texel_bytes([width, height], precision, filter_passes);
     Ok(per_light * light_count as u64 + std::mem::size_of::<FrameConstants>() as u64)
 }
 
@@ -221,9 +221,8 @@ impl Context {
     }
 
     fn allocate_lights(&mut self) -> Result<()> {
-        let with_tmp = self.settings.filter_passes == MAX_FILTER_PASSES;
         for index in 0..self.light_count {
-            let light = LightState::new(&self.vk, index, self.size, self.precision, with_tmp)?;
+            let light = LightState::new(&self.vk, index, self.size, self.precision, self.settings.filter_passes)?;
             self.lights.push(light);
         }
         Ok(())
@@ -266,12 +265,8 @@ impl Context {
     /// intermediate image per light; in that case the GPU must have finished earlier frames.
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
         settings.validate()?;
-        let needs_tmp = settings.filter_passes == MAX_FILTER_PASSES;
         for (index, light) in self.lights.iter_mut().enumerate() {
-            if needs_tmp && light.tmp.is_none() {
-                let name = format!("dnsr.light{index}.filter_tmp");
-                let img = InternalImage::new(&self.vk, intermediate_format(self.precision), self.size, &name)?;
-                light.tmp = Some(img);
+            if light.allocate_optional(&self.vk, index as u32, self.size, self.precision, settings.filter_passes)? {
                 light.initialized = false;
             }
         }
@@ -328,7 +323,8 @@ impl Context {
             depth_copy: light.depth[cur].view,
             previous_moments: light.moments[cur ^ 1].view,
             moments: light.moments[cur].view,
-            guide: light.guide.view,
+            // Without a guide (one filter pass: the pass never touches it) the bindings take an image of its format.
+            guide: light.guide.as_ref().map_or(light.moments[cur].view, |g| g.view),
         }
     }
 

@@ -4,6 +4,7 @@ use crate::create_info::Precision;
 use crate::error::Result;
 use crate::gpu::image::InternalImage;
 use crate::gpu::loader::Vk;
+use crate::settings::MAX_FILTER_PASSES;
 use ash::vk;
 
 pub(crate) const TILE_FORMAT: vk::Format = vk::Format::R32_UINT;
@@ -20,9 +21,37 @@ pub(crate) fn intermediate_format(precision: Precision) -> vk::Format {
     }
 }
 
-/// Every internal image of one light, in the order `LightState::new` consumes them (the optional fourth-pass
-/// intermediate last).
-fn image_specs(extent: [u32; 2], precision: Precision, with_tmp: bool) -> impl Iterator<Item = (vk::Format, [u32; 2], &'static str)> {
+/// Images of a light that only some filter pass counts use, allocated when the settings first need them (and kept
+/// when they no longer do).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Optional {
+    /// Written by the first filter pass for the later ones: two or more passes.
+    Guide,
+    /// Fourth-pass intermediate: four passes.
+    Tmp,
+}
+
+impl Optional {
+    fn needed(self, filter_passes: u32) -> bool {
+        match self {
+            Optional::Guide => filter_passes > 1,
+            Optional::Tmp => filter_passes == MAX_FILTER_PASSES,
+        }
+    }
+
+    fn spec(self, precision: Precision) -> (vk::Format, &'static str) {
+        match self {
+            Optional::Guide => (GUIDE_FORMAT, "guide"),
+            Optional::Tmp => (intermediate_format(precision), "filter_tmp"),
+        }
+    }
+}
+
+const OPTIONAL: [Optional; 2] = [Optional::Guide, Optional::Tmp];
+
+/// Every internal image of one light that `filter_passes` passes use, in the order `LightState::new` consumes
+/// them (the optional ones last).
+fn image_specs(extent: [u32; 2], precision: Precision, filter_passes: u32) -> impl Iterator<Item = (vk::Format, [u32; 2], &'static str)> {
     let tiles = [extent[0].div_ceil(8), extent[1].div_ceil(4)];
     let rg = intermediate_format(precision);
     [
@@ -34,15 +63,17 @@ fn image_specs(extent: [u32; 2], precision: Precision, with_tmp: bool) -> impl I
         (DEPTH_FORMAT, extent, "depth_copy_1"),
         (MOMENTS_FORMAT, extent, "moments_0"),
         (MOMENTS_FORMAT, extent, "moments_1"),
-        (GUIDE_FORMAT, extent, "guide"),
     ]
     .into_iter()
-    .chain(with_tmp.then_some((rg, extent, "filter_tmp")))
+    .chain(OPTIONAL.into_iter().filter(move |o| o.needed(filter_passes)).map(move |o| {
+        let (format, name) = o.spec(precision);
+        (format, extent, name)
+    }))
 }
 
 /// Texel bytes of the internal images of one light, before any driver padding or alignment.
-pub(crate) fn texel_bytes(extent: [u32; 2], precision: Precision, with_tmp: bool) -> u64 {
-    image_specs(extent, precision, with_tmp)
+pub(crate) fn texel_bytes(extent: [u32; 2], precision: Precision, filter_passes: u32) -> u64 {
+    image_specs(extent, precision, filter_passes)
         .map(|(format, [w, h], _)| {
             let texel = match format {
                 vk::Format::R32G32B32A32_SFLOAT => 16,
@@ -59,9 +90,11 @@ pub(crate) struct LightState {
     pub tile_meta: InternalImage,
     pub reprojection: InternalImage,
     pub history: InternalImage,
+    /// Written by the first filter pass, read by the later ones (within one frame); None until two or more
+    /// passes are configured.
+    pub guide: Option<InternalImage>,
+    /// None until four passes are configured.
     pub tmp: Option<InternalImage>,
-    /// Written by the first filter pass, read by the later ones (within one frame).
-    pub guide: InternalImage,
     /// Ping-pong pairs indexed by `parity` (current) and `parity ^ 1` (previous frame).
     pub depth: [InternalImage; 2],
     pub moments: [InternalImage; 2],
@@ -74,9 +107,9 @@ pub(crate) struct LightState {
 }
 
 impl LightState {
-    pub(crate) fn new(vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, with_tmp: bool) -> Result<LightState> {
+    pub(crate) fn new(vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32) -> Result<LightState> {
         let mut made: Vec<InternalImage> = Vec::new();
-        for (format, size, name) in image_specs(extent, precision, with_tmp) {
+        for (format, size, name) in image_specs(extent, precision, 1) {
             match InternalImage::new(vk, format, size, &format!("dnsr.light{light}.{name}")) {
                 Ok(img) => made.push(img),
                 Err(e) => {
@@ -85,22 +118,46 @@ impl LightState {
                 }
             }
         }
-        let tmp = if with_tmp { made.pop() } else { None };
         let mut it = made.into_iter();
         let mut next = || it.next().expect("one image per spec");
-        Ok(LightState {
+        let mut state = LightState {
             tile_mask: next(),
             tile_meta: next(),
             reprojection: next(),
             history: next(),
             depth: [next(), next()],
             moments: [next(), next()],
-            guide: next(),
-            tmp,
+            guide: None,
+            tmp: None,
             parity: 0,
             initialized: false,
             pending_reset: true,
-        })
+        };
+        match state.allocate_optional(vk, light, extent, precision, filter_passes) {
+            Ok(_) => Ok(state),
+            Err(e) => {
+                state.destroy(vk);
+                Err(e)
+            }
+        }
+    }
+
+    /// Allocates the optional images `filter_passes` passes need and this light lacks; true if it made any (their
+    /// first frame initialises them, like a new light's).
+    pub(crate) fn allocate_optional(&mut self, vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32) -> Result<bool> {
+        let mut made = false;
+        for o in OPTIONAL.into_iter().filter(|o| o.needed(filter_passes)) {
+            let slot = match o {
+                Optional::Guide => &mut self.guide,
+                Optional::Tmp => &mut self.tmp,
+            };
+            if slot.is_none() {
+                let (format, name) = o.spec(precision);
+                *slot = Some(InternalImage::new(vk, format, extent, &format!("dnsr.light{light}.{name}"))?);
+                made = true;
+            }
+        }
+        Ok(made)
     }
 
     pub(crate) fn images(&self) -> impl Iterator<Item = &InternalImage> {
@@ -108,7 +165,7 @@ impl LightState {
             .into_iter()
             .chain(self.depth.iter())
             .chain(self.moments.iter())
-            .chain([&self.guide])
+            .chain(self.guide.iter())
             .chain(self.tmp.iter())
     }
 
@@ -121,7 +178,7 @@ impl LightState {
             .into_iter()
             .chain(self.depth.iter_mut())
             .chain(self.moments.iter_mut())
-            .chain([&mut self.guide])
+            .chain(self.guide.iter_mut())
             .chain(self.tmp.iter_mut())
         {
             img.destroy(vk);

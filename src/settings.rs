@@ -116,7 +116,8 @@ impl Settings {
     }
 }
 
-/// Largest number of filter passes (the shared-memory apron is sized for the step of the last one).
+/// Largest number of filter passes. The last one's step (8 px) may not exceed a block: the first pass writes the
+/// guide of cleared blocks only within one block of a tile it filters.
 pub const MAX_FILTER_PASSES: u32 = 4;
 
 impl Settings {

@@ -73,6 +73,13 @@ static void device_free_calls(void)
     expect("memory requirements: NULL pBytes", dnsr_get_memory_requirements(W, H, DNSR_PRECISION_FP32, 3, 1, NULL),
            DNSR_ERROR_INVALID_ARGUMENT, "pBytes");
     expect("settings init: NULL", dnsr_settings_init_default(NULL), DNSR_ERROR_INVALID_ARGUMENT, "pSettings");
+    expect("preset init: NULL", dnsr_settings_init_preset(DNSR_PRESET_QUALITY, NULL), DNSR_ERROR_INVALID_ARGUMENT,
+           "pSettings");
+    DnsrSettings untouched;
+    memset(&untouched, 0xAB, sizeof untouched);
+    expect("preset init: preset 3", dnsr_settings_init_preset(3, &untouched), DNSR_ERROR_INVALID_ARGUMENT,
+           "preset 3");
+    CHECK(untouched.filterPasses == 0xABABABABu, "preset init: preset 3 wrote the settings");
 }
 
 /* ------------------------------------------------------------------------------------------------------------- */

@@ -56,6 +56,17 @@ int main(void)
         failures++;
     }
 
+    /* Presets: Balanced is the default; Fast one pass; Quality four passes with stable history. */
+    DnsrSettings fast, balanced, quality;
+    if (dnsr_settings_init_preset(DNSR_PRESET_FAST, &fast) != DNSR_SUCCESS || fast.filterPasses != 1
+        || dnsr_settings_init_preset(DNSR_PRESET_BALANCED, &balanced) != DNSR_SUCCESS || memcmp(&balanced, &s, sizeof s) != 0
+        || dnsr_settings_init_preset(DNSR_PRESET_QUALITY, &quality) != DNSR_SUCCESS || quality.filterPasses != 4
+        || quality.stableHistorySamples != 8.0f || quality.sType != DNSR_STRUCTURE_TYPE_SETTINGS) {
+        fprintf(stderr, "dnsr_settings_init_preset: fast %u passes, quality %u passes, stable %g\n", fast.filterPasses,
+                quality.filterPasses, (double)quality.stableHistorySamples);
+        failures++;
+    }
+
     printf("%s\n", failures ? "header_c11: FAILED" : "header_c11: ok");
     return failures ? 1 : 0;
 }

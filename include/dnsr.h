@@ -302,6 +302,12 @@ typedef struct DnsrSettings {
    * Floor of the shadow edge-stop sigma. Range [1e-6, 1]. Default 1e-4.
    */
   float minShadowSigma;
+  /**
+   * A pixel whose last n >= this-many samples were identical is clamped to within 3/n of them instead of to the
+   * local distribution (hard shadow edges the input resolves stay sharp). Range [0, 4096]; 0 disables (the
+   * FidelityFX behaviour). Default 0; 8 in the Quality preset.
+   */
+  float stableHistorySamples;
 } DnsrSettings;
 
 /**
@@ -694,6 +700,11 @@ typedef struct DnsrShadowsDispatch {
 } DnsrShadowsDispatch;
 
 /**
+ * Named settings (`dnsr_settings_init_preset`), chosen from the accuracy measurements in docs/accuracy.md.
+ */
+typedef uint32_t DnsrPreset;
+
+/**
  * GPU time of each pass of one completed frame, in milliseconds.
  */
 typedef struct DnsrPassTimings {
@@ -870,7 +881,8 @@ typedef struct DnsrReferenceCallbacks {
    */
   float (*readPreviousDepth)(void *user, int32_t x, int32_t y);
   /**
-   * Optional (required without DNSR_REFERENCE_RESET). Previous frame's moments (mean, sum, count).
+   * Optional (required without DNSR_REFERENCE_RESET). Previous frame's moments: 4 floats (mean, sum of squared
+   * deviations, sample count, run of identical samples: +n lit, -n shadowed).
    */
   void (*readPreviousMoments)(void *user, int32_t x, int32_t y, float *moments);
   /**
@@ -890,7 +902,7 @@ typedef struct DnsrReferenceCallbacks {
    */
   void (*writeReprojection)(void *user, int32_t x, int32_t y, float mean, float variance);
   /**
-   * Optional. Receives this frame's moments (the next frame's previous moments).
+   * Optional. Receives this frame's moments, 4 floats (the next frame's previous moments).
    */
   void (*writeMoments)(void *user, int32_t x, int32_t y, const float *moments);
   /**
@@ -998,6 +1010,27 @@ typedef struct DnsrReferenceCallbacks {
  * Forces 32 bits.
  */
 #define DNSR_PRECISION_MAX_ENUM 2147483647
+
+/**
+ * One filter pass: the cheapest setting whose error stays near the FidelityFX defaults'.
+ */
+#define DNSR_PRESET_FAST 0
+
+/**
+ * The FidelityFX defaults (same as `dnsr_settings_init_default`).
+ */
+#define DNSR_PRESET_BALANCED 1
+
+/**
+ * The measured best knobs combined: 4 filter passes, 10% current-frame weight, no output contrast, cross-tap
+ * weight 0.5, stable history after 8 identical samples.
+ */
+#define DNSR_PRESET_QUALITY 2
+
+/**
+ * Forces 32 bits.
+ */
+#define DNSR_PRESET_MAX_ENUM 2147483647
 
 /**
  * FidelityFX SDK: bit = 1 means the shadow ray hit an occluder (dnsr inverts it in its prepare pass).
@@ -1137,6 +1170,12 @@ DnsrResult dnsr_context_reset_history(DnsrContext context, uint32_t lightIndex);
  * Fills `*pSettings` with the FidelityFX defaults (sType included).
  */
 DnsrResult dnsr_settings_init_default(struct DnsrSettings *pSettings);
+
+/**
+ * Fills `*pSettings` with the settings of `preset` (sType included). An unknown preset value is
+ * DNSR_ERROR_INVALID_ARGUMENT and leaves `*pSettings` untouched.
+ */
+DnsrResult dnsr_settings_init_preset(DnsrPreset preset, struct DnsrSettings *pSettings);
 
 /**
  * Writes the context's current settings to `*pSettings`.

@@ -77,14 +77,15 @@ vec2 dnsr_read_velocity(ivec2 p) {
     return texelFetch(dnsr_velocity, p + dnsr_get_offset(), 0).xy * dnsr_constants.motion_normals.xy;
 }
 float dnsr_read_previous_depth(ivec2 p) { return texelFetch(dnsr_previous_depth, p + dnsr_get_offset(), 0).r; }
-vec3 dnsr_read_previous_moments(ivec2 p) { return texelFetch(dnsr_previous_moments, p + dnsr_get_offset(), 0).xyz; }
+// (mean, sum of squared deviations, sample count, run of identical samples: +n lit, -n shadowed).
+vec4 dnsr_read_previous_moments(ivec2 p) { return texelFetch(dnsr_previous_moments, p + dnsr_get_offset(), 0); }
 // Bilinear history at a rect-relative uv; the sampler clamps to the edge of the internal image.
 float dnsr_read_history(vec2 uv) {
     vec2 texel = (uv * vec2(dnsr_get_extent()) + vec2(dnsr_get_offset())) / vec2(textureSize(dnsr_history, 0));
     return textureLod(dnsr_history, texel, 0.0).r;
 }
 void dnsr_write_depth_copy(ivec2 p, float depth) { imageStore(dnsr_depth_copy, p + dnsr_get_offset(), vec4(depth)); }
-void dnsr_write_moments(ivec2 p, vec3 m) { imageStore(dnsr_moments, p + dnsr_get_offset(), vec4(m, 0.0)); }
+void dnsr_write_moments(ivec2 p, vec4 m) { imageStore(dnsr_moments, p + dnsr_get_offset(), m); }
 void dnsr_write_reprojection(ivec2 p, vec2 mean_var) { imageStore(dnsr_reprojection, p + dnsr_get_offset(), vec4(mean_var, 0.0, 0.0)); }
 void dnsr_write_tile_meta(ivec2 tile, uint meta) { imageStore(dnsr_tile_meta_out, tile + dnsr_get_tile_offset(), uvec4(meta)); }
 // The host's output, written here for cleared tiles only (their final value is known; later filter passes skip

@@ -88,14 +88,23 @@ uint dnsr_uniform_state(ivec2 t) {
 uint dnsr_tile_state(ivec2 t) { return s_tile_has_receiver[t.y][t.x] == 0u ? 1u : s_uniform[t.y][t.x]; }
 
 // Scales a Welford state (mean kept) to represent `f` times as many samples.
-void dnsr_scale_moments(inout vec3 m, float f) { m.y *= f; m.z *= f; }
+void dnsr_scale_moments(inout vec4 m, float f) { m.y *= f; m.z *= f; }
+
+// The run of identical samples after sample x, from the run before it: +n when the last n samples were lit, -n
+// when they were shadowed, at most DNSR_MAX_SAMPLE_RUN long.
+float dnsr_sample_run(float previous, float x) {
+    float longest = float(DNSR_MAX_SAMPLE_RUN);
+    if (x >= 0.5) return previous > 0.0 ? min(previous + 1.0, longest) : 1.0;
+    return previous < 0.0 ? max(previous - 1.0, -longest) : -1.0;
+}
 
 // A pixel of a cleared tile: its value is known exactly; keep the state of the next frame consistent with it.
 void dnsr_write_cleared(ivec2 p, bool receiver, uint state, bool tile_writer) {
     float value = state == 1u ? 1.0 : 0.0;
     if (tile_writer) dnsr_write_tile_meta(p / DNSR_TILE_SIZE, DNSR_TILE_CLEARED | (state == 1u ? DNSR_TILE_LIT : 0u));
     dnsr_write_reprojection(p, receiver ? vec2(value, 0.0) : DNSR_SKY_SIGNAL);
-    dnsr_write_moments(p, receiver ? vec3(value, 0.0, dnsr_get_temporal_settings().z) : vec3(0.0));
+    float run = state == 1u ? float(DNSR_MAX_SAMPLE_RUN) : -float(DNSR_MAX_SAMPLE_RUN);
+    dnsr_write_moments(p, receiver ? vec4(value, 0.0, dnsr_get_temporal_settings().z, run) : vec4(0.0));
     dnsr_write_output(p, receiver ? value : 1.0);
 }
 
@@ -184,7 +193,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     if (tile_writer) dnsr_write_tile_meta(p / DNSR_TILE_SIZE, 0u);
     if (!receiver) {
         dnsr_write_reprojection(p, DNSR_SKY_SIGNAL);
-        dnsr_write_moments(p, vec3(0.0));
+        dnsr_write_moments(p, vec4(0.0));
         return;
     }
 
@@ -227,11 +236,14 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     }
 
     // Temporal moments (Welford), restarted on disocclusion, count bounded by max_samples.
-    vec3 m = vec3(0.0);
+    vec4 m = vec4(0.0);
     if (!disoccluded) {
         ivec2 hp = clamp(ivec2(history_uv * vec2(dnsr_get_extent())), ivec2(0), dnsr_get_extent() - 1);
         m = dnsr_read_previous_moments(hp);
-        if (!(m.z >= 0.0 && m.z <= max_samples && m.y >= 0.0 && m.y < 1e30 && dnsr_finite(m.x))) m = vec3(0.0);
+        if (!(m.z >= 0.0 && m.z <= max_samples && m.y >= 0.0 && m.y < 1e30 && dnsr_finite(m.x)
+              && abs(m.w) <= float(DNSR_MAX_SAMPLE_RUN))) {
+            m = vec4(0.0);
+        }
     }
     if (m.z > max_samples - 1.0) dnsr_scale_moments(m, (max_samples - 1.0) / m.z);
     float m_old = m.x;
@@ -239,13 +251,22 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     m.x += (x - m_old) / m.z;
     m.y += (x - m_old) * (x - m.x);
     float variance = m.z > 1.0 ? m.y / (m.z - 1.0) : 1.0;
+    m.w = dnsr_sample_run(m.w, x);
+    // Enough identical samples in a row: the input resolves this pixel (a hard edge, say), and the local
+    // distribution, which straddles the edge, must not pull its history (nor reject it).
+    float stable_after = reject.w;
+    bool stable = stable_after > 0.0 && abs(m.w) >= stable_after;
 
     // History clamped to the local distribution; a history far outside it loses its sample count.
     float sigma = sqrt(local.y);
     float history = disoccluded ? local.x : dnsr_read_history(history_uv);
     if (!dnsr_finite(history)) history = local.x;
-    float clamped = clamp(history, local.x - disocc.w * sigma, local.x + disocc.w * sigma);
-    float d = (history - local.x) / max(disocc.w * sigma, reject.y);
+    // A stable pixel's history is clamped to what its run allows instead: after n identical samples the
+    // visibility lies within DNSR_RUN_CLAMP_SAMPLES / n of them (the rule of three: 95% confidence for 3).
+    float run_width = float(DNSR_RUN_CLAMP_SAMPLES) / abs(m.w);
+    float clamped = stable ? clamp(history, x - run_width, x + run_width)
+                           : clamp(history, local.x - disocc.w * sigma, local.x + disocc.w * sigma);
+    float d = stable ? 0.0 : (history - local.x) / max(disocc.w * sigma, reject.y);
     dnsr_scale_moments(m, exp(-d * d / reject.x));
 
     if (m.z < reject.z) variance = max(variance, local.y) * max(reject.z - m.z, 1.0);

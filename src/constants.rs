@@ -65,7 +65,8 @@ gpu_block! {
         inv_extent: [f32; 4],
         /// x: disocclusion threshold at N.V = 1; y: at grazing; z: (1 - N.V) exponent; w: history clamp width in sigmas.
         disocclusion: [f32; 4],
-        /// x: history rejection falloff; y: rejection sigma floor; z: variance boost below this many samples; w: unused.
+        /// x: history rejection falloff; y: rejection sigma floor; z: variance boost below this many samples; w: runs of
+        /// identical samples from which the history is kept unclamped (0: never).
         rejection: [f32; 4],
         /// x: samples for full history trust; y: minimum current-frame blend; z: max history samples; w: spatial falloff.
         temporal: [f32; 4],
@@ -121,6 +122,8 @@ pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
     ("DNSR_WIDE_GROUP_WIDTH", crate::passes::WIDE_GROUP[0]),
     ("DNSR_WIDE_GROUP_HEIGHT", crate::passes::WIDE_GROUP[1]),
     ("DNSR_MOMENT_RADIUS", crate::passes::MOMENT_RADIUS),
+    ("DNSR_MAX_SAMPLE_RUN", crate::passes::MAX_SAMPLE_RUN),
+    ("DNSR_RUN_CLAMP_SAMPLES", crate::passes::RUN_CLAMP_SAMPLES),
 ];
 
 /// The complete text of `shaders/generated/dnsr_constants.glsl`.

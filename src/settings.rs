@@ -65,6 +65,11 @@ declare_settings! {
     history_rejection_falloff: f32 = 20.0, [1e-3, 1e6] "[1e-3, 1e6]";
     /// Floor of the clamp width used in the rejection distance.
     history_rejection_min_sigma: f32 = 0.001, [1e-6, 1.0] "[1e-6, 1]";
+    /// A pixel whose last n >= this-many samples were identical is clamped to within 3/n of them instead of to the
+    /// local 17x17 distribution, and its history is not rejected: the input already resolves it (a hard shadow
+    /// edge), and the local distribution, which straddles the edge, would pull it towards the edge's mean.
+    /// 0 turns this off (the FidelityFX behaviour).
+    stable_history_samples: f32 = 0.0, [0.0, 4096.0] "[0, 4096]";
     /// Below this many accumulated samples the variance is boosted (raised to the spatial variance and
     /// multiplied by the missing samples).
     variance_boost_samples: f32 = 16.0, [0.0, 1024.0] "[0, 1024]";
@@ -85,7 +90,7 @@ declare_settings! {
 }
 
 /// Named settings chosen from the accuracy measurements in docs/accuracy.md (`make accuracy`): on its truth-known
-/// sequences Fast and Balanced measure a mean RMSE of 0.060, Quality 0.047 with a shadow-jump lag of 3 frames
+/// sequences Fast and Balanced measure a mean RMSE of 0.060, Quality 0.031 with a shadow-jump lag of 3 frames
 /// instead of 14.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Preset {
@@ -94,7 +99,8 @@ pub enum Preset {
     /// The FidelityFX defaults.
     Balanced,
     /// The measured best knobs combined: 4 filter passes, 10% current-frame weight, no output contrast, cross
-    /// tap weight 0.5 (see docs/accuracy.md for why each).
+    /// tap weight 0.5, history of pixels with 8 identical samples in a row clamped to their run (see
+    /// docs/accuracy.md for why each).
     Quality,
 }
 
@@ -110,6 +116,7 @@ impl Settings {
                 min_current_weight: 0.1,
                 output_contrast: 1.0,
                 kernel_cross_weight: 0.5,
+                stable_history_samples: 8.0,
                 ..balanced
             },
         }
@@ -129,7 +136,12 @@ impl Settings {
             self.disocclusion_angle_exponent,
             self.history_clamp_sigmas,
         ];
-        c.rejection = [self.history_rejection_falloff, self.history_rejection_min_sigma, self.variance_boost_samples, 0.0];
+        c.rejection = [
+            self.history_rejection_falloff,
+            self.history_rejection_min_sigma,
+            self.variance_boost_samples,
+            self.stable_history_samples,
+        ];
         c.temporal = [self.full_history_samples, self.min_current_weight, self.max_history_samples, self.spatial_falloff];
         c.filtering = [self.kernel_cross_weight, self.normal_power, self.output_contrast, self.min_shadow_sigma];
     }

@@ -38,7 +38,7 @@ DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrDebugNameCallback) == 8, "alignof(DnsrDebugN
 DNSR_STATIC_ASSERT(offsetof(DnsrDebugNameCallback, userData) == 0, "offsetof(DnsrDebugNameCallback, userData)");
 DNSR_STATIC_ASSERT(offsetof(DnsrDebugNameCallback, setName) == 8, "offsetof(DnsrDebugNameCallback, setName)");
 
-DNSR_STATIC_ASSERT(sizeof(DnsrSettings) == 80, "sizeof(DnsrSettings)");
+DNSR_STATIC_ASSERT(sizeof(DnsrSettings) == 88, "sizeof(DnsrSettings)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrSettings) == 8, "alignof(DnsrSettings)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, sType) == 0, "offsetof(DnsrSettings, sType)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, pNext) == 8, "offsetof(DnsrSettings, pNext)");
@@ -58,6 +58,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrSettings, kernelCrossWeight) == 64, "offsetof(Dn
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, normalPower) == 68, "offsetof(DnsrSettings, normalPower)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, outputContrast) == 72, "offsetof(DnsrSettings, outputContrast)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, minShadowSigma) == 76, "offsetof(DnsrSettings, minShadowSigma)");
+DNSR_STATIC_ASSERT(offsetof(DnsrSettings, stableHistorySamples) == 80, "offsetof(DnsrSettings, stableHistorySamples)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrContextCreateInfo) == 136, "sizeof(DnsrContextCreateInfo)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrContextCreateInfo) == 8, "alignof(DnsrContextCreateInfo)");

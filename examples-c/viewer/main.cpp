@@ -48,6 +48,7 @@ struct Options {
     bool lightMotion = false;
     uint32_t referenceSamples = 256;
     float orbitDegPerFrame = 0.25f;
+    DnsrPreset preset = DNSR_PRESET_BALANCED;
     View view = View::Composite;  // window mode: the view shown first
 };
 
@@ -66,6 +67,7 @@ const char *kUsage =
     "  --view NAME             window mode: first view (noisy, denoised, reference, composite, tiles, or dnsr's\n"
     "                          debug views classification, samples, variance, disocclusion; keys 1-9)\n"
     "  --orbit-speed DEG       headless: camera orbit per frame in degrees, -45..45 (default 0.25; 0 = static)\n"
+    "  --preset NAME           dnsr's settings: fast, balanced (the FidelityFX defaults; default) or quality\n"
     "  --validate              enable VK_LAYER_KHRONOS_validation; any validation message makes the exit status 1\n"
     "                          (the Vulkan loader's own notices are shown but not counted)\n"
     "  -h, --help              print this and exit\n"
@@ -144,6 +146,12 @@ Options parseOptions(int argc, char **argv)
                 throw UsageError("--view wants noisy, denoised, reference, composite, tiles, classification, samples, "
                                  "variance or disocclusion, got '" + v + "'");
             o.view = static_cast<View>(it - std::begin(names));
+        } else if (a == "--preset") {
+            std::string v = value();
+            const char *names[] = {"fast", "balanced", "quality"};  // DNSR_PRESET_FAST, _BALANCED, _QUALITY
+            auto it = std::find(std::begin(names), std::end(names), v);
+            if (it == std::end(names)) throw UsageError("--preset wants fast, balanced or quality, got '" + v + "'");
+            o.preset = static_cast<DnsrPreset>(it - std::begin(names));
         } else if (a == "--light-motion") {
             o.lightMotion = true;
         } else if (a == "--reference-samples") {
@@ -393,6 +401,7 @@ private:
         RendererSettings rs;
         rs.width = opt_.width, rs.height = opt_.height;
         rs.sceneRadius = scene_.radius;
+        rs.preset = opt_.preset;
         renderer_.create(ctx_, *scene_.scene, rs);
         std::printf("viewer: %s on %s, %ux%u, %u triangles, BVH %u nodes (depth %u), push descriptors %s\n",
                     opt_.scene.c_str(), ctx_.properties.deviceName, opt_.width, opt_.height, renderer_.triangles,
@@ -492,6 +501,8 @@ private:
         json += "  \"frames\": " + std::to_string(opt_.frames) + ",\n";
         json += "  \"light\": \"" + std::string(light_.point ? "point" : "directional") + "\",\n";
         json += "  \"light_angle_deg\": " + fmt(opt_.lightAngleDeg, 2) + ",\n";
+        const char *presets[] = {"fast", "balanced", "quality"};
+        json += std::string("  \"preset\": \"") + presets[opt_.preset] + "\",\n";
         json += "  \"reference_samples\": " + std::to_string(renderer_.referenceCount()) + ",\n";
         json += "  \"pixels_compared\": " + std::to_string(e.pixels) + ",\n";
         json += "  \"rmse\": {\"noisy\": " + fmt(e.rmseNoisy, 6) + ", \"denoised\": " + fmt(e.rmseDenoised, 6) + "},\n";

@@ -267,6 +267,10 @@ void Renderer::createDenoiser()
     info.lightCount = 1;
     DnsrResult r = dnsr_context_create(&info, &denoiser_);
     if (r != DNSR_SUCCESS) dnsrFail("dnsr_context_create", r);
+    DnsrSettings dnsrSettings;
+    r = dnsr_settings_init_preset(settings_.preset, &dnsrSettings);
+    if (r == DNSR_SUCCESS) r = dnsr_context_set_settings(denoiser_, &dnsrSettings);
+    if (r != DNSR_SUCCESS) dnsrFail("dnsr_settings_init_preset / dnsr_context_set_settings", r);
 }
 
 uint64_t Renderer::dnsrMemoryBytes() const

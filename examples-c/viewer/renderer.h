@@ -35,6 +35,7 @@ struct RendererSettings {
     uint32_t width = 0, height = 0;
     float sceneRadius = 1.0f;  // sets the shadow-ray offset
     float ambient = 0.2f;
+    DnsrPreset preset = DNSR_PRESET_BALANCED;  // dnsr's settings (dnsr_settings_init_preset)
 };
 
 struct FrameInput {

@@ -106,6 +106,19 @@ PY
 echo "headless: $quality"
 [[ $quality == ok* ]] || fail "denoised RMSE is not below 0.7x the noisy RMSE"
 
+# ---- dnsr presets: Quality through dnsr_settings_init_preset, validation clean; a bad name is a usage error ----
+status=0
+"$viewer" --headless --validate --preset quality --frames 4 --size 64x48 --out "$tmp/quality" \
+  > "$tmp/quality.log" 2>&1 || status=$?
+(( status == 0 )) || { cat "$tmp/quality.log"; fail "--preset quality exited with status $status"; }
+grep -q '"preset": "quality"' "$tmp/quality/report.json" || fail "report.json does not name the quality preset"
+status=0
+"$viewer" --headless --preset best --frames 1 --size 16x16 --out "$tmp/bad-preset" > /dev/null 2> "$tmp/preset.err" ||
+  status=$?
+(( status == 2 )) && grep -qF -- "--preset wants fast, balanced or quality, got 'best'" "$tmp/preset.err" ||
+  fail "--preset best: status $status, message: $(cat "$tmp/preset.err")"
+echo "presets: quality ran clean, 'best' refused"
+
 # ---- --validate counts validation messages, not the Vulkan loader's notices ----
 # With VK_INSTANCE_LAYERS naming the layer, the loader warns through the same debug messenger that it adds the
 # layer from the environment (pMessageIdName "Loader Message", type GENERAL): that is no validation failure.

@@ -41,5 +41,7 @@ struct DnsrFilterPush {
 #define DNSR_WIDE_GROUP_WIDTH 16
 #define DNSR_WIDE_GROUP_HEIGHT 16
 #define DNSR_MOMENT_RADIUS 8
+#define DNSR_MAX_SAMPLE_RUN 4096
+#define DNSR_RUN_CLAMP_SAMPLES 3
 
 #endif

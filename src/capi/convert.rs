@@ -28,6 +28,15 @@ pub(crate) fn settings_to_c(s: &Settings) -> DnsrSettings {
     crate::settings::for_each_setting!(to_c)
 }
 
+pub(crate) fn preset_from_c(p: DnsrPreset) -> Result<crate::Preset, CallError> {
+    match p {
+        DNSR_PRESET_FAST => Ok(crate::Preset::Fast),
+        DNSR_PRESET_BALANCED => Ok(crate::Preset::Balanced),
+        DNSR_PRESET_QUALITY => Ok(crate::Preset::Quality),
+        other => Err(CallError::InvalidArgument(format!("preset {other} is not a DnsrPreset value"))),
+    }
+}
+
 pub(crate) fn precision_from_c(p: DnsrPrecision) -> Result<Precision, CallError> {
     match p {
         DNSR_PRECISION_FP32 => Ok(Precision::Fp32),

@@ -12,7 +12,7 @@ pub mod reference;
 pub mod types;
 
 use boundary::{check_no_next, check_type, guard, last_error_ptr, required, CallError};
-use convert::{create_info_from_c, dispatch_from_c, precision_from_c, settings_from_c, settings_to_c};
+use convert::{create_info_from_c, dispatch_from_c, precision_from_c, preset_from_c, settings_from_c, settings_to_c};
 use std::ffi::c_char;
 use types::*;
 
@@ -114,6 +114,17 @@ pub extern "C" fn dnsr_settings_init_default(p_settings: *mut DnsrSettings) -> D
     guard(|_| {
         let out = unsafe { p_settings.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pSettings is NULL".into()))?;
         *out = settings_to_c(&crate::Settings::default());
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// Fills `*pSettings` with the settings of `preset` (sType included). An unknown preset value is
+/// DNSR_ERROR_INVALID_ARGUMENT and leaves `*pSettings` untouched.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_settings_init_preset(preset: DnsrPreset, p_settings: *mut DnsrSettings) -> DnsrResult {
+    guard(|_| {
+        let out = unsafe { p_settings.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pSettings is NULL".into()))?;
+        *out = settings_to_c(&crate::Settings::preset(preset_from_c(preset)?));
         Ok(DnsrResult::DNSR_SUCCESS)
     })
 }

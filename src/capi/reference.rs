@@ -5,7 +5,7 @@ use super::boundary::{check_no_next, check_type, guard, required, CallError};
 use super::convert::settings_from_c;
 use super::types::{DnsrResult, DnsrSettings, DnsrStructureType};
 use crate::reference::{decode_normal, memory::Frame, run_frame};
-use glam::{DMat4, DVec2, DVec3};
+use glam::{DMat4, DVec2, DVec3, DVec4};
 use std::ffi::c_void;
 
 /// `DnsrReferenceFrameInfo`.
@@ -75,7 +75,8 @@ pub struct DnsrReferenceCallbacks {
     pub read_velocity: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32, xy: *mut f32)>,
     /// Optional (required without DNSR_REFERENCE_RESET). Previous frame's raw depth.
     pub read_previous_depth: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32) -> f32>,
-    /// Optional (required without DNSR_REFERENCE_RESET). Previous frame's moments (mean, sum, count).
+    /// Optional (required without DNSR_REFERENCE_RESET). Previous frame's moments: 4 floats (mean, sum of squared
+    /// deviations, sample count, run of identical samples: +n lit, -n shadowed).
     pub read_previous_moments: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32, moments: *mut f32)>,
     /// Optional (required without DNSR_REFERENCE_RESET). Previous frame's history texel (filter pass 0 mean).
     pub read_history: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32) -> f32>,
@@ -85,7 +86,7 @@ pub struct DnsrReferenceCallbacks {
     pub write_tile_meta: Option<unsafe extern "C" fn(user: *mut c_void, tile_x: i32, tile_y: i32, meta: u32)>,
     /// Optional. Receives the temporal result (mean, variance).
     pub write_reprojection: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32, mean: f32, variance: f32)>,
-    /// Optional. Receives this frame's moments (the next frame's previous moments).
+    /// Optional. Receives this frame's moments, 4 floats (the next frame's previous moments).
     pub write_moments: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32, moments: *const f32)>,
     /// Optional. Receives this frame's history (the next frame's `read_history`).
     pub write_history: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32, value: f32)>,
@@ -169,13 +170,13 @@ pub extern "C" fn dnsr_reference_run_frame(
                 f.normals[i] = decode_normal(DVec3::from_array(rgb.map(|v| v as f64)), mul, add);
                 f.velocity[i] = DVec2::new(xy[0] as f64, xy[1] as f64) * scale;
                 if let Some((prev_depth, prev_moments, history)) = previous {
-                    let mut m = [0f32; 3];
+                    let mut m = [0f32; 4];
                     unsafe {
                         f.previous_depth[i] = prev_depth(user, x, y) as f64;
                         prev_moments(user, x, y, m.as_mut_ptr());
                         f.history[i] = history(user, x, y) as f64;
                     }
-                    f.previous_moments[i] = DVec3::from_array(m.map(|v| v as f64));
+                    f.previous_moments[i] = DVec4::from_array(m.map(|v| v as f64));
                 }
             }
         }

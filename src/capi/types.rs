@@ -146,6 +146,18 @@ pub const DNSR_PRECISION_FP16: DnsrPrecision = 1;
 /// Forces 32 bits.
 pub const DNSR_PRECISION_MAX_ENUM: DnsrPrecision = 0x7FFF_FFFF;
 
+/// Named settings (`dnsr_settings_init_preset`), chosen from the accuracy measurements in docs/accuracy.md.
+pub type DnsrPreset = u32;
+/// One filter pass: the cheapest setting whose error stays near the FidelityFX defaults'.
+pub const DNSR_PRESET_FAST: DnsrPreset = 0;
+/// The FidelityFX defaults (same as `dnsr_settings_init_default`).
+pub const DNSR_PRESET_BALANCED: DnsrPreset = 1;
+/// The measured best knobs combined: 4 filter passes, 10% current-frame weight, no output contrast, cross-tap
+/// weight 0.5, stable history after 8 identical samples.
+pub const DNSR_PRESET_QUALITY: DnsrPreset = 2;
+/// Forces 32 bits.
+pub const DNSR_PRESET_MAX_ENUM: DnsrPreset = 0x7FFF_FFFF;
+
 /// Bit convention of the hit mask.
 pub type DnsrHitMaskConvention = u32;
 /// FidelityFX SDK: bit = 1 means the shadow ray hit an occluder (dnsr inverts it in its prepare pass).
@@ -311,6 +323,10 @@ pub struct DnsrSettings {
     pub output_contrast: f32,
     /// Floor of the shadow edge-stop sigma. Range [1e-6, 1]. Default 1e-4.
     pub min_shadow_sigma: f32,
+    /// A pixel whose last n >= this-many samples were identical is clamped to within 3/n of them instead of to the
+    /// local distribution (hard shadow edges the input resolves stay sharp). Range [0, 4096]; 0 disables (the
+    /// FidelityFX behaviour). Default 0; 8 in the Quality preset.
+    pub stable_history_samples: f32,
 }
 
 /// Everything needed to create a context. Read during `dnsr_context_create` only (callback structs are copied;

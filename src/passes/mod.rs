@@ -112,6 +112,13 @@ pub(crate) fn frame(v: &FrameViews, filter_passes: u32, run_prepare: bool, debug
     FramePasses { passes, count: 2 + filter_passes as usize }
 }
 
+/// Longest run of identical samples a pixel's moments record (moments.w: +n lit, -n shadowed); a cleared tile
+/// records the longest run. Generated into GLSL.
+pub(crate) const MAX_SAMPLE_RUN: u32 = 4096;
+/// A stable pixel (`Settings::stable_history_samples`) whose last n samples were identical has its history clamped
+/// to within this many / n of them (the rule of three). Generated into GLSL.
+pub(crate) const RUN_CLAMP_SAMPLES: u32 = 3;
+
 /// Tile metadata bit: the tile needs no temporal or spatial work; its value is in `TILE_LIT`.
 pub(crate) const TILE_CLEARED: u32 = 1 << 0;
 /// Tile metadata bit: a cleared tile is lit (1) rather than shadowed (0).

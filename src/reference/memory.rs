@@ -3,7 +3,7 @@
 
 use super::{Coord, Get, Read, Write, TILE};
 use crate::settings::Settings;
-use glam::{DMat4, DVec2, DVec3};
+use glam::{DMat4, DVec2, DVec3, DVec4};
 
 /// One frame of one light for the CPU reference.
 #[derive(Clone, Debug)]
@@ -37,7 +37,7 @@ pub struct Frame {
     /// Previous frame's depth copy.
     pub previous_depth: Vec<f64>,
     /// Previous frame's moments.
-    pub previous_moments: Vec<DVec3>,
+    pub previous_moments: Vec<DVec4>,
     /// Previous frame's history (filter pass 0 mean).
     pub history: Vec<f64>,
     /// Output: lit-bit tile mask.
@@ -47,7 +47,7 @@ pub struct Frame {
     /// Output: depth copy.
     pub depth_copy: Vec<f64>,
     /// Output: moments.
-    pub moments: Vec<DVec3>,
+    pub moments: Vec<DVec4>,
     /// Output: temporal result (mean, variance).
     pub reprojection_out: Vec<DVec2>,
     /// Output of each filter pass (pass 0 is the next frame's history).
@@ -80,12 +80,12 @@ impl Frame {
             velocity: vec![DVec2::ZERO; n],
             normals: vec![DVec3::ZERO; n],
             previous_depth: vec![1.0; n],
-            previous_moments: vec![DVec3::ZERO; n],
+            previous_moments: vec![DVec4::ZERO; n],
             history: vec![0.0; n],
             tile_mask: vec![0; tiles],
             tile_meta: vec![0; tiles],
             depth_copy: vec![0.0; n],
-            moments: vec![DVec3::ZERO; n],
+            moments: vec![DVec4::ZERO; n],
             reprojection_out: vec![DVec2::ZERO; n],
             filter_out: Vec::new(),
             output: vec![0.0; n],
@@ -176,7 +176,7 @@ impl Read for Frame {
     fn read_previous_depth(&self, p: Coord) -> f64 {
         self.previous_depth[self.px(p)]
     }
-    fn read_previous_moments(&self, p: Coord) -> DVec3 {
+    fn read_previous_moments(&self, p: Coord) -> DVec4 {
         self.previous_moments[self.px(p)]
     }
     fn read_history(&self, uv: DVec2) -> f64 {
@@ -212,7 +212,7 @@ impl Write for Frame {
         let i = self.px(p);
         self.depth_copy[i] = depth;
     }
-    fn write_moments(&mut self, p: Coord, m: DVec3) {
+    fn write_moments(&mut self, p: Coord, m: DVec4) {
         let i = self.px(p);
         self.moments[i] = m;
     }

@@ -59,7 +59,7 @@ pub trait Read: Get {
     /// Previous frame's raw depth.
     fn read_previous_depth(&self, p: Coord) -> f64;
     /// Previous frame's moments (mean, Welford sum, sample count).
-    fn read_previous_moments(&self, p: Coord) -> DVec3;
+    fn read_previous_moments(&self, p: Coord) -> DVec4;
     /// Bilinear history at a rect-relative uv (clamp to edge).
     fn read_history(&self, uv: DVec2) -> f64;
     /// Tile metadata word.
@@ -75,7 +75,7 @@ pub trait Write {
     /// This frame's depth copy.
     fn write_depth_copy(&mut self, p: Coord, depth: f64);
     /// This frame's moments.
-    fn write_moments(&mut self, p: Coord, m: DVec3);
+    fn write_moments(&mut self, p: Coord, m: DVec4);
     /// Temporal result (mean, variance).
     fn write_reprojection(&mut self, p: Coord, mean_var: DVec2);
     /// Tile metadata word.

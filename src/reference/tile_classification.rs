@@ -2,8 +2,8 @@
 //! temporal moments and the history blend, pixel by pixel in f64.
 
 use super::{inside, SKY_SIGNAL, is_receiver, linear_depth, pixel_uv, tile_bit, uv_to_ndc, Coord, Read, Write, TILE};
-use crate::passes::{TILE_CLEARED, TILE_LIT};
-use glam::{DVec2, DVec3, DVec4};
+use crate::passes::{MAX_SAMPLE_RUN, RUN_CLAMP_SAMPLES, TILE_CLEARED, TILE_LIT};
+use glam::{DVec2, DVec4};
 
 /// Radius of the local-moment window (17x17).
 pub const MOMENT_RADIUS: i32 = crate::passes::MOMENT_RADIUS as i32;
@@ -108,13 +108,25 @@ fn finite(v: DVec2) -> bool {
 }
 
 /// Scales a Welford state (mean kept) to represent `f` times as many samples.
-fn scale_moments(m: &mut DVec3, f: f64) {
+fn scale_moments(m: &mut DVec4, f: f64) {
     m.y *= f;
     m.z *= f;
 }
 
+/// The run of identical samples after sample `x`, from the run before it: +n when the last n samples were lit,
+/// -n when they were shadowed, at most `MAX_SAMPLE_RUN` long.
+pub fn sample_run(previous: f64, x: f64) -> f64 {
+    let max = MAX_SAMPLE_RUN as f64;
+    match (x >= 0.5, previous) {
+        (true, r) if r > 0.0 => (r + 1.0).min(max),
+        (true, _) => 1.0,
+        (false, r) if r < 0.0 => (r - 1.0).max(-max),
+        (false, _) => -1.0,
+    }
+}
+
 /// The temporal part for one receiver pixel of a mixed tile: returns (moments, (shadow, variance)).
-pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec3, DVec2) {
+pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVec2) {
     let s = io.settings();
     let (thr_facing, thr_grazing, angle_exp, clamp_k) = (
         s.disocclusion_threshold_facing as f64,
@@ -151,12 +163,17 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec3, DVe
         disoccluded = !((previous - expected).abs() < threshold * expected);
     }
 
-    let mut m = DVec3::ZERO;
+    let mut m = DVec4::ZERO;
     if !disoccluded {
         m = io.read_previous_moments(clamp_px(history_uv));
-        let sane = m.z >= 0.0 && m.z <= max_samples && m.y >= 0.0 && m.y < 1e30 && m.x.is_finite();
+        let sane = m.z >= 0.0
+            && m.z <= max_samples
+            && m.y >= 0.0
+            && m.y < 1e30
+            && m.x.is_finite()
+            && m.w.abs() <= MAX_SAMPLE_RUN as f64;
         if !sane {
-            m = DVec3::ZERO;
+            m = DVec4::ZERO;
         }
     }
     if m.z > max_samples - 1.0 {
@@ -168,14 +185,24 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec3, DVe
     m.x += (x - m_old) / m.z;
     m.y += (x - m_old) * (x - m.x);
     let mut variance = if m.z > 1.0 { m.y / (m.z - 1.0) } else { 1.0 };
+    m.w = sample_run(m.w, x);
+    // Enough identical samples in a row: the input resolves this pixel (a hard edge, say), and the local
+    // distribution, which straddles the edge, must not pull its history (nor reject it). Its history is clamped
+    // to what the run allows instead: within RUN_CLAMP_SAMPLES / n of the run's value (the rule of three).
+    let stable_after = s.stable_history_samples as f64;
+    let stable = stable_after > 0.0 && m.w.abs() >= stable_after;
 
     let sigma = local.y.sqrt();
     let mut history = if disoccluded { local.x } else { io.read_history(history_uv) };
     if !history.is_finite() {
         history = local.x;
     }
-    let clamped = history.clamp(local.x - clamp_k * sigma, local.x + clamp_k * sigma);
-    let d = (history - local.x) / (clamp_k * sigma).max(rej_min);
+    let (clamped, d) = if stable {
+        let width = RUN_CLAMP_SAMPLES as f64 / m.w.abs();
+        (history.clamp(x - width, x + width), 0.0)
+    } else {
+        (history.clamp(local.x - clamp_k * sigma, local.x + clamp_k * sigma), (history - local.x) / (clamp_k * sigma).max(rej_min))
+    };
     scale_moments(&mut m, (-d * d / rej_falloff).exp());
 
     if m.z < boost {
@@ -210,10 +237,11 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
                     let receiver = is_receiver(depth);
                     let (moments, result) = if state != 0 {
                         let value = if state == 1 { 1.0 } else { 0.0 };
-                        let m = if receiver { DVec3::new(value, 0.0, max_samples) } else { DVec3::ZERO };
+                        let run = if state == 1 { MAX_SAMPLE_RUN as f64 } else { -(MAX_SAMPLE_RUN as f64) };
+                        let m = if receiver { DVec4::new(value, 0.0, max_samples, run) } else { DVec4::ZERO };
                         (m, if receiver { DVec2::new(value, 0.0) } else { SKY_SIGNAL })
                     } else if !receiver {
-                        (DVec3::ZERO, SKY_SIGNAL)
+                        (DVec4::ZERO, SKY_SIGNAL)
                     } else {
                         temporal(io, p, depth)
                     };

@@ -308,6 +308,12 @@ typedef struct DnsrSettings {
    * FidelityFX behaviour). Default 0; 8 in the Quality preset.
    */
   float stableHistorySamples;
+  /**
+   * After a stable run, this many samples of the other value in a row restart the pixel's history at the local
+   * mean (a shadow moved over it). Range [0, 16]; 0 disables; needs stableHistorySamples > 0. Default 0; 2 in
+   * the Quality preset.
+   */
+  float historyFlipSamples;
 } DnsrSettings;
 
 /**
@@ -1023,7 +1029,7 @@ typedef struct DnsrReferenceCallbacks {
 
 /**
  * The measured best knobs combined: 4 filter passes, 10% current-frame weight, no output contrast, cross-tap
- * weight 0.5, stable history after 8 identical samples.
+ * weight 0.5, stable history after 8 identical samples, restarted after 2 samples of the other value.
  */
 #define DNSR_PRESET_QUALITY 2
 

@@ -32,6 +32,7 @@ vec4 dnsr_get_disocclusion_settings() { return dnsr_constants.disocclusion; }
 vec4 dnsr_get_rejection_settings() { return dnsr_constants.rejection; }
 vec4 dnsr_get_temporal_settings() { return dnsr_constants.temporal; }
 vec4 dnsr_get_filter_settings() { return dnsr_constants.filtering; }
+vec4 dnsr_get_run_settings() { return dnsr_constants.runs; }
 
 // Decoded host G-buffer reads shared by the classification and filter passes.
 #if defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER)

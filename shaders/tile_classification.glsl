@@ -91,11 +91,17 @@ uint dnsr_tile_state(ivec2 t) { return s_tile_has_receiver[t.y][t.x] == 0u ? 1u 
 void dnsr_scale_moments(inout vec4 m, float f) { m.y *= f; m.z *= f; }
 
 // The run of identical samples after sample x, from the run before it: +n when the last n samples were lit, -n
-// when they were shadowed, at most DNSR_MAX_SAMPLE_RUN long.
-float dnsr_sample_run(float previous, float x) {
+// when they were shadowed, at most DNSR_MAX_SAMPLE_RUN long. A run that breaks a stable run (at least
+// `stable_after` samples) of the other value carries a half: n + 0.5, until it is confirmed.
+float dnsr_sample_run(float previous, float x, float stable_after) {
     float longest = float(DNSR_MAX_SAMPLE_RUN);
-    if (x >= 0.5) return previous > 0.0 ? min(previous + 1.0, longest) : 1.0;
-    return previous < 0.0 ? max(previous - 1.0, -longest) : -1.0;
+    bool lit = x >= 0.5;
+    if (lit ? previous > 0.0 : previous < 0.0) {
+        float n = min(abs(previous) + 1.0, longest);
+        return lit ? n : -n;
+    }
+    float start = stable_after > 0.0 && abs(previous) >= stable_after ? 1.5 : 1.0;
+    return lit ? start : -start;
 }
 
 // A pixel of a cleared tile: its value is known exactly; keep the state of the next frame consistent with it.
@@ -251,11 +257,20 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     m.x += (x - m_old) / m.z;
     m.y += (x - m_old) * (x - m.x);
     float variance = m.z > 1.0 ? m.y / (m.z - 1.0) : 1.0;
-    m.w = dnsr_sample_run(m.w, x);
+    float stable_after = dnsr_get_run_settings().x;
+    float flip_after = floor(dnsr_get_run_settings().y);
+    m.w = dnsr_sample_run(m.w, x, stable_after);
     // Enough identical samples in a row: the input resolves this pixel (a hard edge, say), and the local
     // distribution, which straddles the edge, must not pull its history (nor reject it).
-    float stable_after = reject.w;
     bool stable = stable_after > 0.0 && abs(m.w) >= stable_after;
+    // flip_after samples of the other value right after a stable run: the shadow moved over this pixel, and its
+    // history holds the old value. Restart from the new samples, the history from the local mean (a few samples
+    // of the other value also occur in a penumbra close to 0 or 1).
+    bool flipped = flip_after > 0.0 && abs(m.w) == flip_after + 0.5;
+    if (flipped) {
+        m = vec4(x, 0.0, flip_after, x >= 0.5 ? flip_after : -flip_after);
+        variance = m.z > 1.0 ? 0.0 : 1.0;
+    }
 
     // History clamped to the local distribution; a history far outside it loses its sample count.
     float sigma = sqrt(local.y);
@@ -264,9 +279,10 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     // A stable pixel's history is clamped to what its run allows instead: after n identical samples the
     // visibility lies within DNSR_RUN_CLAMP_SAMPLES / n of them (the rule of three: 95% confidence for 3).
     float run_width = float(DNSR_RUN_CLAMP_SAMPLES) / abs(m.w);
-    float clamped = stable ? clamp(history, x - run_width, x + run_width)
-                           : clamp(history, local.x - disocc.w * sigma, local.x + disocc.w * sigma);
-    float d = stable ? 0.0 : (history - local.x) / max(disocc.w * sigma, reject.y);
+    float clamped = flipped ? local.x
+                  : (stable ? clamp(history, x - run_width, x + run_width)
+                            : clamp(history, local.x - disocc.w * sigma, local.x + disocc.w * sigma));
+    float d = stable || flipped ? 0.0 : (history - local.x) / max(disocc.w * sigma, reject.y);
     dnsr_scale_moments(m, exp(-d * d / reject.x));
 
     if (m.z < reject.z) variance = max(variance, local.y) * max(reject.z - m.z, 1.0);

@@ -65,13 +65,15 @@ gpu_block! {
         inv_extent: [f32; 4],
         /// x: disocclusion threshold at N.V = 1; y: at grazing; z: (1 - N.V) exponent; w: history clamp width in sigmas.
         disocclusion: [f32; 4],
-        /// x: history rejection falloff; y: rejection sigma floor; z: variance boost below this many samples; w: runs of
-        /// identical samples from which the history is kept unclamped (0: never).
+        /// x: history rejection falloff; y: rejection sigma floor; z: variance boost below this many samples; w: unused.
         rejection: [f32; 4],
         /// x: samples for full history trust; y: minimum current-frame blend; z: max history samples; w: spatial falloff.
         temporal: [f32; 4],
         /// x: cross tap weight; y: normal power; z: output contrast; w: shadow sigma floor.
         filtering: [f32; 4],
+        /// x: identical samples in a row that make a pixel stable (0: never); y: samples of the other value after a
+        /// stable run that restart its history (0: never); zw: unused.
+        runs: [f32; 4],
     }
 }
 

@@ -70,6 +70,10 @@ declare_settings! {
     /// edge), and the local distribution, which straddles the edge, would pull it towards the edge's mean.
     /// 0 turns this off (the FidelityFX behaviour).
     stable_history_samples: f32 = 0.0, [0.0, 4096.0] "[0, 4096]";
+    /// After a stable run (`stable_history_samples`), this many samples of the other value in a row restart the
+    /// pixel's history at the local mean: the shadow moved over the pixel, with or without motion vectors. Whole
+    /// samples (a fraction is dropped); 0 turns this off; it needs `stable_history_samples` > 0.
+    history_flip_samples: f32 = 0.0, [0.0, 16.0] "[0, 16]";
     /// Below this many accumulated samples the variance is boosted (raised to the spatial variance and
     /// multiplied by the missing samples).
     variance_boost_samples: f32 = 16.0, [0.0, 1024.0] "[0, 1024]";
@@ -90,7 +94,7 @@ declare_settings! {
 }
 
 /// Named settings chosen from the accuracy measurements in docs/accuracy.md (`make accuracy`): on its truth-known
-/// sequences Fast and Balanced measure a mean RMSE of 0.060, Quality 0.031 with a shadow-jump lag of 3 frames
+/// sequences Fast and Balanced measure a mean RMSE of 0.060, Quality 0.025 with a shadow-jump lag of 2 frames
 /// instead of 14.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Preset {
@@ -99,8 +103,8 @@ pub enum Preset {
     /// The FidelityFX defaults.
     Balanced,
     /// The measured best knobs combined: 4 filter passes, 10% current-frame weight, no output contrast, cross
-    /// tap weight 0.5, history of pixels with 8 identical samples in a row clamped to their run (see
-    /// docs/accuracy.md for why each).
+    /// tap weight 0.5, history of pixels with 8 identical samples in a row clamped to their run and restarted
+    /// after 2 samples of the other value (see docs/accuracy.md for why each).
     Quality,
 }
 
@@ -117,6 +121,7 @@ impl Settings {
                 output_contrast: 1.0,
                 kernel_cross_weight: 0.5,
                 stable_history_samples: 8.0,
+                history_flip_samples: 2.0,
                 ..balanced
             },
         }
@@ -136,12 +141,8 @@ impl Settings {
             self.disocclusion_angle_exponent,
             self.history_clamp_sigmas,
         ];
-        c.rejection = [
-            self.history_rejection_falloff,
-            self.history_rejection_min_sigma,
-            self.variance_boost_samples,
-            self.stable_history_samples,
-        ];
+        c.rejection = [self.history_rejection_falloff, self.history_rejection_min_sigma, self.variance_boost_samples, 0.0];
+        c.runs = [self.stable_history_samples, self.history_flip_samples, 0.0, 0.0];
         c.temporal = [self.full_history_samples, self.min_current_weight, self.max_history_samples, self.spatial_falloff];
         c.filtering = [self.kernel_cross_weight, self.normal_power, self.output_contrast, self.min_shadow_sigma];
     }

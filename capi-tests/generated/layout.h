@@ -59,6 +59,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrSettings, normalPower) == 68, "offsetof(DnsrSett
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, outputContrast) == 72, "offsetof(DnsrSettings, outputContrast)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, minShadowSigma) == 76, "offsetof(DnsrSettings, minShadowSigma)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, stableHistorySamples) == 80, "offsetof(DnsrSettings, stableHistorySamples)");
+DNSR_STATIC_ASSERT(offsetof(DnsrSettings, historyFlipSamples) == 84, "offsetof(DnsrSettings, historyFlipSamples)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrContextCreateInfo) == 136, "sizeof(DnsrContextCreateInfo)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrContextCreateInfo) == 8, "alignof(DnsrContextCreateInfo)");

@@ -15,6 +15,7 @@ struct DnsrFrameConstants {
     vec4 rejection;
     vec4 temporal;
     vec4 filtering;
+    vec4 runs;
 };
 
 struct DnsrFilterPush {

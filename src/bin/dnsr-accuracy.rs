@@ -266,13 +266,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let fp16 = all(Settings::preset(Preset::Balanced), Precision::Fp16);
     let _ = writeln!(md, "{}", row("Balanced, fp16 filter", &fp16));
 
-    // The one knob Quality adds to the FidelityFX set, swept on top of the other Quality knobs (0: Quality before
-    // the knob existed).
-    let _ = writeln!(md, "\n## Quality with other stable_history_samples\n\n{}", header());
-    for n in [0.0, 2.0, 4.0, 8.0, 16.0] {
-        let runs = all(Settings { stable_history_samples: n, ..Settings::preset(Preset::Quality) }, Precision::Fp32);
-        let _ = writeln!(md, "{}", row(&format!("Quality, stable_history_samples = {n}"), &runs));
-        eprintln!("Quality, stable_history_samples = {n}: mean RMSE {:.4}", score(&runs));
+    // The two knobs Quality adds to the FidelityFX set, each swept on top of the other Quality knobs
+    // (stable_history_samples 0 turns both off: Quality before they existed).
+    let _ = writeln!(md, "\n## Quality with other run knobs\n\n{}", header());
+    type RunKnob = (&'static str, fn(&mut Settings, f32), &'static [f32]);
+    let run_knobs: [RunKnob; 2] = [
+        ("stable_history_samples", |s, v| s.stable_history_samples = v, &[0.0, 2.0, 4.0, 8.0, 16.0]),
+        ("history_flip_samples", |s, v| s.history_flip_samples = v, &[0.0, 1.0, 2.0, 3.0]),
+    ];
+    for (name, set, values) in run_knobs {
+        for &v in values {
+            let mut s = Settings::preset(Preset::Quality);
+            set(&mut s, v);
+            let runs = all(s, Precision::Fp32);
+            let _ = writeln!(md, "{}", row(&format!("Quality, {name} = {v}"), &runs));
+            eprintln!("Quality, {name} = {v}: mean RMSE {:.4}", score(&runs));
+        }
     }
 
     let _ = writeln!(md, "\n## Knob sweeps (each knob alone, others at the FidelityFX defaults)\n\n{}", header());
@@ -305,10 +314,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
          `Preset::Quality` takes each knob's winner unless it costs stability elsewhere: min_current_weight 0.1 \
          rather than 0.2 (0.2 doubles the flicker of static penumbrae again), history_clamp_sigmas stays 0.5 (0.25 \
          helps moving shadows but blurs static penumbrae and edges), output_contrast 1 (the FidelityFX darkening is \
-         a bias), four filter passes, kernel_cross_weight 0.5, and stable_history_samples 8: on top of the other \
-         Quality knobs it lowers the RMSE of four sequences (edges_lines most: a hard edge the 1-spp input already \
-         resolves is no longer pulled towards its 17x17 mean) and raises moving_occluder's by about 6%; 2 and 4 \
-         cost moving_occluder more, 16 keeps less of the gain (table above). `Preset::Fast` is one filter pass, \
+         a bias), four filter passes, kernel_cross_weight 0.5, stable_history_samples 8 and history_flip_samples 2 \
+         (table above: together they lower every sequence's RMSE against Quality without them; stable history \
+         alone keeps a hard edge the 1-spp input already resolves from being pulled towards its 17x17 mean but \
+         lets a moving hard shadow lag, which the flip restart removes at a small cost in static penumbrae; 8 \
+         counts near-0 or near-1 penumbra pixels as stable less often than 4, so they flicker less; a restart after \
+         a single sample brings moving_occluder to 0.019 but leaves the static penumbrae and the camera pan worse \
+         than Quality without either knob, 0.032 and 0.031). `Preset::Fast` is one \
+         filter pass, \
          whose mean RMSE stays within 1% of the defaults'. `Preset::Balanced` is the FidelityFX defaults. Timings \
          for the same settings come from `make bench` (BENCHMARKS.md).\n",
         best.join(", ")

@@ -114,15 +114,16 @@ fn scale_moments(m: &mut DVec4, f: f64) {
 }
 
 /// The run of identical samples after sample `x`, from the run before it: +n when the last n samples were lit,
-/// -n when they were shadowed, at most `MAX_SAMPLE_RUN` long.
-pub fn sample_run(previous: f64, x: f64) -> f64 {
-    let max = MAX_SAMPLE_RUN as f64;
-    match (x >= 0.5, previous) {
-        (true, r) if r > 0.0 => (r + 1.0).min(max),
-        (true, _) => 1.0,
-        (false, r) if r < 0.0 => (r - 1.0).max(-max),
-        (false, _) => -1.0,
+/// -n when they were shadowed, at most `MAX_SAMPLE_RUN` long. A run that breaks a stable run (at least
+/// `stable_after` samples, when that is positive) of the other value carries a half, n + 0.5.
+pub fn sample_run(previous: f64, x: f64, stable_after: f64) -> f64 {
+    let lit = x >= 0.5;
+    if (lit && previous > 0.0) || (!lit && previous < 0.0) {
+        let n = (previous.abs() + 1.0).min(MAX_SAMPLE_RUN as f64);
+        return if lit { n } else { -n };
     }
+    let start = if stable_after > 0.0 && previous.abs() >= stable_after { 1.5 } else { 1.0 };
+    if lit { start } else { -start }
 }
 
 /// The temporal part for one receiver pixel of a mixed tile: returns (moments, (shadow, variance)).
@@ -185,19 +186,28 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     m.x += (x - m_old) / m.z;
     m.y += (x - m_old) * (x - m.x);
     let mut variance = if m.z > 1.0 { m.y / (m.z - 1.0) } else { 1.0 };
-    m.w = sample_run(m.w, x);
+    let (stable_after, flip_after) = (s.stable_history_samples as f64, (s.history_flip_samples as f64).floor());
+    m.w = sample_run(m.w, x, stable_after);
     // Enough identical samples in a row: the input resolves this pixel (a hard edge, say), and the local
     // distribution, which straddles the edge, must not pull its history (nor reject it). Its history is clamped
     // to what the run allows instead: within RUN_CLAMP_SAMPLES / n of the run's value (the rule of three).
-    let stable_after = s.stable_history_samples as f64;
     let stable = stable_after > 0.0 && m.w.abs() >= stable_after;
+    // flip_after samples of the other value right after a stable run: the shadow moved over this pixel. Restart
+    // from the new samples, the history from the local mean.
+    let flipped = flip_after > 0.0 && m.w.abs() == flip_after + 0.5;
+    if flipped {
+        m = DVec4::new(x, 0.0, flip_after, if x >= 0.5 { flip_after } else { -flip_after });
+        variance = if m.z > 1.0 { 0.0 } else { 1.0 };
+    }
 
     let sigma = local.y.sqrt();
     let mut history = if disoccluded { local.x } else { io.read_history(history_uv) };
     if !history.is_finite() {
         history = local.x;
     }
-    let (clamped, d) = if stable {
+    let (clamped, d) = if flipped {
+        (local.x, 0.0)
+    } else if stable {
         let width = RUN_CLAMP_SAMPLES as f64 / m.w.abs();
         (history.clamp(x - width, x + width), 0.0)
     } else {

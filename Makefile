@@ -7,7 +7,7 @@ CARGO ?= cargo
 # `make test DNSR_DEVICE=NVIDIA`.
 DNSR_DEVICE ?= llvmpipe
 
-.PHONY: all demo demo-synthetic viewer test bench bench-smoke accuracy generate shaders header deps clean
+.PHONY: all demo demo-synthetic viewer viewer-accuracy test bench bench-smoke accuracy generate shaders header deps clean
 
 all: test
 
@@ -47,6 +47,11 @@ test: deps
 	capi-tests/install/check.sh
 	@# The C++ viewer: headless on lavapipe with validation, windowed under Xvfb, and every bad-glTF case.
 	VIEWER_DEVICE="$(DNSR_DEVICE)" examples-c/viewer/test.sh
+
+# The viewer's committed scenes (default, thin fins, thin shells) against their 256-ray reference, every preset,
+# directional and point light, still and orbiting camera: writes docs/viewer-accuracy.md (a few minutes on lavapipe).
+viewer-accuracy: viewer
+	examples-c/viewer/accuracy.py build/viewer/dnsr_viewer docs/viewer-accuracy.md
 
 # Truth-known quality harness: writes docs/accuracy.md and docs/accuracy/*.png (presets, knob sweeps, images).
 accuracy: deps

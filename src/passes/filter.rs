@@ -1,5 +1,7 @@
 //! filter: edge-avoiding a-trous passes with steps 1, 2, 4, 8. Shader: shaders/filter.comp (core in
-//! shaders/filter.glsl). Pass 0 writes the history of the next frame; the final pass writes the host output.
+//! shaders/filter.glsl) in two variants: the first pass (step 1 from a shared-memory apron; writes the guide of
+//! linear depth and normals) and the later passes (DNSR_LATER_PASS; read the guide per tap). Pass 0 writes the
+//! history of the next frame; the final pass writes the host output.
 //!
 //! Intermediates: pass 0 reprojection -> history, pass 1 history -> reprojection, pass 2 reprojection -> tmp,
 //! pass 3 tmp -> (output only). The reprojection image is free once pass 0 consumed it, so three passes need no
@@ -61,7 +63,8 @@ pub(crate) fn pass(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView
     t[Resource::TileMeta as usize] = internal(v.tile_meta);
     t[Resource::FilterInput as usize] = internal(input(v, pass));
     t[Resource::FilterOutput as usize] = internal(output(v, pass));
-    // The first pass writes the guide, the later ones read it; both are bound so one shader serves every pass.
+    // The first pass writes the guide, the later ones read it; both variants declare both bindings (they share the
+    // callbacks file), so both are bound.
     t[Resource::Guide as usize] = internal(v.guide);
     t[Resource::GuideOut as usize] = internal(v.guide);
     if is_final(pass, passes) {

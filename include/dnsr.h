@@ -309,9 +309,9 @@ typedef struct DnsrSettings {
    */
   float stableHistorySamples;
   /**
-   * After a stable run, this many samples of the other value in a row restart the pixel's history at the local
-   * mean (a shadow moved over it). Range [0, 16]; 0 disables; needs stableHistorySamples > 0. Default 0; 2 in
-   * the Quality preset.
+   * After a stable run, this many samples of the other value in a row (or the first, where the local mean is
+   * within 0.5 of it) restart the pixel's history at the local mean (a shadow moved over it). Range [0, 16];
+   * 0 disables; needs stableHistorySamples > 0. Default 0; 3 in the Quality preset.
    */
   float historyFlipSamples;
 } DnsrSettings;
@@ -1029,7 +1029,7 @@ typedef struct DnsrReferenceCallbacks {
 
 /**
  * The measured best knobs combined: 4 filter passes, 10% current-frame weight, no output contrast, cross-tap
- * weight 0.5, stable history after 8 identical samples, restarted after 2 samples of the other value.
+ * weight 0.5, stable history after 8 identical samples, restarted after 3 samples of the other value.
  */
 #define DNSR_PRESET_QUALITY 2
 

@@ -263,13 +263,16 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     // Enough identical samples in a row: the input resolves this pixel (a hard edge, say), and the local
     // distribution, which straddles the edge, must not pull its history (nor reject it).
     bool stable = stable_after > 0.0 && abs(m.w) >= stable_after;
-    // flip_after samples of the other value right after a stable run: the shadow moved over this pixel, and its
-    // history holds the old value. Restart from the new samples, the history from the local mean (a few samples
-    // of the other value also occur in a penumbra close to 0 or 1).
-    bool flipped = flip_after > 0.0 && abs(m.w) == flip_after + 0.5;
+    // flip_after samples of the other value right after a stable run, or the first one where the local
+    // distribution already leans to it: the shadow moved over this pixel, and its history holds the old value.
+    // Restart from the new samples, the history from the local mean. (A few samples of the other value also occur
+    // in a penumbra close to 0 or 1, where the local mean stays on the old side.)
+    bool breaking = flip_after > 0.0 && fract(abs(m.w)) == 0.5;
+    bool flipped = breaking && (abs(m.w) == flip_after + 0.5 || abs(x - local.x) < 0.5);
     if (flipped) {
-        m = vec4(x, 0.0, flip_after, x >= 0.5 ? flip_after : -flip_after);
-        variance = m.z > 1.0 ? 0.0 : 1.0;
+        float n = floor(abs(m.w));
+        m = vec4(x, 0.0, n, x >= 0.5 ? n : -n);
+        variance = n > 1.0 ? 0.0 : 1.0;
     }
 
     // History clamped to the local distribution; a history far outside it loses its sample count.

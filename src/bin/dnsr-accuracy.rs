@@ -352,13 +352,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
          `Preset::Quality` takes each knob's winner unless it costs stability elsewhere: min_current_weight 0.1 \
          rather than 0.2 (0.2 doubles the flicker of static penumbrae again), history_clamp_sigmas stays 0.5 (0.25 \
          helps moving shadows but blurs static penumbrae and edges), output_contrast 1 (the FidelityFX darkening is \
-         a bias), four filter passes, kernel_cross_weight 0.5, stable_history_samples 8 and history_flip_samples 2 \
+         a bias), four filter passes, kernel_cross_weight 0.5, stable_history_samples 8 and history_flip_samples 3 \
          (table above: together they lower every sequence's RMSE against Quality without them; stable history \
          alone keeps a hard edge the 1-spp input already resolves from being pulled towards its 17x17 mean but \
          lets a moving hard shadow lag, which the flip restart removes at a small cost in static penumbrae; 8 \
          counts near-0 or near-1 penumbra pixels as stable less often than 4, so they flicker less; a restart after \
-         a single sample brings moving_occluder to 0.019 but leaves the static penumbrae and the camera pan worse \
-         than Quality without either knob, 0.032 and 0.031). `Preset::Fast` is one \
+         a single sample wherever the neighbourhood agrees already moves the shadow's edge, so 3 samples elsewhere \
+         beat 2 on every sequence but moving_occluder, where both stay below 0.03; a restart after any single \
+         sample brings moving_occluder to 0.019 but leaves the static penumbrae and the camera pan worse than \
+         Quality without either knob, 0.032 and 0.031). `Preset::Fast` is one \
          filter pass, \
          whose mean RMSE stays within 1% of the defaults'. `Preset::Balanced` is the FidelityFX defaults. Timings \
          for the same settings come from `make bench` (BENCHMARKS.md).\n",

@@ -153,7 +153,7 @@ pub const DNSR_PRESET_FAST: DnsrPreset = 0;
 /// The FidelityFX defaults (same as `dnsr_settings_init_default`).
 pub const DNSR_PRESET_BALANCED: DnsrPreset = 1;
 /// The measured best knobs combined: 4 filter passes, 10% current-frame weight, no output contrast, cross-tap
-/// weight 0.5, stable history after 8 identical samples, restarted after 2 samples of the other value.
+/// weight 0.5, stable history after 8 identical samples, restarted after 3 samples of the other value.
 pub const DNSR_PRESET_QUALITY: DnsrPreset = 2;
 /// Forces 32 bits.
 pub const DNSR_PRESET_MAX_ENUM: DnsrPreset = 0x7FFF_FFFF;
@@ -327,9 +327,9 @@ pub struct DnsrSettings {
     /// local distribution (hard shadow edges the input resolves stay sharp). Range [0, 4096]; 0 disables (the
     /// FidelityFX behaviour). Default 0; 8 in the Quality preset.
     pub stable_history_samples: f32,
-    /// After a stable run, this many samples of the other value in a row restart the pixel's history at the local
-    /// mean (a shadow moved over it). Range [0, 16]; 0 disables; needs stableHistorySamples > 0. Default 0; 2 in
-    /// the Quality preset.
+    /// After a stable run, this many samples of the other value in a row (or the first, where the local mean is
+    /// within 0.5 of it) restart the pixel's history at the local mean (a shadow moved over it). Range [0, 16];
+    /// 0 disables; needs stableHistorySamples > 0. Default 0; 3 in the Quality preset.
     pub history_flip_samples: f32,
 }
 

@@ -192,12 +192,15 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     // distribution, which straddles the edge, must not pull its history (nor reject it). Its history is clamped
     // to what the run allows instead: within RUN_CLAMP_SAMPLES / n of the run's value (the rule of three).
     let stable = stable_after > 0.0 && m.w.abs() >= stable_after;
-    // flip_after samples of the other value right after a stable run: the shadow moved over this pixel. Restart
-    // from the new samples, the history from the local mean.
-    let flipped = flip_after > 0.0 && m.w.abs() == flip_after + 0.5;
+    // flip_after samples of the other value right after a stable run, or the first one where the local
+    // distribution already leans to it: the shadow moved over this pixel. Restart from the new samples, the
+    // history from the local mean.
+    let breaking = flip_after > 0.0 && m.w.abs().fract() == 0.5;
+    let flipped = breaking && (m.w.abs() == flip_after + 0.5 || (x - local.x).abs() < 0.5);
     if flipped {
-        m = DVec4::new(x, 0.0, flip_after, if x >= 0.5 { flip_after } else { -flip_after });
-        variance = if m.z > 1.0 { 0.0 } else { 1.0 };
+        let n = m.w.abs().floor();
+        m = DVec4::new(x, 0.0, n, if x >= 0.5 { n } else { -n });
+        variance = if n > 1.0 { 0.0 } else { 1.0 };
     }
 
     let sigma = local.y.sqrt();

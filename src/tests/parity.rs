@@ -92,8 +92,13 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     info.settings.filter_passes = passes;
     // Some cases clamp the history of pixels with two identical samples in a row to their run ...
     info.settings.stable_history_samples = if [1, 5, 6].contains(&seed) { 2.0 } else { 0.0 };
-    // ... and of those, two restart it after one sample of the other value (possible by the compared frame 3).
-    info.settings.history_flip_samples = if [1, 5].contains(&seed) { 1.0 } else { 0.0 };
+    // ... and of those, two restart it after one sample of the other value, or two unless the neighbourhood agrees
+    // (both possible by the compared frame 3).
+    info.settings.history_flip_samples = match seed {
+        1 => 1.0,
+        5 => 2.0,
+        _ => 0.0,
+    };
     let mut r = Runner::new(g, &info).unwrap();
     for frame in 1..3 {
         r.frame(&random_frame(w, h, seed, frame), frame == 1);

@@ -266,11 +266,6 @@ static void upload_inputs(uint32_t mask_bits)
     host_upload(&host, &normals, normal_data, sizeof normal_data);
 }
 
-static void identity(float m[16])
-{
-    for (int i = 0; i < 16; i++) m[i] = (i % 5 == 0) ? 1.0f : 0.0f;
-}
-
 static void live_context_setup(void)
 {
     DNSR_CHECK(dnsr_context_create(&good_info, &ctx));
@@ -299,17 +294,7 @@ static void live_context_setup(void)
     good.velocity = host_image_desc(&velocity);
     good.normals = host_image_desc(&normals);
     good.output = host_image_desc(&output);
-    good.motionVectorScale[0] = good.motionVectorScale[1] = 1.0f;
-    good.normalsUnpackMul = 1.0f;
-    good.normalsUnpackAdd = 0.0f;
-    identity(good.projectionInverse);
-    identity(good.reprojectionMatrix);
-    identity(good.viewProjectionInverse);
-    good.depthSimilaritySigma = 1.0f;
-    good.sync.inputSrcStages = VK_PIPELINE_STAGE_TRANSFER_BIT;
-    good.sync.inputSrcAccess = VK_ACCESS_TRANSFER_WRITE_BIT;
-    good.sync.outputDstStages = VK_PIPELINE_STAGE_TRANSFER_BIT;
-    good.sync.outputDstAccess = VK_ACCESS_TRANSFER_READ_BIT;
+    host_dispatch_neutral(&good);
 }
 
 static void live_context_teardown(void)

@@ -270,15 +270,8 @@ static DnsrShadowsDispatch dispatch(VkCommandBuffer cmd, uint32_t frame)
     d.velocity = host_image_desc(&velocity);
     d.normals = host_image_desc(&normals);
     d.output = host_image_desc(&output);
-    d.motionVectorScale[0] = d.motionVectorScale[1] = 1.0f;
-    d.normalsUnpackMul = 1.0f;
+    host_dispatch_neutral(&d);
     d.frameIndex = frame;
-    for (int i = 0; i < 16; i += 5) d.projectionInverse[i] = d.reprojectionMatrix[i] = d.viewProjectionInverse[i] = 1.0f;
-    d.depthSimilaritySigma = 1.0f;
-    d.sync.inputSrcStages = VK_PIPELINE_STAGE_TRANSFER_BIT;
-    d.sync.inputSrcAccess = VK_ACCESS_TRANSFER_WRITE_BIT;
-    d.sync.outputDstStages = VK_PIPELINE_STAGE_TRANSFER_BIT;
-    d.sync.outputDstAccess = VK_ACCESS_TRANSFER_READ_BIT;
     return d;
 }
 

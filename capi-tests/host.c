@@ -429,6 +429,22 @@ DnsrHostImage host_image_desc(const HostImage *img)
     return d;
 }
 
+void host_dispatch_neutral(DnsrShadowsDispatch *d)
+{
+    d->motionVectorScale[0] = d->motionVectorScale[1] = 1.0f;
+    d->normalsUnpackMul = 1.0f;
+    d->normalsUnpackAdd = 0.0f;
+    for (int i = 0; i < 16; i++) {
+        float v = (i % 5 == 0) ? 1.0f : 0.0f;
+        d->projectionInverse[i] = d->reprojectionMatrix[i] = d->viewProjectionInverse[i] = v;
+    }
+    d->depthSimilaritySigma = 1.0f;
+    d->sync.inputSrcStages = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    d->sync.inputSrcAccess = VK_ACCESS_TRANSFER_WRITE_BIT;
+    d->sync.outputDstStages = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    d->sync.outputDstAccess = VK_ACCESS_TRANSFER_READ_BIT;
+}
+
 size_t host_image_bytes(const HostImage *img)
 {
     return (size_t)img->width * img->height * img->texelBytes;

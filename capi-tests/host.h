@@ -133,6 +133,9 @@ void host_image_destroy(Host *h, HostImage *img);
 /* The image as dnsr sees it: its view, format, resting layout and extent. */
 DnsrHostImage host_image_desc(const HostImage *img);
 size_t host_image_bytes(const HostImage *img);
+/* The scene-independent fields of a dispatch the tests share: unit motion-vector scale, normals stored as-is,
+ * identity matrices, depth sigma 1, inputs written and output read by transfers. */
+void host_dispatch_neutral(DnsrShadowsDispatch *d);
 
 void host_buffer_create(Host *h, HostBuffer *b, VkDeviceSize size);
 void host_buffer_destroy(Host *h, HostBuffer *b);

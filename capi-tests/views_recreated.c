@@ -307,11 +307,6 @@ static DnsrHostImage frame_desc(const Frame *f, enum Role r, VkImageLayout layou
 
 /* ------------------------------------------------------------------------------------------------------------- */
 
-static void identity(float m[16])
-{
-    for (int i = 0; i < 16; i++) m[i] = (i % 5 == 0) ? 1.0f : 0.0f;
-}
-
 static double seconds_now(void)
 {
     struct timespec t;
@@ -371,17 +366,8 @@ static void run_batch(DnsrContext ctx, Frame *frames, uint32_t count, uint32_t f
         d.velocity = frame_desc(f, VELOCITY, read);
         d.normals = frame_desc(f, NORMALS, read);
         d.output = frame_desc(f, OUTPUT, out_layout);
-        d.motionVectorScale[0] = d.motionVectorScale[1] = 1.0f;
-        d.normalsUnpackMul = 1.0f;
+        host_dispatch_neutral(&d);
         d.frameIndex = f->index;
-        identity(d.projectionInverse);
-        identity(d.reprojectionMatrix);
-        identity(d.viewProjectionInverse);
-        d.depthSimilaritySigma = 1.0f;
-        d.sync.inputSrcStages = VK_PIPELINE_STAGE_TRANSFER_BIT;
-        d.sync.inputSrcAccess = VK_ACCESS_TRANSFER_WRITE_BIT;
-        d.sync.outputDstStages = VK_PIPELINE_STAGE_TRANSFER_BIT;
-        d.sync.outputDstAccess = VK_ACCESS_TRANSFER_READ_BIT;
         DnsrResult r = dnsr_shadows_record(ctx, &d);
         CHECK(r == DNSR_SUCCESS, "frame %u (%lu views created so far): dnsr_shadows_record: %s: %s", f->index,
               stats.viewsCreated, dnsr_result_to_string(r), dnsr_last_error_message());

@@ -69,7 +69,7 @@ declare_settings! {
     /// local 17x17 distribution, and its history is not rejected: the input already resolves it (a hard shadow
     /// edge), and the local distribution, which straddles the edge, would pull it towards the edge's mean.
     /// 0 turns this off (the FidelityFX behaviour).
-    stable_history_samples: f32 = 0.0, [0.0, 4096.0] "[0, 4096]";
+    stable_history_samples: f32 = 0.0, [0.0, crate::passes::MAX_SAMPLE_RUN as f32] "[0, 4096]";
     /// After a stable run (`stable_history_samples`), this many samples of the other value in a row, or the first
     /// one where the local 17x17 mean is within 0.5 of it, restart the pixel's history at the local mean: the
     /// shadow moved over the pixel, with or without motion vectors. Whole samples (a fraction is dropped); 0 turns

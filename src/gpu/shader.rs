@@ -55,6 +55,21 @@ pub(crate) const VARIANTS: &[ShaderVariant] = &[
     variant!("filter_later_final_r32f_fp16", "filter.comp", ["DNSR_LATER_PASS", "DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r32f", "DNSR_FP16"]),
 ];
 
+/// The compiled variant `stem`, `stem_<output format>` when an output format is given, with `_fp16` for the fp16
+/// path; None for an output format no variant writes.
+pub(crate) fn variant_name(stem: &str, output: Option<vk::Format>, precision: crate::Precision) -> Option<&'static str> {
+    let format = match output {
+        None => "",
+        Some(vk::Format::R8_UNORM) => "_r8",
+        Some(vk::Format::R16_SFLOAT) => "_r16f",
+        Some(vk::Format::R32_SFLOAT) => "_r32f",
+        Some(_) => return None,
+    };
+    let fp16 = if precision == crate::Precision::Fp16 { "_fp16" } else { "" };
+    let name = format!("{stem}{format}{fp16}");
+    VARIANTS.iter().find(|v| v.name == name).map(|v| v.name)
+}
+
 pub(crate) fn variant(name: &str) -> &'static ShaderVariant {
     VARIANTS.iter().find(|v| v.name == name).expect("shader variant names are compile-time constants")
 }

@@ -13,34 +13,19 @@ use super::{internal, FrameViews, Grid, Pass, Role, WIDE_GROUP};
 use crate::constants::{FilterPush, PASS_SKIP_CLEARED, PASS_WRITE_GUIDE, PASS_WRITE_INTERNAL};
 use crate::create_info::Precision;
 use crate::dispatch::DebugView;
+use crate::gpu::shader::variant_name;
 use ash::vk;
 
 /// The variant of the first pass (`later` false: step 1, shared-memory apron, writes the guide) or of a later pass
-/// (reads the guide), intermediate or final.
+/// (reads the guide), intermediate or final (writing `final_output`).
 pub(crate) fn shader(precision: Precision, final_output: Option<vk::Format>, later: bool) -> Option<&'static str> {
-    let fp16 = precision == Precision::Fp16;
-    let names: [&'static str; 8] = if later {
-        [
-            "filter_later", "filter_later_fp16", "filter_later_final_r8", "filter_later_final_r16f", "filter_later_final_r32f",
-            "filter_later_final_r8_fp16", "filter_later_final_r16f_fp16", "filter_later_final_r32f_fp16",
-        ]
-    } else {
-        [
-            "filter", "filter_fp16", "filter_final_r8", "filter_final_r16f", "filter_final_r32f", "filter_final_r8_fp16",
-            "filter_final_r16f_fp16", "filter_final_r32f_fp16",
-        ]
+    let stem = match (later, final_output.is_some()) {
+        (false, false) => "filter",
+        (false, true) => "filter_final",
+        (true, false) => "filter_later",
+        (true, true) => "filter_later_final",
     };
-    Some(match (final_output, fp16) {
-        (None, false) => names[0],
-        (None, true) => names[1],
-        (Some(vk::Format::R8_UNORM), false) => names[2],
-        (Some(vk::Format::R16_SFLOAT), false) => names[3],
-        (Some(vk::Format::R32_SFLOAT), false) => names[4],
-        (Some(vk::Format::R8_UNORM), true) => names[5],
-        (Some(vk::Format::R16_SFLOAT), true) => names[6],
-        (Some(vk::Format::R32_SFLOAT), true) => names[7],
-        _ => return None,
-    })
+    variant_name(stem, final_output, precision)
 }
 
 fn input(v: &FrameViews, pass: u32) -> vk::ImageView {

@@ -8,18 +8,10 @@ use ash::vk;
 
 /// The variant for a precision and the context's output format (it writes the output of cleared tiles).
 pub(crate) fn shader(precision: Precision, output: vk::Format) -> Option<&'static str> {
-    Some(match (output, precision) {
-        (vk::Format::R8_UNORM, Precision::Fp32) => "tile_classification_r8",
-        (vk::Format::R16_SFLOAT, Precision::Fp32) => "tile_classification_r16f",
-        (vk::Format::R32_SFLOAT, Precision::Fp32) => "tile_classification_r32f",
-        (vk::Format::R8_UNORM, Precision::Fp16) => "tile_classification_r8_fp16",
-        (vk::Format::R16_SFLOAT, Precision::Fp16) => "tile_classification_r16f_fp16",
-        (vk::Format::R32_SFLOAT, Precision::Fp16) => "tile_classification_r32f_fp16",
-        _ => return None,
-    })
+    crate::gpu::shader::variant_name("tile_classification", Some(output), precision)
 }
 
-/// One invocation per pixel, two tiles per group (ceil(H/8) group rows, not FFX's ceil(H/4)).
+/// One invocation per pixel, groups of `WIDE_GROUP` pixels (2x2 blocks of two tiles each).
 pub(crate) fn pass(v: &FrameViews) -> Pass {
     let mut t = v.base_table();
     t[Resource::TileMask as usize] = v.tile_mask;

@@ -703,6 +703,22 @@ typedef struct DnsrShadowsDispatch {
    * DNSR_DEBUG_VIEW_NONE (0, the shadow) or a debug view of dnsr's internal state written to the output.
    */
   DnsrDebugView debugView;
+  /**
+   * Read when DNSR_DISPATCH_USE_HIT_DISTANCE is set (penumbra guidance). W x H, R16_SFLOAT or R32_SFLOAT: per
+   * pixel, the distance along the shadow ray from the receiver to the first occluder it hit, in view-space
+   * units (those projectionInverse maps depth to). Read only where the hit mask says the ray hit; a value
+   * there that is not finite and > 0 counts as unknown, so a tracer may write anything (0, say) on a miss.
+   * The filter narrows its kernel to the penumbra width the blockers imply: contact shadows stay sharp, wide
+   * penumbrae are filtered as without guidance. Sampled layouts as for the hit mask.
+   */
+  struct DnsrHostImage hitDistance;
+  /**
+   * Read when DNSR_DISPATCH_USE_HIT_DISTANCE is set. The light's angular diameter seen from the receivers, in
+   * radians, in [0, pi) (the sun: about 0.0093; a sphere light of radius r at distance D: 2 asin(r / D)); 0 is
+   * a point light (hard shadows: no spatial filtering). NaN/Inf: DNSR_ERROR_NON_FINITE; out of range:
+   * DNSR_ERROR_INVALID_ARGUMENT.
+   */
+  float lightAngularSize;
 } DnsrShadowsDispatch;
 
 /**
@@ -1062,6 +1078,11 @@ typedef struct DnsrReferenceCallbacks {
  * Denoise only `renderRect` (otherwise the whole render size).
  */
 #define DNSR_DISPATCH_USE_RENDER_RECT (1 << 1)
+
+/**
+ * Penumbra guidance: `hitDistance` and `lightAngularSize` are read.
+ */
+#define DNSR_DISPATCH_USE_HIT_DISTANCE (1 << 2)
 
 /**
  * Forces 32 bits.

@@ -33,6 +33,10 @@ vec4 dnsr_get_rejection_settings() { return dnsr_constants.rejection; }
 vec4 dnsr_get_temporal_settings() { return dnsr_constants.temporal; }
 vec4 dnsr_get_filter_settings() { return dnsr_constants.filtering; }
 vec4 dnsr_get_run_settings() { return dnsr_constants.runs; }
+bool dnsr_get_is_penumbra_guided() { return (dnsr_constants.flags.x & DNSR_FLAG_PENUMBRA_GUIDED) != 0u; }
+// x: tan(light angular diameter / 2); a pixel's world size at linear depth z is y + z * z; w: the filter's sigma
+// in penumbra half-widths.
+vec4 dnsr_get_penumbra_settings() { return dnsr_constants.penumbra; }
 
 // Decoded host G-buffer reads shared by the classification and filter passes.
 #if defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER)
@@ -89,6 +93,12 @@ void dnsr_write_depth_copy(ivec2 p, float depth) { imageStore(dnsr_depth_copy, p
 void dnsr_write_moments(ivec2 p, vec4 m) { imageStore(dnsr_moments, p + dnsr_get_offset(), m); }
 void dnsr_write_reprojection(ivec2 p, vec2 mean_var) { imageStore(dnsr_reprojection, p + dnsr_get_offset(), vec4(mean_var, 0.0, 0.0)); }
 void dnsr_write_tile_meta(ivec2 tile, uint meta) { imageStore(dnsr_tile_meta_out, tile + dnsr_get_tile_offset(), uvec4(meta)); }
+// Penumbra guidance: the host's distance to the first occluder (read where the mask says the ray hit), and each
+// tile's blocker estimate for the filter (-1: unknown).
+layout(set = 0, binding = 21) uniform texture2D dnsr_hit_distance;
+layout(set = 0, binding = 22, r32f) uniform writeonly image2D dnsr_tile_blocker_out;
+float dnsr_read_hit_distance(ivec2 p) { return texelFetch(dnsr_hit_distance, p + dnsr_get_offset(), 0).r; }
+void dnsr_write_tile_blocker(ivec2 tile, float distance) { imageStore(dnsr_tile_blocker_out, tile + dnsr_get_tile_offset(), vec4(distance)); }
 // The host's output, written here for cleared tiles only (their final value is known; later filter passes skip
 // them).
 layout(set = 0, binding = 17, DNSR_OUTPUT_FORMAT) uniform writeonly image2D dnsr_output;
@@ -117,6 +127,8 @@ bool dnsr_get_write_guide() { return (dnsr_push.pass.y & DNSR_PASS_WRITE_GUIDE) 
 vec4 dnsr_read_guide(ivec2 p) { return texelFetch(dnsr_guide, p + dnsr_get_offset(), 0); }
 void dnsr_write_guide(ivec2 p, float linear_depth, vec3 normal) { imageStore(dnsr_guide_out, p + dnsr_get_offset(), vec4(linear_depth, normal)); }
 uint dnsr_read_tile_meta(ivec2 tile) { return texelFetch(dnsr_tile_meta, tile + dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT), 0).r; }
+layout(set = 0, binding = 23) uniform texture2D dnsr_tile_blocker;
+float dnsr_read_tile_blocker(ivec2 tile) { return texelFetch(dnsr_tile_blocker, tile + dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT), 0).r; }
 vec2 dnsr_read_filter_input(ivec2 p) { return texelFetch(dnsr_filter_input, p + dnsr_get_offset(), 0).xy; }
 // Variances of the 2x2 texels around the texel corner at the top left of pixel `corner`.
 vec4 dnsr_gather_filter_variance(ivec2 corner) {

@@ -120,6 +120,19 @@ void dnsr_tap(ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal, out v
 }
 #endif
 
+// Penumbra guidance: 1 / (2 sigma^2) of the Gaussian over tap distance that keeps the kernel within the penumbra
+// the tile's blockers cast on a receiver at linear depth zc; 0 (no narrowing) without guidance or blocker.
+float dnsr_penumbra_falloff(ivec2 p, float zc) {
+    if (!dnsr_get_is_penumbra_guided()) return 0.0;
+    float blocker = dnsr_read_tile_blocker(p / DNSR_TILE_SIZE);
+    if (blocker < 0.0) return 0.0;
+    vec4 pen = dnsr_get_penumbra_settings();
+    float footprint = pen.y + pen.z * zc;
+    if (!(footprint > 0.0)) return 0.0;
+    float sigma = blocker * pen.x / footprint * pen.w;
+    return 0.5 / max(sigma * sigma, 1e-20);
+}
+
 // The filtered (mean, variance) of receiver p (linear depth zc, normal nc) in a tile that is not cleared.
 vec2 dnsr_filter_receiver(ivec2 p, ivec2 lid, int step, float zc, vec3 nc) {
     vec4 settings = dnsr_get_filter_settings();
@@ -141,6 +154,7 @@ vec2 dnsr_filter_receiver(ivec2 p, ivec2 lid, int step, float zc, vec3 nc) {
     }
     float inv_sigma = 1.0 / max(sqrt(max(vsum / vweight, 0.0)), settings.w);
     float inv_depth_sigma = 1.0 / dnsr_get_depth_similarity_sigma();
+    float falloff = dnsr_penumbra_falloff(p, zc);
     float weight_sum = 1.0;
     float mean_sum = c.x;
     float var_sum = c.y;
@@ -153,9 +167,10 @@ vec2 dnsr_filter_receiver(ivec2 p, ivec2 lid, int step, float zc, vec3 nc) {
             dnsr_tap(p, lid, i, j, step, n, g);
             float zq = g.x;
             if (zq < 0.0) continue;
-            // The shadow and depth edge stops share one exp.
+            // The shadow and depth edge stops and the penumbra kernel share one exp.
             float w = kernel[abs(i)] * kernel[abs(j)]
-                    * exp(-(abs(c.x - n.x) * inv_sigma + abs(zc - zq) * inv_depth_sigma))
+                    * exp(-(abs(c.x - n.x) * inv_sigma + abs(zc - zq) * inv_depth_sigma
+                            + float((i * i + j * j) * step * step) * falloff))
                     * pow(max(dot(nc, g.yzw), 0.0), normal_power);
             weight_sum += w;
             mean_sum += w * n.x;

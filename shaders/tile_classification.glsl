@@ -27,6 +27,14 @@ shared uint s_uniform[DNSR_GROUP_TILES.y][DNSR_GROUP_TILES.x];
 // First tile of the group's window (same for every invocation of the group).
 ivec2 g_window_base;
 
+// Penumbra guidance: every window tile's (sum, count) of usable hit distances over its shadowed pixels, summed
+// from DNSR_HIT_PARTS partial sums of DNSR_HIT_PIXELS pixels each.
+const int DNSR_WINDOW_TILE_COUNT = DNSR_WINDOW_TILES.x * DNSR_WINDOW_TILES.y;
+const int DNSR_HIT_PARTS = DNSR_WIDE_GROUP_INVOCATIONS / DNSR_WINDOW_TILE_COUNT;
+const int DNSR_HIT_PIXELS = 32 / DNSR_HIT_PARTS;
+shared vec2 s_hit_part[DNSR_WIDE_GROUP_INVOCATIONS];
+shared vec2 s_hit[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
+
 ivec2 dnsr_tile_count() { return (dnsr_get_extent() + DNSR_TILE_SIZE - 1) / DNSR_TILE_SIZE; }
 
 // Bits of a tile whose pixels lie inside the render rectangle (0 for a tile outside it).
@@ -104,6 +112,42 @@ float dnsr_sample_run(float previous, float x, float stable_after) {
     return lit ? start : -start;
 }
 
+bool dnsr_usable_hit_distance(float d) { return d > 0.0 && d < 1.0 / 0.0; }
+
+// Penumbra guidance, first half: invocation `thread` sums the usable hit distances of its share of one window
+// tile's shadowed pixels. Followed by a barrier and dnsr_reduce_hit_parts.
+void dnsr_sum_hit_part(int thread) {
+    int k = thread / DNSR_HIT_PARTS;
+    ivec2 w = ivec2(k % DNSR_WINDOW_TILES.x, k / DNSR_WINDOW_TILES.x);
+    ivec2 tile = g_window_base + w;
+    uint shadowed = ~s_words[w.y][w.x] & dnsr_tile_valid_bits(tile);
+    vec2 part = vec2(0.0);
+    for (int i = 0; i < DNSR_HIT_PIXELS; ++i) {
+        int bit = (thread % DNSR_HIT_PARTS) * DNSR_HIT_PIXELS + i;
+        if (((shadowed >> uint(bit)) & 1u) == 0u) continue;
+        float d = dnsr_read_hit_distance(tile * DNSR_TILE_SIZE + ivec2(bit % 8, bit / 8));
+        if (dnsr_usable_hit_distance(d)) part += vec2(d, 1.0);
+    }
+    s_hit_part[thread] = part;
+}
+
+// Second half: one invocation per window tile adds its parts up, in order.
+void dnsr_reduce_hit_parts(int thread) {
+    if (thread >= DNSR_WINDOW_TILE_COUNT) return;
+    vec2 sum = vec2(0.0);
+    for (int i = 0; i < DNSR_HIT_PARTS; ++i) sum += s_hit_part[thread * DNSR_HIT_PARTS + i];
+    s_hit[thread / DNSR_WINDOW_TILES.x][thread % DNSR_WINDOW_TILES.x] = sum;
+}
+
+// The group's tile `t`: mean hit distance over the +-8 px window (the uniform test's), -1 when none is known.
+float dnsr_tile_blocker(ivec2 t) {
+    vec2 sum = vec2(0.0);
+    for (int r = 0; r < 5; ++r) {
+        for (int c = 0; c < 3; ++c) sum += s_hit[t.y + r][t.x + c];
+    }
+    return sum.y > 0.0 ? sum.x / sum.y : -1.0;
+}
+
 // A pixel of a cleared tile: its value is known exactly; keep the state of the next frame consistent with it.
 void dnsr_write_cleared(ivec2 p, bool receiver, uint state, bool tile_writer) {
     float value = state == 1u ? 1.0 : 0.0;
@@ -152,6 +196,13 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
 
     // Read by the quad vote after the next barrier.
     s_quad_velocity[lid.y][lid.x] = receiver ? dnsr_read_velocity(p) : vec2(0.0);
+    bool guided = dnsr_get_is_penumbra_guided();
+    if (guided) {
+        dnsr_sum_hit_part(thread);
+        barrier();
+        dnsr_reduce_hit_parts(thread);
+        // s_hit is read after the barrier that follows the moment sums.
+    }
 
     // Horizontal Gaussian over DNSR_WINDOW_ROWS / height window rows per invocation.
     dnsr_init_moment_weights();
@@ -196,7 +247,10 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         dnsr_write_cleared(p, receiver, uniform_state, tile_writer);
         return;
     }
-    if (tile_writer) dnsr_write_tile_meta(p / DNSR_TILE_SIZE, 0u);
+    if (tile_writer) {
+        dnsr_write_tile_meta(p / DNSR_TILE_SIZE, 0u);
+        if (guided) dnsr_write_tile_blocker(p / DNSR_TILE_SIZE, dnsr_tile_blocker(own_tile));
+    }
     if (!receiver) {
         dnsr_write_reprojection(p, DNSR_SKY_SIGNAL);
         dnsr_write_moments(p, vec4(0.0));

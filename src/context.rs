@@ -1,6 +1,6 @@
 //! The denoiser context: pipelines, internal state per light, and recording into the host's command buffer.
 
-use crate::constants::{FrameConstants, FLAG_DEPTH_INVERTED, FLAG_RESET};
+use crate::constants::{FrameConstants, FLAG_DEPTH_INVERTED, FLAG_PENUMBRA_GUIDED, FLAG_RESET};
 use crate::create_info::{ContextCreateInfo, EnabledFeatures, Precision};
 use crate::dispatch::{HitMaskConvention, ShadowsDispatch};
 use crate::error::{vk_check, Error, Result};
@@ -310,6 +310,9 @@ impl Context {
             depth: host(&d.depth),
             velocity: host(&d.velocity),
             normals: host(&d.normals),
+            // Without hit distances the binding takes an image of a float format that the pass only samples.
+            hit_distance: d.hit_distance.as_ref().map_or(image(light.depth[cur ^ 1].view, vk::ImageLayout::GENERAL), host),
+            tile_blocker: light.tile_blocker.view,
             output: d.output.view,
             tile_mask: match d.hit_mask_convention {
                 HitMaskConvention::OccludedBits => image(light.tile_mask.view, vk::ImageLayout::GENERAL),
@@ -375,12 +378,15 @@ impl Context {
             motion_normals: [d.motion_vector_scale.x, d.motion_vector_scale.y, d.normals_unpack_mul, d.normals_unpack_add],
             rect: [rect.x, rect.y, rect.width, rect.height],
             flags: [
-                (if reset { FLAG_RESET } else { 0 }) | (if self.depth_inverted { FLAG_DEPTH_INVERTED } else { 0 }),
+                (if reset { FLAG_RESET } else { 0 })
+                    | (if self.depth_inverted { FLAG_DEPTH_INVERTED } else { 0 })
+                    | (if d.hit_distance.is_some() { FLAG_PENUMBRA_GUIDED } else { 0 }),
                 0,
                 0,
                 0,
             ],
             inv_extent: [1.0 / rect.width as f32, 1.0 / rect.height as f32, 1.0 / self.size[0] as f32, 1.0 / self.size[1] as f32],
+            penumbra: penumbra_constants(d, rect.height),
             ..Default::default()
         };
         self.settings.write_to(&mut c);
@@ -403,7 +409,7 @@ impl Context {
             vk::AccessFlags::empty(),
             vk::AccessFlags::SHADER_WRITE,
         );
-        let mut images = [vk::ImageMemoryBarrier::default(); 12];
+        let mut images = [vk::ImageMemoryBarrier::default(); 16];
         let mut count = 0;
         if output_transition {
             images[count] = to_general;
@@ -517,6 +523,7 @@ impl Context {
 pub(crate) struct Internals {
     pub tile_mask: vk::Image,
     pub tile_meta: vk::Image,
+    pub tile_blocker: vk::Image,
     pub reprojection: vk::Image,
     pub history: vk::Image,
     /// Written by the last recorded frame.
@@ -532,6 +539,7 @@ impl Context {
         Internals {
             tile_mask: l.tile_mask.image,
             tile_meta: l.tile_meta.image,
+            tile_blocker: l.tile_blocker.image,
             reprojection: l.reprojection.image,
             history: l.history.image,
             moments: l.moments[l.parity ^ 1].image,
@@ -588,6 +596,15 @@ impl Hazards {
         }
         conflict
     }
+}
+
+/// The penumbra guidance constants (zero without hit distances): the same conversion the CPU reference uses.
+fn penumbra_constants(d: &ShadowsDispatch, height: u32) -> [f32; 4] {
+    if d.hit_distance.is_none() {
+        return [0.0; 4];
+    }
+    let p = crate::reference::Penumbra::new(d.light_angular_size as f64, d.projection_inverse.as_dmat4(), height as i32);
+    [p.tan_half_angle as f32, p.pixel_size as f32, p.pixel_size_per_depth as f32, crate::reference::PENUMBRA_SIGMA_SCALE as f32]
 }
 
 fn binder_ref(b: &Option<Binder>) -> &Binder {

@@ -101,6 +101,16 @@ pub struct ShadowsDispatch {
     pub normals: HostImage,
     /// Denoised shadow (1 lit, 0 shadowed), W x H, in `ContextCreateInfo::output_format`. Storage write.
     pub output: HostImage,
+    /// Optional penumbra guidance: per pixel, the distance along the shadow ray from the receiver to the first
+    /// occluder it hit, in view-space units (the units `projection_inverse` maps depth to), W x H, R16_SFLOAT or
+    /// R32_SFLOAT, sampled. Read only where the hit mask says the ray hit; a value there that is not finite and
+    /// positive counts as unknown. With it, the filter derives how wide the penumbra can be around each pixel
+    /// (from `light_angular_size`, the blockers' distance and the view depth) and narrows its kernel to that:
+    /// contact shadows stay sharp, wide penumbrae are filtered as without it. `None`: no guidance.
+    pub hit_distance: Option<HostImage>,
+    /// Angular diameter of the light seen from the receivers, in radians (the sun: about 0.0093), in [0, pi).
+    /// Used only with `hit_distance`; 0 means a point light (every penumbra hard, no spatial filtering).
+    pub light_angular_size: f32,
     /// Multiplier from stored motion vectors to uv offsets.
     pub motion_vector_scale: Vec2,
     /// Normal decode multiplier (2.0 for UNORM-packed normals).
@@ -140,6 +150,8 @@ impl Default for ShadowsDispatch {
             velocity: HostImage::default(),
             normals: HostImage::default(),
             output: HostImage::default(),
+            hit_distance: None,
+            light_angular_size: 0.0,
             motion_vector_scale: Vec2::ONE,
             normals_unpack_mul: 1.0,
             normals_unpack_add: 0.0,

@@ -16,6 +16,8 @@ pub enum ImageRole {
     Normals,
     /// The denoised shadow written by dnsr.
     Output,
+    /// The optional per-pixel distance to the first occluder (penumbra guidance).
+    HitDistance,
 }
 
 impl ImageRole {
@@ -27,6 +29,7 @@ impl ImageRole {
             ImageRole::Velocity => "velocity",
             ImageRole::Normals => "normals",
             ImageRole::Output => "output",
+            ImageRole::HitDistance => "hit_distance",
         }
     }
 }

@@ -9,6 +9,8 @@ use ash::vk;
 
 pub(crate) const TILE_FORMAT: vk::Format = vk::Format::R32_UINT;
 pub(crate) const DEPTH_FORMAT: vk::Format = vk::Format::R32_SFLOAT;
+/// Per tile: the blocker distance of penumbra guidance.
+pub(crate) const TILE_BLOCKER_FORMAT: vk::Format = vk::Format::R32_SFLOAT;
 pub(crate) const MOMENTS_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
 /// The filter's geometry per pixel (linear depth, -1 for sky; unit normal): one texel per tap for the passes after
 /// the first instead of a depth and a normal fetch, each decoded again.
@@ -57,6 +59,7 @@ fn image_specs(extent: [u32; 2], precision: Precision, filter_passes: u32) -> im
     [
         (TILE_FORMAT, tiles, "tile_mask"),
         (TILE_FORMAT, tiles, "tile_meta"),
+        (TILE_BLOCKER_FORMAT, tiles, "tile_blocker"),
         (rg, extent, "reprojection"),
         (rg, extent, "history"),
         (DEPTH_FORMAT, extent, "depth_copy_0"),
@@ -88,6 +91,8 @@ pub(crate) fn texel_bytes(extent: [u32; 2], precision: Precision, filter_passes:
 pub(crate) struct LightState {
     pub tile_mask: InternalImage,
     pub tile_meta: InternalImage,
+    /// Written and read only with penumbra guidance; 4 bytes per tile, so always allocated.
+    pub tile_blocker: InternalImage,
     pub reprojection: InternalImage,
     pub history: InternalImage,
     /// Written by the first filter pass, read by the later ones (within one frame); None until two or more
@@ -123,6 +128,7 @@ impl LightState {
         let mut state = LightState {
             tile_mask: next(),
             tile_meta: next(),
+            tile_blocker: next(),
             reprojection: next(),
             history: next(),
             depth: [next(), next()],
@@ -161,7 +167,7 @@ impl LightState {
     }
 
     pub(crate) fn images(&self) -> impl Iterator<Item = &InternalImage> {
-        [&self.tile_mask, &self.tile_meta, &self.reprojection, &self.history]
+        [&self.tile_mask, &self.tile_meta, &self.tile_blocker, &self.reprojection, &self.history]
             .into_iter()
             .chain(self.depth.iter())
             .chain(self.moments.iter())
@@ -174,7 +180,7 @@ impl LightState {
     }
 
     pub(crate) fn destroy(&mut self, vk: &Vk) {
-        for img in [&mut self.tile_mask, &mut self.tile_meta, &mut self.reprojection, &mut self.history]
+        for img in [&mut self.tile_mask, &mut self.tile_meta, &mut self.tile_blocker, &mut self.reprojection, &mut self.history]
             .into_iter()
             .chain(self.depth.iter_mut())
             .chain(self.moments.iter_mut())

@@ -19,6 +19,7 @@ const DEPTH_FORMATS: &[F] = &[
     F::R16_SFLOAT,
     F::R16_UNORM,
 ];
+const HIT_DISTANCE_FORMATS: &[F] = &[F::R16_SFLOAT, F::R32_SFLOAT];
 const VELOCITY_FORMATS: &[F] =
     &[F::R16G16_SFLOAT, F::R32G32_SFLOAT, F::R16G16_SNORM, F::R16G16B16A16_SFLOAT, F::R32G32B32A32_SFLOAT];
 const NORMAL_FORMATS: &[F] = &[
@@ -91,6 +92,7 @@ fn host_image(
         ImageRole::Velocity => ("velocity.image", "velocity.view"),
         ImageRole::Normals => ("normals.image", "normals.view"),
         ImageRole::Output => ("output.image", "output.view"),
+        ImageRole::HitDistance => ("hit_distance.image", "hit_distance.view"),
     };
     if img.image == vk::Image::null() {
         return Err(Error::NullHandle(name.0));
@@ -136,6 +138,19 @@ pub(crate) fn dispatch(
         return Err(Error::OutputFormatMismatch { declared: d.output.format, context: output_format });
     }
     host_image(vk, ImageRole::Output, &d.output, &[output_format], OUTPUT_LAYOUTS, size, vk::FormatFeatureFlags::STORAGE_IMAGE)?;
+    if let Some(hit_distance) = &d.hit_distance {
+        host_image(vk, ImageRole::HitDistance, hit_distance, HIT_DISTANCE_FORMATS, SAMPLED_LAYOUTS, size, sampled)?;
+        if !d.light_angular_size.is_finite() {
+            return Err(Error::NonFinite("light_angular_size"));
+        }
+        if !(0.0..std::f32::consts::PI).contains(&d.light_angular_size) {
+            return Err(Error::InvalidValue {
+                field: "light_angular_size",
+                value: d.light_angular_size.to_string(),
+                allowed: "it must be in [0, pi): the light's angular diameter in radians (the sun: about 0.0093)",
+            });
+        }
+    }
 
     finite_mat("projection_inverse", &d.projection_inverse)?;
     finite_mat("reprojection_matrix", &d.reprojection_matrix)?;

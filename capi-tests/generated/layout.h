@@ -108,7 +108,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrHostSync, inputSrcAccess) == 4, "offsetof(DnsrHo
 DNSR_STATIC_ASSERT(offsetof(DnsrHostSync, outputDstStages) == 8, "offsetof(DnsrHostSync, outputDstStages)");
 DNSR_STATIC_ASSERT(offsetof(DnsrHostSync, outputDstAccess) == 12, "offsetof(DnsrHostSync, outputDstAccess)");
 
-DNSR_STATIC_ASSERT(sizeof(DnsrShadowsDispatch) == 464, "sizeof(DnsrShadowsDispatch)");
+DNSR_STATIC_ASSERT(sizeof(DnsrShadowsDispatch) == 504, "sizeof(DnsrShadowsDispatch)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrShadowsDispatch) == 8, "alignof(DnsrShadowsDispatch)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, sType) == 0, "offsetof(DnsrShadowsDispatch, sType)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, pNext) == 8, "offsetof(DnsrShadowsDispatch, pNext)");
@@ -133,6 +133,8 @@ DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, depthSimilaritySigma) == 424, "
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, renderRect) == 428, "offsetof(DnsrShadowsDispatch, renderRect)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, sync) == 444, "offsetof(DnsrShadowsDispatch, sync)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, debugView) == 460, "offsetof(DnsrShadowsDispatch, debugView)");
+DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, hitDistance) == 464, "offsetof(DnsrShadowsDispatch, hitDistance)");
+DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, lightAngularSize) == 496, "offsetof(DnsrShadowsDispatch, lightAngularSize)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrPassTimings) == 88, "sizeof(DnsrPassTimings)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrPassTimings) == 8, "alignof(DnsrPassTimings)");

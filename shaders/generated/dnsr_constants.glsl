@@ -16,6 +16,7 @@ struct DnsrFrameConstants {
     vec4 temporal;
     vec4 filtering;
     vec4 runs;
+    vec4 penumbra;
 };
 
 struct DnsrFilterPush {
@@ -24,6 +25,7 @@ struct DnsrFilterPush {
 
 #define DNSR_FLAG_RESET 1u
 #define DNSR_FLAG_DEPTH_INVERTED 2u
+#define DNSR_FLAG_PENUMBRA_GUIDED 4u
 #define DNSR_PASS_WRITE_INTERNAL 1u
 #define DNSR_PASS_SKIP_CLEARED 2u
 #define DNSR_PASS_WRITE_GUIDE 4u

@@ -8,7 +8,7 @@ use dnsr::ash::vk;
 use dnsr::testing::fields::{band, smoothstep, soft_box};
 use dnsr::testing::gpu::{Gpu, GpuOptions};
 use dnsr::testing::images::{mask_to_image, side_by_side, write_png};
-use dnsr::testing::scene::{render, Camera, FrameInputs};
+use dnsr::testing::scene::{render_with_blockers, Camera, FrameInputs};
 use dnsr::testing::Runner;
 use dnsr::{Precision, Preset, Settings};
 use std::fmt::Write as _;
@@ -28,6 +28,12 @@ struct Sequence {
     what: &'static str,
     camera: fn(u32) -> Camera,
     field: fn(u32, f64, f64) -> f64,
+    /// Distance from the ground at (x, z) to the occluder its shadow ray hits (0: no hit-distance input).
+    blocker: fn(u32, f64, f64) -> f64,
+}
+
+fn no_blocker(_: u32, _: f64, _: f64) -> f64 {
+    0.0
 }
 
 fn still(_: u32) -> Camera {
@@ -63,11 +69,98 @@ fn shadow_jump(t: u32, x: f64, _z: f64) -> f64 {
 }
 
 const SEQUENCES: [Sequence; 5] = [
-    Sequence { name: "penumbrae", what: "static; ramps 0.2, 1 and 3 units wide (2.5, 12, 37 px)", camera: still, field: penumbrae },
-    Sequence { name: "edges_lines", what: "static; hard contact edge, 1-, 2-, 3-px lines, 2-px diagonal", camera: still, field: edges_and_lines },
-    Sequence { name: "moving_occluder", what: "disc shadow moving 2 px/frame, no motion vectors (surface static)", camera: still, field: moving_occluder },
-    Sequence { name: "camera_pan", what: "camera pans 1 px/frame over the penumbrae, correct motion vectors", camera: panning, field: penumbrae },
-    Sequence { name: "shadow_jump", what: "hard edge jumps 12 px at frame 24 (lag)", camera: still, field: shadow_jump },
+    Sequence { name: "penumbrae", what: "static; ramps 0.2, 1 and 3 units wide (2.5, 12, 37 px)", camera: still, field: penumbrae, blocker: no_blocker },
+    Sequence { name: "edges_lines", what: "static; hard contact edge, 1-, 2-, 3-px lines, 2-px diagonal", camera: still, field: edges_and_lines, blocker: no_blocker },
+    Sequence { name: "moving_occluder", what: "disc shadow moving 2 px/frame, no motion vectors (surface static)", camera: still, field: moving_occluder, blocker: no_blocker },
+    Sequence { name: "camera_pan", what: "camera pans 1 px/frame over the penumbrae, correct motion vectors", camera: panning, field: penumbrae, blocker: no_blocker },
+    Sequence { name: "shadow_jump", what: "hard edge jumps 12 px at frame 24 (lag)", camera: still, field: shadow_jump, blocker: no_blocker },
+];
+
+/// Angular diameter of the light in the hit-distance sequences (radians): a large area light, so that penumbrae
+/// from contact-sharp to 20 px wide fit in 160x96.
+const LIGHT_ANGLE: f64 = 0.5;
+
+/// The blocker distance that casts a penumbra `width` world units wide (edge to edge).
+fn blocker_for(width: f64) -> f64 {
+    width / (2.0 * (LIGHT_ANGLE * 0.5).tan())
+}
+
+/// Penumbra width (edge to edge) cast by a blocker `d` away.
+fn width_for(d: f64) -> f64 {
+    2.0 * d * (LIGHT_ANGLE * 0.5).tan()
+}
+
+/// Linear ramp from 0 to 1 over [e - w/2, e + w/2] (a hard step for w = 0).
+fn ramp(x: f64, e: f64, w: f64) -> f64 {
+    if w <= 0.0 {
+        return if x < e { 0.0 } else { 1.0 };
+    }
+    ((x - e) / w + 0.5).clamp(0.0, 1.0)
+}
+
+/// The penumbrae sequence's boxes: the blocker of whichever box's ramp (x, z) lies in.
+fn penumbrae_blocker(_: u32, x: f64, _z: f64) -> f64 {
+    blocker_for(if x < -2.0 { 0.2 } else if x < 1.75 { 1.0 } else { 3.0 })
+}
+
+/// A wall along z whose top rises from the ground (z = -3) to 3 units (z = 3): its shadow's edge at x = -1 is a
+/// contact shadow at one end and a penumbra 19 px wide at the other.
+fn wedge_height(z: f64) -> f64 {
+    (z + 3.0).clamp(0.0, 6.0) * 0.5
+}
+
+fn contact_wedge(_: u32, x: f64, z: f64) -> f64 {
+    let occluded = 1.0 - ramp(x, -1.0, width_for(wedge_height(z)));
+    1.0 - occluded * band(z, [-3.0, 3.0], 0.0)
+}
+
+fn wedge_blocker(_: u32, _x: f64, z: f64) -> f64 {
+    wedge_height(z)
+}
+
+/// A pole 3 px thick standing at x = -5 whose shadow runs along +x: at distance s from its foot the shadow ray
+/// meets the pole s * 1.4 away, so the line is sharp at the foot and widens (and fades) along its length.
+const POLE_WIDTH: f64 = 3.0 * PX;
+
+fn thin_pole(_: u32, x: f64, z: f64) -> f64 {
+    let s = x + 5.0;
+    if !(0.0..=9.0).contains(&s) {
+        return 1.0;
+    }
+    let w = width_for(s * 1.4);
+    let (lo, hi) = (-POLE_WIDTH / 2.0, POLE_WIDTH / 2.0);
+    // Fraction of the light's extent [z - w/2, z + w/2] behind the pole (a box profile).
+    let occluded = if w <= 1e-9 {
+        if z > lo && z < hi { 1.0 } else { 0.0 }
+    } else {
+        ((z + w / 2.0).min(hi) - (z - w / 2.0).max(lo)).max(0.0) / w
+    };
+    1.0 - occluded
+}
+
+fn pole_blocker(_: u32, x: f64, _z: f64) -> f64 {
+    (x + 5.0).max(0.0) * 1.4
+}
+
+/// The moving disc with a consistent penumbra: its occluder 1.2 units above the ground.
+const DISC_BLOCKER: f64 = 1.2;
+
+fn moving_disc(t: u32, x: f64, z: f64) -> f64 {
+    let cx = -4.0 + 2.0 * PX * t as f64;
+    let r = ((x - cx).powi(2) + z * z).sqrt();
+    ramp(r, 1.3, width_for(DISC_BLOCKER))
+}
+
+fn disc_blocker(_: u32, _: f64, _: f64) -> f64 {
+    DISC_BLOCKER
+}
+
+/// Sequences with a hit-distance input (the light's angular size is LIGHT_ANGLE), for penumbra guidance.
+const GUIDED_SEQUENCES: [Sequence; 4] = [
+    Sequence { name: "contact_wedge", what: "static; one shadow edge, contact-sharp at one end, 19 px wide at the other", camera: still, field: contact_wedge, blocker: wedge_blocker },
+    Sequence { name: "thin_pole", what: "static; a 3-px pole's shadow, sharp at its foot, widening and fading along 110 px", camera: still, field: thin_pole, blocker: pole_blocker },
+    Sequence { name: "moving_disc", what: "disc shadow (7 px penumbra) moving 2 px/frame, no motion vectors", camera: still, field: moving_disc, blocker: disc_blocker },
+    Sequence { name: "penumbrae_hd", what: "the penumbrae sequence with the blocker distances its ramps imply", camera: still, field: penumbrae, blocker: penumbrae_blocker },
 ];
 
 #[derive(Clone, Copy, Default)]
@@ -134,16 +227,26 @@ struct Run {
 
 fn frame_inputs(seq: &Sequence, t: u32) -> FrameInputs {
     let (cam, prev) = ((seq.camera)(t), (seq.camera)(t.saturating_sub(1)));
-    let field = seq.field;
-    render(W, H, &cam, &prev, 1e9, &move |x, z| field(t, x, z), 0x5EED_0000 + t as u64 * 7919)
+    let (field, blocker) = (seq.field, seq.blocker);
+    let seed = 0x5EED_0000 + t as u64 * 7919;
+    render_with_blockers(W, H, &cam, &prev, 1e9, &move |x, z| field(t, x, z), &move |x, z| blocker(t, x, z), seed)
 }
 
-fn run(gpu: &Gpu, seq: &Sequence, settings: Settings, precision: Precision) -> Run {
+/// What a run varies: the settings, the filter precision, and penumbra guidance (the light's angular size) or none.
+#[derive(Clone, Copy)]
+struct Mode {
+    settings: Settings,
+    precision: Precision,
+    guidance: Option<f32>,
+}
+
+fn run(gpu: &Gpu, seq: &Sequence, mode: Mode) -> Run {
     let mut info = gpu.create_info(W, H);
     info.output_format = vk::Format::R32_SFLOAT;
-    info.precision = precision;
-    info.settings = settings;
+    info.precision = mode.precision;
+    info.settings = mode.settings;
     let mut r = Runner::new(gpu, &info).expect("context");
+    r.guidance = mode.guidance;
     let (mut prev_out, mut prev_truth): (Vec<f32>, Vec<f32>) = (Vec::new(), Vec::new());
     let (mut sum_sq, mut sum_ssim, mut sum_flicker, mut n) = (0.0, 0.0, 0.0, 0.0);
     let mut per_frame = Vec::new();
@@ -223,33 +326,77 @@ fn row(label: &str, runs: &[Run]) -> String {
     s
 }
 
-fn header() -> String {
+fn header(sequences: &[Sequence]) -> String {
     let mut s = String::from("| settings |");
-    for q in &SEQUENCES {
+    for q in sequences {
         let _ = write!(s, " {} |", q.name);
     }
     s.push_str(" mean RMSE |\n|---|");
-    for _ in &SEQUENCES {
+    for _ in sequences {
         s.push_str("---|");
     }
     s.push_str("---|");
     s
 }
 
+/// The penumbra-guidance table: each preset with and without the hit-distance input, and image strips.
+fn guided_section(gpu: &Gpu, md: &mut String, img_dir: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
+    // Penumbra guidance: the same presets with and without the hit-distance input, on sequences that have one.
+    let _ = writeln!(
+        *md,
+        "\n## Penumbra guidance (hit-distance input, light angular size {LIGHT_ANGLE} rad)\n\nSequences:\n"
+    );
+    for q in &GUIDED_SEQUENCES {
+        let _ = writeln!(*md, "- `{}`: {}", q.name, q.what);
+    }
+    let noisy_guided: Vec<String> = GUIDED_SEQUENCES
+        .iter()
+        .map(|q| {
+            let f = frame_inputs(q, FRAMES - 1);
+            format!("{:.3}", dnsr::testing::images::rmse(&mask_to_image(&f), &f.truth, &f.receiver))
+        })
+        .collect();
+    let _ = writeln!(*md, "\n1-spp input RMSE: {}\n\n{}", noisy_guided.join(", "), header(&GUIDED_SEQUENCES));
+    let mut guided_runs = Vec::new();
+    for preset in [Preset::Fast, Preset::Balanced, Preset::Quality] {
+        for guidance in [None, Some(LIGHT_ANGLE as f32)] {
+            let mode = Mode { settings: Settings::preset(preset), precision: Precision::Fp32, guidance };
+            let runs: Vec<Run> = GUIDED_SEQUENCES.iter().map(|q| run(gpu, q, mode)).collect();
+            let label = format!("{preset:?}{}", if guidance.is_some() { ", guided" } else { "" });
+            let _ = writeln!(*md, "{}", row(&label, &runs));
+            eprintln!("{label}: mean RMSE {:.4}", score(&runs));
+            guided_runs.push(runs);
+        }
+    }
+    let _ = writeln!(*md, "\nImages (last frame: 1-spp input | Balanced | Balanced, guided | Quality | Quality, guided | truth):\n");
+    for (i, q) in GUIDED_SEQUENCES.iter().enumerate() {
+        let r = |k: usize| &guided_runs[k][i];
+        let images: [&[f32]; 6] = [&r(2).last_noisy, &r(2).last, &r(3).last, &r(4).last, &r(5).last, &r(2).last_truth];
+        let (w, strip) = side_by_side(W, H, &images);
+        let file = format!("{}.png", q.name);
+        write_png(&img_dir.join(&file), w, H, &strip)?;
+        let _ = writeln!(*md, "`{}`\n\n![{}](accuracy/{file})\n", q.name, q.name);
+    }
+
+    Ok(())
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut out_dir = PathBuf::from("docs");
+    let mut guided_only = false;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
             "--out" => out_dir = PathBuf::from(args.next().ok_or("--out needs a folder")?),
-            _ => return Err(format!("unknown argument {a}; usage: dnsr-accuracy [--out DIR]").into()),
+            "--guided-only" => guided_only = true,
+            _ => return Err(format!("unknown argument {a}; usage: dnsr-accuracy [--out DIR] [--guided-only]").into()),
         }
     }
     let img_dir = out_dir.join("accuracy");
     std::fs::create_dir_all(&img_dir)?;
     let gpu = Gpu::new(GpuOptions { validation: false, ..Default::default() });
     let all = |settings: Settings, precision: Precision| -> Vec<Run> {
-        SEQUENCES.iter().map(|q| run(&gpu, q, settings, precision)).collect()
+        SEQUENCES.iter().map(|q| run(&gpu, q, Mode { settings, precision, guidance: None })).collect()
     };
 
     let mut md = String::new();
@@ -277,7 +424,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .collect();
     let _ = writeln!(md, "\n1-spp input RMSE: {}\n", noisy.iter().map(|e| format!("{e:.3}")).collect::<Vec<_>>().join(", "));
 
-    let _ = writeln!(md, "## Presets\n\n{}", header());
+    if guided_only {
+        guided_section(&gpu, &mut md, &img_dir)?;
+        std::fs::write(out_dir.join("accuracy.md"), md)?;
+        return Ok(());
+    }
+    let _ = writeln!(md, "## Presets\n\n{}", header(&SEQUENCES));
     let mut preset_runs = Vec::new();
     for preset in [Preset::Fast, Preset::Balanced, Preset::Quality] {
         let runs = all(Settings::preset(preset), Precision::Fp32);
@@ -304,9 +456,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         kept.join(", ")
     );
 
+    guided_section(&gpu, &mut md, &img_dir)?;
+
     // The two knobs Quality adds to the FidelityFX set, each swept on top of the other Quality knobs
     // (stable_history_samples 0 turns both off: Quality before they existed).
-    let _ = writeln!(md, "\n## Quality with other run knobs\n\n{}", header());
+    let _ = writeln!(md, "\n## Quality with other run knobs\n\n{}", header(&SEQUENCES));
     type RunKnob = (&'static str, fn(&mut Settings, f32), &'static [f32]);
     let run_knobs: [RunKnob; 2] = [
         ("stable_history_samples", |s, v| s.stable_history_samples = v, &[0.0, 2.0, 4.0, 8.0, 16.0]),
@@ -322,7 +476,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
 
-    let _ = writeln!(md, "\n## Knob sweeps (each knob alone, others at the FidelityFX defaults)\n\n{}", header());
+    let _ = writeln!(md, "\n## Knob sweeps (each knob alone, others at the FidelityFX defaults)\n\n{}", header(&SEQUENCES));
     type Knob = (&'static str, fn(&mut Settings, f32), &'static [f32]);
     let knobs: [Knob; 6] = [
         ("filter_passes", |s, v| s.filter_passes = v as u32, &[1.0, 2.0, 3.0, 4.0]),

@@ -22,6 +22,8 @@ const USAGE: &str = "usage: dnsr-bench [options]
   --presets a[,b...]          fast, balanced, quality (default: all)
   --precisions a[,b...]       fp32, fp16 (default: both; fp16 is skipped when the device lacks it)
   --fp16                      same as --precisions fp16
+  --light-angle RAD           penumbra guidance on: a hit-distance image (1.0 everywhere, R16_SFLOAT) and this
+                              light angular size in radians (default: no guidance)
   --frames N                  timed frames per configuration (default 200)
   --warmup N                  at least this many warm-up frames before timing (default 20)
   --warmup-ms T               and at least T ms of back-to-back warm-up frames, then until the GPU time is stable
@@ -87,6 +89,7 @@ struct Options {
     copy_runs: usize,
     out: PathBuf,
     validation: bool,
+    light_angle: Option<f32>,
 }
 
 fn parse_args() -> Options {
@@ -102,6 +105,7 @@ fn parse_args() -> Options {
         copy_runs: 10,
         out: PathBuf::from("out/bench"),
         validation: false,
+        light_angle: None,
     };
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
@@ -118,6 +122,10 @@ fn parse_args() -> Options {
             "--copy-runs" => o.copy_runs = number(args.next(), "--copy-runs", 1),
             "--out" => o.out = PathBuf::from(args.next().unwrap_or_else(|| usage("--out needs a directory"))),
             "--validation" => o.validation = true,
+            "--light-angle" => {
+                let v = args.next().and_then(|v| v.parse::<f32>().ok());
+                o.light_angle = Some(v.unwrap_or_else(|| usage("--light-angle needs an angle in radians")));
+            }
             "-h" | "--help" => {
                 println!("{USAGE}");
                 std::process::exit(0);
@@ -161,7 +169,7 @@ fn main() {
             for &precision in &precisions {
                 for &preset in &opts.presets {
                     let warmup = Warmup { frames: opts.warmup, min_ms: opts.warmup_ms as f64 };
-                    let run = bench::run::run(&gpu, &gpu_scene, size, preset, precision, warmup, opts.frames).unwrap_or_else(|e| {
+                    let run = bench::run::run(&gpu, &gpu_scene, size, preset, precision, warmup, opts.frames, opts.light_angle).unwrap_or_else(|e| {
                         fail(format!("{}x{} {} {} {}: {e}", size.0, size.1, scene.id(), preset_name(preset), precision_name(precision)))
                     });
                     let s = Summary::new(size, scene, preset, precision, run, gpu_scene.coverage);

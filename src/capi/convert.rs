@@ -175,7 +175,7 @@ pub(crate) fn dispatch_from_c(c: &DnsrShadowsDispatch) -> Result<(vk::CommandBuf
     const WHAT: &str = "pDispatch";
     check_type(c.s_type, DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH, "DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH", WHAT)?;
     check_no_next(c.p_next, WHAT)?;
-    let unknown = c.flags & !(DNSR_DISPATCH_RESET | DNSR_DISPATCH_USE_RENDER_RECT);
+    let unknown = c.flags & !(DNSR_DISPATCH_RESET | DNSR_DISPATCH_USE_RENDER_RECT | DNSR_DISPATCH_USE_HIT_DISTANCE);
     if unknown != 0 {
         return Err(CallError::InvalidArgument(format!("pDispatch->flags has unknown bits {unknown:#x}")));
     }
@@ -202,6 +202,8 @@ pub(crate) fn dispatch_from_c(c: &DnsrShadowsDispatch) -> Result<(vk::CommandBuf
         velocity: image(&c.velocity),
         normals: image(&c.normals),
         output: image(&c.output),
+        hit_distance: (c.flags & DNSR_DISPATCH_USE_HIT_DISTANCE != 0).then(|| image(&c.hit_distance)),
+        light_angular_size: c.light_angular_size,
         motion_vector_scale: Vec2::from_array(c.motion_vector_scale),
         normals_unpack_mul: c.normals_unpack_mul,
         normals_unpack_add: c.normals_unpack_add,

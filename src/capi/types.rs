@@ -173,6 +173,8 @@ pub type DnsrDispatchFlags = u32;
 pub const DNSR_DISPATCH_RESET: DnsrDispatchFlags = 1 << 0;
 /// Denoise only `renderRect` (otherwise the whole render size).
 pub const DNSR_DISPATCH_USE_RENDER_RECT: DnsrDispatchFlags = 1 << 1;
+/// Penumbra guidance: `hitDistance` and `lightAngularSize` are read.
+pub const DNSR_DISPATCH_USE_HIT_DISTANCE: DnsrDispatchFlags = 1 << 2;
 /// Forces 32 bits.
 pub const DNSR_DISPATCH_MAX_ENUM: DnsrDispatchFlags = 0x7FFF_FFFF;
 
@@ -506,6 +508,18 @@ pub struct DnsrShadowsDispatch {
     pub sync: DnsrHostSync,
     /// DNSR_DEBUG_VIEW_NONE (0, the shadow) or a debug view of dnsr's internal state written to the output.
     pub debug_view: DnsrDebugView,
+    /// Read when DNSR_DISPATCH_USE_HIT_DISTANCE is set (penumbra guidance). W x H, R16_SFLOAT or R32_SFLOAT: per
+    /// pixel, the distance along the shadow ray from the receiver to the first occluder it hit, in view-space
+    /// units (those projectionInverse maps depth to). Read only where the hit mask says the ray hit; a value
+    /// there that is not finite and > 0 counts as unknown, so a tracer may write anything (0, say) on a miss.
+    /// The filter narrows its kernel to the penumbra width the blockers imply: contact shadows stay sharp, wide
+    /// penumbrae are filtered as without guidance. Sampled layouts as for the hit mask.
+    pub hit_distance: DnsrHostImage,
+    /// Read when DNSR_DISPATCH_USE_HIT_DISTANCE is set. The light's angular diameter seen from the receivers, in
+    /// radians, in [0, pi) (the sun: about 0.0093; a sphere light of radius r at distance D: 2 asin(r / D)); 0 is
+    /// a point light (hard shadows: no spatial filtering). NaN/Inf: DNSR_ERROR_NON_FINITE; out of range:
+    /// DNSR_ERROR_INVALID_ARGUMENT.
+    pub light_angular_size: f32,
 }
 
 /// GPU time of each pass of one completed frame, in milliseconds.

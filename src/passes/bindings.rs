@@ -27,9 +27,12 @@ pub(crate) enum Resource {
     DebugMoments,
     Guide,
     GuideOut,
+    HitDistance,
+    TileBlockerOut,
+    TileBlocker,
 }
 
-pub(crate) const RESOURCE_COUNT: usize = Resource::GuideOut as usize + 1;
+pub(crate) const RESOURCE_COUNT: usize = Resource::TileBlocker as usize + 1;
 
 /// (GLSL name, resource, descriptor type the shader must declare it as).
 const TABLE: [(&str, Resource, vk::DescriptorType); RESOURCE_COUNT] = [
@@ -54,6 +57,9 @@ const TABLE: [(&str, Resource, vk::DescriptorType); RESOURCE_COUNT] = [
     ("dnsr_debug_moments", Resource::DebugMoments, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_guide", Resource::Guide, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_guide_out", Resource::GuideOut, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_hit_distance", Resource::HitDistance, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_tile_blocker_out", Resource::TileBlockerOut, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_tile_blocker", Resource::TileBlocker, vk::DescriptorType::SAMPLED_IMAGE),
 ];
 
 impl Resource {

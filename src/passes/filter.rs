@@ -46,6 +46,7 @@ pub(crate) fn is_final(pass: u32, passes: u32) -> bool {
 pub(crate) fn pass(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView) -> Pass {
     let mut t = v.base_table();
     t[Resource::TileMeta as usize] = internal(v.tile_meta);
+    t[Resource::TileBlocker as usize] = internal(v.tile_blocker);
     t[Resource::FilterInput as usize] = internal(input(v, pass));
     t[Resource::FilterOutput as usize] = internal(output(v, pass));
     // The first pass writes the guide, the later ones read it; both variants declare both bindings (they share the

@@ -36,6 +36,9 @@ const _: () = assert!(GROUP[0] == TILE[0] && GROUP[1] == 2 * TILE[1] && MOMENT_R
 const _: () = assert!(WIDE_GROUP[0] % GROUP[0] == 0 && WIDE_GROUP[1] % GROUP[1] == 0);
 // Classification holds one row of its moment window, the group's width and the radius either side, in 32 bits.
 const _: () = assert!(WIDE_GROUP[0] + 2 * MOMENT_RADIUS <= 32);
+// Penumbra guidance in classification: each invocation sums one share of one window tile's hit distances.
+const WINDOW_TILE_COUNT: u32 = (WIDE_GROUP[0] / TILE[0] + 2) * (WIDE_GROUP[1] / TILE[1] + 4);
+const _: () = assert!((WIDE_GROUP[0] * WIDE_GROUP[1]) % WINDOW_TILE_COUNT == 0 && 32 % (WIDE_GROUP[0] * WIDE_GROUP[1] / WINDOW_TILE_COUNT) == 0);
 const _: () = assert!(1 << (MAX_FILTER_PASSES - 1) <= GROUP[0] && 1 << (MAX_FILTER_PASSES - 1) <= GROUP[1]);
 
 /// Which pipeline a pass runs, and so which descriptor set of a ring slot it uses. Filter passes 0..=2 can be
@@ -133,6 +136,11 @@ pub(crate) struct FrameViews {
     pub depth: Binding,
     pub velocity: Binding,
     pub normals: Binding,
+    /// The host's hit distances (penumbra guidance), or an internal image of a float format standing in for them
+    /// when the dispatch has none (the shader then never reads it).
+    pub hit_distance: Binding,
+    /// Each tile's blocker estimate (penumbra guidance).
+    pub tile_blocker: vk::ImageView,
     /// The host output, already in GENERAL when the final pass runs.
     pub output: vk::ImageView,
     /// The lit-bit tile mask: dnsr's internal image, or the host's mask when it already holds lit bits.

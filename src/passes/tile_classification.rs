@@ -23,6 +23,8 @@ pub(crate) fn pass(v: &FrameViews) -> Pass {
     t[Resource::History as usize] = internal(v.history);
     t[Resource::Reprojection as usize] = internal(v.reprojection);
     t[Resource::TileMetaOut as usize] = internal(v.tile_meta);
+    t[Resource::HitDistance as usize] = v.hit_distance;
+    t[Resource::TileBlockerOut as usize] = internal(v.tile_blocker);
     t[Resource::Output as usize] = internal(v.output);
     Pass { role: Role::Classification, bindings: t, grid: Grid::Pixels, group: super::WIDE_GROUP, push: None, enabled: true }
 }

@@ -1,6 +1,6 @@
 //! filter (shaders/filter.glsl): one pass of the edge-avoiding a-trous filter, 3x3 taps at +-step.
 
-use super::{inside, SKY_SIGNAL, is_receiver, linear_depth, pixel_uv, uv_to_ndc, Coord, Read, Write, TILE};
+use super::{inside, SKY_SIGNAL, is_receiver, linear_depth, pixel_uv, uv_to_ndc, Coord, Read, Write, PENUMBRA_SIGMA_SCALE, TILE};
 use crate::passes::{TILE_CLEARED, TILE_LIT};
 use glam::DVec2;
 
@@ -30,6 +30,19 @@ fn blurred_variance<Io: Read + ?Sized>(io: &Io, p: Coord) -> f64 {
     sum / weight
 }
 
+/// Penumbra guidance: 1 / (2 sigma^2) of the Gaussian over tap distance (pixels) that keeps the kernel within
+/// the penumbra the tile's blockers cast on a receiver at linear depth `zc`; 0 (no narrowing) without guidance
+/// or where no blocker is known.
+pub fn penumbra_falloff<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64) -> f64 {
+    let Some(penumbra) = io.penumbra() else { return 0.0 };
+    let blocker = io.read_tile_blocker([p[0] / TILE[0], p[1] / TILE[1]]);
+    if blocker < 0.0 {
+        return 0.0;
+    }
+    let sigma = penumbra.radius_px(blocker, zc) * PENUMBRA_SIGMA_SCALE;
+    0.5 / (sigma * sigma).max(1e-20)
+}
+
 /// The filtered (mean, variance) of one receiver pixel of a mixed tile.
 pub fn filter_pixel<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64) -> DVec2 {
     let s = io.settings();
@@ -39,6 +52,7 @@ pub fn filter_pixel<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64) -> DVec2 {
     let nc = io.read_normal(p);
     let inv_sigma = 1.0 / blurred_variance(io, p).max(0.0).sqrt().max(s.min_shadow_sigma as f64);
     let inv_depth_sigma = 1.0 / io.depth_similarity_sigma();
+    let falloff = penumbra_falloff(io, p, zc);
     let (mut weight_sum, mut mean_sum, mut var_sum) = (1.0, c.x, c.y);
     for j in -1..=1i32 {
         for i in -1..=1i32 {
@@ -52,6 +66,7 @@ pub fn filter_pixel<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64) -> DVec2 {
                 * kernel[j.unsigned_abs() as usize]
                 * (-(c.x - n.x).abs() * inv_sigma).exp()
                 * (-(zc - zq).abs() * inv_depth_sigma).exp()
+                * (-((i * i + j * j) * step * step) as f64 * falloff).exp()
                 * nc.dot(io.read_normal(q)).max(0.0).powf(s.normal_power as f64);
             weight_sum += w;
             mean_sum += w * n.x;

@@ -1,7 +1,7 @@
 //! A plain in-memory frame implementing the reference interface: the inputs, the previous frame's state, and
 //! every output, as arrays over the whole render size (render rectangle = whole image).
 
-use super::{Coord, Get, Read, Write, TILE};
+use super::{Coord, Get, Penumbra, Read, Write, TILE};
 use crate::settings::Settings;
 use glam::{DMat4, DVec2, DVec3, DVec4};
 
@@ -26,6 +26,10 @@ pub struct Frame {
     pub reset: bool,
     /// Reverse-Z.
     pub depth_inverted: bool,
+    /// Penumbra guidance (None: no hit-distance input).
+    pub penumbra: Option<Penumbra>,
+    /// Host hit distance per pixel (read only with penumbra guidance).
+    pub hit_distance: Vec<f64>,
     /// Host hit mask (FidelityFX convention), one word per tile.
     pub hit_mask: Vec<u32>,
     /// Depth per pixel.
@@ -44,6 +48,8 @@ pub struct Frame {
     pub tile_mask: Vec<u32>,
     /// Output: tile metadata.
     pub tile_meta: Vec<u32>,
+    /// Output: each tile's blocker distance (penumbra guidance).
+    pub tile_blocker: Vec<f64>,
     /// Output: depth copy.
     pub depth_copy: Vec<f64>,
     /// Output: moments.
@@ -75,6 +81,8 @@ impl Frame {
             depth_similarity_sigma: 1.0,
             reset: false,
             depth_inverted: false,
+            penumbra: None,
+            hit_distance: vec![0.0; n],
             hit_mask: vec![0; tiles],
             depth: vec![1.0; n],
             velocity: vec![DVec2::ZERO; n],
@@ -84,6 +92,7 @@ impl Frame {
             history: vec![0.0; n],
             tile_mask: vec![0; tiles],
             tile_meta: vec![0; tiles],
+            tile_blocker: vec![-1.0; tiles],
             depth_copy: vec![0.0; n],
             moments: vec![DVec4::ZERO; n],
             reprojection_out: vec![DVec2::ZERO; n],
@@ -155,6 +164,9 @@ impl Get for Frame {
     fn is_final_pass(&self) -> bool {
         self.pass + 1 == self.passes
     }
+    fn penumbra(&self) -> Option<Penumbra> {
+        self.penumbra
+    }
 }
 
 impl Read for Frame {
@@ -201,6 +213,12 @@ impl Read for Frame {
         let i = self.px(p);
         if self.pass == 0 { self.reprojection_out[i] } else { self.filter_out[self.pass as usize - 1][i] }
     }
+    fn read_hit_distance(&self, p: Coord) -> f64 {
+        self.hit_distance[self.px(p)]
+    }
+    fn read_tile_blocker(&self, tile: Coord) -> f64 {
+        self.tile_blocker[self.tile(tile)]
+    }
 }
 
 impl Write for Frame {
@@ -223,6 +241,10 @@ impl Write for Frame {
     fn write_tile_meta(&mut self, tile: Coord, meta: u32) {
         let i = self.tile(tile);
         self.tile_meta[i] = meta;
+    }
+    fn write_tile_blocker(&mut self, tile: Coord, distance: f64) {
+        let i = self.tile(tile);
+        self.tile_blocker[i] = distance;
     }
     fn write_filter_output(&mut self, p: Coord, mean_var: DVec2) {
         let i = self.px(p);

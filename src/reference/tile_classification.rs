@@ -227,6 +227,37 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     (m, DVec2::new(shadow, variance))
 }
 
+/// A pixel's hit distance counts towards its tile's blocker estimate when finite and positive.
+pub fn usable_hit_distance(d: f64) -> bool {
+    d > 0.0 && d < f64::INFINITY
+}
+
+/// Penumbra guidance: the mean distance to the occluders the shadowed pixels within +-8 px of a tile (the window
+/// of the uniform-tile test: the tile and one tile column either side, two tile rows above and below) hit; -1
+/// when none of them has a usable distance. A tile's estimate, not a pixel's: one 1-spp hit distance is as noisy
+/// as the mask, and the penumbra's width varies slowly along an edge.
+pub fn tile_blocker<Io: Read + ?Sized>(io: &Io, tile: Coord) -> f64 {
+    let (mut sum, mut count) = (0.0, 0u32);
+    for dy in -2..=2 {
+        for dx in -1..=1 {
+            let t = [tile[0] + dx, tile[1] + dy];
+            let valid = tile_valid_bits(io, t);
+            if valid == 0 {
+                continue;
+            }
+            let shadowed = !io.read_tile_mask(t) & valid;
+            for bit in (0..32).filter(|b| shadowed >> b & 1 != 0) {
+                let d = io.read_hit_distance([t[0] * TILE[0] + bit % 8, t[1] * TILE[1] + bit / 8]);
+                if usable_hit_distance(d) {
+                    sum += d;
+                    count += 1;
+                }
+            }
+        }
+    }
+    if count > 0 { sum / count as f64 } else { -1.0 }
+}
+
 /// Runs tile classification over the render rectangle.
 pub fn run<Io: Read + Write>(io: &mut Io) {
     let e = io.extent();
@@ -242,6 +273,10 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
                 _ => TILE_CLEARED,
             };
             io.write_tile_meta(tile, meta);
+            if state == 0 && io.penumbra().is_some() {
+                let blocker = tile_blocker(io, tile);
+                io.write_tile_blocker(tile, blocker);
+            }
             for y in ty * TILE[1]..((ty + 1) * TILE[1]).min(e[1]) {
                 for x in tx * TILE[0]..((tx + 1) * TILE[0]).min(e[0]) {
                     let p = [x, y];

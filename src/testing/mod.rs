@@ -2,6 +2,7 @@
 //! runner that uploads a frame, records dnsr, and reads the output back. Not part of the stable API.
 
 pub mod fields;
+pub mod flip;
 pub mod gpu;
 pub mod images;
 pub mod scene;
@@ -14,8 +15,8 @@ use scene::FrameInputs;
 
 const READ: vk::ImageLayout = vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL;
 
-/// Mask, depth, velocity, normals and output images for one render size.
-fn host_images(gpu: &Gpu, w: u32, h: u32, output_format: vk::Format) -> [TestImage; 5] {
+/// Mask, depth, velocity, normals, output and hit-distance images for one render size.
+fn host_images(gpu: &Gpu, w: u32, h: u32, output_format: vk::Format) -> [TestImage; 6] {
     [
         gpu.image(vk::Format::R32_UINT, w.div_ceil(8), h.div_ceil(4), READ),
         gpu.image(vk::Format::R32_SFLOAT, w, h, READ),
@@ -23,12 +24,13 @@ fn host_images(gpu: &Gpu, w: u32, h: u32, output_format: vk::Format) -> [TestIma
         gpu.image(vk::Format::R32G32B32A32_SFLOAT, w, h, READ),
         // Resting in TRANSFER_SRC_OPTIMAL exercises dnsr's transition to GENERAL and back.
         gpu.image(output_format, w, h, vk::ImageLayout::TRANSFER_SRC_OPTIMAL),
+        gpu.image(vk::Format::R32_SFLOAT, w, h, READ),
     ]
 }
 
-/// Staging for one frame: mask, depth, velocity (2), normals (4), output, in 4-byte words per pixel.
+/// Staging for one frame: mask, depth, velocity (2), normals (4), hit distance, output, in 4-byte words per pixel.
 fn staging_bytes(w: u32, h: u32) -> u64 {
-    (w * h) as u64 * 4 * 9 + 64
+    (w * h) as u64 * 4 * 10 + 80
 }
 
 /// Host images for one render size, plus staging memory.
@@ -47,6 +49,10 @@ pub struct Runner<'g> {
     pub normals: TestImage,
     /// Output (the context's output format).
     pub output: TestImage,
+    /// Hit distance (R32_SFLOAT), uploaded every frame.
+    pub hit_distance: TestImage,
+    /// Penumbra guidance for `dispatch`: the light's angular size, or None for none.
+    pub guidance: Option<f32>,
     staging: Staging,
     cmd: vk::CommandBuffer,
 }
@@ -67,12 +73,13 @@ impl<'g> Runner<'g> {
     /// Creates the context and the host images for `info`'s size.
     pub fn new(gpu: &'g Gpu, info: &ContextCreateInfo) -> crate::Result<Runner<'g>> {
         let ctx = Context::new(info)?;
-        let [mask, depth, velocity, normals, output] = host_images(gpu, info.width, info.height, info.output_format);
+        let [mask, depth, velocity, normals, output, hit_distance] = host_images(gpu, info.width, info.height, info.output_format);
         let staging = gpu.staging(staging_bytes(info.width, info.height));
-        Ok(Runner { gpu, ctx, mask, depth, velocity, normals, output, staging, cmd: gpu.command_buffer() })
+        let cmd = gpu.command_buffer();
+        Ok(Runner { gpu, ctx, mask, depth, velocity, normals, output, hit_distance, guidance: None, staging, cmd })
     }
 
-    /// A dispatch for `f` over this runner's images (no reset).
+    /// A dispatch for `f` over this runner's images (no reset; penumbra guidance as `guidance` says).
     pub fn dispatch(&self, f: &FrameInputs) -> ShadowsDispatch {
         ShadowsDispatch {
             hit_mask: self.mask.host(),
@@ -80,6 +87,8 @@ impl<'g> Runner<'g> {
             velocity: self.velocity.host(),
             normals: self.normals.host(),
             output: self.output.host(),
+            hit_distance: self.guidance.map(|_| self.hit_distance.host()),
+            light_angular_size: self.guidance.unwrap_or(0.0),
             eye: f.eye,
             projection_inverse: f.projection_inverse,
             reprojection_matrix: f.reprojection,
@@ -121,16 +130,21 @@ impl<'g> Runner<'g> {
             Vec::new()
         };
         let normals: &[u8] = if packed.is_empty() { bytemuck::cast_slice(&f.normals) } else { bytemuck::cast_slice(&packed) };
-        let parts: [&[u8]; 4] =
-            [bytemuck::cast_slice(&f.mask), bytemuck::cast_slice(&f.depth), bytemuck::cast_slice(&f.velocity), normals];
-        let mut offsets = [0u64; 5];
+        let parts: [&[u8]; 5] = [
+            bytemuck::cast_slice(&f.mask),
+            bytemuck::cast_slice(&f.depth),
+            bytemuck::cast_slice(&f.velocity),
+            normals,
+            bytemuck::cast_slice(&f.hit_distance),
+        ];
+        let mut offsets = [0u64; 6];
         for (i, p) in parts.iter().enumerate() {
             self.staging.write(offsets[i] as usize, p);
             offsets[i + 1] = (offsets[i] + p.len() as u64).next_multiple_of(16);
         }
-        let out_offset = offsets[4];
+        let out_offset = offsets[5];
         let gpu = self.gpu;
-        let images = [&self.mask, &self.depth, &self.velocity, &self.normals];
+        let images = [&self.mask, &self.depth, &self.velocity, &self.normals, &self.hit_distance];
         let (ctx, staging, output) = (&mut self.ctx, &self.staging, &self.output);
         let result = gpu.submit_with(self.cmd, |cmd| {
             full_barrier(&gpu.device, cmd);
@@ -170,11 +184,11 @@ impl<'g> Runner<'g> {
         unsafe { g.device.device_wait_idle().ok() };
         self.ctx.resize(width, height)?;
         let format = self.output.format;
-        for img in [&self.mask, &self.depth, &self.velocity, &self.normals, &self.output] {
+        for img in [&self.mask, &self.depth, &self.velocity, &self.normals, &self.output, &self.hit_distance] {
             g.destroy_image(img);
         }
         g.destroy_staging(&self.staging);
-        [self.mask, self.depth, self.velocity, self.normals, self.output] = host_images(g, width, height, format);
+        [self.mask, self.depth, self.velocity, self.normals, self.output, self.hit_distance] = host_images(g, width, height, format);
         self.staging = g.staging(staging_bytes(width, height));
         Ok(())
     }
@@ -191,7 +205,7 @@ impl Drop for Runner<'_> {
         let g = self.gpu;
         unsafe { g.device.device_wait_idle().ok() };
         g.free_command_buffer(self.cmd);
-        for img in [&self.mask, &self.depth, &self.velocity, &self.normals, &self.output] {
+        for img in [&self.mask, &self.depth, &self.velocity, &self.normals, &self.output, &self.hit_distance] {
             g.destroy_image(img);
         }
         g.destroy_staging(&self.staging);

@@ -93,6 +93,8 @@ pub struct FrameInputs {
     pub velocity: Vec<[f32; 2]>,
     /// Hit mask, FidelityFX convention (bit = 1 occluded), ceil(W/8) x ceil(H/4).
     pub mask: Vec<u32>,
+    /// Distance to the occluder where the mask says the ray hit (0 elsewhere): the penumbra guidance input.
+    pub hit_distance: Vec<f32>,
     /// True visibility per pixel (1 for sky).
     pub truth: Vec<f32>,
     /// Receiver (plane) pixels.
@@ -119,6 +121,7 @@ impl FrameInputs {
             depth: vec![sky_depth; n],
             normals: vec![[0.0, 1.0, 0.0, 0.0]; n],
             velocity: vec![[0.0; 2]; n],
+            hit_distance: vec![0.0; n],
             mask: vec![0; (width.div_ceil(8) * height.div_ceil(4)) as usize],
             truth: vec![1.0; n],
             receiver: vec![false; n],
@@ -148,6 +151,21 @@ pub fn render(
     prev: &Camera,
     plane_half_width: f64,
     visibility: Visibility,
+    seed: u64,
+) -> FrameInputs {
+    render_with_blockers(width, height, cam, prev, plane_half_width, visibility, &|_, _| 0.0, seed)
+}
+
+/// `render`, with the distance to the occluder at world (x, z) written where a ray hit (`FrameInputs::hit_distance`).
+#[allow(clippy::too_many_arguments)]
+pub fn render_with_blockers(
+    width: u32,
+    height: u32,
+    cam: &Camera,
+    prev: &Camera,
+    plane_half_width: f64,
+    visibility: Visibility,
+    blocker: &dyn Fn(f64, f64) -> f64,
     seed: u64,
 ) -> FrameInputs {
     let aspect = width as f64 / height as f64;
@@ -187,6 +205,9 @@ pub fn render(
                 f.truth[i] = v as f32;
                 f.receiver[i] = true;
                 lit = hash01(seed, x, y) < v;
+                if !lit {
+                    f.hit_distance[i] = blocker(world.x, world.z) as f32;
+                }
             } else {
                 f.depth[i] = sky_depth;
             }

@@ -119,6 +119,8 @@ fn bad_dispatches_record_nothing() {
     assert!(lit.iter().all(|&o| o == 1.0));
     // The refused frames would write 0 everywhere if anything ran.
     let shadow = static_frame(w, h, &|_, _| 0.0, 2);
+    // With penumbra guidance, so that its inputs are checked too.
+    r.guidance = Some(0.01);
     let good = r.dispatch(&shadow);
 
     type Edit = fn(&mut ShadowsDispatch);
@@ -176,6 +178,32 @@ fn bad_dispatches_record_nothing() {
         ("velocity size", |d| wrong_size(&mut d.velocity), |e| matches!(e, Error::ImageExtentMismatch { role: ImageRole::Velocity, .. })),
         ("normals size", |d| wrong_size(&mut d.normals), |e| matches!(e, Error::ImageExtentMismatch { role: ImageRole::Normals, .. })),
         ("output size", |d| d.output.height = 0, |e| matches!(e, Error::ImageExtentMismatch { role: ImageRole::Output, .. })),
+        (
+            "null hit distance view",
+            |d| null_view(d.hit_distance.as_mut().unwrap()),
+            |e| *e == Error::NullHandle("hit_distance.view"),
+        ),
+        (
+            "R8 hit distance",
+            |d| d.hit_distance.as_mut().unwrap().format = vk::Format::R8_UNORM,
+            |e| matches!(e, Error::UnsupportedFormat { role: Some(ImageRole::HitDistance), .. }),
+        ),
+        (
+            "hit distance size",
+            |d| wrong_size(d.hit_distance.as_mut().unwrap()),
+            |e| matches!(e, Error::ImageExtentMismatch { role: ImageRole::HitDistance, .. }),
+        ),
+        ("NaN light angular size", |d| d.light_angular_size = f32::NAN, |e| *e == Error::NonFinite("light_angular_size")),
+        (
+            "negative light angular size",
+            |d| d.light_angular_size = -0.01,
+            |e| matches!(e, Error::InvalidValue { field: "light_angular_size", .. }),
+        ),
+        (
+            "light angular size of pi",
+            |d| d.light_angular_size = std::f32::consts::PI,
+            |e| matches!(e, Error::InvalidValue { field: "light_angular_size", .. }),
+        ),
         (
             "NaN projection inverse",
             |d| d.projection_inverse = Mat4::from_cols_array(&[f32::NAN; 16]),

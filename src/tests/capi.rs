@@ -47,7 +47,7 @@ fn c_dispatch(d: &crate::ShadowsDispatch, cmd: vk::CommandBuffer) -> DnsrShadows
         p_next: std::ptr::null(),
         command_buffer: cmd,
         light_index: d.light_index,
-        flags: if d.reset { DNSR_DISPATCH_RESET } else { 0 },
+        flags: (if d.reset { DNSR_DISPATCH_RESET } else { 0 }) | (if d.hit_distance.is_some() { DNSR_DISPATCH_USE_HIT_DISTANCE } else { 0 }),
         hit_mask_convention: DNSR_HIT_MASK_OCCLUDED_BITS,
         hit_mask: host(&d.hit_mask),
         depth: host(&d.depth),
@@ -71,6 +71,8 @@ fn c_dispatch(d: &crate::ShadowsDispatch, cmd: vk::CommandBuffer) -> DnsrShadows
             output_dst_access: d.sync.output_dst_access,
         },
         debug_view: DNSR_DEBUG_VIEW_NONE,
+        hit_distance: d.hit_distance.as_ref().map(host).unwrap_or_default(),
+        light_angular_size: d.light_angular_size,
     }
 }
 

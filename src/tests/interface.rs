@@ -82,15 +82,15 @@ fn reflected_interfaces_match_what_the_host_binds() {
             "tile_classification_r16f",
             &[
                 Constants, TileMask, Depth, Velocity, Normals, PreviousDepth, DepthCopy, PreviousMoments, Moments, History,
-                Reprojection, TileMetaOut, Output,
+                Reprojection, TileMetaOut, Output, HitDistance, TileBlockerOut,
             ],
             0,
         ),
-        ("filter", &[Constants, Depth, Normals, TileMeta, FilterInput, FilterOutput, Guide, GuideOut], 16),
-        ("filter_later", &[Constants, Depth, Normals, TileMeta, FilterInput, FilterOutput, Guide, GuideOut], 16),
+        ("filter", &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide, GuideOut], 16),
+        ("filter_later", &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide, GuideOut], 16),
         (
             "filter_final_r16f_fp16",
-            &[Constants, Depth, Normals, TileMeta, FilterInput, FilterOutput, Output, DebugMoments, Guide, GuideOut],
+            &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Output, DebugMoments, Guide, GuideOut],
             16,
         ),
     ];
@@ -208,7 +208,8 @@ fn generated_layout_header() -> String {
     check!(DnsrShadowsDispatch {
         s_type, p_next, command_buffer, light_index, flags, hit_mask_convention, hit_mask, depth, velocity, normals,
         output, motion_vector_scale, normals_unpack_mul, normals_unpack_add, eye, frame_index, projection_inverse,
-        reprojection_matrix, view_projection_inverse, depth_similarity_sigma, render_rect, sync, debug_view,
+        reprojection_matrix, view_projection_inverse, depth_similarity_sigma, render_rect, sync, debug_view, hit_distance,
+        light_angular_size,
     });
     check!(DnsrPassTimings { s_type, p_next, frame, prepare_ms, tile_classification_ms, filter_ms, filter_passes, total_ms });
     check!(DnsrDeviceRequirements {

@@ -30,6 +30,14 @@ fn random_frame(w: u32, h: u32, seed: u64, frame: u64) -> FrameInputs {
             let nrm = DVec3::new(r(2) - 0.5, r(3) * 0.5 + 0.5, r(4) - 0.5).normalize();
             f.normals[i] = [nrm.x as f32, nrm.y as f32, nrm.z as f32, 0.0];
             f.receiver[i] = !sky;
+            // Hit distances for penumbra guidance, with unusable values (zero, negative, NaN, infinite) mixed in.
+            f.hit_distance[i] = match (x * 7 + y * 3) % 29 {
+                0 => 0.0,
+                1 => -2.0,
+                2 => f32::NAN,
+                3 => f32::INFINITY,
+                _ => (0.05 + 3.0 * r(5)) as f32,
+            };
             // Regions wide enough for uniform tiles (+-8 px): top-left lit, a bottom band shadowed, the rest noise
             // with a probability that varies across the image.
             let (lit_w, lit_h, band) = if w >= 96 { (56, 44, 24) } else { (24, 12, 12) };
@@ -100,6 +108,13 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
         _ => 0.0,
     };
     let mut r = Runner::new(g, &info).unwrap();
+    // Some cases guide the filter by the hit distances (penumbrae from sub-pixel to several pixels wide).
+    r.guidance = match seed {
+        2 | 6 => Some(0.5),
+        4 => Some(0.3),
+        7 => Some(1.0),
+        _ => None,
+    };
     for frame in 1..3 {
         r.frame(&random_frame(w, h, seed, frame), frame == 1);
     }
@@ -116,6 +131,7 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     let (tw, th) = (w.div_ceil(8), h.div_ceil(4));
     let tile_mask: Vec<u32> = download(g, after.tile_mask, vk::Format::R32_UINT, tw, th);
     let tile_meta: Vec<u32> = download(g, after.tile_meta, vk::Format::R32_UINT, tw, th);
+    let tile_blocker: Vec<f32> = download(g, after.tile_blocker, vk::Format::R32_SFLOAT, tw, th);
     let moments: Vec<[f32; 4]> = download(g, after.moments, vk::Format::R32G32B32A32_SFLOAT, w, h);
     let reprojection = download_rg(g, after.reprojection, fmt, w, h);
     let history_out = download_rg(g, after.history, fmt, w, h);
@@ -127,6 +143,8 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     cpu.eye = d.eye.as_dvec3();
     cpu.depth_similarity_sigma = d.depth_similarity_sigma as f64;
     cpu.hit_mask = f.mask.clone();
+    cpu.hit_distance = f.hit_distance.iter().map(|&v| v as f64).collect();
+    cpu.penumbra = d.hit_distance.map(|_| reference::Penumbra::new(d.light_angular_size as f64, cpu.projection_inverse, h as i32));
     cpu.depth = f.depth.iter().map(|&v| v as f64).collect();
     cpu.velocity = f.velocity.iter().map(|v| DVec2::new(v[0] as f64, v[1] as f64)).collect();
     cpu.normals = f.normals.iter().map(|n| reference::decode_normal(DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64), 1.0, 0.0)).collect();
@@ -150,6 +168,16 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
         worst("history (filter 0)", history_out.iter().map(|v| v.x), cpu.filter_out[0].iter().map(|v| v.x)),
         worst("output", out.iter().map(|&v| v as f64), cpu.output.iter().copied()),
     ];
+    if cpu.penumbra.is_some() {
+        // The blocker estimate of the tiles the filter reads it for (relative: distances up to ~3).
+        let mixed: Vec<usize> = (0..tile_meta.len()).filter(|&i| tile_meta[i] == 0).collect();
+        assert!(mixed.iter().any(|&i| cpu.tile_blocker[i] > 0.0), "no tile with a known blocker");
+        results.push(worst(
+            "tile blocker (relative)",
+            mixed.iter().map(|&i| tile_blocker[i] as f64 / cpu.tile_blocker[i].abs().max(1.0)),
+            mixed.iter().map(|&i| cpu.tile_blocker[i] / cpu.tile_blocker[i].abs().max(1.0)),
+        ));
+    }
     if passes <= 2 {
         // The temporal result survives only while no later pass reuses its image.
         results.push(worst("reprojection.mean", reprojection.iter().map(|v| v.x), cpu.reprojection_out.iter().map(|v| v.x)));

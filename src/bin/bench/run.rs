@@ -36,10 +36,19 @@ pub struct ConfigRun {
     pub warmup: WarmupDone,
 }
 
-fn dispatch(scene: &GpuScene, index: usize, output: &TestImage) -> ShadowsDispatch {
+/// Penumbra guidance for a run: a hit-distance image (every pixel 1.0 in R16_SFLOAT) and the light's angular size.
+#[derive(Clone, Copy)]
+pub struct Guidance<'a> {
+    pub hit_distance: &'a TestImage,
+    pub light_angular_size: f32,
+}
+
+fn dispatch(scene: &GpuScene, index: usize, output: &TestImage, guidance: Option<Guidance>) -> ShadowsDispatch {
     let f = &scene.frames[index % scene.frames.len()];
     let g = &scene.gbuffers[f.gbuffer];
     ShadowsDispatch {
+        hit_distance: guidance.map(|g| g.hit_distance.host()),
+        light_angular_size: guidance.map_or(0.0, |g| g.light_angular_size),
         hit_mask: scene.masks[f.mask].host(),
         depth: g.depth.host(),
         velocity: g.velocity.host(),
@@ -60,6 +69,7 @@ fn dispatch(scene: &GpuScene, index: usize, output: &TestImage) -> ShadowsDispat
     }
 }
 
+#[allow(clippy::too_many_arguments)]
 pub fn run(
     gpu: &Gpu,
     scene: &GpuScene,
@@ -68,6 +78,7 @@ pub fn run(
     precision: Precision,
     warmup: Warmup,
     frames: usize,
+    light_angle: Option<f32>,
 ) -> Result<ConfigRun, String> {
     let mut info = gpu.create_info(w, h);
     info.enable_timestamps = true;
@@ -77,9 +88,18 @@ pub fn run(
     let mut ctx = Context::new(&info).map_err(|e| format!("Context::new: {e}"))?;
     let output = gpu.image(vk::Format::R16_SFLOAT, w, h, READ);
     let cmd = gpu.command_buffer();
-    let result = measure(gpu, &mut ctx, scene, &output, cmd, warmup, frames);
+    let hit_distance = light_angle.map(|_| {
+        let img = gpu.image(vk::Format::R16_SFLOAT, w, h, READ);
+        gpu.upload(&img, &0x3C00u16.to_le_bytes().repeat((w * h) as usize));
+        img
+    });
+    let guidance = hit_distance.as_ref().map(|img| Guidance { hit_distance: img, light_angular_size: light_angle.unwrap_or(0.0) });
+    let result = measure(gpu, &mut ctx, scene, &output, cmd, warmup, frames, guidance);
     unsafe { gpu.device.device_wait_idle().ok() };
     gpu.free_command_buffer(cmd);
+    if let Some(img) = &hit_distance {
+        gpu.destroy_image(img);
+    }
     let memory_bytes = ctx.memory_bytes();
     drop(ctx);
     gpu.destroy_image(&output);
@@ -117,6 +137,7 @@ fn measure(
     cmd: vk::CommandBuffer,
     warmup: Warmup,
     frames: usize,
+    guidance: Option<Guidance>,
 ) -> Result<Measured, String> {
     let mut recorded = 0u64;
     let mut frame = |ctx: &mut Context, d: &ShadowsDispatch| -> Result<(PassTimings, f64), String> {
@@ -142,7 +163,7 @@ fn measure(
     let mut index = 0;
     for view in [DebugView::TileClassification, DebugView::Disocclusion] {
         for _ in 0..n {
-            let d = ShadowsDispatch { debug_view: view, ..dispatch(scene, index, output) };
+            let d = ShadowsDispatch { debug_view: view, ..dispatch(scene, index, output, guidance) };
             index += 1;
             frame(ctx, &d)?;
             let raw = gpu.download(output);
@@ -198,7 +219,7 @@ fn measure(
         if enough_frames && ms >= 5.0 * warmup.min_ms {
             break;
         }
-        let (t, _) = frame(ctx, &dispatch(scene, index, output))?;
+        let (t, _) = frame(ctx, &dispatch(scene, index, output, guidance))?;
         index += 1;
         totals.push(t.total_ms);
     }
@@ -207,7 +228,7 @@ fn measure(
 
     let (mut timings, mut record_us) = (Vec::with_capacity(frames), Vec::with_capacity(frames));
     for _ in 0..frames {
-        let (t, us) = frame(ctx, &dispatch(scene, index, output))?;
+        let (t, us) = frame(ctx, &dispatch(scene, index, output, guidance))?;
         index += 1;
         timings.push(t);
         record_us.push(us);

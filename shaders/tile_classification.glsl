@@ -27,13 +27,21 @@ shared uint s_uniform[DNSR_GROUP_TILES.y][DNSR_GROUP_TILES.x];
 // First tile of the group's window (same for every invocation of the group).
 ivec2 g_window_base;
 
+// Penumbra guidance is a specialization constant (id generated from the host's SPEC_PENUMBRA_GUIDED): the host
+// binds the pipeline specialized with it true for guided frames; unguided ones run without its code (merely
+// present behind a branch on the frame flag, it slowed them by a quarter).
+layout(constant_id = DNSR_SPEC_ID_PENUMBRA_GUIDED) const bool DNSR_SPEC_PENUMBRA_GUIDED = false;
+
 // Penumbra guidance: every window tile's (sum, count) of usable hit distances over its shadowed pixels, summed
-// from DNSR_HIT_PARTS partial sums of DNSR_HIT_PIXELS pixels each.
+// from DNSR_HIT_PARTS partial sums of DNSR_HIT_PIXELS pixels each. The partial sums borrow s_hsum before the
+// moment sums fill it.
 const int DNSR_WINDOW_TILE_COUNT = DNSR_WINDOW_TILES.x * DNSR_WINDOW_TILES.y;
 const int DNSR_HIT_PARTS = DNSR_WIDE_GROUP_INVOCATIONS / DNSR_WINDOW_TILE_COUNT;
 const int DNSR_HIT_PIXELS = 32 / DNSR_HIT_PARTS;
-shared vec2 s_hit_part[DNSR_WIDE_GROUP_INVOCATIONS];
 shared vec2 s_hit[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
+
+void dnsr_store_hit_part(int i, vec2 part) { s_hsum[i / DNSR_WIDE_GROUP_WIDTH][i % DNSR_WIDE_GROUP_WIDTH] = part; }
+vec2 dnsr_load_hit_part(int i) { return s_hsum[i / DNSR_WIDE_GROUP_WIDTH][i % DNSR_WIDE_GROUP_WIDTH]; }
 
 ivec2 dnsr_tile_count() { return (dnsr_get_extent() + DNSR_TILE_SIZE - 1) / DNSR_TILE_SIZE; }
 
@@ -128,14 +136,14 @@ void dnsr_sum_hit_part(int thread) {
         float d = dnsr_read_hit_distance(tile * DNSR_TILE_SIZE + ivec2(bit % 8, bit / 8));
         if (dnsr_usable_hit_distance(d)) part += vec2(d, 1.0);
     }
-    s_hit_part[thread] = part;
+    dnsr_store_hit_part(thread, part);
 }
 
 // Second half: one invocation per window tile adds its parts up, in order.
 void dnsr_reduce_hit_parts(int thread) {
     if (thread >= DNSR_WINDOW_TILE_COUNT) return;
     vec2 sum = vec2(0.0);
-    for (int i = 0; i < DNSR_HIT_PARTS; ++i) sum += s_hit_part[thread * DNSR_HIT_PARTS + i];
+    for (int i = 0; i < DNSR_HIT_PARTS; ++i) sum += dnsr_load_hit_part(thread * DNSR_HIT_PARTS + i);
     s_hit[thread / DNSR_WINDOW_TILES.x][thread % DNSR_WINDOW_TILES.x] = sum;
 }
 
@@ -196,12 +204,14 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
 
     // Read by the quad vote after the next barrier.
     s_quad_velocity[lid.y][lid.x] = receiver ? dnsr_read_velocity(p) : vec2(0.0);
-    bool guided = dnsr_get_is_penumbra_guided();
+    bool guided = DNSR_SPEC_PENUMBRA_GUIDED;
     if (guided) {
         dnsr_sum_hit_part(thread);
         barrier();
         dnsr_reduce_hit_parts(thread);
-        // s_hit is read after the barrier that follows the moment sums.
+        // The partial sums are read before s_hsum is overwritten; s_hit is read after the barrier that follows the
+        // moment sums.
+        barrier();
     }
 
     // Horizontal Gaussian over DNSR_WINDOW_ROWS / height window rows per invocation.

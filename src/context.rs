@@ -176,7 +176,8 @@ impl Context {
         ];
         let mut made: Vec<Pipeline> = Vec::with_capacity(names.len());
         for name in names {
-            match Pipeline::new(&self.vk, name, variant(name).spirv, push) {
+            let guided_variant = name == names[1];
+            match Pipeline::new(&self.vk, name, variant(name).spirv, push, guided_variant) {
                 Ok(p) => made.push(p),
                 Err(e) => {
                     made.iter_mut().for_each(|p| p.destroy(&self.vk));
@@ -313,6 +314,7 @@ impl Context {
             // Without hit distances the binding takes an image of a float format that the pass only samples.
             hit_distance: d.hit_distance.as_ref().map_or(image(light.depth[cur ^ 1].view, vk::ImageLayout::GENERAL), host),
             tile_blocker: light.tile_blocker.view,
+            guided: d.hit_distance.is_some(),
             output: d.output.view,
             tile_mask: match d.hit_mask_convention {
                 HitMaskConvention::OccludedBits => image(light.tile_mask.view, vk::ImageLayout::GENERAL),
@@ -474,7 +476,7 @@ impl Context {
                 }
                 let groups = pass.group_count(extent);
                 unsafe {
-                    dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.pipeline);
+                    dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.for_frame(pass.guided));
                     if let Some(push) = &pass.push {
                         dev.cmd_push_constants(cmd, pipeline.layout, vk::ShaderStageFlags::COMPUTE, 0, bytemuck::bytes_of(push));
                     }

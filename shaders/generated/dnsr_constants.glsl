@@ -46,5 +46,6 @@ struct DnsrFilterPush {
 #define DNSR_MOMENT_RADIUS 8
 #define DNSR_MAX_SAMPLE_RUN 4096
 #define DNSR_RUN_CLAMP_SAMPLES 3
+#define DNSR_SPEC_ID_PENUMBRA_GUIDED 0
 
 #endif

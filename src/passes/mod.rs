@@ -36,7 +36,8 @@ const _: () = assert!(GROUP[0] == TILE[0] && GROUP[1] == 2 * TILE[1] && MOMENT_R
 const _: () = assert!(WIDE_GROUP[0] % GROUP[0] == 0 && WIDE_GROUP[1] % GROUP[1] == 0);
 // Classification holds one row of its moment window, the group's width and the radius either side, in 32 bits.
 const _: () = assert!(WIDE_GROUP[0] + 2 * MOMENT_RADIUS <= 32);
-// Penumbra guidance in classification: each invocation sums one share of one window tile's hit distances.
+// Penumbra guidance in classification: each invocation sums one share of one window tile's hit distances, into
+// the moment-sum rows (one slot per invocation).
 const WINDOW_TILE_COUNT: u32 = (WIDE_GROUP[0] / TILE[0] + 2) * (WIDE_GROUP[1] / TILE[1] + 4);
 const _: () = assert!((WIDE_GROUP[0] * WIDE_GROUP[1]) % WINDOW_TILE_COUNT == 0 && 32 % (WIDE_GROUP[0] * WIDE_GROUP[1] / WINDOW_TILE_COUNT) == 0);
 const _: () = assert!(1 << (MAX_FILTER_PASSES - 1) <= GROUP[0] && 1 << (MAX_FILTER_PASSES - 1) <= GROUP[1]);
@@ -74,6 +75,8 @@ pub(crate) struct Pass {
     /// Invocations per workgroup, x by y (the shader's local size).
     pub group: [u32; 2],
     pub push: Option<FilterPush>,
+    /// Runs the pipeline specialized for penumbra guidance (where the pass has one).
+    pub guided: bool,
     /// A disabled pass is not dispatched; its timestamp is still written, so its time reads as zero.
     pub enabled: bool,
 }
@@ -141,6 +144,8 @@ pub(crate) struct FrameViews {
     pub hit_distance: Binding,
     /// Each tile's blocker estimate (penumbra guidance).
     pub tile_blocker: vk::ImageView,
+    /// The dispatch has hit distances (penumbra guidance).
+    pub guided: bool,
     /// The host output, already in GENERAL when the final pass runs.
     pub output: vk::ImageView,
     /// The lit-bit tile mask: dnsr's internal image, or the host's mask when it already holds lit bits.

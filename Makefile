@@ -48,7 +48,7 @@ test: deps
 	@# The C++ viewer: headless on lavapipe with validation, windowed under Xvfb, and every bad-glTF case.
 	VIEWER_DEVICE="$(DNSR_DEVICE)" examples-c/viewer/test.sh
 
-# The viewer's committed scenes (default, thin fins, thin shells) against their 256-ray reference, every preset,
+# The viewer's committed scenes (default, thin fins, thin shells) against their 1024-ray reference, every preset,
 # directional and point light, still and orbiting camera: writes docs/viewer-accuracy.md (a few minutes on lavapipe).
 viewer-accuracy: viewer
 	examples-c/viewer/accuracy.py build/viewer/dnsr_viewer docs/viewer-accuracy.md

@@ -424,6 +424,16 @@ static void dispatch_calls(void)
     DISPATCH_CASE("record: normals extent", DNSR_ERROR_IMAGE_EXTENT_MISMATCH, "normals image", d.normals.width -= 1);
     DISPATCH_CASE("record: output extent", DNSR_ERROR_IMAGE_EXTENT_MISMATCH, "output image", d.output.height = 0);
 
+    /* Penumbra guidance: its inputs are checked only with its flag, and then like the others. */
+    DISPATCH_CASE("record: hit distance flag without an image", DNSR_ERROR_NULL_HANDLE, "hitDistance.image",
+                  d.flags |= DNSR_DISPATCH_USE_HIT_DISTANCE);
+    DISPATCH_CASE("record: integer hit distance", DNSR_ERROR_UNSUPPORTED_FORMAT, "hitDistance image format",
+                  d.flags |= DNSR_DISPATCH_USE_HIT_DISTANCE, d.hitDistance = d.hitMask);
+    DISPATCH_CASE("record: NaN lightAngularSize", DNSR_ERROR_NON_FINITE, "lightAngularSize",
+                  d.flags |= DNSR_DISPATCH_USE_HIT_DISTANCE, d.hitDistance = d.output, d.hitDistance.layout = VK_IMAGE_LAYOUT_GENERAL, d.lightAngularSize = NAN);
+    DISPATCH_CASE("record: negative lightAngularSize", DNSR_ERROR_INVALID_ARGUMENT, "lightAngularSize",
+                  d.flags |= DNSR_DISPATCH_USE_HIT_DISTANCE, d.hitDistance = d.output, d.hitDistance.layout = VK_IMAGE_LAYOUT_GENERAL, d.lightAngularSize = -0.5f);
+
     DISPATCH_CASE("record: NaN projectionInverse", DNSR_ERROR_NON_FINITE, "projectionInverse",
                   d.projectionInverse[5] = NAN);
     DISPATCH_CASE("record: NaN reprojectionMatrix", DNSR_ERROR_NON_FINITE, "reprojectionMatrix",

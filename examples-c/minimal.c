@@ -10,7 +10,8 @@
  *
  * Here the "engine" uploads a synthetic G-buffer (a flat surface facing the camera, nothing moving) and draws
  * each frame's hit mask at random from a known, smooth visibility field, so the denoised output can be compared
- * with the truth.
+ * with the truth. Its "rays" also report how far away their occluder is, which lets dnsr keep the filter within
+ * the penumbra (penumbra guidance, DNSR_DISPATCH_USE_HIT_DISTANCE).
  *
  *   cmake -S examples-c -B build/examples -DDNSR_LIB=$PWD/target/release/libdnsr.so
  *   cmake --build build/examples && build/examples/dnsr_minimal [--validate]
@@ -33,6 +34,7 @@
 #define TILES_X ((WIDTH + 7u) / 8u) /* the hit mask has one uint32 per 8x4-pixel tile */
 #define TILES_Y ((HEIGHT + 3u) / 4u)
 #define FRAMES 16u
+#define LIGHT_ANGULAR_SIZE 0.1f /* radians: the light's angular diameter seen from the surface */
 
 /* Reports a failed Vulkan call and makes the enclosing function return false. */
 #define VK_TRY(call)                                                                                              \
@@ -67,6 +69,7 @@ typedef struct Image {
 typedef struct Staging {
     uint32_t mask[TILES_Y][TILES_X];
     float depth[HEIGHT][WIDTH];
+    float hitDistance[HEIGHT][WIDTH];
     uint8_t normals[HEIGHT][WIDTH][4];
     float output[HEIGHT][WIDTH];
 } Staging;
@@ -85,7 +88,7 @@ typedef struct App {
     VkCommandBuffer cmd;
     DnsrFeatureFlags dnsrFeatures; /* the optional features we enabled, as dnsr must be told */
     DnsrContext denoiser;
-    Image mask, depth, velocity, normals, output;
+    Image mask, depth, velocity, normals, hitDistance, output;
     VkBuffer stagingBuffer;
     VkDeviceMemory stagingMemory;
     Staging *staging;
@@ -95,13 +98,22 @@ typedef struct App {
 /* The synthetic scene                                                                                           */
 /* ------------------------------------------------------------------------------------------------------------- */
 
-/* True visibility (1 = lit): a slanted shadow edge whose penumbra widens from 2 px on the left to 16 px on the
- * right, as behind an occluder that rises away from the surface. */
+/* Half-width in pixels of the penumbra at column x: from 2 px on the left to 16 px on the right, as behind an
+ * occluder that rises away from the surface. */
+static float penumbra(uint32_t x) { return 2.0f + 14.0f * (float)x / WIDTH; }
+
+/* How far above the surface that occluder is: a light of angular diameter a casts a penumbra of half-width
+ * distance * tan(a / 2), and one pixel is 2 / HEIGHT view units tall (identity projection). */
+static float occluder_distance(uint32_t x)
+{
+    return penumbra(x) * (2.0f / HEIGHT) / tanf(0.5f * LIGHT_ANGULAR_SIZE);
+}
+
+/* True visibility (1 = lit): a slanted shadow edge with that penumbra. */
 static float visibility(uint32_t x, uint32_t y)
 {
     float across = ((float)y - 0.5f * HEIGHT) + 0.3f * ((float)x - 0.5f * WIDTH);
-    float penumbra = 2.0f + 14.0f * (float)x / WIDTH;
-    float t = 0.5f + 0.5f * across / penumbra;
+    float t = 0.5f + 0.5f * across / penumbra(x);
     t = t < 0.0f ? 0.0f : t > 1.0f ? 1.0f : t;
     return t * t * (3.0f - 2.0f * t);
 }
@@ -396,7 +408,7 @@ static bool create_image(App *app, Image *img, VkFormat format, uint32_t width, 
     return true;
 }
 
-/* The engine's images: hit mask, G-buffer (depth, motion vectors, normals) and the denoised shadow. */
+/* The engine's images: hit mask, G-buffer (depth, motion vectors, normals), hit distance and the denoised shadow. */
 static bool create_images(App *app)
 {
     VkImageUsageFlags input = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
@@ -405,6 +417,7 @@ static bool create_images(App *app)
         !create_image(app, &app->depth, VK_FORMAT_R32_SFLOAT, WIDTH, HEIGHT, input) ||
         !create_image(app, &app->velocity, VK_FORMAT_R16G16_SFLOAT, WIDTH, HEIGHT, input) ||
         !create_image(app, &app->normals, VK_FORMAT_R8G8B8A8_UNORM, WIDTH, HEIGHT, input) ||
+        !create_image(app, &app->hitDistance, VK_FORMAT_R32_SFLOAT, WIDTH, HEIGHT, input) ||
         !create_image(app, &app->output, VK_FORMAT_R32_SFLOAT, WIDTH, HEIGHT, output))
         return false;
 
@@ -482,13 +495,15 @@ static bool submit_and_wait(App *app)
 
 /* Moves every image to GENERAL, where it stays (dnsr accepts GENERAL, SHADER_READ_ONLY_OPTIMAL and a few more for
  * its inputs; GENERAL keeps this example free of per-frame transitions), and uploads the static G-buffer: depth
- * 0.5, zero motion, normals facing the camera. */
+ * 0.5, zero motion, normals facing the camera; and the hit distance, the same every frame here (dnsr reads it only
+ * where that frame's mask says the ray hit; a tracer writes its rays' distance to their nearest occluder). */
 static bool upload_gbuffer(App *app)
 {
     Staging *s = app->staging;
     for (uint32_t y = 0; y < HEIGHT; y++) {
         for (uint32_t x = 0; x < WIDTH; x++) {
             s->depth[y][x] = 0.5f;
+            s->hitDistance[y][x] = occluder_distance(x);
             /* (0, 0, -1) points back at the camera (at the origin, looking down +z, identity matrices); UNORM
              * normals store n * 0.5 + 0.5 and dnsr decodes them with normalsUnpackMul 2, normalsUnpackAdd -1. */
             s->normals[y][x][0] = 128;
@@ -498,9 +513,9 @@ static bool upload_gbuffer(App *app)
         }
     }
     if (!begin_commands(app)) return false;
-    const Image *all[] = {&app->mask, &app->depth, &app->velocity, &app->normals, &app->output};
-    VkImageMemoryBarrier toGeneral[5];
-    for (int i = 0; i < 5; i++) {
+    const Image *all[] = {&app->mask, &app->depth, &app->velocity, &app->normals, &app->hitDistance, &app->output};
+    VkImageMemoryBarrier toGeneral[6];
+    for (int i = 0; i < 6; i++) {
         toGeneral[i] = (VkImageMemoryBarrier){
             .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
             .dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
@@ -513,8 +528,9 @@ static bool upload_gbuffer(App *app)
         };
     }
     vkCmdPipelineBarrier(app->cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, NULL, 0,
-                         NULL, 5, toGeneral);
+                         NULL, 6, toGeneral);
     copy_to_image(app, offsetof(Staging, depth), &app->depth);
+    copy_to_image(app, offsetof(Staging, hitDistance), &app->hitDistance);
     copy_to_image(app, offsetof(Staging, normals), &app->normals);
     VkClearColorValue zero = {.float32 = {0.0f, 0.0f, 0.0f, 0.0f}};
     VkImageSubresourceRange range = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
@@ -548,12 +564,15 @@ static bool record_denoiser(App *app, uint32_t frame)
         .sType = DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH,
         .commandBuffer = app->cmd,
         .lightIndex = 0,
+        .flags = DNSR_DISPATCH_USE_HIT_DISTANCE, /* penumbra guidance: read hitDistance and lightAngularSize */
         .hitMaskConvention = DNSR_HIT_MASK_OCCLUDED_BITS,
         .hitMask = host_image(&app->mask),
         .depth = host_image(&app->depth),
         .velocity = host_image(&app->velocity),
         .normals = host_image(&app->normals),
         .output = host_image(&app->output),
+        .hitDistance = host_image(&app->hitDistance),
+        .lightAngularSize = LIGHT_ANGULAR_SIZE,
         .motionVectorScale = {1.0f, 1.0f}, /* prev_uv = uv + velocity * scale; our velocity is 0 anyway */
         .normalsUnpackMul = 2.0f,
         .normalsUnpackAdd = -1.0f,
@@ -645,8 +664,8 @@ static void destroy_all(App *app)
         /* The context goes before the device, once the GPU has finished every command buffer it recorded into. */
         if (app->denoiser && dnsr_context_destroy(app->denoiser) != DNSR_SUCCESS)
             fprintf(stderr, "dnsr_context_destroy: %s\n", dnsr_last_error_message());
-        Image *images[] = {&app->mask, &app->depth, &app->velocity, &app->normals, &app->output};
-        for (int i = 0; i < 5; i++) destroy_image(app, images[i]);
+        Image *images[] = {&app->mask, &app->depth, &app->velocity, &app->normals, &app->hitDistance, &app->output};
+        for (int i = 0; i < 6; i++) destroy_image(app, images[i]);
         vkDestroyBuffer(app->device, app->stagingBuffer, NULL);
         vkFreeMemory(app->device, app->stagingMemory, NULL);
         vkDestroyCommandPool(app->device, app->commandPool, NULL);

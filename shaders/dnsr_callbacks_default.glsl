@@ -33,7 +33,6 @@ vec4 dnsr_get_rejection_settings() { return dnsr_constants.rejection; }
 vec4 dnsr_get_temporal_settings() { return dnsr_constants.temporal; }
 vec4 dnsr_get_filter_settings() { return dnsr_constants.filtering; }
 vec4 dnsr_get_run_settings() { return dnsr_constants.runs; }
-bool dnsr_get_is_penumbra_guided() { return (dnsr_constants.flags.x & DNSR_FLAG_PENUMBRA_GUIDED) != 0u; }
 // x: tan(light angular diameter / 2); a pixel's world size at linear depth z is y + z * z; w: the filter's sigma
 // in penumbra half-widths.
 vec4 dnsr_get_penumbra_settings() { return dnsr_constants.penumbra; }

@@ -123,7 +123,7 @@ void dnsr_tap(ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal, out v
 // Penumbra guidance: 1 / (2 sigma^2) of the Gaussian over tap distance that keeps the kernel within the penumbra
 // the tile's blockers cast on a receiver at linear depth zc; 0 (no narrowing) without guidance or blocker.
 float dnsr_penumbra_falloff(ivec2 p, float zc) {
-    if (!dnsr_get_is_penumbra_guided()) return 0.0;
+    if (!DNSR_SPEC_PENUMBRA_GUIDED) return 0.0;
     float blocker = dnsr_read_tile_blocker(p / DNSR_TILE_SIZE);
     if (blocker < 0.0) return 0.0;
     vec4 pen = dnsr_get_penumbra_settings();

@@ -27,11 +27,6 @@ shared uint s_uniform[DNSR_GROUP_TILES.y][DNSR_GROUP_TILES.x];
 // First tile of the group's window (same for every invocation of the group).
 ivec2 g_window_base;
 
-// Penumbra guidance is a specialization constant (id generated from the host's SPEC_PENUMBRA_GUIDED): the host
-// binds the pipeline specialized with it true for guided frames; unguided ones run without its code (merely
-// present behind a branch on the frame flag, it slowed them by a quarter).
-layout(constant_id = DNSR_SPEC_ID_PENUMBRA_GUIDED) const bool DNSR_SPEC_PENUMBRA_GUIDED = false;
-
 // Penumbra guidance: every window tile's (sum, count) of usable hit distances over its shadowed pixels, summed
 // from DNSR_HIT_PARTS partial sums of DNSR_HIT_PIXELS pixels each. The partial sums borrow s_hsum before the
 // moment sums fill it.

@@ -74,7 +74,7 @@ gpu_block! {
         /// x: identical samples in a row that make a pixel stable (0: never); y: samples of the other value after a
         /// stable run that restart its history (0: never); zw: unused.
         runs: [f32; 4],
-        /// Penumbra guidance (DNSR_FLAG_PENUMBRA_GUIDED): x: tan(light angular diameter / 2); yz: a pixel's
+        /// Penumbra guidance (the pipelines specialized with DNSR_SPEC_PENUMBRA_GUIDED): x: tan(light angular diameter / 2); yz: a pixel's
         /// world-space size at linear view depth z is y + z * z; w: the kernel's sigma in penumbra half-widths.
         penumbra: [f32; 4],
     }
@@ -92,9 +92,6 @@ gpu_block! {
 pub(crate) const FLAG_RESET: u32 = 1 << 0;
 /// Frame flag: depth 0 is far, closest-depth means largest depth.
 pub(crate) const FLAG_DEPTH_INVERTED: u32 = 1 << 1;
-/// Frame flag: the hit-distance input is bound; classification estimates each tile's blocker distance and the
-/// filter narrows its kernel to the penumbra width it implies.
-pub(crate) const FLAG_PENUMBRA_GUIDED: u32 = 1 << 2;
 /// Filter pass flag: write mean and variance to the internal intermediate image.
 pub(crate) const PASS_WRITE_INTERNAL: u32 = 1 << 0;
 /// Filter pass flag: groups whose two tiles are cleared write nothing (what the pass would write there is
@@ -108,7 +105,6 @@ pub(crate) const PASS_WRITE_GUIDE: u32 = 1 << 2;
 pub(crate) const GLSL_FLAGS: &[(&str, u32)] = &[
     ("DNSR_FLAG_RESET", FLAG_RESET),
     ("DNSR_FLAG_DEPTH_INVERTED", FLAG_DEPTH_INVERTED),
-    ("DNSR_FLAG_PENUMBRA_GUIDED", FLAG_PENUMBRA_GUIDED),
     ("DNSR_PASS_WRITE_INTERNAL", PASS_WRITE_INTERNAL),
     ("DNSR_PASS_SKIP_CLEARED", PASS_SKIP_CLEARED),
     ("DNSR_PASS_WRITE_GUIDE", PASS_WRITE_GUIDE),

@@ -1,6 +1,6 @@
 //! The denoiser context: pipelines, internal state per light, and recording into the host's command buffer.
 
-use crate::constants::{FrameConstants, FLAG_DEPTH_INVERTED, FLAG_PENUMBRA_GUIDED, FLAG_RESET};
+use crate::constants::{FrameConstants, FLAG_DEPTH_INVERTED, FLAG_RESET};
 use crate::create_info::{ContextCreateInfo, EnabledFeatures, Precision};
 use crate::dispatch::{HitMaskConvention, ShadowsDispatch};
 use crate::error::{vk_check, Error, Result};
@@ -176,7 +176,8 @@ impl Context {
         ];
         let mut made: Vec<Pipeline> = Vec::with_capacity(names.len());
         for name in names {
-            let guided_variant = name == names[1];
+            // Classification and the filter passes have penumbra-guidance code; prepare has none.
+            let guided_variant = name != names[0];
             match Pipeline::new(&self.vk, name, variant(name).spirv, push, guided_variant) {
                 Ok(p) => made.push(p),
                 Err(e) => {
@@ -380,9 +381,7 @@ impl Context {
             motion_normals: [d.motion_vector_scale.x, d.motion_vector_scale.y, d.normals_unpack_mul, d.normals_unpack_add],
             rect: [rect.x, rect.y, rect.width, rect.height],
             flags: [
-                (if reset { FLAG_RESET } else { 0 })
-                    | (if self.depth_inverted { FLAG_DEPTH_INVERTED } else { 0 })
-                    | (if d.hit_distance.is_some() { FLAG_PENUMBRA_GUIDED } else { 0 }),
+                (if reset { FLAG_RESET } else { 0 }) | (if self.depth_inverted { FLAG_DEPTH_INVERTED } else { 0 }),
                 0,
                 0,
                 0,

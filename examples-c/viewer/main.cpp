@@ -5,7 +5,7 @@
 //   dnsr_viewer --headless --frames 16 --out out/      PNGs + report.json, no window system needed
 //
 // Exit status: 0 success; 1 a Vulkan/dnsr failure or (with --validate) any validation message; 2 bad command
-// line or a scene the viewer cannot load (one line on stderr says why).
+// line, a scene or --load-reference file the viewer cannot load (one line on stderr says why).
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,8 +46,10 @@ struct Options {
     std::string screenshot;
     bool pointLight = false;
     float lightAngleDeg = 3.0f;
+    bool hitDistance = true;  // penumbra guidance (DNSR_DISPATCH_USE_HIT_DISTANCE)
     bool lightMotion = false;
     uint32_t referenceSamples = 256;
+    std::string saveReference, loadReference;  // headless: the reference, written to / read from a file
     float orbitDegPerFrame = 0.25f;
     DnsrPreset preset = DNSR_PRESET_BALANCED;
     View view = View::Composite;  // window mode: the view shown first
@@ -63,7 +66,12 @@ const char *kUsage =
     "  --point-light           a spherical point light instead of the directional light\n"
     "  --light-angle DEG       angular radius of the light, 0..30 (default 3; sets the penumbra width)\n"
     "  --light-motion          start with the light moving (key L toggles it)\n"
+    "  --hit-distance on|off   penumbra guidance: give dnsr each shadow ray's distance to its nearest occluder and\n"
+    "                          the light's angular diameter (DNSR_DISPATCH_USE_HIT_DISTANCE; default on; key H)\n"
     "  --reference-samples N   shadow rays per pixel of the reference, 1..65536 (default 256)\n"
+    "  --save-reference FILE   headless: also write the last frame's reference (and depth) to FILE\n"
+    "  --load-reference FILE   headless: measure against FILE's reference instead of rendering one (same scene,\n"
+    "                          size, frames, light and camera: the run fails if the last frame's depth differs)\n"
     "  --view NAME             window mode: first view (noisy, denoised, reference, composite, tiles, or dnsr's\n"
     "                          debug views classification, samples, variance, disocclusion; keys 1-9)\n"
     "  --orbit-speed DEG       headless: camera orbit per frame in degrees, -45..45 (default 0.25; 0 = static)\n"
@@ -75,9 +83,10 @@ const char *kUsage =
     "window keys: left-drag orbit, scroll zoom, R reset view (a camera cut: dnsr's history restarts),\n"
     "             1 noisy, 2 denoised, 3 reference (accumulates while nothing moves), 4 composite,\n"
     "             5 hit-mask density per tile, 6 dnsr tile classification, 7 dnsr sample count,\n"
-    "             8 dnsr variance, 9 dnsr disocclusion, L toggle light motion, Esc/Q quit\n"
+    "             8 dnsr variance, 9 dnsr disocclusion, L toggle light motion, H toggle penumbra guidance\n"
+    "             (hit distances), Esc/Q quit\n"
     "exit status: 0 success, 1 a Vulkan/dnsr failure or (with --validate) a validation message,\n"
-    "             2 a bad command line or a scene the viewer cannot load\n";
+    "             2 a bad command line, or a scene or reference file the viewer cannot load\n";
 
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
@@ -152,10 +161,18 @@ Options parseOptions(int argc, char **argv)
             auto it = std::find(std::begin(names), std::end(names), v);
             if (it == std::end(names)) throw UsageError("--preset wants fast, balanced or quality, got '" + v + "'");
             o.preset = static_cast<DnsrPreset>(it - std::begin(names));
+        } else if (a == "--hit-distance") {
+            std::string v = value();
+            if (v != "on" && v != "off") throw UsageError("--hit-distance wants on or off, got '" + v + "'");
+            o.hitDistance = v == "on";
         } else if (a == "--light-motion") {
             o.lightMotion = true;
         } else if (a == "--reference-samples") {
             o.referenceSamples = parseCount("--reference-samples", value(), 1, 65536);
+        } else if (a == "--save-reference") {
+            o.saveReference = value();
+        } else if (a == "--load-reference") {
+            o.loadReference = value();
         } else if (!a.empty() && a[0] == '-') {
             throw UsageError("unknown option " + a);
         } else if (haveScene) {
@@ -172,6 +189,10 @@ Options parseOptions(int argc, char **argv)
     if (o.headless && !o.frames) o.frames = 16;
     if (o.headless && !o.screenshot.empty()) throw UsageError("--screenshot is for window mode (headless writes PNGs)");
     if (!o.screenshot.empty() && !o.frames) throw UsageError("--screenshot needs --frames N");
+    if (!o.headless && !(o.saveReference.empty() && o.loadReference.empty()))
+        throw UsageError("--save-reference and --load-reference are for --headless");
+    if (!o.saveReference.empty() && !o.loadReference.empty())
+        throw UsageError("--save-reference and --load-reference exclude each other");
     return o;
 }
 
@@ -224,6 +245,7 @@ struct LightState {
     float azimuth = 0, elevation = radians(50.0f);
     float angle = radians(3.0f);  // angular radius
     bool moving = false;
+    bool hitDistance = true;  // penumbra guidance for dnsr
 
     Vec3 direction() const
     {
@@ -250,38 +272,56 @@ FrameInput makeFrame(const SceneFrame &sf, const Orbit &orbit, const LightState 
     float zFar = orbit.distance + 2.5f * sf.radius;
     in.projection = perspectiveVulkan(orbit.fovY, float(width) / float(height), zNear, zFar);
     in.pointLight = light.point;
+    in.hitDistance = light.hitDistance;
     if (light.point) {
-        // A sphere at half the scene radius from the centre; the angular radius is as seen from the centre.
+        // A sphere at half the scene radius from the centre; the angular radius is as seen from the centre. dnsr's
+        // penumbra guidance takes one angular diameter for all receivers: the one seen from the centre, 2 asin(r / D)
+        // (receivers farther from the light see it smaller, nearer ones larger).
         float dist = 0.5f * sf.radius;
         in.light = sf.center + light.direction() * dist;
         in.lightSize = dist * std::tan(light.angle);
+        in.lightAngularSize = 2.0f * std::asin(std::min(in.lightSize / dist, 1.0f));
     } else {
+        // Rays leave within a cone of half-angle light.angle (tan of it scales the disk): diameter 2 * angle.
         in.light = light.direction();
         in.lightSize = std::tan(light.angle);
+        in.lightAngularSize = 2.0f * light.angle;
     }
     return in;
 }
 
 // ---- Measurements and output ----
 
+// "No darkening across creases": a lit face next to a shadowed one must stay as lit as the reference says. Over
+// the receivers the reference holds fully lit (>= 254.5/255) within kCreaseRadius pixels (a square window) of a
+// receiver it holds mostly shadowed (< 0.5), the darkening reference - denoised, in 1/255 units: its worst and its
+// mean. Creases (a face turned away from the light next to a lit one) and contact shadows are where such pixels
+// are; a filter that averages across the edge darkens them.
+constexpr int kCreaseRadius = 3;
+
 struct ErrorStats {
     double rmseNoisy = 0, rmseDenoised = 0;
     size_t pixels = 0;
+    size_t creasePixels = 0;
+    double creaseMax = 0, creaseMean = 0;  // darkening, in 1/255 units
 };
 
 double psnr(double rmse) { return rmse > 0 ? std::min(100.0, -20.0 * std::log10(rmse)) : 100.0; }
 
 // Per-pixel shadow values (1 = lit) of the last frame, from the readback.
 struct ShadowImages {
-    std::vector<float> noisy, denoised, reference;
+    uint32_t width = 0, height = 0;
+    std::vector<float> noisy, denoised, reference, depth;
     std::vector<bool> receiver;  // depth < 1: the pixels the error is measured on
 };
 
 ShadowImages readShadows(const Renderer &r, uint32_t w, uint32_t h)
 {
     ShadowImages s;
+    s.width = w, s.height = h;
     size_t n = size_t(w) * h;
     s.noisy.resize(n), s.denoised.resize(n), s.reference.resize(n), s.receiver.resize(n);
+    s.depth.assign(r.readDepth(), r.readDepth() + n);
     const uint32_t *mask = r.readHitMask();
     float count = float(std::max(r.referenceCount(), 1u));
     for (uint32_t y = 0; y < h; y++)
@@ -310,7 +350,76 @@ ErrorStats measure(const ShadowImages &s)
         e.rmseNoisy = std::sqrt(noisy / e.pixels);
         e.rmseDenoised = std::sqrt(denoised / e.pixels);
     }
+
+    const int w = int(s.width), h = int(s.height);
+    auto shadowed = [&](int x, int y) {
+        size_t i = size_t(y) * w + x;
+        return s.receiver[i] && s.reference[i] < 0.5f;
+    };
+    double sum = 0, worst = -1e30;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            size_t i = size_t(y) * w + x;
+            if (!s.receiver[i] || !(s.reference[i] >= 254.5f / 255.0f)) continue;
+            bool nearShadow = false;
+            for (int dy = -kCreaseRadius; dy <= kCreaseRadius && !nearShadow; dy++)
+                for (int dx = -kCreaseRadius; dx <= kCreaseRadius && !nearShadow; dx++) {
+                    int nx = x + dx, ny = y + dy;
+                    nearShadow = nx >= 0 && ny >= 0 && nx < w && ny < h && shadowed(nx, ny);
+                }
+            if (!nearShadow) continue;
+            double darkening = (double(s.reference[i]) - s.denoised[i]) * 255.0;
+            sum += darkening;
+            worst = std::max(worst, darkening);
+            e.creasePixels++;
+        }
+    if (e.creasePixels) {
+        e.creaseMax = worst;
+        e.creaseMean = sum / double(e.creasePixels);
+    }
     return e;
+}
+
+// --save-reference / --load-reference: a reference rendered once, measured against by later runs (other presets,
+// guidance on or off) of the same scene, size, frames, light and camera. The file: "dnsrref1", then width, height
+// and rays per pixel (uint32), then per pixel the depth and the reference visibility (float32; host byte order).
+// The depth lets a later run check it renders the very same last frame.
+struct ReferenceFile {
+    uint32_t width = 0, height = 0, samples = 0;
+    std::vector<float> depth, visibility;
+};
+
+const char kReferenceMagic[8] = {'d', 'n', 's', 'r', 'r', 'e', 'f', '1'};
+
+void saveReference(const std::string &path, const ShadowImages &s, uint32_t samples)
+{
+    FILE *f = std::fopen(path.c_str(), "wb");
+    uint32_t header[3] = {s.width, s.height, samples};
+    size_t n = s.depth.size();
+    bool ok = f && std::fwrite(kReferenceMagic, 8, 1, f) == 1 && std::fwrite(header, sizeof header, 1, f) == 1 &&
+              std::fwrite(s.depth.data(), 4, n, f) == n && std::fwrite(s.reference.data(), 4, n, f) == n;
+    if (f && std::fclose(f) != 0) ok = false;
+    if (!ok) throw VulkanError("cannot write " + path);
+}
+
+// Throws std::runtime_error with a one-line reason.
+ReferenceFile loadReference(const std::string &path)
+{
+    std::unique_ptr<FILE, int (*)(FILE *)> f(std::fopen(path.c_str(), "rb"), std::fclose);
+    if (!f) throw std::runtime_error(path + ": cannot open the reference file");
+    char magic[8];
+    uint32_t header[3];
+    if (std::fread(magic, 8, 1, f.get()) != 1 || std::memcmp(magic, kReferenceMagic, 8) != 0 ||
+        std::fread(header, sizeof header, 1, f.get()) != 1 || header[0] < 1 || header[1] < 1 || header[0] > 8192 ||
+        header[1] > 8192 || header[2] < 1)
+        throw std::runtime_error(path + ": not a reference file written by --save-reference");
+    ReferenceFile r{header[0], header[1], header[2], {}, {}};
+    size_t n = size_t(r.width) * r.height;
+    r.depth.resize(n), r.visibility.resize(n);
+    if (std::fread(r.depth.data(), 4, n, f.get()) != n || std::fread(r.visibility.data(), 4, n, f.get()) != n ||
+        std::fgetc(f.get()) != EOF)
+        throw std::runtime_error(path + ": truncated or oversized reference file");
+    return r;
 }
 
 std::vector<uint8_t> toGray8(const std::vector<float> &v)
@@ -356,7 +465,8 @@ std::string fmt(double v, int decimals = 4)
 
 class App {
 public:
-    explicit App(const Options &o) : opt_(o) {}
+    // `reference`: the reference loaded for --load-reference (outlives the App), or null.
+    App(const Options &o, const ReferenceFile *reference) : opt_(o), loadedReference_(reference) {}
     ~App() { cleanup(); }
 
     int run(const Scene &scene)
@@ -367,6 +477,7 @@ public:
         light_.point = opt_.pointLight;
         light_.angle = radians(opt_.lightAngleDeg);
         light_.moving = opt_.lightMotion;
+        light_.hitDistance = opt_.hitDistance;
         view_ = opt_.view;
         // Light from the side of the starting view (100 degrees around from the camera), so that the shadows
         // fall where the camera sees them whatever the scene.
@@ -426,9 +537,10 @@ private:
             FrameInput in = makeFrame(scene_, o, light_, opt_.width, opt_.height);
             in.cameraCut = f == 0;
             in.display = View::Composite;
-            // The reference, for the frame that is measured only: many rays per pixel from the same G-buffer.
+            // The reference, for the frame that is measured only: many rays per pixel from the same G-buffer
+            // (none when it comes from --load-reference).
             in.resetReference = last;
-            in.referenceSamples = last ? opt_.referenceSamples : 0;
+            in.referenceSamples = last && !loadedReference_ ? opt_.referenceSamples : 0;
             VkCommandBuffer cmd = ctx_.beginOneTimeCommands();
             renderer_.recordFrame(cmd, in);
             if (last) renderer_.recordReadback(cmd);
@@ -444,6 +556,20 @@ private:
         const uint32_t w = opt_.width, h = opt_.height;
         std::filesystem::create_directories(opt_.outDir);
         ShadowImages s = readShadows(renderer_, w, h);
+        uint32_t referenceSamples = renderer_.referenceCount();
+        if (loadedReference_) {
+            // main() checked the size; the depth shows whether this run's last frame is the reference's.
+            size_t differ = 0;
+            for (size_t i = 0; i < s.depth.size(); i++)
+                differ += std::memcmp(&s.depth[i], &loadedReference_->depth[i], 4) != 0;
+            if (differ)
+                throw VulkanError(opt_.loadReference + ": the reference was rendered for another view (" +
+                                  std::to_string(differ) + " pixels' depth differ: scene, frames, orbit or device)");
+            s.reference = loadedReference_->visibility;
+            referenceSamples = loadedReference_->samples;
+        } else if (!opt_.saveReference.empty()) {
+            saveReference(opt_.saveReference, s, referenceSamples);
+        }
         ErrorStats e = measure(s);
         std::vector<uint8_t> noisy = toGray8(s.noisy), denoised = toGray8(s.denoised), reference = toGray8(s.reference);
         std::vector<uint8_t> composite = rgbaToRgb(renderer_.readDisplay(), size_t(w) * h);
@@ -501,13 +627,21 @@ private:
         json += "  \"frames\": " + std::to_string(opt_.frames) + ",\n";
         json += "  \"light\": \"" + std::string(light_.point ? "point" : "directional") + "\",\n";
         json += "  \"light_angle_deg\": " + fmt(opt_.lightAngleDeg, 2) + ",\n";
+        // Penumbra guidance, and the angular diameter (radians) it passed to dnsr.
+        FrameInput last = makeFrame(scene_, orbit_, light_, w, h);
+        json += "  \"hit_distance\": " + std::string(light_.hitDistance ? "true" : "false") + ",\n";
+        json += "  \"light_angular_size_rad\": " + fmt(last.lightAngularSize, 6) + ",\n";
         const char *presets[] = {"fast", "balanced", "quality"};
         json += std::string("  \"preset\": \"") + presets[opt_.preset] + "\",\n";
-        json += "  \"reference_samples\": " + std::to_string(renderer_.referenceCount()) + ",\n";
+        json += "  \"reference_samples\": " + std::to_string(referenceSamples) + ",\n";
+        json += "  \"reference_file\": " + (loadedReference_ ? jsonString(opt_.loadReference) : "null") + ",\n";
         json += "  \"pixels_compared\": " + std::to_string(e.pixels) + ",\n";
         json += "  \"rmse\": {\"noisy\": " + fmt(e.rmseNoisy, 6) + ", \"denoised\": " + fmt(e.rmseDenoised, 6) + "},\n";
         json += "  \"psnr_db\": {\"noisy\": " + fmt(psnr(e.rmseNoisy), 3) + ", \"denoised\": " +
                 fmt(psnr(e.rmseDenoised), 3) + "},\n";
+        json += "  \"crease\": {\"radius_px\": " + std::to_string(kCreaseRadius) + ", \"pixels\": " +
+                std::to_string(e.creasePixels) + ", \"max_darkening_255\": " + fmt(e.creaseMax, 3) +
+                ", \"mean_darkening_255\": " + fmt(e.creaseMean, 3) + "},\n";
         json += "  \"dnsr_gpu_ms\": {\"frame\": " + std::to_string(renderer_.haveDnsrTimings ? t.frame : 0) +
                 ", \"prepare\": " + fmt(t.prepareMs) + ", \"tile_classification\": " + fmt(t.tileClassificationMs) +
                 ", \"filter\": [" + filters + "], \"total\": " + fmt(t.totalMs) + "},\n";
@@ -519,10 +653,13 @@ private:
         if (!f || std::fputs(json.c_str(), f) < 0 || std::fclose(f) != 0)
             throw VulkanError("cannot write " + dir + "report.json");
 
-        std::printf("viewer: %u frames; RMSE vs %u-ray reference over %zu pixels: noisy %.4f (%.1f dB), denoised "
-                    "%.4f (%.1f dB)\n",
-                    opt_.frames, renderer_.referenceCount(), e.pixels, e.rmseNoisy, psnr(e.rmseNoisy), e.rmseDenoised,
-                    psnr(e.rmseDenoised));
+        std::printf("viewer: %u frames, penumbra guidance %s; RMSE vs %u-ray reference over %zu pixels: noisy %.4f "
+                    "(%.1f dB), denoised %.4f (%.1f dB)\n",
+                    opt_.frames, light_.hitDistance ? "on" : "off", referenceSamples, e.pixels, e.rmseNoisy,
+                    psnr(e.rmseNoisy), e.rmseDenoised, psnr(e.rmseDenoised));
+        std::printf("viewer: lit pixels within %d px of a shadowed one (%zu): darkening vs the reference, worst "
+                    "%.2f, mean %.2f (1/255)\n",
+                    kCreaseRadius, e.creasePixels, e.creaseMax, e.creaseMean);
         std::printf("viewer: dnsr GPU ms (frame %llu): prepare %.3f, tiles %.3f, filter [%s], total %.3f\n",
                     static_cast<unsigned long long>(t.frame), t.prepareMs, t.tileClassificationMs, filters.c_str(),
                     t.totalMs);
@@ -554,6 +691,7 @@ private:
         case GLFW_KEY_8: view_ = View::DnsrVariance; break;
         case GLFW_KEY_9: view_ = View::DnsrDisocclusion; break;
         case GLFW_KEY_L: light_.moving = !light_.moving; break;
+        case GLFW_KEY_H: light_.hitDistance = !light_.hitDistance; break;
         default: break;
         }
     }
@@ -648,9 +786,9 @@ private:
         std::snprintf(view, sizeof view, view_ == View::Reference ? "%s (%u rays/px)" : "%s", names[uint32_t(view_)],
                       renderer_.referenceCount());
         std::snprintf(title, sizeof title,
-                      "dnsr viewer | %s%s | dnsr GPU ms: prepare %.2f, tiles %.2f, filter %.2f (%u passes), total "
-                      "%.2f | rays ms: primary %.2f, shadow %.2f | %.1f fps",
-                      view, light_.moving ? " | light moving" : "", t.prepareMs,
+                      "dnsr viewer | %s%s | guidance %s | dnsr GPU ms: prepare %.2f, tiles %.2f, filter %.2f (%u "
+                      "passes), total %.2f | rays ms: primary %.2f, shadow %.2f | %.1f fps",
+                      view, light_.moving ? " | light moving" : "", light_.hitDistance ? "on" : "off", t.prepareMs,
                       t.tileClassificationMs, filter, t.filterPasses, t.totalMs, v.primary, v.shadow, fps);
         glfwSetWindowTitle(window_, title);
     }
@@ -793,6 +931,7 @@ private:
     }
 
     Options opt_;
+    const ReferenceFile *loadedReference_ = nullptr;
     SceneFrame scene_;
     Orbit orbit_, orbit0_;
     LightState light_;
@@ -834,10 +973,25 @@ int main(int argc, char **argv)
         return 2;
     }
 
+    ReferenceFile reference;
+    if (!options.loadReference.empty()) {
+        try {
+            reference = loadReference(options.loadReference);
+        } catch (const std::exception &e) {
+            std::fprintf(stderr, "viewer: %s\n", e.what());
+            return 2;
+        }
+        if (reference.width != options.width || reference.height != options.height) {
+            std::fprintf(stderr, "viewer: %s: the reference is %ux%u, this run %ux%u\n",
+                         options.loadReference.c_str(), reference.width, reference.height, options.width, options.height);
+            return 2;
+        }
+    }
+
     int status = 1;
     unsigned validationMessages = 0;
     {
-        App app(options);
+        App app(options, options.loadReference.empty() ? nullptr : &reference);
         try {
             status = app.run(scene);
         } catch (const std::exception &e) {

@@ -12,6 +12,9 @@ const uint32_t kPrimarySpv[] =
 const uint32_t kShadowSpv[] =
 #include "shadow.comp.inc"
     ;
+const uint32_t kShadowR32fSpv[] =  // the same, writing an R32F hit distance (no shaderStorageImageExtendedFormats)
+#include "shadow_r32f.comp.inc"
+    ;
 const uint32_t kReferenceSpv[] =
 #include "reference.comp.inc"
     ;
@@ -45,6 +48,7 @@ enum Binding : uint32_t {
     kDenoised,
     kReference,
     kDisplay,
+    kHitDistance,  // declared in shadow.comp only (its format depends on the device)
     kBindingCount
 };
 
@@ -122,6 +126,10 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
     denoised_ = ctx.createImage(VK_FORMAT_R32_SFLOAT, w, h, usage);
     reference_ = ctx.createImage(VK_FORMAT_R32_SFLOAT, w, h, usage);
     display_ = ctx.createImage(VK_FORMAT_R8G8B8A8_UNORM, w, h, usage);
+    // Penumbra guidance: distance to the nearest occluder. Half floats are plenty (dnsr averages them per tile),
+    // but writing R16F from a shader needs shaderStorageImageExtendedFormats; R32F otherwise.
+    hitDistance_ = ctx.createImage(ctx.storageImageExtendedFormats ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT, w,
+                                   h, usage);
 
     // Readback buffer: one section per image, each starting at a multiple of 16 bytes (a buffer-image copy's
     // offset must be a multiple of the texel size, up to 16 for RGBA32F; odd render sizes break 4-byte sections).
@@ -144,7 +152,7 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
     VkCommandBuffer cmd = ctx.beginOneTimeCommands();
     std::vector<VkImageMemoryBarrier> toGeneral;
     for (const GpuImage *img : {&rayOrigin_, &depth_, &normals_, &velocity_, &albedo_, &hitMask_, &denoised_,
-                                &reference_, &display_}) {
+                                &reference_, &display_, &hitDistance_}) {
         auto b = vkStruct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
         b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
         b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
@@ -167,7 +175,9 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
 
     createDescriptors();
     primary_ = ctx.createComputePipeline(pipelineLayout_, kPrimarySpv, sizeof kPrimarySpv);
-    shadow_ = ctx.createComputePipeline(pipelineLayout_, kShadowSpv, sizeof kShadowSpv);
+    shadow_ = ctx.storageImageExtendedFormats
+                  ? ctx.createComputePipeline(pipelineLayout_, kShadowSpv, sizeof kShadowSpv)
+                  : ctx.createComputePipeline(pipelineLayout_, kShadowR32fSpv, sizeof kShadowR32fSpv);
     reference_pipeline_ = ctx.createComputePipeline(pipelineLayout_, kReferenceSpv, sizeof kReferenceSpv);
     composite_ = ctx.createComputePipeline(pipelineLayout_, kCompositeSpv, sizeof kCompositeSpv);
 
@@ -224,7 +234,7 @@ void Renderer::createDescriptors()
                                          {triGeometry_.buffer, 0, VK_WHOLE_SIZE},
                                          {triShading_.buffer, 0, VK_WHOLE_SIZE}};
     const GpuImage *images[] = {&rayOrigin_, &depth_,    &normals_,   &velocity_, &albedo_,
-                                &hitMask_,   &denoised_, &reference_, &display_};
+                                &hitMask_,   &denoised_, &reference_, &display_,  &hitDistance_};
     VkDescriptorImageInfo imageInfos[kBindingCount - 4];
     std::vector<VkWriteDescriptorSet> writes(kBindingCount,
                                              vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET));
@@ -334,7 +344,9 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
 
-    dispatch(cmd, shadow_, divUp(tilesX(), 8), divUp(tilesY(), 8));
+    // Mode 1: the rays find their nearest occluder and write its distance (penumbra guidance); mode 0: any
+    // occluder ends a ray, and the hit-distance image is left alone. The hit mask is the same either way.
+    dispatch(cmd, shadow_, divUp(tilesX(), 8), divUp(tilesY(), 8), in.hitDistance ? 1u : 0u);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterShadow);
 
     // Reference samples, in chunks; each chunk adds to the sum the previous one wrote.
@@ -353,13 +365,18 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
     d.sType = DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH;
     d.commandBuffer = cmd;
     d.lightIndex = 0;
-    d.flags = in.cameraCut ? DNSR_DISPATCH_RESET : 0;
+    d.flags = (in.cameraCut ? DNSR_DISPATCH_RESET : 0) | (in.hitDistance ? DNSR_DISPATCH_USE_HIT_DISTANCE : 0);
     d.hitMaskConvention = DNSR_HIT_MASK_OCCLUDED_BITS;  // bit = 1: the ray hit an occluder
     d.hitMask = hostImage(hitMask_);
     d.depth = hostImage(depth_);
     d.velocity = hostImage(velocity_);
     d.normals = hostImage(normals_);
     d.output = hostImage(denoised_);
+    if (in.hitDistance) {
+        // Written by the shadow pass above, like the hit mask: the same input barrier (sync below) covers it.
+        d.hitDistance = hostImage(hitDistance_);
+        d.lightAngularSize = in.lightAngularSize;
+    }
     d.motionVectorScale[0] = d.motionVectorScale[1] = 1.0f;  // velocity = prev_uv - uv, in uv units
     d.normalsUnpackMul = 1.0f;  // float normals, stored as is
     d.normalsUnpackAdd = 0.0f;
@@ -455,7 +472,7 @@ void Renderer::destroy()
     if (setLayout_) vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
     if (timestamps_) vkDestroyQueryPool(dev, timestamps_, nullptr);
     for (GpuImage *img : {&rayOrigin_, &depth_, &normals_, &velocity_, &albedo_, &hitMask_, &denoised_, &reference_,
-                          &display_})
+                          &display_, &hitDistance_})
         ctx_->destroyImage(*img);
     for (GpuBuffer *b : {&frameConstants_, &nodes_, &triGeometry_, &triShading_, &readback_}) ctx_->destroyBuffer(*b);
     ctx_ = nullptr;

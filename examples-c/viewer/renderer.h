@@ -1,7 +1,8 @@
 // renderer.h: the viewer's frame, recorded into one command buffer the way an engine would:
 //
 //   primary.comp    camera rays -> G-buffer (depth, normal, motion vectors, albedo, shadow-ray origin)
-//   shadow.comp     one jittered shadow ray per pixel -> the 8x4-tile hit mask
+//   shadow.comp     one jittered shadow ray per pixel -> the 8x4-tile hit mask (and, for dnsr's penumbra
+//                   guidance, the distance to the nearest occluder per pixel)
 //   reference.comp  (when asked) many shadow rays per pixel -> the ground truth, for error measurements
 //   dnsr            dnsr_shadows_record: hit mask + G-buffer -> denoised shadow
 //   composite.comp  albedo * (ambient + N.L * shadow), or a debug view -> the display image
@@ -46,6 +47,11 @@ struct FrameInput {
     bool pointLight = false;
     Vec3 light;
     float lightSize = 0.05f;
+    // Penumbra guidance (DNSR_DISPATCH_USE_HIT_DISTANCE): the shadow pass also writes the distance to the nearest
+    // occluder, and dnsr narrows its filter to the penumbra that distance and the light's angular diameter
+    // (radians, as seen from the receivers) imply.
+    bool hitDistance = false;
+    float lightAngularSize = 0.0f;
     bool cameraCut = false;          // discard dnsr's history (first frame, view reset)
     View display = View::Composite;  // what composite.comp writes to the display image
     bool resetReference = false;     // restart the reference accumulation (camera or light changed)
@@ -108,7 +114,7 @@ private:
     Mat4 prevViewProj_;
 
     GpuBuffer frameConstants_, nodes_, triGeometry_, triShading_, readback_;
-    GpuImage rayOrigin_, depth_, normals_, velocity_, albedo_, hitMask_, denoised_, reference_, display_;
+    GpuImage rayOrigin_, depth_, normals_, velocity_, albedo_, hitMask_, denoised_, reference_, display_, hitDistance_;
     VkDeviceSize depthOffset_ = 0, maskOffset_ = 0, denoisedOffset_ = 0, referenceOffset_ = 0, displayOffset_ = 0,
                  normalsOffset_ = 0, velocityOffset_ = 0;
 

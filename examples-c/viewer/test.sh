@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Tests of the dnsr viewer: builds it against target/release/libdnsr.so, renders the default scene headless on
 # lavapipe with the validation layer (any message fails), checks the images and that dnsr beats the 1-spp input
-# against the many-ray reference, checks that --validate counts validation messages only (not the Vulkan loader's
-# notices) and that --help describes every option and key, takes a window-mode screenshot under Xvfb, and feeds
-# it broken or unsupported scene files, also through an AddressSanitizer + UBSan build (each must give exit
+# against the many-ray reference, runs with and without penumbra guidance (--hit-distance) and against a saved
+# reference, checks that --validate counts validation messages only (not the Vulkan loader's notices) and that
+# --help describes every option and key, takes a window-mode screenshot under Xvfb, and feeds it broken or
+# unsupported scene files, also through an AddressSanitizer + UBSan build (each must give exit
 # status 2 and a one-line message, never a crash or a hang; unsupported kinds of file must be named as such).
 #
 #   examples-c/viewer/test.sh            (VIEWER_DEVICE=<substring of a device name> picks another device)
@@ -84,7 +85,7 @@ check_not_blank() {
   (( hi - lo >= 32 )) || fail "$1 is blank (samples $lo..$hi)"
 }
 
-# ---- Headless, with validation ----
+# ---- Headless, with validation (and penumbra guidance, the default: hit distances written and read) ----
 out="$tmp/headless"
 status=0
 "$viewer" --headless --validate --frames 8 --size 160x96 --out "$out" > "$tmp/headless.log" 2>&1 || status=$?
@@ -97,6 +98,9 @@ r = json.load(open(sys.argv[1]))
 noisy, denoised = r["rmse"]["noisy"], r["rmse"]["denoised"]
 assert r["width"] == 160 and r["height"] == 96 and r["frames"] == 8, "report size/frames"
 assert r["dnsr_gpu_ms"]["frame"] >= 1, "no dnsr timings"
+# The default is penumbra guidance on: the shadow pass writes hit distances and dnsr reads them.
+assert r["hit_distance"] is True and 0 < r["light_angular_size_rad"] < 3.1416, "penumbra guidance not on"
+assert r["crease"]["pixels"] > 0, "no lit pixel next to a shadowed one: the crease metric measured nothing"
 assert noisy > 0.02, f"the noisy shadow has almost no error ({noisy}): is the reference the same samples?"
 ok = denoised < 0.7 * noisy
 print(f"{'ok' if ok else 'BAD'} RMSE noisy {noisy:.4f} -> denoised {denoised:.4f} "
@@ -107,17 +111,36 @@ echo "headless: $quality"
 [[ $quality == ok* ]] || fail "denoised RMSE is not below 0.7x the noisy RMSE"
 
 # ---- dnsr presets: Quality through dnsr_settings_init_preset, validation clean; a bad name is a usage error ----
+# Also the unguided path (--hit-distance off), and a reference saved by one run and measured against by another
+# (the guided Quality run: same frames, so the same last frame; the RMSE must then be that of a rendered one).
 status=0
-"$viewer" --headless --validate --preset quality --frames 4 --size 64x48 --out "$tmp/quality" \
-  > "$tmp/quality.log" 2>&1 || status=$?
+"$viewer" --headless --validate --preset quality --hit-distance off --frames 4 --size 64x48 --out "$tmp/quality" \
+  --save-reference "$tmp/quality.ref" > "$tmp/quality.log" 2>&1 || status=$?
 (( status == 0 )) || { cat "$tmp/quality.log"; fail "--preset quality exited with status $status"; }
 grep -q '"preset": "quality"' "$tmp/quality/report.json" || fail "report.json does not name the quality preset"
+grep -q '"hit_distance": false' "$tmp/quality/report.json" || fail "report.json does not say guidance is off"
+status=0
+"$viewer" --headless --validate --preset quality --hit-distance on --frames 4 --size 64x48 --out "$tmp/guided" \
+  --load-reference "$tmp/quality.ref" > "$tmp/guided.log" 2>&1 || status=$?
+(( status == 0 )) || { cat "$tmp/guided.log"; fail "--hit-distance on --load-reference exited with status $status"; }
+python3 - "$tmp/quality/report.json" "$tmp/guided/report.json" <<'PY' || fail "--load-reference check failed"
+import json, sys
+off, on = (json.load(open(p)) for p in sys.argv[1:])
+assert off["hit_distance"] is False and on["hit_distance"] is True, "guidance setting not recorded"
+assert on["reference_file"] and on["reference_samples"] == off["reference_samples"], "reference not loaded"
+assert on["rmse"]["noisy"] == off["rmse"]["noisy"], "guidance changed the hit mask, or the loaded reference differs"
+PY
+status=0
+"$viewer" --headless --hit-distance maybe --frames 1 --size 16x16 --out "$tmp/bad-hd" > /dev/null 2> "$tmp/hd.err" ||
+  status=$?
+(( status == 2 )) && grep -qF -- "--hit-distance wants on or off, got 'maybe'" "$tmp/hd.err" ||
+  fail "--hit-distance maybe: status $status, message: $(cat "$tmp/hd.err")"
 status=0
 "$viewer" --headless --preset best --frames 1 --size 16x16 --out "$tmp/bad-preset" > /dev/null 2> "$tmp/preset.err" ||
   status=$?
 (( status == 2 )) && grep -qF -- "--preset wants fast, balanced or quality, got 'best'" "$tmp/preset.err" ||
   fail "--preset best: status $status, message: $(cat "$tmp/preset.err")"
-echo "presets: quality ran clean, 'best' refused"
+echo "presets: quality ran clean unguided and guided (against the saved reference), 'best' and 'maybe' refused"
 
 # ---- --validate counts validation messages, not the Vulkan loader's notices ----
 # With VK_INSTANCE_LAYERS naming the layer, the loader warns through the same debug messenger that it adds the
@@ -152,9 +175,10 @@ if command -v xvfb-run >/dev/null; then
     > "$tmp/window.log" 2>&1 || status=$?
   (( status == 0 )) || { cat "$tmp/window.log"; fail "window run exited with status $status"; }
   check_not_blank "$shot"
-  # The reference view accumulates while the camera stands still: exercises the progressive path.
+  # The reference view accumulates while the camera stands still: exercises the progressive path (and the
+  # window without penumbra guidance).
   xvfb-run -a -s "-screen 0 1024x768x24" "$viewer" --validate --size 160x96 --frames 3 --view reference \
-    --screenshot "$tmp/reference.png" > "$tmp/window.log" 2>&1 || status=$?
+    --hit-distance off --screenshot "$tmp/reference.png" > "$tmp/window.log" 2>&1 || status=$?
   (( status == 0 )) || { cat "$tmp/window.log"; fail "window run (reference view) exited with status $status"; }
   check_not_blank "$tmp/reference.png"
   # dnsr's own debug views (tile classification, sample count, variance, disocclusion) through the C API.

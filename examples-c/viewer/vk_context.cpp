@@ -151,6 +151,8 @@ void VulkanContext::pickDevice(const VulkanContextOptions &options)
 
 // Creates the device with every extension dnsr requires, plus VK_KHR_push_descriptor when dnsr can use it and
 // the device has it (dnsr then writes its descriptors into the command buffer instead of its own sets).
+// The one core feature it enables is the viewer's own: shaderStorageImageExtendedFormats, for the R16_SFLOAT
+// hit-distance image its shadow pass writes.
 void VulkanContext::createDevice(const VulkanContextOptions &options)
 {
     DnsrDeviceRequirements req{};
@@ -173,6 +175,11 @@ void VulkanContext::createDevice(const VulkanContextOptions &options)
         }
     }
 
+    VkPhysicalDeviceFeatures available{}, enabled{};
+    vkGetPhysicalDeviceFeatures(physicalDevice, &available);
+    enabled.shaderStorageImageExtendedFormats = available.shaderStorageImageExtendedFormats;
+    storageImageExtendedFormats = available.shaderStorageImageExtendedFormats == VK_TRUE;
+
     float priority = 1.0f;
     auto queueInfo = vkStruct<VkDeviceQueueCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO);
     queueInfo.queueFamilyIndex = queueFamily;
@@ -183,6 +190,7 @@ void VulkanContext::createDevice(const VulkanContextOptions &options)
     info.pQueueCreateInfos = &queueInfo;
     info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
     info.ppEnabledExtensionNames = extensions.data();
+    info.pEnabledFeatures = &enabled;
     VK_CHECK(vkCreateDevice(physicalDevice, &info, nullptr, &device));
     vkGetDeviceQueue(device, queueFamily, 0, &queue);
 

@@ -63,6 +63,9 @@ public:
     VkQueue queue = VK_NULL_HANDLE;
     VkCommandPool commandPool = VK_NULL_HANDLE;
     bool pushDescriptorEnabled = false;  // VK_KHR_push_descriptor, enabled for dnsr when the device has it
+    // shaderStorageImageExtendedFormats, enabled when the device has it: shaders may then write R16_SFLOAT storage
+    // images (the hit distance); without it the renderer writes R32_SFLOAT instead.
+    bool storageImageExtendedFormats = false;
     unsigned validationMessages = 0;     // warnings and errors the validation layer reported
 
     void create(const VulkanContextOptions &options);

@@ -376,6 +376,16 @@ fn guided_section(gpu: &Gpu, md: &mut String, img_dir: &std::path::Path) -> Resu
             guided_runs.push(runs);
         }
     }
+    let _ = writeln!(
+        *md,
+        "\nGuided: the hit-distance input and the light's angular size passed (`ShadowsDispatch::hit_distance`, \
+         `light_angular_size`). Tile classification averages the hit distances of each tile's +-8 px window into a \
+         blocker distance; the filter weighs a tap d pixels away by exp(-d^2 / (2 sigma^2)) with sigma 0.5x the \
+         penumbra half-width that distance implies (`reference::PENUMBRA_SIGMA_SCALE`; its comment has the sweep \
+         that chose it: narrower starves Quality's history clamp of a smooth neighbourhood, wider lets contact \
+         shadows bleed). Guidance is not a preset knob: it is on whenever the host passes hit distances. Time \
+         against error for each preset with and without it: BENCHMARKS.md, \"With penumbra guidance\"."
+    );
     let _ = writeln!(*md, "\nImages (last frame: 1-spp input | Balanced | Balanced, guided | Quality | Quality, guided | truth):\n");
     for (i, q) in GUIDED_SEQUENCES.iter().enumerate() {
         let r = |k: usize| &guided_runs[k][i];

@@ -121,9 +121,10 @@ pub(crate) fn reflect(spirv: &[u8]) -> Result<Interface> {
     Ok(Interface { bindings, push_constant_bytes, uniform_bytes })
 }
 
-/// Specialization constant id of `DNSR_SPEC_PENUMBRA_GUIDED` (tile classification): its penumbra-guidance code is
-/// compiled out of the pipeline used without guidance (merely present behind a runtime branch, it slowed
-/// unguided 4K frames on an H100 from 0.409 to 0.513 ms).
+/// Specialization constant id of `DNSR_SPEC_PENUMBRA_GUIDED` (classification and filter): penumbra guidance is
+/// compiled out of the pipelines used without it. Merely present behind a runtime branch, it slowed unguided
+/// classification on an H100 at 4K from 0.409 to 0.513 ms, and the filter's never-executed tile-blocker fetch made
+/// lavapipe leak JIT memory every frame.
 pub(crate) const SPEC_PENUMBRA_GUIDED: u32 = 0;
 
 /// A compute pipeline with its reflected interface.

@@ -32,7 +32,7 @@ layout(set = 0, binding = 11, r32f) uniform image2D referenceImage;    // sum of
 layout(set = 0, binding = 12, rgba8) uniform image2D displayImage;     // what the window or a PNG shows
 
 layout(push_constant) uniform PushConstants {
-    uint mode;         // composite.comp: what to display
+    uint mode;         // composite.comp: what to display; shadow.comp: 1 = also write the hit distance
     uint sampleBase;   // reference.comp: first sample index of this dispatch
     uint sampleCount;  // reference.comp: samples per pixel in this dispatch
     uint pad;
@@ -184,13 +184,17 @@ vec3 lightDirection(vec3 p, out float dist)
 
 // One shadow ray from `origin` (a surface point already nudged off its surface) with shading normal n, towards
 // a point of the light chosen by u: within a cone of the light's angular radius for a directional light, on the
-// disk of the light sphere facing the point for a point light. Returns 1 when lit, 0 when occluded. A surface
-// facing away from the light counts as occluded, as a ray through the object would find.
-float shadowSample(vec3 origin, vec3 n, vec2 u)
+// disk of the light sphere facing the point for a point light. Returns true when occluded. A surface facing away
+// from the light counts as occluded, as a ray through the object would find. With `closest`, the traversal finds
+// the nearest occluder and hitDistance is its distance along the ray (the penumbra guidance dnsr reads); without
+// it the first occluder found ends the traversal (cheaper) and hitDistance is only some occluder's distance. It
+// is 0 when the ray is not occluded, and for a surface facing away from the light (no ray: distance unknown).
+bool shadowRay(vec3 origin, vec3 n, vec2 u, bool closest, out float hitDistance)
 {
+    hitDistance = 0.0;
     float dist;
     vec3 l = lightDirection(origin, dist);
-    if (dot(n, l) <= 0.0) return 0.0;
+    if (dot(n, l) <= 0.0) return true;
     vec3 t = normalize(abs(l.x) > 0.9 ? cross(l, vec3(0, 1, 0)) : cross(l, vec3(1, 0, 0)));
     vec3 b = cross(l, t);
     vec2 d = concentricDisk(u);
@@ -208,5 +212,14 @@ float shadowSample(vec3 origin, vec3 n, vec2 u)
     uint tri;
     float hitT;
     vec2 bary;
-    return traceRay(origin, dir, tMax, true, tri, hitT, bary) ? 0.0 : 1.0;
+    if (!traceRay(origin, dir, tMax, !closest, tri, hitT, bary)) return false;
+    hitDistance = hitT;
+    return true;
+}
+
+// shadowRay as visibility: 1 when lit, 0 when occluded.
+float shadowSample(vec3 origin, vec3 n, vec2 u)
+{
+    float unused;
+    return shadowRay(origin, n, u, false, unused) ? 0.0 : 1.0;
 }

@@ -6,23 +6,37 @@
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
+// The penumbra guidance dnsr reads with DNSR_DISPATCH_USE_HIT_DISTANCE: per pixel, the distance along the shadow
+// ray to the nearest occluder (0 where the ray was not occluded: dnsr reads it only where the mask says it was).
+// Written only when pc.mode is 1. Binding 13 is not in common.glsl: R16F storage needs the device feature
+// shaderStorageImageExtendedFormats, so this shader is also built with HIT_DISTANCE_R32F for devices without it.
+#ifdef HIT_DISTANCE_R32F
+layout(set = 0, binding = 13, r32f) uniform writeonly image2D hitDistanceImage;
+#else
+layout(set = 0, binding = 13, r16f) uniform writeonly image2D hitDistanceImage;
+#endif
+
 layout(local_size_x = 8, local_size_y = 8) in;
 
 void main()
 {
     uvec2 tile = gl_GlobalInvocationID.xy;
     if (any(greaterThanEqual(tile, frame.size.zw))) return;
+    bool writeDistance = pc.mode == 1u;
     uint mask = 0u;
     for (uint bit = 0u; bit < 32u; bit++) {
         uvec2 pixel = tile * uvec2(8u, 4u) + uvec2(bit % 8u, bit / 8u);
         if (any(greaterThanEqual(pixel, frame.size.xy))) continue;  // partial tile at the right/bottom edge
         vec4 origin = imageLoad(rayOriginImage, ivec2(pixel));
-        if (origin.w == 0.0) continue;  // sky
-        vec3 n = imageLoad(normalImage, ivec2(pixel)).xyz;
-        // This frame's sample of the pixel's sequence: successive frames walk the R2 sequence, so the
-        // denoiser's temporal accumulation sees well-spread samples rather than white noise.
-        vec2 u = sample2D(pixel, frame.info.x, 0x9e3779b9u);
-        if (shadowSample(origin.xyz, n, u) == 0.0) mask |= 1u << bit;
+        float hitDistance = 0.0;
+        if (origin.w != 0.0) {  // not sky
+            vec3 n = imageLoad(normalImage, ivec2(pixel)).xyz;
+            // This frame's sample of the pixel's sequence: successive frames walk the R2 sequence, so the
+            // denoiser's temporal accumulation sees well-spread samples rather than white noise.
+            vec2 u = sample2D(pixel, frame.info.x, 0x9e3779b9u);
+            if (shadowRay(origin.xyz, n, u, writeDistance, hitDistance)) mask |= 1u << bit;
+        }
+        if (writeDistance) imageStore(hitDistanceImage, ivec2(pixel), vec4(hitDistance));
     }
     imageStore(hitMaskImage, ivec2(tile), uvec4(mask));
 }

@@ -870,6 +870,10 @@ typedef struct DnsrReferenceFrameInfo {
    * Current clip -> world (column-major).
    */
   float viewProjectionInverse[16];
+  /**
+   * With DNSR_REFERENCE_USE_HIT_DISTANCE: the light's angular diameter in radians, in [0, pi).
+   */
+  float lightAngularSize;
 } DnsrReferenceFrameInfo;
 
 /**
@@ -931,6 +935,11 @@ typedef struct DnsrReferenceCallbacks {
    * Optional. Receives this frame's history (the next frame's `read_history`).
    */
   void (*writeHistory)(void *user, int32_t x, int32_t y, float value);
+  /**
+   * Optional (required with DNSR_REFERENCE_USE_HIT_DISTANCE). Hit distance of a pixel (see
+   * DnsrShadowsDispatch::hitDistance; called for every pixel, used where the mask says the ray hit).
+   */
+  float (*readHitDistance)(void *user, int32_t x, int32_t y);
 } DnsrReferenceCallbacks;
 
 /**
@@ -952,6 +961,11 @@ typedef struct DnsrReferenceCallbacks {
  * The hit mask holds lit bits (prepare skipped).
  */
 #define DNSR_REFERENCE_HIT_MASK_LIT_BITS (1 << 2)
+
+/**
+ * Penumbra guidance, as DNSR_DISPATCH_USE_HIT_DISTANCE: `readHitDistance` and `lightAngularSize` are used.
+ */
+#define DNSR_REFERENCE_USE_HIT_DISTANCE (1 << 3)
 
 /**
  * Forces 32 bits.

@@ -140,16 +140,7 @@ pub(crate) fn dispatch(
     host_image(vk, ImageRole::Output, &d.output, &[output_format], OUTPUT_LAYOUTS, size, vk::FormatFeatureFlags::STORAGE_IMAGE)?;
     if let Some(hit_distance) = &d.hit_distance {
         host_image(vk, ImageRole::HitDistance, hit_distance, HIT_DISTANCE_FORMATS, SAMPLED_LAYOUTS, size, sampled)?;
-        if !d.light_angular_size.is_finite() {
-            return Err(Error::NonFinite("light_angular_size"));
-        }
-        if !(0.0..std::f32::consts::PI).contains(&d.light_angular_size) {
-            return Err(Error::InvalidValue {
-                field: "light_angular_size",
-                value: d.light_angular_size.to_string(),
-                allowed: "it must be in [0, pi): the light's angular diameter in radians (the sun: about 0.0093)",
-            });
-        }
+        light_angular_size(d.light_angular_size)?;
     }
 
     finite_mat("projection_inverse", &d.projection_inverse)?;
@@ -186,6 +177,21 @@ pub(crate) fn dispatch(
         return Err(Error::InvalidRenderRect { reason: "reaches outside the render size" });
     }
     Ok(rect)
+}
+
+/// Checks the light's angular diameter of penumbra guidance (radians).
+pub(crate) fn light_angular_size(angle: f32) -> Result<()> {
+    if !angle.is_finite() {
+        return Err(Error::NonFinite("light_angular_size"));
+    }
+    if !(0.0..std::f32::consts::PI).contains(&angle) {
+        return Err(Error::InvalidValue {
+            field: "light_angular_size",
+            value: angle.to_string(),
+            allowed: "it must be in [0, pi): the light's angular diameter in radians (the sun: about 0.0093)",
+        });
+    }
+    Ok(())
 }
 
 /// Checks `ContextCreateInfo::light_count` (and the C argument of the same name).

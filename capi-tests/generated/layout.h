@@ -158,7 +158,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrDeviceRequirements, optionalExtensionCount) == 3
 DNSR_STATIC_ASSERT(offsetof(DnsrDeviceRequirements, ppOptionalExtensionNames) == 40, "offsetof(DnsrDeviceRequirements, ppOptionalExtensionNames)");
 DNSR_STATIC_ASSERT(offsetof(DnsrDeviceRequirements, optionalFeatures) == 48, "offsetof(DnsrDeviceRequirements, optionalFeatures)");
 
-DNSR_STATIC_ASSERT(sizeof(DnsrReferenceFrameInfo) == 264, "sizeof(DnsrReferenceFrameInfo)");
+DNSR_STATIC_ASSERT(sizeof(DnsrReferenceFrameInfo) == 272, "sizeof(DnsrReferenceFrameInfo)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrReferenceFrameInfo) == 8, "alignof(DnsrReferenceFrameInfo)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, sType) == 0, "offsetof(DnsrReferenceFrameInfo, sType)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, pNext) == 8, "offsetof(DnsrReferenceFrameInfo, pNext)");
@@ -174,8 +174,9 @@ DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, depthSimilaritySigma) == 68,
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, projectionInverse) == 72, "offsetof(DnsrReferenceFrameInfo, projectionInverse)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, reprojectionMatrix) == 136, "offsetof(DnsrReferenceFrameInfo, reprojectionMatrix)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, viewProjectionInverse) == 200, "offsetof(DnsrReferenceFrameInfo, viewProjectionInverse)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, lightAngularSize) == 264, "offsetof(DnsrReferenceFrameInfo, lightAngularSize)");
 
-DNSR_STATIC_ASSERT(sizeof(DnsrReferenceCallbacks) == 104, "sizeof(DnsrReferenceCallbacks)");
+DNSR_STATIC_ASSERT(sizeof(DnsrReferenceCallbacks) == 112, "sizeof(DnsrReferenceCallbacks)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrReferenceCallbacks) == 8, "alignof(DnsrReferenceCallbacks)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, userData) == 0, "offsetof(DnsrReferenceCallbacks, userData)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readHitMask) == 8, "offsetof(DnsrReferenceCallbacks, readHitMask)");
@@ -190,5 +191,6 @@ DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, writeTileMeta) == 72, "offse
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, writeReprojection) == 80, "offsetof(DnsrReferenceCallbacks, writeReprojection)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, writeMoments) == 88, "offsetof(DnsrReferenceCallbacks, writeMoments)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, writeHistory) == 96, "offsetof(DnsrReferenceCallbacks, writeHistory)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readHitDistance) == 104, "offsetof(DnsrReferenceCallbacks, readHitDistance)");
 
 #endif

@@ -19,6 +19,8 @@ pub const DNSR_REFERENCE_RESET: DnsrReferenceFlags = 1 << 0;
 pub const DNSR_REFERENCE_DEPTH_INVERTED: DnsrReferenceFlags = 1 << 1;
 /// The hit mask holds lit bits (prepare skipped).
 pub const DNSR_REFERENCE_HIT_MASK_LIT_BITS: DnsrReferenceFlags = 1 << 2;
+/// Penumbra guidance, as DNSR_DISPATCH_USE_HIT_DISTANCE: `readHitDistance` and `lightAngularSize` are used.
+pub const DNSR_REFERENCE_USE_HIT_DISTANCE: DnsrReferenceFlags = 1 << 3;
 /// Forces 32 bits.
 pub const DNSR_REFERENCE_MAX_ENUM: DnsrReferenceFlags = 0x7FFF_FFFF;
 
@@ -55,6 +57,8 @@ pub struct DnsrReferenceFrameInfo {
     pub reprojection_matrix: [f32; 16],
     /// Current clip -> world (column-major).
     pub view_projection_inverse: [f32; 16],
+    /// With DNSR_REFERENCE_USE_HIT_DISTANCE: the light's angular diameter in radians, in [0, pi).
+    pub light_angular_size: f32,
 }
 
 /// Read and write callbacks over the engine's own data. Reads are required unless marked optional; writes are
@@ -90,6 +94,9 @@ pub struct DnsrReferenceCallbacks {
     pub write_moments: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32, moments: *const f32)>,
     /// Optional. Receives this frame's history (the next frame's `read_history`).
     pub write_history: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32, value: f32)>,
+    /// Optional (required with DNSR_REFERENCE_USE_HIT_DISTANCE). Hit distance of a pixel (see
+    /// DnsrShadowsDispatch::hitDistance; called for every pixel, used where the mask says the ray hit).
+    pub read_hit_distance: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32) -> f32>,
 }
 
 fn mat(m: &[f32; 16]) -> DMat4 {
@@ -125,6 +132,13 @@ pub extern "C" fn dnsr_reference_run_frame(
             }
         }
         let missing = |name: &str| CallError::InvalidArgument(format!("pCallbacks->{name} is NULL"));
+        let guided = info.flags & DNSR_REFERENCE_USE_HIT_DISTANCE != 0;
+        let read_hit_distance = if guided {
+            crate::validate::light_angular_size(info.light_angular_size)?;
+            Some(cb.read_hit_distance.ok_or_else(|| missing("readHitDistance"))?)
+        } else {
+            None
+        };
         let read_hit_mask = cb.read_hit_mask.ok_or_else(|| missing("readHitMask"))?;
         let read_depth = cb.read_depth.ok_or_else(|| missing("readDepth"))?;
         let read_normal = cb.read_normal.ok_or_else(|| missing("readNormal"))?;
@@ -149,6 +163,9 @@ pub extern "C" fn dnsr_reference_run_frame(
         f.view_projection_inverse = mat(&info.view_projection_inverse);
         f.eye = DVec3::from_array(info.eye.map(|v| v as f64));
         f.depth_similarity_sigma = info.depth_similarity_sigma as f64;
+        if guided {
+            f.penumbra = Some(crate::reference::Penumbra::new(info.light_angular_size as f64, f.projection_inverse, h));
+        }
         let user = cb.user_data;
         let (tw, th) = ((w + 7) / 8, (h + 3) / 4);
         for ty in 0..th {
@@ -169,6 +186,9 @@ pub extern "C" fn dnsr_reference_run_frame(
                 }
                 f.normals[i] = decode_normal(DVec3::from_array(rgb.map(|v| v as f64)), mul, add);
                 f.velocity[i] = DVec2::new(xy[0] as f64, xy[1] as f64) * scale;
+                if let Some(read) = read_hit_distance {
+                    f.hit_distance[i] = unsafe { read(user, x, y) } as f64;
+                }
                 if let Some((prev_depth, prev_moments, history)) = previous {
                     let mut m = [0f32; 4];
                     unsafe {

@@ -211,21 +211,42 @@ mod reference_table {
         let v = d.f.velocity[idx(d, x, y)];
         unsafe { std::ptr::copy_nonoverlapping(v.as_ptr(), xy, 2) };
     }
+    unsafe extern "C" fn read_hit_distance(user: *mut c_void, x: i32, y: i32) -> f32 {
+        let d = data(user);
+        d.f.hit_distance[idx(d, x, y)]
+    }
     unsafe extern "C" fn write_output(user: *mut c_void, x: i32, y: i32, value: f32) {
         let d = data(user);
         let i = idx(d, x, y);
         d.output[i] = value;
     }
 
-    /// An engine's first frame (reset) through the C reference table equals dnsr's GPU output on the same data.
+    /// An engine's first frame (reset) through the C reference table equals dnsr's GPU output on the same data,
+    /// without and with penumbra guidance.
     #[test]
     fn the_c_reference_table_reproduces_the_gpu_frame() {
         let g = gpu();
+        let mut unguided = Vec::new();
+        for guidance in [None, Some(0.3f32)] {
+            let out = reference_frame(&g, guidance);
+            if guidance.is_some() {
+                let changed = out.iter().zip(&unguided).map(|(a, b): (&f32, &f32)| (a - b).abs()).fold(0.0, f32::max);
+                assert!(changed > 1e-3, "guidance changed nothing: the guided path is not exercised");
+            }
+            unguided = out;
+        }
+        g.assert_clean();
+    }
+
+    /// Runs the frame on the GPU and through the C reference; checks they agree and returns the GPU output.
+    fn reference_frame(g: &crate::testing::gpu::Gpu, guidance: Option<f32>) -> Vec<f32> {
         let (w, h) = (37, 23);
         let mut info = g.create_info(w, h);
         info.output_format = vk::Format::R32_SFLOAT;
-        let mut r = Runner::new(&g, &info).unwrap();
-        let f = static_frame(w, h, &smooth, 7);
+        let mut r = Runner::new(g, &info).unwrap();
+        r.guidance = guidance;
+        let mut f = static_frame(w, h, &smooth, 7);
+        f.hit_distance = (0..w * h).map(|i| 0.2 + (i % 5) as f32 * 0.1).collect();
         let d = r.dispatch(&f);
         let gpu_out = r.frame(&f, true);
 
@@ -235,7 +256,7 @@ mod reference_table {
             p_next: std::ptr::null(),
             width: w,
             height: h,
-            flags: DNSR_REFERENCE_RESET,
+            flags: DNSR_REFERENCE_RESET | if guidance.is_some() { DNSR_REFERENCE_USE_HIT_DISTANCE } else { 0 },
             p_settings: std::ptr::null(),
             motion_vector_scale: d.motion_vector_scale.to_array(),
             normals_unpack_mul: d.normals_unpack_mul,
@@ -245,6 +266,7 @@ mod reference_table {
             projection_inverse: d.projection_inverse.to_cols_array(),
             reprojection_matrix: d.reprojection_matrix.to_cols_array(),
             view_projection_inverse: d.view_projection_inverse.to_cols_array(),
+            light_angular_size: guidance.unwrap_or(0.0),
         };
         let callbacks = DnsrReferenceCallbacks {
             user_data: &mut user as *mut Data as *mut c_void,
@@ -260,14 +282,21 @@ mod reference_table {
             write_reprojection: None,
             write_moments: None,
             write_history: None,
+            read_hit_distance: Some(read_hit_distance),
         };
         assert_eq!(dnsr_reference_run_frame(&frame, &callbacks), DnsrResult::DNSR_SUCCESS);
         let worst = gpu_out.iter().zip(&user.output).map(|(a, b)| (a - b).abs()).fold(0.0f32, f32::max);
-        assert!(worst <= 1e-4, "C reference vs GPU: {worst}");
-        // A frame without RESET needs the previous-state callbacks.
+        assert!(worst <= 1e-4, "C reference vs GPU ({guidance:?}): {worst}");
+        // A frame without RESET needs the previous-state callbacks; guidance needs its callback and a valid angle.
         let no_reset = DnsrReferenceFrameInfo { flags: 0, ..frame };
         assert_eq!(dnsr_reference_run_frame(&no_reset, &callbacks), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);
+        if guidance.is_some() {
+            let no_callback = DnsrReferenceCallbacks { read_hit_distance: None, ..callbacks };
+            assert_eq!(dnsr_reference_run_frame(&frame, &no_callback), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);
+            let nan = DnsrReferenceFrameInfo { light_angular_size: f32::NAN, ..frame };
+            assert_eq!(dnsr_reference_run_frame(&nan, &callbacks), DnsrResult::DNSR_ERROR_NON_FINITE);
+        }
         drop(r);
-        g.assert_clean();
+        gpu_out
     }
 }

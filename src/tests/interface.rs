@@ -221,12 +221,12 @@ fn generated_layout_header() -> String {
         check!(DnsrReferenceFrameInfo {
             s_type, p_next, width, height, flags, p_settings, motion_vector_scale, normals_unpack_mul,
             normals_unpack_add, eye, depth_similarity_sigma, projection_inverse, reprojection_matrix,
-            view_projection_inverse,
+            view_projection_inverse, light_angular_size,
         });
         check!(DnsrReferenceCallbacks {
             user_data, read_hit_mask, read_depth, read_normal, read_velocity, read_previous_depth,
             read_previous_moments, read_history, write_output, write_tile_meta, write_reprojection, write_moments,
-            write_history,
+            write_history, read_hit_distance,
         });
     }
     s.push_str("#endif\n");

@@ -88,6 +88,7 @@ float dnsr_read_history(vec2 uv) {
     vec2 texel = (uv * vec2(dnsr_get_extent()) + vec2(dnsr_get_offset())) / vec2(textureSize(dnsr_history, 0));
     return textureLod(dnsr_history, texel, 0.0).r;
 }
+float dnsr_read_history_texel(ivec2 p) { return texelFetch(dnsr_history, p + dnsr_get_offset(), 0).r; }
 void dnsr_write_depth_copy(ivec2 p, float depth) { imageStore(dnsr_depth_copy, p + dnsr_get_offset(), vec4(depth)); }
 void dnsr_write_moments(ivec2 p, vec4 m) { imageStore(dnsr_moments, p + dnsr_get_offset(), m); }
 void dnsr_write_reprojection(ivec2 p, vec2 mean_var) { imageStore(dnsr_reprojection, p + dnsr_get_offset(), vec4(mean_var, 0.0, 0.0)); }

@@ -151,6 +151,11 @@ float dnsr_tile_blocker(ivec2 t) {
     return sum.y > 0.0 ? sum.x / sum.y : -1.0;
 }
 
+// A previous run that is stable (stable_after > 0 samples or more) and of the same value as sample x.
+bool dnsr_stable_agreeing(float run, float x, float stable_after) {
+    return stable_after > 0.0 && abs(run) >= stable_after && (x >= 0.5 ? run > 0.0 : run < 0.0);
+}
+
 // A pixel of a cleared tile: its value is known exactly; keep the state of the next frame consistent with it.
 void dnsr_write_cleared(ivec2 p, bool receiver, uint state, bool tile_writer) {
     float value = state == 1u ? 1.0 : 0.0;
@@ -301,13 +306,38 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     }
 
     // Temporal moments (Welford), restarted on disocclusion, count bounded by max_samples.
+    float stable_after = dnsr_get_run_settings().x;
     vec4 m = vec4(0.0);
+    // History blended from the texels that agree (run_history.y > 0), when only some of them do.
+    vec2 run_history = vec2(0.0);
     if (!disoccluded) {
         ivec2 hp = clamp(ivec2(history_uv * vec2(dnsr_get_extent())), ivec2(0), dnsr_get_extent() - 1);
         m = dnsr_read_previous_moments(hp);
+        // A moving camera puts history_uv between texels, and next to a hard edge the bilinear footprint lies
+        // across it. The texels whose stable run holds this sample's value are where this surface point was: blend
+        // the history from them alone. (A texel weighed at under 1/16 does not count; the bound also keeps float
+        // rounding at texel centres out. Taking their moments too, instead of the nearest texel's, left the
+        // viewer's orbiting fins at RMSE 0.036 after 64 frames against 0.022 without.)
+        if (stable_after > 0.0) {
+            vec2 t = history_uv * vec2(dnsr_get_extent()) - 0.5;
+            vec2 f = t - floor(t);
+            float all_weight = 0.0;
+            for (int k = 0; k < 4; ++k) {
+                float weight = ((k & 1) != 0 ? f.x : 1.0 - f.x) * ((k & 2) != 0 ? f.y : 1.0 - f.y);
+                ivec2 q = clamp(ivec2(floor(t)) + ivec2(k & 1, k >> 1), ivec2(0), dnsr_get_extent() - 1);
+                if (weight < 1.0 / 16.0) continue;
+                vec4 mq = dnsr_read_previous_moments(q);
+                all_weight += weight;
+                if (!dnsr_stable_agreeing(mq.w, x, stable_after)) continue;
+                run_history += vec2(weight * dnsr_read_history_texel(q), weight);
+            }
+            // Only where the footprint is split: elsewhere the plain blend stands.
+            if (!(run_history.y > 0.0 && run_history.y < all_weight)) run_history = vec2(0.0);
+        }
         if (!(m.z >= 0.0 && m.z <= max_samples && m.y >= 0.0 && m.y < 1e30 && dnsr_finite(m.x)
               && abs(m.w) <= float(DNSR_MAX_SAMPLE_RUN))) {
             m = vec4(0.0);
+            run_history = vec2(0.0);
         }
     }
     if (m.z > max_samples - 1.0) dnsr_scale_moments(m, (max_samples - 1.0) / m.z);
@@ -316,7 +346,6 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     m.x += (x - m_old) / m.z;
     m.y += (x - m_old) * (x - m.x);
     float variance = m.z > 1.0 ? m.y / (m.z - 1.0) : 1.0;
-    float stable_after = dnsr_get_run_settings().x;
     float flip_after = floor(dnsr_get_run_settings().y);
     m.w = dnsr_sample_run(m.w, x, stable_after);
     // Enough identical samples in a row: the input resolves this pixel (a hard edge, say), and the local
@@ -336,7 +365,8 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
 
     // History clamped to the local distribution; a history far outside it loses its sample count.
     float sigma = sqrt(local.y);
-    float history = disoccluded ? local.x : dnsr_read_history(history_uv);
+    float history = disoccluded ? local.x
+                  : (run_history.y > 0.0 ? run_history.x / run_history.y : dnsr_read_history(history_uv));
     if (!dnsr_finite(history)) history = local.x;
     // A stable pixel's history is clamped to what its run allows instead: after n identical samples the
     // visibility lies within DNSR_RUN_CLAMP_SAMPLES / n of them (the rule of three: 95% confidence for 3).

@@ -206,6 +206,9 @@ impl Read for Frame {
         let bottom = at(x0, y0 + 1.0) * (1.0 - fx) + at(x0 + 1.0, y0 + 1.0) * fx;
         top * (1.0 - fy) + bottom * fy
     }
+    fn read_history_texel(&self, p: Coord) -> f64 {
+        self.history[self.px(p)]
+    }
     fn read_tile_meta(&self, tile: Coord) -> u32 {
         self.tile_meta[self.tile(tile)]
     }

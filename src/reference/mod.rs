@@ -64,6 +64,8 @@ pub trait Read: Get {
     fn read_previous_moments(&self, p: Coord) -> DVec4;
     /// Bilinear history at a rect-relative uv (clamp to edge).
     fn read_history(&self, uv: DVec2) -> f64;
+    /// One history texel.
+    fn read_history_texel(&self, p: Coord) -> f64;
     /// Tile metadata word.
     fn read_tile_meta(&self, tile: Coord) -> u32;
     /// Filter pass input (mean, variance).

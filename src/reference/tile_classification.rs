@@ -126,6 +126,11 @@ pub fn sample_run(previous: f64, x: f64, stable_after: f64) -> f64 {
     if lit { start } else { -start }
 }
 
+/// A previous run that is stable (`stable_after` > 0 samples or more) and of the same value as sample `x`.
+fn stable_agreeing(run: f64, x: f64, stable_after: f64) -> bool {
+    stable_after > 0.0 && run.abs() >= stable_after && if x >= 0.5 { run > 0.0 } else { run < 0.0 }
+}
+
 /// The temporal part for one receiver pixel of a mixed tile: returns (moments, (shadow, variance)).
 pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVec2) {
     let s = io.settings();
@@ -164,9 +169,42 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
         disoccluded = !((previous - expected).abs() < threshold * expected);
     }
 
+    let stable_after = s.stable_history_samples as f64;
     let mut m = DVec4::ZERO;
+    // History blended from the texels that agree (weighted sum, weight), when only some of them do.
+    let mut run_history = None;
     if !disoccluded {
-        m = io.read_previous_moments(clamp_px(history_uv));
+        let hp = clamp_px(history_uv);
+        m = io.read_previous_moments(hp);
+        // A moving camera puts history_uv between texels, and next to a hard edge the bilinear footprint lies
+        // across it. The texels whose stable run holds this sample's value are where this surface point was: blend
+        // the history from them alone. (A texel weighed at under 1/16 does not count; the bound also keeps float
+        // rounding at texel centres out. Taking their moments too left the viewer's orbiting fins worse.)
+        if stable_after > 0.0 {
+            let t = DVec2::new(history_uv.x * e[0] as f64 - 0.5, history_uv.y * e[1] as f64 - 0.5);
+            let f = t - t.floor();
+            let (mut agree, mut all) = (DVec2::ZERO, 0.0);
+            for k in 0..4 {
+                let weight = (if k & 1 != 0 { f.x } else { 1.0 - f.x }) * (if k & 2 != 0 { f.y } else { 1.0 - f.y });
+                let q = [
+                    (t.x.floor() as i32 + (k & 1)).clamp(0, e[0] - 1),
+                    (t.y.floor() as i32 + (k >> 1)).clamp(0, e[1] - 1),
+                ];
+                if weight < 1.0 / 16.0 {
+                    continue;
+                }
+                let mq = io.read_previous_moments(q);
+                all += weight;
+                if !stable_agreeing(mq.w, x, stable_after) {
+                    continue;
+                }
+                agree += DVec2::new(weight * io.read_history_texel(q), weight);
+            }
+            // Only where the footprint is split: elsewhere the plain blend stands.
+            if agree.y > 0.0 && agree.y < all {
+                run_history = Some(agree.x / agree.y);
+            }
+        }
         let sane = m.z >= 0.0
             && m.z <= max_samples
             && m.y >= 0.0
@@ -175,6 +213,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
             && m.w.abs() <= MAX_SAMPLE_RUN as f64;
         if !sane {
             m = DVec4::ZERO;
+            run_history = None;
         }
     }
     if m.z > max_samples - 1.0 {
@@ -186,7 +225,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     m.x += (x - m_old) / m.z;
     m.y += (x - m_old) * (x - m.x);
     let mut variance = if m.z > 1.0 { m.y / (m.z - 1.0) } else { 1.0 };
-    let (stable_after, flip_after) = (s.stable_history_samples as f64, (s.history_flip_samples as f64).floor());
+    let flip_after = (s.history_flip_samples as f64).floor();
     m.w = sample_run(m.w, x, stable_after);
     // Enough identical samples in a row: the input resolves this pixel (a hard edge, say), and the local
     // distribution, which straddles the edge, must not pull its history (nor reject it). Its history is clamped
@@ -204,7 +243,11 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     }
 
     let sigma = local.y.sqrt();
-    let mut history = if disoccluded { local.x } else { io.read_history(history_uv) };
+    let mut history = match run_history {
+        _ if disoccluded => local.x,
+        Some(h) => h,
+        None => io.read_history(history_uv),
+    };
     if !history.is_finite() {
         history = local.x;
     }

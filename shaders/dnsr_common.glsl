@@ -10,11 +10,12 @@ const ivec2 DNSR_GROUP_SIZE = ivec2(DNSR_GROUP_WIDTH, DNSR_GROUP_HEIGHT);
 // blocks are cleared and return at once.
 const ivec2 DNSR_WIDE_GROUP_SIZE = ivec2(DNSR_WIDE_GROUP_WIDTH, DNSR_WIDE_GROUP_HEIGHT);
 const int DNSR_WIDE_GROUP_INVOCATIONS = DNSR_WIDE_GROUP_WIDTH * DNSR_WIDE_GROUP_HEIGHT;
-// Penumbra guidance (hit distances) is a specialization constant (id generated from the host's
-// SPEC_PENUMBRA_GUIDED): the host binds the pipelines specialized with it true for guided frames, and unguided ones
-// run without its code (merely present behind a branch on a frame flag, it slowed unguided classification by a
-// quarter on an H100).
+// Features only some frames use are specialization constants (ids generated from src/gpu/shader.rs, which says
+// why): the host binds the pipeline specialized for what the frame uses, and the others run without that code.
+// Penumbra guidance: the dispatch has hit distances.
 layout(constant_id = DNSR_SPEC_ID_PENUMBRA_GUIDED) const bool DNSR_SPEC_PENUMBRA_GUIDED = false;
+// Stable history: Settings::stable_history_samples > 0 (dnsr_get_run_settings().x).
+layout(constant_id = DNSR_SPEC_ID_STABLE_HISTORY) const bool DNSR_SPEC_STABLE_HISTORY = false;
 
 uint dnsr_tile_bit(ivec2 p) { return uint((p.y % DNSR_TILE_HEIGHT) * DNSR_TILE_WIDTH + (p.x % DNSR_TILE_WIDTH)); }
 

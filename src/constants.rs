@@ -130,6 +130,7 @@ pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
     ("DNSR_MAX_SAMPLE_RUN", crate::passes::MAX_SAMPLE_RUN),
     ("DNSR_RUN_CLAMP_SAMPLES", crate::passes::RUN_CLAMP_SAMPLES),
     ("DNSR_SPEC_ID_PENUMBRA_GUIDED", crate::gpu::shader::SPEC_PENUMBRA_GUIDED),
+    ("DNSR_SPEC_ID_STABLE_HISTORY", crate::gpu::shader::SPEC_STABLE_HISTORY),
 ];
 
 /// The complete text of `shaders/generated/dnsr_constants.glsl`.

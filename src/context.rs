@@ -10,7 +10,7 @@ use crate::gpu::image::{check_internal_format, color_range};
 use crate::gpu::memory::{self, Memory};
 use crate::host::ResourceKind;
 use crate::gpu::loader::Vk;
-use crate::gpu::shader::{variant, Pipeline};
+use crate::gpu::shader::{variant, Pipeline, SPEC_PENUMBRA_GUIDED, SPEC_STABLE_HISTORY};
 use crate::passes::bindings::image;
 use crate::passes::{FramePasses, Pass, Role};
 use crate::passes::{filter, prepare, tile_classification, FrameViews};
@@ -176,9 +176,13 @@ impl Context {
         ];
         let mut made: Vec<Pipeline> = Vec::with_capacity(names.len());
         for name in names {
-            // Classification and the filter passes have penumbra-guidance code; prepare has none.
-            let guided_variant = name != names[0];
-            match Pipeline::new(&self.vk, name, variant(name).spirv, push, guided_variant) {
+            // The specialization constants each pass declares: classification both, the filter guidance only.
+            let specializes = match name {
+                _ if name == names[0] => 0,
+                _ if name == names[1] => (1 << SPEC_PENUMBRA_GUIDED) | (1 << SPEC_STABLE_HISTORY),
+                _ => 1 << SPEC_PENUMBRA_GUIDED,
+            };
+            match Pipeline::new(&self.vk, name, variant(name).spirv, push, specializes) {
                 Ok(p) => made.push(p),
                 Err(e) => {
                     made.iter_mut().for_each(|p| p.destroy(&self.vk));
@@ -315,7 +319,8 @@ impl Context {
             // Without hit distances the binding takes an image of a float format that the pass only samples.
             hit_distance: d.hit_distance.as_ref().map_or(image(light.depth[cur ^ 1].view, vk::ImageLayout::GENERAL), host),
             tile_blocker: light.tile_blocker.view,
-            guided: d.hit_distance.is_some(),
+            spec: (if d.hit_distance.is_some() { 1 << SPEC_PENUMBRA_GUIDED } else { 0 })
+                | (if self.settings.stable_history_samples > 0.0 { 1 << SPEC_STABLE_HISTORY } else { 0 }),
             output: d.output.view,
             tile_mask: match d.hit_mask_convention {
                 HitMaskConvention::OccludedBits => image(light.tile_mask.view, vk::ImageLayout::GENERAL),
@@ -475,7 +480,7 @@ impl Context {
                 }
                 let groups = pass.group_count(extent);
                 unsafe {
-                    dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.for_frame(pass.guided));
+                    dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.for_frame(pass.spec));
                     if let Some(push) = &pass.push {
                         dev.cmd_push_constants(cmd, pipeline.layout, vk::ShaderStageFlags::COMPUTE, 0, bytemuck::bytes_of(push));
                     }

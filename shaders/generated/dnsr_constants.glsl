@@ -46,5 +46,6 @@ struct DnsrFilterPush {
 #define DNSR_MAX_SAMPLE_RUN 4096
 #define DNSR_RUN_CLAMP_SAMPLES 3
 #define DNSR_SPEC_ID_PENUMBRA_GUIDED 0
+#define DNSR_SPEC_ID_STABLE_HISTORY 1
 
 #endif

@@ -121,26 +121,35 @@ pub(crate) fn reflect(spirv: &[u8]) -> Result<Interface> {
     Ok(Interface { bindings, push_constant_bytes, uniform_bytes })
 }
 
-/// Specialization constant id of `DNSR_SPEC_PENUMBRA_GUIDED` (classification and filter): penumbra guidance is
-/// compiled out of the pipelines used without it. Merely present behind a runtime branch, it slowed unguided
-/// classification on an H100 at 4K from 0.409 to 0.513 ms, and the filter's never-executed tile-blocker fetch made
-/// lavapipe leak JIT memory every frame.
+/// Specialization constants (booleans) that select what a pass compiles in; their ids are generated into GLSL.
+/// Features only some frames use sit behind them rather than behind runtime branches: merely present behind a
+/// branch that was never taken, penumbra guidance slowed unguided classification on an H100 at 4K from 0.409 to
+/// 0.513 ms (and the filter's never-executed tile-blocker fetch made lavapipe leak JIT memory every frame), and
+/// the stable-run-aware history slowed Balanced, which never uses it, from 0.410 to 0.463 ms.
+/// `DNSR_SPEC_PENUMBRA_GUIDED`: the dispatch has hit distances.
 pub(crate) const SPEC_PENUMBRA_GUIDED: u32 = 0;
+/// `DNSR_SPEC_STABLE_HISTORY`: `Settings::stable_history_samples` > 0.
+pub(crate) const SPEC_STABLE_HISTORY: u32 = 1;
+const SPEC_COUNT: usize = 2;
 
-/// A compute pipeline with its reflected interface.
+/// Which specialization constants are on for one dispatch of a pass (bit i: constant id i).
+pub(crate) type Specialization = u32;
+
+/// A compute pipeline with its reflected interface, compiled once per combination of the specialization constants
+/// its pass declares.
 pub(crate) struct Pipeline {
-    pub pipeline: vk::Pipeline,
-    /// The same shader with `SPEC_PENUMBRA_GUIDED` true (same layouts), for passes that have a guided variant;
-    /// null otherwise.
-    pub guided: vk::Pipeline,
+    /// Indexed by a `Specialization` restricted to `specializes`; null where that combination is not compiled.
+    variants: [vk::Pipeline; 1 << SPEC_COUNT],
+    /// The specialization constants this pass declares.
+    specializes: Specialization,
     pub layout: vk::PipelineLayout,
     pub set_layout: vk::DescriptorSetLayout,
     pub interface: Interface,
 }
 
 impl Pipeline {
-    /// `guided_variant`: also create the pipeline specialized for penumbra guidance.
-    pub(crate) fn new(vk: &Vk, name: &str, spirv: &[u8], push_descriptors: bool, guided_variant: bool) -> Result<Pipeline> {
+    /// `specializes`: the specialization constants the shader declares (one pipeline per combination).
+    pub(crate) fn new(vk: &Vk, name: &str, spirv: &[u8], push_descriptors: bool, specializes: Specialization) -> Result<Pipeline> {
         let interface = reflect(spirv)?;
         if let Some(bytes) = interface.uniform_bytes {
             let expected = std::mem::size_of::<crate::constants::FrameConstants>() as u32;
@@ -149,18 +158,17 @@ impl Pipeline {
             }
         }
         let mut p = Pipeline {
-            pipeline: vk::Pipeline::null(),
-            guided: vk::Pipeline::null(),
+            variants: [vk::Pipeline::null(); 1 << SPEC_COUNT],
+            specializes,
             layout: vk::PipelineLayout::null(),
             set_layout: vk::DescriptorSetLayout::null(),
             interface,
         };
-        let result = p.create(vk, spirv, push_descriptors, guided_variant);
+        let result = p.create(vk, spirv, push_descriptors);
         match result {
             Ok(()) => {
-                vk.name(p.pipeline, &format!("dnsr.{name}"));
-                if p.guided != vk::Pipeline::null() {
-                    vk.name(p.guided, &format!("dnsr.{name}.guided"));
+                for (i, v) in p.variants.iter().enumerate().filter(|(_, v)| **v != vk::Pipeline::null()) {
+                    vk.name(*v, &if i == 0 { format!("dnsr.{name}") } else { format!("dnsr.{name}.spec{i}") });
                 }
                 vk.name(p.layout, &format!("dnsr.{name}"));
                 vk.name(p.set_layout, &format!("dnsr.{name}"));
@@ -173,7 +181,7 @@ impl Pipeline {
         }
     }
 
-    fn create(&mut self, vk: &Vk, spirv: &[u8], push_descriptors: bool, guided_variant: bool) -> Result<()> {
+    fn create(&mut self, vk: &Vk, spirv: &[u8], push_descriptors: bool) -> Result<()> {
         let (device, alloc) = (&vk.device, vk.alloc());
         let layout_bindings: Vec<_> = self
             .interface
@@ -209,47 +217,45 @@ impl Pipeline {
             .stage(vk::ShaderStageFlags::COMPUTE)
             .module(module)
             .name(c"main");
-        let info = vk::ComputePipelineCreateInfo::default().stage(stage).layout(self.layout);
-        let created = unsafe { device.create_compute_pipelines(vk::PipelineCache::null(), std::slice::from_ref(&info), alloc) };
-        let guided = guided_variant.then(|| {
-            let entry = vk::SpecializationMapEntry { constant_id: SPEC_PENUMBRA_GUIDED, offset: 0, size: 4 };
-            let data = vk::TRUE.to_ne_bytes();
-            let spec = vk::SpecializationInfo::default().map_entries(std::slice::from_ref(&entry)).data(&data);
+        let ids: Vec<u32> = (0..SPEC_COUNT as u32).filter(|i| self.specializes & (1 << i) != 0).collect();
+        let entries: Vec<vk::SpecializationMapEntry> = (0..ids.len() as u32)
+            .map(|k| vk::SpecializationMapEntry { constant_id: ids[k as usize], offset: 4 * k, size: 4 })
+            .collect();
+        let mut result = Ok(());
+        for combination in (0..1u32 << SPEC_COUNT).filter(|c| c & !self.specializes == 0) {
+            let data: Vec<u8> = ids.iter().flat_map(|i| ((combination >> i) & 1).to_ne_bytes()).collect();
+            let spec = vk::SpecializationInfo::default().map_entries(&entries).data(&data);
             let info = vk::ComputePipelineCreateInfo::default().stage(stage.specialization_info(&spec)).layout(self.layout);
-            unsafe { device.create_compute_pipelines(vk::PipelineCache::null(), std::slice::from_ref(&info), alloc) }
-        });
+            let created = unsafe { device.create_compute_pipelines(vk::PipelineCache::null(), std::slice::from_ref(&info), alloc) };
+            // Keep what was created before a failure, so that destroy() releases it.
+            match vk_check("vkCreateComputePipelines", created.map_err(|(_, e)| e)) {
+                Ok(p) => self.variants[combination as usize] = p[0],
+                Err(e) => {
+                    result = Err(e);
+                    break;
+                }
+            }
+        }
         unsafe { device.destroy_shader_module(module, alloc) };
-        // Keep whatever was created before reporting a failure, so that destroy() releases it.
-        let main = created.map_err(|(_, e)| e);
-        let guided = guided.map(|c| c.map_err(|(_, e)| e));
-        if let Ok(p) = &main {
-            self.pipeline = p[0];
-        }
-        if let Some(Ok(p)) = &guided {
-            self.guided = p[0];
-        }
-        vk_check("vkCreateComputePipelines", main)?;
-        if let Some(g) = guided {
-            vk_check("vkCreateComputePipelines", g)?;
-        }
-        Ok(())
+        result
     }
 
-    /// The pipeline to bind: the guided specialization where there is one and the frame is guided.
-    pub(crate) fn for_frame(&self, guided: bool) -> vk::Pipeline {
-        if guided && self.guided != vk::Pipeline::null() { self.guided } else { self.pipeline }
+    /// The pipeline to bind for a dispatch with the specialization constants `spec` on (those this pass does not
+    /// declare are ignored).
+    pub(crate) fn for_frame(&self, spec: Specialization) -> vk::Pipeline {
+        self.variants[(spec & self.specializes) as usize]
     }
 
     pub(crate) fn destroy(&mut self, vk: &Vk) {
         let (device, alloc) = (&vk.device, vk.alloc());
         unsafe {
-            device.destroy_pipeline(self.pipeline, alloc);
-            device.destroy_pipeline(self.guided, alloc);
+            for v in self.variants {
+                device.destroy_pipeline(v, alloc);
+            }
             device.destroy_pipeline_layout(self.layout, alloc);
             device.destroy_descriptor_set_layout(self.set_layout, alloc);
         }
-        self.pipeline = vk::Pipeline::null();
-        self.guided = vk::Pipeline::null();
+        self.variants = [vk::Pipeline::null(); 1 << SPEC_COUNT];
         self.layout = vk::PipelineLayout::null();
         self.set_layout = vk::DescriptorSetLayout::null();
     }

@@ -63,7 +63,7 @@ pub(crate) fn pass(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView
         (false, _) => Role::Filter(pass),
     };
     let push = Some(push_constants(v, pass, passes, debug_view));
-    Pass { role, bindings: t, grid: Grid::Pixels, group: WIDE_GROUP, push, guided: v.guided, enabled: true }
+    Pass { role, bindings: t, grid: Grid::Pixels, group: WIDE_GROUP, push, spec: v.spec, enabled: true }
 }
 
 fn push_constants(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView) -> FilterPush {

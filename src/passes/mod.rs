@@ -11,6 +11,7 @@ pub(crate) mod tile_classification;
 use crate::constants::FilterPush;
 use crate::dispatch::DebugView;
 use crate::settings::MAX_FILTER_PASSES;
+use crate::gpu::shader::Specialization;
 use ash::vk;
 use bindings::{image, Binding, BindingTable, Resource};
 
@@ -75,8 +76,8 @@ pub(crate) struct Pass {
     /// Invocations per workgroup, x by y (the shader's local size).
     pub group: [u32; 2],
     pub push: Option<FilterPush>,
-    /// Runs the pipeline specialized for penumbra guidance (where the pass has one).
-    pub guided: bool,
+    /// The specialization constants on for this dispatch (see gpu::shader::Specialization).
+    pub spec: Specialization,
     /// A disabled pass is not dispatched; its timestamp is still written, so its time reads as zero.
     pub enabled: bool,
 }
@@ -144,8 +145,8 @@ pub(crate) struct FrameViews {
     pub hit_distance: Binding,
     /// Each tile's blocker estimate (penumbra guidance).
     pub tile_blocker: vk::ImageView,
-    /// The dispatch has hit distances (penumbra guidance).
-    pub guided: bool,
+    /// The specialization constants this frame turns on (penumbra guidance, stable history).
+    pub spec: Specialization,
     /// The host output, already in GENERAL when the final pass runs.
     pub output: vk::ImageView,
     /// The lit-bit tile mask: dnsr's internal image, or the host's mask when it already holds lit bits.

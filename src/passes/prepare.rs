@@ -11,5 +11,5 @@ pub(crate) fn pass(v: &FrameViews, enabled: bool) -> Pass {
     let mut t = v.base_table();
     t[Resource::HitMask as usize] = v.hit_mask;
     t[Resource::TileMaskOut as usize] = internal(v.tile_mask.view);
-    Pass { role: Role::Prepare, bindings: t, grid: Grid::Tiles, group: super::GROUP, push: None, guided: false, enabled }
+    Pass { role: Role::Prepare, bindings: t, grid: Grid::Tiles, group: super::GROUP, push: None, spec: 0, enabled }
 }

@@ -26,5 +26,5 @@ pub(crate) fn pass(v: &FrameViews) -> Pass {
     t[Resource::HitDistance as usize] = v.hit_distance;
     t[Resource::TileBlockerOut as usize] = internal(v.tile_blocker);
     t[Resource::Output as usize] = internal(v.output);
-    Pass { role: Role::Classification, bindings: t, grid: Grid::Pixels, group: super::WIDE_GROUP, push: None, guided: v.guided, enabled: true }
+    Pass { role: Role::Classification, bindings: t, grid: Grid::Pixels, group: super::WIDE_GROUP, push: None, spec: v.spec, enabled: true }
 }

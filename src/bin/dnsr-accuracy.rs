@@ -481,9 +481,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // (stable_history_samples 0 turns both off: Quality before they existed).
     let _ = writeln!(md, "\n## Quality with other run knobs\n\n{}", header(&SEQUENCES));
     type RunKnob = (&'static str, fn(&mut Settings, f32), &'static [f32]);
-    let run_knobs: [RunKnob; 2] = [
+    // min_current_weight on top of them: the floor of the current frame's blend sets the static penumbrae's flicker.
+    let run_knobs: [RunKnob; 3] = [
         ("stable_history_samples", |s, v| s.stable_history_samples = v, &[0.0, 2.0, 4.0, 8.0, 16.0]),
         ("history_flip_samples", |s, v| s.history_flip_samples = v, &[0.0, 1.0, 2.0, 3.0]),
+        ("min_current_weight", |s, v| s.min_current_weight = v, &[0.03, 0.05, 0.1]),
     ];
     for (name, set, values) in run_knobs {
         for &v in values {

@@ -12,10 +12,16 @@ const ivec2 DNSR_WIDE_GROUP_SIZE = ivec2(DNSR_WIDE_GROUP_WIDTH, DNSR_WIDE_GROUP_
 const int DNSR_WIDE_GROUP_INVOCATIONS = DNSR_WIDE_GROUP_WIDTH * DNSR_WIDE_GROUP_HEIGHT;
 // Features only some frames use are specialization constants (ids generated from src/gpu/shader.rs, which says
 // why): the host binds the pipeline specialized for what the frame uses, and the others run without that code.
+// Each is declared only by the passes that use it: the host reads from the SPIR-V which ones a pass has and
+// compiles a pipeline per combination.
+#if defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER)
 // Penumbra guidance: the dispatch has hit distances.
 layout(constant_id = DNSR_SPEC_ID_PENUMBRA_GUIDED) const bool DNSR_SPEC_PENUMBRA_GUIDED = false;
+#endif
+#ifdef DNSR_PASS_TILE_CLASSIFICATION
 // Stable history: Settings::stable_history_samples > 0 (dnsr_get_run_settings().x).
 layout(constant_id = DNSR_SPEC_ID_STABLE_HISTORY) const bool DNSR_SPEC_STABLE_HISTORY = false;
+#endif
 
 uint dnsr_tile_bit(ivec2 p) { return uint((p.y % DNSR_TILE_HEIGHT) * DNSR_TILE_WIDTH + (p.x % DNSR_TILE_WIDTH)); }
 

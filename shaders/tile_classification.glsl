@@ -32,7 +32,7 @@ ivec2 g_window_base;
 // moment sums fill it.
 const int DNSR_WINDOW_TILE_COUNT = DNSR_WINDOW_TILES.x * DNSR_WINDOW_TILES.y;
 const int DNSR_HIT_PARTS = DNSR_WIDE_GROUP_INVOCATIONS / DNSR_WINDOW_TILE_COUNT;
-const int DNSR_HIT_PIXELS = 32 / DNSR_HIT_PARTS;
+const int DNSR_HIT_PIXELS = DNSR_TILE_WIDTH * DNSR_TILE_HEIGHT / DNSR_HIT_PARTS;
 shared vec2 s_hit[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
 
 void dnsr_store_hit_part(int i, vec2 part) { s_hsum[i / DNSR_WIDE_GROUP_WIDTH][i % DNSR_WIDE_GROUP_WIDTH] = part; }
@@ -128,7 +128,7 @@ void dnsr_sum_hit_part(int thread) {
     for (int i = 0; i < DNSR_HIT_PIXELS; ++i) {
         int bit = (thread % DNSR_HIT_PARTS) * DNSR_HIT_PIXELS + i;
         if (((shadowed >> uint(bit)) & 1u) == 0u) continue;
-        float d = dnsr_read_hit_distance(tile * DNSR_TILE_SIZE + ivec2(bit % 8, bit / 8));
+        float d = dnsr_read_hit_distance(tile * DNSR_TILE_SIZE + ivec2(bit % DNSR_TILE_WIDTH, bit / DNSR_TILE_WIDTH));
         if (dnsr_usable_hit_distance(d)) part += vec2(d, 1.0);
     }
     dnsr_store_hit_part(thread, part);

@@ -176,13 +176,7 @@ impl Context {
         ];
         let mut made: Vec<Pipeline> = Vec::with_capacity(names.len());
         for name in names {
-            // The specialization constants each pass declares: classification both, the filter guidance only.
-            let specializes = match name {
-                _ if name == names[0] => 0,
-                _ if name == names[1] => (1 << SPEC_PENUMBRA_GUIDED) | (1 << SPEC_STABLE_HISTORY),
-                _ => 1 << SPEC_PENUMBRA_GUIDED,
-            };
-            match Pipeline::new(&self.vk, name, variant(name).spirv, push, specializes) {
+            match Pipeline::new(&self.vk, name, variant(name).spirv, push) {
                 Ok(p) => made.push(p),
                 Err(e) => {
                     made.iter_mut().for_each(|p| p.destroy(&self.vk));

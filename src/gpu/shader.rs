@@ -88,6 +88,34 @@ pub(crate) struct Interface {
     pub bindings: Vec<ReflectedBinding>,
     pub push_constant_bytes: u32,
     pub uniform_bytes: Option<u32>,
+    /// The specialization constants the module declares.
+    pub specializes: Specialization,
+}
+
+/// The specialization constant ids a module declares (OpDecorate SpecId), as a mask; an id dnsr does not set is
+/// refused.
+fn specialization_ids(spirv: &[u8]) -> Result<Specialization> {
+    const OP_DECORATE: u32 = 71;
+    const DECORATION_SPEC_ID: u32 = 1;
+    let words: Vec<u32> = spirv.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+    let mut mask = 0;
+    // The header is 5 words; then instructions, each (word count << 16 | opcode) followed by its operands.
+    let mut i = 5;
+    while i < words.len() {
+        let (count, opcode) = ((words[i] >> 16) as usize, words[i] & 0xFFFF);
+        if count == 0 {
+            return Err(Error::ShaderInterface(format!("SPIR-V instruction of zero words at word {i}")));
+        }
+        if opcode == OP_DECORATE && count >= 4 && i + 3 < words.len() && words[i + 2] == DECORATION_SPEC_ID {
+            let id = words[i + 3];
+            if id >= SPEC_COUNT as u32 {
+                return Err(Error::ShaderInterface(format!("specialization constant id {id}; dnsr sets ids 0..{SPEC_COUNT}")));
+            }
+            mask |= 1 << id;
+        }
+        i += count;
+    }
+    Ok(mask)
 }
 
 /// Reflects a module and checks every binding against the interface dnsr knows.
@@ -118,7 +146,8 @@ pub(crate) fn reflect(spirv: &[u8]) -> Result<Interface> {
         return Err(Error::ShaderInterface(format!("{} bindings; at most {}", bindings.len(), crate::gpu::descriptors::MAX_BINDINGS)));
     }
     bindings.sort_by_key(|b| b.binding);
-    Ok(Interface { bindings, push_constant_bytes, uniform_bytes })
+    let specializes = specialization_ids(spirv)?;
+    Ok(Interface { bindings, push_constant_bytes, uniform_bytes, specializes })
 }
 
 /// Specialization constants (booleans) that select what a pass compiles in; their ids are generated into GLSL.
@@ -138,18 +167,17 @@ pub(crate) type Specialization = u32;
 /// A compute pipeline with its reflected interface, compiled once per combination of the specialization constants
 /// its pass declares.
 pub(crate) struct Pipeline {
-    /// Indexed by a `Specialization` restricted to `specializes`; null where that combination is not compiled.
+    /// Indexed by a `Specialization` restricted to `interface.specializes`; null where that combination is not
+    /// compiled.
     variants: [vk::Pipeline; 1 << SPEC_COUNT],
-    /// The specialization constants this pass declares.
-    specializes: Specialization,
     pub layout: vk::PipelineLayout,
     pub set_layout: vk::DescriptorSetLayout,
     pub interface: Interface,
 }
 
 impl Pipeline {
-    /// `specializes`: the specialization constants the shader declares (one pipeline per combination).
-    pub(crate) fn new(vk: &Vk, name: &str, spirv: &[u8], push_descriptors: bool, specializes: Specialization) -> Result<Pipeline> {
+    /// One pipeline per combination of the specialization constants the module declares.
+    pub(crate) fn new(vk: &Vk, name: &str, spirv: &[u8], push_descriptors: bool) -> Result<Pipeline> {
         let interface = reflect(spirv)?;
         if let Some(bytes) = interface.uniform_bytes {
             let expected = std::mem::size_of::<crate::constants::FrameConstants>() as u32;
@@ -159,7 +187,6 @@ impl Pipeline {
         }
         let mut p = Pipeline {
             variants: [vk::Pipeline::null(); 1 << SPEC_COUNT],
-            specializes,
             layout: vk::PipelineLayout::null(),
             set_layout: vk::DescriptorSetLayout::null(),
             interface,
@@ -217,12 +244,13 @@ impl Pipeline {
             .stage(vk::ShaderStageFlags::COMPUTE)
             .module(module)
             .name(c"main");
-        let ids: Vec<u32> = (0..SPEC_COUNT as u32).filter(|i| self.specializes & (1 << i) != 0).collect();
+        let specializes = self.interface.specializes;
+        let ids: Vec<u32> = (0..SPEC_COUNT as u32).filter(|i| specializes & (1 << i) != 0).collect();
         let entries: Vec<vk::SpecializationMapEntry> = (0..ids.len() as u32)
             .map(|k| vk::SpecializationMapEntry { constant_id: ids[k as usize], offset: 4 * k, size: 4 })
             .collect();
         let mut result = Ok(());
-        for combination in (0..1u32 << SPEC_COUNT).filter(|c| c & !self.specializes == 0) {
+        for combination in (0..1u32 << SPEC_COUNT).filter(|c| c & !specializes == 0) {
             let data: Vec<u8> = ids.iter().flat_map(|i| ((combination >> i) & 1).to_ne_bytes()).collect();
             let spec = vk::SpecializationInfo::default().map_entries(&entries).data(&data);
             let info = vk::ComputePipelineCreateInfo::default().stage(stage.specialization_info(&spec)).layout(self.layout);
@@ -243,7 +271,7 @@ impl Pipeline {
     /// The pipeline to bind for a dispatch with the specialization constants `spec` on (those this pass does not
     /// declare are ignored).
     pub(crate) fn for_frame(&self, spec: Specialization) -> vk::Pipeline {
-        self.variants[(spec & self.specializes) as usize]
+        self.variants[(spec & self.interface.specializes) as usize]
     }
 
     pub(crate) fn destroy(&mut self, vk: &Vk) {

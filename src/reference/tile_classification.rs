@@ -289,8 +289,8 @@ pub fn tile_blocker<Io: Read + ?Sized>(io: &Io, tile: Coord) -> f64 {
                 continue;
             }
             let shadowed = !io.read_tile_mask(t) & valid;
-            for bit in (0..32).filter(|b| shadowed >> b & 1 != 0) {
-                let d = io.read_hit_distance([t[0] * TILE[0] + bit % 8, t[1] * TILE[1] + bit / 8]);
+            for bit in (0..TILE[0] * TILE[1]).filter(|b| shadowed >> b & 1 != 0) {
+                let d = io.read_hit_distance([t[0] * TILE[0] + bit % TILE[0], t[1] * TILE[1] + bit / TILE[0]]);
                 if usable_hit_distance(d) {
                     sum += d;
                     count += 1;

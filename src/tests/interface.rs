@@ -76,8 +76,10 @@ fn bless_bench_copy_spirv_matches_glslc() {
 #[test]
 fn reflected_interfaces_match_what_the_host_binds() {
     use Resource::*;
-    let expect: &[(&str, &[Resource], u32)] = &[
-        ("prepare", &[Constants, HitMask, TileMaskOut], 0),
+    // (variant, bindings, push-constant bytes, specialization constants declared)
+    use crate::gpu::shader::{SPEC_PENUMBRA_GUIDED as GUIDED, SPEC_STABLE_HISTORY as STABLE};
+    let expect: &[(&str, &[Resource], u32, u32)] = &[
+        ("prepare", &[Constants, HitMask, TileMaskOut], 0, 0),
         (
             "tile_classification_r16f",
             &[
@@ -85,16 +87,23 @@ fn reflected_interfaces_match_what_the_host_binds() {
                 Reprojection, TileMetaOut, Output, HitDistance, TileBlockerOut,
             ],
             0,
+            (1 << GUIDED) | (1 << STABLE),
         ),
-        ("filter", &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide, GuideOut], 16),
-        ("filter_later", &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide, GuideOut], 16),
+        ("filter", &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide, GuideOut], 16, 1 << GUIDED),
+        (
+            "filter_later",
+            &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide, GuideOut],
+            16,
+            1 << GUIDED,
+        ),
         (
             "filter_final_r16f_fp16",
             &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Output, DebugMoments, Guide, GuideOut],
             16,
+            1 << GUIDED,
         ),
     ];
-    for (name, resources, push) in expect {
+    for (name, resources, push, specializes) in expect {
         let v = VARIANTS.iter().find(|v| v.name == *name).unwrap();
         let iface = reflect(v.spirv).unwrap();
         let mut got: Vec<Resource> = iface.bindings.iter().map(|b| b.resource).collect();
@@ -103,6 +112,7 @@ fn reflected_interfaces_match_what_the_host_binds() {
         want.sort_by_key(|r| *r as usize);
         assert_eq!(got, want, "{name}");
         assert_eq!(iface.push_constant_bytes, *push, "{name} push constants");
+        assert_eq!(iface.specializes, *specializes, "{name} specialization constants");
         assert_eq!(iface.uniform_bytes, Some(std::mem::size_of::<FrameConstants>() as u32), "{name} constants block");
     }
     assert_eq!(std::mem::size_of::<FilterPush>(), 16);
@@ -120,6 +130,14 @@ fn reflection_refuses_what_it_cannot_handle() {
     spv[4..8].copy_from_slice(&0x0001_0500u32.to_le_bytes());
     let err = reflect_module(&spv).unwrap_err().to_string();
     assert!(err.contains("1.5"), "{err}");
+    // A specialization constant id dnsr does not set (OpDecorate <id> SpecId 1 -> 7).
+    let classification = VARIANTS.iter().find(|v| v.name == "tile_classification_r16f").unwrap();
+    let mut words: Vec<u32> = classification.spirv.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+    let at = words.windows(4).position(|w| w[0] == (4 << 16 | 71) && w[2] == 1 && w[3] == 1).expect("SpecId 1 decoration");
+    words[at + 3] = 7;
+    let spv: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
+    let err = reflect(&spv).unwrap_err().to_string();
+    assert!(err.contains("specialization constant id 7"), "{err}");
 }
 
 /// include/dnsr.h as cbindgen generates it with cbindgen.toml from src/capi alone: only what the C API module

@@ -271,7 +271,7 @@ typedef struct DnsrSettings {
    */
   float historyRejectionMinSigma;
   /**
-   * Variance boost below this many samples. Range [0, 1024]. Default 16.
+   * Variance boost below this many samples (not on pixels whose run is stable). Range [0, 1024]. Default 16.
    */
   float varianceBoostSamples;
   /**

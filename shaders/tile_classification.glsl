@@ -377,7 +377,10 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     float d = stable || flipped ? 0.0 : (history - local.x) / max(disocc.w * sigma, reject.y);
     dnsr_scale_moments(m, exp(-d * d / reject.x));
 
-    if (m.z < reject.z) variance = max(variance, local.y) * max(reject.z - m.z, 1.0);
+    // Not on a stable pixel: its samples resolve it, and the local variance (which straddles the edge) would let
+    // the filter blur the edge (viewer, still camera: Quality RMSE 0.0332 -> 0.0285, lit pixels next to shadow
+    // darkened by 5.6 -> 2.2 / 255 on average).
+    if (m.z < reject.z && !stable) variance = max(variance, local.y) * max(reject.z - m.z, 1.0);
     float history_weight = sqrt(max(temporal.x - m.z, 0.0) / temporal.x);
     float shadow = mix(clamped, x, mix(temporal.y, 1.0, history_weight));
 

@@ -76,7 +76,7 @@ declare_settings! {
     /// this off; it needs `stable_history_samples` > 0.
     history_flip_samples: f32 = 0.0, [0.0, 16.0] "[0, 16]";
     /// Below this many accumulated samples the variance is boosted (raised to the spatial variance and
-    /// multiplied by the missing samples).
+    /// multiplied by the missing samples), except on a pixel whose run is stable (`stable_history_samples`).
     variance_boost_samples: f32 = 16.0, [0.0, 1024.0] "[0, 1024]";
     /// Sample count from which the history gets its full weight.
     full_history_samples: f32 = 8.0, [1.0, 1024.0] "[1, 1024]";

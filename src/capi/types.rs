@@ -309,7 +309,7 @@ pub struct DnsrSettings {
     pub history_rejection_falloff: f32,
     /// Floor of the clamp width in the rejection distance. Range [1e-6, 1]. Default 0.001.
     pub history_rejection_min_sigma: f32,
-    /// Variance boost below this many samples. Range [0, 1024]. Default 16.
+    /// Variance boost below this many samples (not on pixels whose run is stable). Range [0, 1024]. Default 16.
     pub variance_boost_samples: f32,
     /// Sample count of full history trust. Range [1, 1024]. Default 8.
     pub full_history_samples: f32,

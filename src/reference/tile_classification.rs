@@ -261,7 +261,9 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     };
     scale_moments(&mut m, (-d * d / rej_falloff).exp());
 
-    if m.z < boost {
+    // A stable pixel's samples already resolve it: boosting its variance towards the local one (which straddles
+    // the edge) would let the filter blur the edge it resolves.
+    if m.z < boost && !stable {
         variance = variance.max(local.y) * (boost - m.z).max(1.0);
     }
     let history_weight = ((full - m.z).max(0.0) / full).sqrt();

@@ -88,8 +88,8 @@ clean:
 	rm -rf out
 
 # Installs the C library: libdnsr.so.<version> (soname libdnsr.so.<abi>, plus the libdnsr.so.<abi> and
-# libdnsr.so links), libdnsr.a, dnsr.h, dnsr.pc for pkg-config and a CMake package (find_package(dnsr) ->
-# dnsr::dnsr). `make install PREFIX=$HOME/.local`, or for packaging `make install PREFIX=/usr DESTDIR=$pkgdir`.
+# libdnsr.so links), libdnsr.a, dnsr.h, the FidelityFX compatibility headers (include/dnsr-ffx), dnsr.pc for
+# pkg-config and a CMake package (find_package(dnsr) -> dnsr::dnsr, and dnsr::ffx for FFX integrations). `make install PREFIX=$HOME/.local`, or for packaging `make install PREFIX=/usr DESTDIR=$pkgdir`.
 # `make uninstall` (same PREFIX/LIBDIR/INCLUDEDIR/DESTDIR) removes exactly those files.
 PREFIX ?= /usr/local
 LIBDIR ?= $(PREFIX)/lib
@@ -104,6 +104,7 @@ DNSR_ABI := $(if $(filter 0,$(DNSR_MAJOR)),0.$(DNSR_MINOR),$(DNSR_MAJOR))
 DNSR_TARGET_DIR := $(or $(CARGO_TARGET_DIR),target)
 DNSR_CMAKEDIR := $(LIBDIR)/cmake/dnsr
 DNSR_TEMPLATES := capi-tests/install/templates
+DNSR_FFX_HEADERS := $(wildcard include/ffx/FidelityFX/host/*.h)
 # Template substitutions; in dnsr.pc, libdir and includedir are written relative to ${prefix} when under it.
 DNSR_SED := -e 's|@VERSION@|$(DNSR_VERSION)|g' -e 's|@ABI@|$(DNSR_ABI)|g' \
 	-e 's|@PREFIX@|$(PREFIX)|g' \
@@ -123,6 +124,11 @@ install:
 	ln -sfn 'libdnsr.so.$(DNSR_ABI)' '$(DESTDIR)$(LIBDIR)/libdnsr.so'
 	install -m 644 '$(DNSR_TARGET_DIR)/release/libdnsr.a' '$(DESTDIR)$(LIBDIR)/libdnsr.a'
 	install -m 644 include/dnsr.h '$(DESTDIR)$(INCLUDEDIR)/dnsr.h'
+	@# The FidelityFX SDK 1.1.4 compatibility headers, under their own directory: an FFX integration puts
+	@# $(INCLUDEDIR)/dnsr-ffx on its include path in place of the SDK's.
+	install -d '$(DESTDIR)$(INCLUDEDIR)/dnsr-ffx/FidelityFX/host/backends/vk'
+	install -m 644 $(DNSR_FFX_HEADERS) '$(DESTDIR)$(INCLUDEDIR)/dnsr-ffx/FidelityFX/host'
+	install -m 644 include/ffx/FidelityFX/host/backends/vk/ffx_vk.h '$(DESTDIR)$(INCLUDEDIR)/dnsr-ffx/FidelityFX/host/backends/vk'
 	sed $(DNSR_SED) $(DNSR_TEMPLATES)/dnsr.pc.in > '$(DESTDIR)$(LIBDIR)/pkgconfig/dnsr.pc'
 	sed $(DNSR_SED) $(DNSR_TEMPLATES)/dnsrConfig.cmake.in > '$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfig.cmake'
 	sed $(DNSR_SED) $(DNSR_TEMPLATES)/dnsrConfigVersion.cmake.in > '$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfigVersion.cmake'
@@ -134,4 +140,7 @@ uninstall:
 		'$(DESTDIR)$(LIBDIR)/libdnsr.so' '$(DESTDIR)$(LIBDIR)/libdnsr.a' '$(DESTDIR)$(INCLUDEDIR)/dnsr.h' \
 		'$(DESTDIR)$(LIBDIR)/pkgconfig/dnsr.pc' '$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfig.cmake' \
 		'$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfigVersion.cmake'
+	rm -f $(addprefix '$(DESTDIR)$(INCLUDEDIR)/dnsr-ffx/FidelityFX/host/,$(addsuffix ',$(notdir $(DNSR_FFX_HEADERS)))) \
+		'$(DESTDIR)$(INCLUDEDIR)/dnsr-ffx/FidelityFX/host/backends/vk/ffx_vk.h'
+	rmdir -p '$(DESTDIR)$(INCLUDEDIR)/dnsr-ffx/FidelityFX/host/backends/vk' 2>/dev/null || true
 	rmdir '$(DESTDIR)$(DNSR_CMAKEDIR)' 2>/dev/null || true

@@ -12,6 +12,7 @@ mod context;
 mod create_info;
 mod dispatch;
 mod error;
+pub mod ffx;
 mod gpu;
 mod host;
 mod passes;

@@ -44,11 +44,16 @@ needed=$(readelf -d "$work/consumer-pc" | grep NEEDED)
 grep -qF "[$soname]" <<<"$needed" || fail "consumer does not record $soname"
 LD_LIBRARY_PATH=$tmp/lib "$work/consumer-pc"
 
+echo "== FidelityFX integration: the installed include/dnsr-ffx headers and libdnsr alone"
+cc -std=c11 -Wall -Wextra -Werror -I"$tmp/include/dnsr-ffx" -o "$work/consumer-ffx" "$root/capi-tests/ffx_header_c11.c" $flags
+LD_LIBRARY_PATH=$tmp/lib "$work/consumer-ffx"
+
 echo "== CMake (Vulkan::Headers from Vulkan-Headers' package)"
 cmake -S "$here/consumer" -B "$work/cmake" -DCMAKE_PREFIX_PATH="$tmp" -DCMAKE_BUILD_TYPE=Release \
     -DCMAKE_C_FLAGS="-Wall -Wextra -Werror" >"$work/cmake.log" || { cat "$work/cmake.log"; fail "cmake configure"; }
 cmake --build "$work/cmake" >"$work/build.log" || { cat "$work/build.log"; fail "cmake build"; }
 LD_LIBRARY_PATH=$tmp/lib "$work/cmake/consumer"
+LD_LIBRARY_PATH=$tmp/lib "$work/cmake/consumer_ffx"
 
 echo "== CMake (Vulkan headers from FindVulkan)"
 cmake -S "$here/consumer" -B "$work/cmake-findvulkan" -DCMAKE_PREFIX_PATH="$tmp" -DCMAKE_BUILD_TYPE=Release \

@@ -5,7 +5,7 @@
 //! Conventions follow VMA: create-info + out handle + result code; destroy accepts NULL; required pointers are
 //! checked; structures that may grow carry sType/pNext.
 
-mod boundary;
+pub(crate) mod boundary;
 mod convert;
 mod handles;
 pub mod reference;

@@ -1,0 +1,319 @@
+/*
+ * ffx_dropin: an integration of the FidelityFX SDK 1.1.4 shadow denoiser, written as the SDK's sample writes it
+ * (C++17, <FidelityFX/host/ffx_denoiser.h> and <FidelityFX/host/backends/vk/ffx_vk.h>), built against dnsr's
+ * include/ffx headers and linked with libdnsr only.
+ *
+ *   - layout: every size and offset the SDK's headers give on Linux x86-64 (a mismatch here means an integration
+ *     compiled against the SDK's headers would pass garbage), and the enum values integrations switch on;
+ *   - versions: the asserts the SDK's sample makes (SDK 1.1.4 through fpGetSDKVersion, denoiser 1.3.0);
+ *   - frames: six frames of a 37x23 mask (four noisy, two all lit) through the FFX API equal, bit for bit, the same
+ *     frames through dnsr.h with the FidelityFX settings (DNSR_PRESET_BALANCED, a fresh context's);
+ *   - misuse the SDK does not catch (NULL pointers, a destroyed or never-created context, the reflections flag, an
+ *     output format dnsr cannot write, a NULL image, a scratch buffer too small, an interface not from
+ *     ffxGetInterfaceVK): each a specific FfxErrorCode with a message, nothing recorded;
+ *   - no validation message from any of it.
+ */
+#include <FidelityFX/host/backends/vk/ffx_vk.h>
+#include <FidelityFX/host/ffx_denoiser.h>
+
+#include "host.h"
+
+#include <cmath>
+#include <cstddef>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+// ---- Layout (SDK 1.1.4 on Linux x86-64, 4-byte wchar_t) ----
+static_assert(sizeof(wchar_t) == 4, "these offsets are Linux's");
+static_assert(sizeof(FfxResourceDescription) == 32, "");
+static_assert(offsetof(FfxResourceDescription, mipCount) == 20 && offsetof(FfxResourceDescription, usage) == 28, "");
+static_assert(sizeof(FfxResource) == 304 && offsetof(FfxResource, description) == 8, "");
+static_assert(offsetof(FfxResource, state) == 40 && offsetof(FfxResource, name) == 44, "");
+static_assert(sizeof(FfxInterface) == 232 && offsetof(FfxInterface, fpRegisterConstantBufferAllocator) == 200, "");
+static_assert(offsetof(FfxInterface, scratchBuffer) == 208 && offsetof(FfxInterface, scratchBufferSize) == 216, "");
+static_assert(offsetof(FfxInterface, device) == 224, "");
+static_assert(sizeof(FfxDenoiserContextDescription) == 248, "");
+static_assert(offsetof(FfxDenoiserContextDescription, normalsHistoryBufferFormat) == 12, "");
+static_assert(offsetof(FfxDenoiserContextDescription, backendInterface) == 16, "");
+using Dispatch = FfxDenoiserShadowsDispatchDescription;
+static_assert(sizeof(Dispatch) == 1760, "");
+static_assert(offsetof(Dispatch, hitMaskResults) == 8 && offsetof(Dispatch, depth) == 312, "");
+static_assert(offsetof(Dispatch, velocity) == 616 && offsetof(Dispatch, normal) == 920, "");
+static_assert(offsetof(Dispatch, shadowMaskOutput) == 1224 && offsetof(Dispatch, motionVectorScale) == 1528, "");
+static_assert(offsetof(Dispatch, normalsUnpackMul) == 1536 && offsetof(Dispatch, normalsUnpackAdd) == 1540, "");
+static_assert(offsetof(Dispatch, eye) == 1544 && offsetof(Dispatch, frameIndex) == 1556, "");
+static_assert(offsetof(Dispatch, projectionInverse) == 1560 && offsetof(Dispatch, reprojectionMatrix) == 1624, "");
+static_assert(offsetof(Dispatch, viewProjectionInverse) == 1688, "");
+static_assert(offsetof(Dispatch, depthSimilaritySigma) == 1752, "");
+static_assert(sizeof(FfxDenoiserReflectionsDispatchDescription) == 3592, "");
+static_assert(sizeof(FfxDenoiserContext) == 292392, "");
+static_assert(sizeof(VkDeviceContext) == 24 && sizeof(FfxDeviceCapabilities) == 20, "");
+static_assert(FFX_ERROR_INVALID_VERSION == (int32_t)0x8000000f && FFX_ERROR_ACCESS_DENIED == (int32_t)0x80000010, "");
+static_assert(FFX_SURFACE_FORMAT_R32_FLOAT == 28 && FFX_SURFACE_FORMAT_R32_TYPELESS == 37, "");
+static_assert(FFX_RESOURCE_STATE_GENERIC_READ == 20 && FFX_RESOURCE_STATE_DEPTH_ATTACHEMENT == 512, "");
+static_assert(FFX_DENOISER_ENABLE_DEPTH_INVERTED == 4 && FFX_EFFECT_DENOISER == 9, "");
+static_assert(FFX_SDK_MAKE_VERSION(1, 1, 4) == 0x401004, "");
+
+#define W 37u
+#define H 23u
+#define TILES_X ((W + 7u) / 8u)
+#define TILES_Y ((H + 3u) / 4u)
+
+static Host host;
+static HostImage mask, depth, velocity, normals, outFfx, outNative;
+static HostBuffer readback;
+
+// FFX_OK, or fail the test with the call, the code and dnsr's message.
+#define FFX_CHECK(call)                                                                                          \
+    do {                                                                                                         \
+        FfxErrorCode ffx_check_ = (call);                                                                        \
+        if (ffx_check_ != FFX_OK) host_fail(__FILE__, __LINE__, #call, "FfxErrorCode 0x%08x: %s", (unsigned)ffx_check_, \
+                                            dnsr_last_error_message());                                          \
+    } while (0)
+
+// `call` returns `want` and leaves a message.
+#define EXPECT_FFX(want, call)                                                                                   \
+    do {                                                                                                         \
+        FfxErrorCode ffx_got_ = (call);                                                                          \
+        CHECK(ffx_got_ == (want), "%s gave 0x%08x, want %s", #call, (unsigned)ffx_got_, #want);                 \
+        CHECK(dnsr_last_error_message()[0] != 0, "%s: no message", #call);                                      \
+        std::printf("refused as %s: %s\n", #want, dnsr_last_error_message());                                    \
+        cases++;                                                                                                 \
+    } while (0)
+static int cases = 0;
+
+static FfxResource resource(const HostImage &img, FfxResourceStates state, const wchar_t *name)
+{
+    VkImageCreateInfo info = {};
+    info.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
+    info.imageType = VK_IMAGE_TYPE_2D;
+    info.format = img.format;
+    info.extent = {img.width, img.height, 1};
+    info.mipLevels = 1;
+    info.arrayLayers = 1;
+    info.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
+    return ffxGetResourceVK((void *)img.image, ffxGetImageResourceDescriptionVK(img.image, info), name, state);
+}
+
+// The dispatch as the SDK's sample fills it (states and unpack values included), for a still camera.
+static Dispatch ffx_dispatch(VkCommandBuffer cmd, uint32_t frame)
+{
+    Dispatch d = {};
+    d.commandList = ffxGetCommandListVK(cmd);
+    d.hitMaskResults = resource(mask, FFX_RESOURCE_STATE_GENERIC_READ, L"FidelityFX_ShadowDenoiser_RayHit");
+    d.depth = resource(depth, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ, L"FidelityFX_ShadowDenoiser_InputDepth");
+    d.velocity = resource(velocity, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ, L"FidelityFX_ShadowDenoiser_InputVelocity");
+    d.normal = resource(normals, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ, L"FidelityFX_ShadowDenoiser_InputNormals");
+    d.shadowMaskOutput = resource(outFfx, FFX_RESOURCE_STATE_UNORDERED_ACCESS, L"FidelityFX_ShadowDenoiser_ShadowMaskOutput");
+    d.motionVectorScale[0] = d.motionVectorScale[1] = 1.0f;
+    d.normalsUnpackMul = 2.0f;
+    d.normalsUnpackAdd = -1.0f;
+    for (int i = 0; i < 16; i++) {
+        float v = (i % 5 == 0) ? 1.0f : 0.0f;
+        d.projectionInverse[i] = d.reprojectionMatrix[i] = d.viewProjectionInverse[i] = v;
+    }
+    d.frameIndex = frame;
+    d.depthSimilaritySigma = 1.0f;
+    return d;
+}
+
+// The same frame through dnsr.h: the FidelityFX settings are a fresh context's defaults.
+static DnsrShadowsDispatch native_dispatch(VkCommandBuffer cmd, uint32_t frame)
+{
+    DnsrShadowsDispatch d;
+    std::memset(&d, 0, sizeof d);
+    d.sType = DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH;
+    d.commandBuffer = cmd;
+    d.hitMaskConvention = DNSR_HIT_MASK_OCCLUDED_BITS;
+    d.hitMask = host_image_desc(&mask);
+    d.depth = host_image_desc(&depth);
+    d.velocity = host_image_desc(&velocity);
+    d.normals = host_image_desc(&normals);
+    d.output = host_image_desc(&outNative);
+    host_dispatch_neutral(&d);
+    d.normalsUnpackMul = 2.0f;
+    d.normalsUnpackAdd = -1.0f;
+    d.frameIndex = frame;
+    return d;
+}
+
+static void upload_mask(uint32_t seed, bool allLit)
+{
+    std::vector<uint32_t> data(TILES_X * TILES_Y);
+    uint32_t s = seed * 2654435761u + 1u;
+    for (auto &word : data) {
+        s = s * 1664525u + 1013904223u;
+        word = allLit ? 0u : (s ^ (s >> 13)) & 0x0F0FF0F0u; /* occluded bits: about half the pixels */
+    }
+    host_upload(&host, &mask, data.data(), data.size() * sizeof(uint32_t));
+}
+
+static void read_output(const HostImage &img, std::vector<float> &out)
+{
+    VkCommandBuffer cmd = host_begin(&host);
+    host_cmd_copy(cmd, &img, &readback, 0, false);
+    host_cmd_host_read_barrier(cmd);
+    host_submit(&host, cmd);
+    out.assign((const float *)readback.mapped, (const float *)readback.mapped + W * H);
+}
+
+struct Integration {
+    VkDeviceContext deviceContext;
+    std::unique_ptr<unsigned char, void (*)(void *)> scratch{nullptr, std::free};
+    FfxInterface iface;
+    std::unique_ptr<FfxDenoiserContext> context{new FfxDenoiserContext};
+};
+
+// What the SDK's sample does at start-up, with its version asserts.
+static void integrate(Integration &in, uint32_t flags)
+{
+    in.deviceContext = VkDeviceContext{host.device, host.physicalDevice, vkGetDeviceProcAddr};
+    size_t size = ffxGetScratchMemorySizeVK(host.physicalDevice, FFX_DENOISER_CONTEXT_COUNT);
+    in.scratch.reset((unsigned char *)std::calloc(size, 1));
+    FFX_CHECK(ffxGetInterfaceVK(&in.iface, ffxGetDeviceVK(&in.deviceContext), in.scratch.get(), size,
+                                FFX_DENOISER_CONTEXT_COUNT));
+    CHECK(in.iface.fpGetSDKVersion(&in.iface) == FFX_SDK_MAKE_VERSION(1, 1, 4), "fpGetSDKVersion");
+    CHECK(ffxDenoiserGetEffectVersion() == FFX_SDK_MAKE_VERSION(1, 3, 0), "ffxDenoiserGetEffectVersion");
+    in.iface.fpRegisterConstantBufferAllocator(&in.iface, nullptr);
+    FfxDenoiserContextDescription desc = {};
+    desc.flags = flags;
+    desc.windowSize = {W, H};
+    desc.backendInterface = in.iface;
+    FFX_CHECK(ffxDenoiserContextCreate(in.context.get(), &desc));
+}
+
+static void frames_match_native(void)
+{
+    Integration in;
+    // The sample's flags: shadows, plus the classifier's depth-inverted bit (1 << 3) the denoiser ignores.
+    integrate(in, FFX_DENOISER_SHADOWS | (1u << 3));
+    DnsrContextCreateInfo info = host_create_info(&host, W, H);
+    DnsrContext native = nullptr;
+    DNSR_CHECK(dnsr_context_create(&info, &native));
+
+    std::vector<float> a, b;
+    for (uint32_t frame = 0; frame < 6; frame++) {
+        bool allLit = frame >= 4;
+        upload_mask(frame, allLit);
+        VkCommandBuffer cmd = host_begin(&host);
+        host_cmd_full_barrier(cmd);
+        Dispatch fd = ffx_dispatch(cmd, frame);
+        FFX_CHECK(ffxDenoiserContextDispatchShadows(in.context.get(), &fd));
+        DnsrShadowsDispatch nd = native_dispatch(cmd, frame);
+        DNSR_CHECK(dnsr_shadows_record(native, &nd));
+        host_submit(&host, cmd);
+        read_output(outFfx, a);
+        read_output(outNative, b);
+        for (uint32_t i = 0; i < W * H; i++) {
+            CHECK(a[i] == b[i], "frame %u: FFX API %.9g, dnsr.h %.9g at (%u, %u)", frame, a[i], b[i], i % W, i / W);
+        }
+        float lo = a[0], hi = a[0];
+        for (float v : a) lo = v < lo ? v : lo, hi = v > hi ? v : hi;
+        std::printf("frame %u: FFX API == dnsr.h on all %u pixels, output in [%g, %g]\n", frame, W * H, lo, hi);
+        if (frame < 4) CHECK(hi > lo, "frame %u: a noisy mask gave a flat output", frame);
+    }
+    // Two all-lit frames after noise: Balanced's history takes time, so only check the value is in range.
+    for (float v : a) CHECK(v >= 0.0f && v <= 1.0f, "output %g outside [0, 1]", v);
+    host_expect_clean(&host, "frames");
+    FFX_CHECK(ffxDenoiserContextDestroy(in.context.get()));
+    DNSR_CHECK(dnsr_context_destroy(native));
+}
+
+static void misuse(void)
+{
+    Integration in;
+    integrate(in, FFX_DENOISER_SHADOWS);
+    FfxDenoiserContextDescription desc = {};
+    desc.flags = FFX_DENOISER_SHADOWS;
+    desc.windowSize = {W, H};
+    desc.backendInterface = in.iface;
+    FfxDenoiserContext *other = new FfxDenoiserContext;
+    std::memset(other, 0, sizeof *other);
+
+    EXPECT_FFX(FFX_ERROR_INVALID_POINTER, ffxDenoiserContextCreate(nullptr, &desc));
+    EXPECT_FFX(FFX_ERROR_INVALID_POINTER, ffxDenoiserContextCreate(other, nullptr));
+    desc.flags = FFX_DENOISER_SHADOWS | FFX_DENOISER_REFLECTIONS;
+    EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextCreate(other, &desc));
+    desc.flags = FFX_DENOISER_SHADOWS;
+    desc.windowSize = {0, H};
+    EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextCreate(other, &desc));
+    desc.windowSize = {W, H};
+    FfxInterface handmade = {};
+    desc.backendInterface = handmade;
+    EXPECT_FFX(FFX_ERROR_INCOMPLETE_INTERFACE, ffxDenoiserContextCreate(other, &desc));
+    desc.backendInterface = in.iface;
+
+    FfxInterface iface;
+    unsigned char small[4];
+    EXPECT_FFX(FFX_ERROR_INSUFFICIENT_MEMORY,
+               ffxGetInterfaceVK(&iface, ffxGetDeviceVK(&in.deviceContext), small, sizeof small, 1));
+    EXPECT_FFX(FFX_ERROR_INVALID_POINTER, ffxGetInterfaceVK(nullptr, ffxGetDeviceVK(&in.deviceContext), small, 4, 1));
+    EXPECT_FFX(FFX_ERROR_INVALID_POINTER, ffxGetInterfaceVK(&iface, nullptr, small, sizeof small, 1));
+
+    // Dispatch misuse: nothing may be recorded (the command buffer is submitted and must stay valid and empty).
+    VkCommandBuffer cmd = host_begin(&host);
+    Dispatch d = ffx_dispatch(cmd, 0);
+    EXPECT_FFX(FFX_ERROR_INVALID_POINTER, ffxDenoiserContextDispatchShadows(nullptr, &d));
+    EXPECT_FFX(FFX_ERROR_INVALID_POINTER, ffxDenoiserContextDispatchShadows(in.context.get(), nullptr));
+    EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDispatchShadows(other, &d)); /* never created */
+    EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDispatchReflections(in.context.get(), nullptr));
+    Dispatch bad = d;
+    bad.depth.resource = nullptr;
+    EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDispatchShadows(in.context.get(), &bad));
+    bad = d;
+    bad.shadowMaskOutput.description.format = FFX_SURFACE_FORMAT_R8G8B8A8_UNORM;
+    EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDispatchShadows(in.context.get(), &bad));
+    bad = d;
+    bad.velocity.state = FFX_RESOURCE_STATE_INDIRECT_ARGUMENT;
+    EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDispatchShadows(in.context.get(), &bad));
+    bad = d;
+    bad.viewProjectionInverse[3] = NAN;
+    EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDispatchShadows(in.context.get(), &bad));
+    host_submit(&host, cmd);
+
+    FFX_CHECK(ffxDenoiserContextDestroy(in.context.get()));
+    EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDestroy(in.context.get())); /* twice */
+    cmd = host_begin(&host);
+    d = ffx_dispatch(cmd, 1);
+    EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDispatchShadows(in.context.get(), &d)); /* destroyed */
+    host_submit(&host, cmd);
+    EXPECT_FFX(FFX_ERROR_INVALID_POINTER, ffxDenoiserContextDestroy(nullptr));
+    delete other;
+    host_expect_clean(&host, "misuse");
+}
+
+int main(void)
+{
+    host_create(&host);
+    VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    host_image_create(&host, &mask, VK_FORMAT_R32_UINT, TILES_X, TILES_Y, VK_IMAGE_LAYOUT_GENERAL);
+    host_image_create(&host, &depth, VK_FORMAT_R32_SFLOAT, W, H, read);
+    host_image_create(&host, &velocity, VK_FORMAT_R16G16_SFLOAT, W, H, read);
+    host_image_create(&host, &normals, VK_FORMAT_R8G8B8A8_UNORM, W, H, read);
+    host_image_create(&host, &outFfx, VK_FORMAT_R32_SFLOAT, W, H, VK_IMAGE_LAYOUT_GENERAL);
+    host_image_create(&host, &outNative, VK_FORMAT_R32_SFLOAT, W, H, VK_IMAGE_LAYOUT_GENERAL);
+    host_buffer_create(&host, &readback, W * H * sizeof(float));
+    std::vector<float> depthData(W * H);
+    std::vector<uint16_t> velocityData(W * H * 2, 0);
+    std::vector<uint8_t> normalData(W * H * 4);
+    for (uint32_t i = 0; i < W * H; i++) {
+        depthData[i] = 0.4f + 0.2f * float(i % W) / W;
+        normalData[4 * i + 0] = normalData[4 * i + 1] = 128; /* (0, 0, 1) packed as rgb * 2 - 1 */
+        normalData[4 * i + 2] = 255;
+    }
+    host_upload(&host, &depth, depthData.data(), depthData.size() * sizeof(float));
+    host_upload(&host, &velocity, velocityData.data(), velocityData.size() * sizeof(uint16_t));
+    host_upload(&host, &normals, normalData.data(), normalData.size());
+
+    frames_match_native();
+    misuse();
+
+    host_buffer_destroy(&host, &readback);
+    for (HostImage *img : {&mask, &depth, &velocity, &normals, &outFfx, &outNative}) host_image_destroy(&host, img);
+    host_destroy(&host);
+    std::printf("ffx_dropin: layout, versions, 6 frames equal to dnsr.h, %d misuse cases refused\n", cases);
+    return 0;
+}

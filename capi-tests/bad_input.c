@@ -199,8 +199,8 @@ static void create_calls(void)
     CREATE_CASE("create: FP16 without DNSR_FEATURE_FLOAT16", DNSR_ERROR_MISSING_FEATURE, "DNSR_FEATURE_FLOAT16",
                 info.precision = DNSR_PRECISION_FP16;
                 info.enabledFeatures &= ~(DnsrFeatureFlags)DNSR_FEATURE_FLOAT16);
-    CREATE_CASE("create: RGBA8 output", DNSR_ERROR_UNSUPPORTED_FORMAT, "output image format R8G8B8A8_UNORM",
-                info.outputFormat = VK_FORMAT_R8G8B8A8_UNORM);
+    CREATE_CASE("create: BGRA8 output", DNSR_ERROR_UNSUPPORTED_FORMAT, "output image format B8G8R8A8_UNORM",
+                info.outputFormat = VK_FORMAT_B8G8R8A8_UNORM);
     CREATE_CASE("create: UNDEFINED output format", DNSR_ERROR_UNSUPPORTED_FORMAT, "output image format",
                 info.outputFormat = VK_FORMAT_UNDEFINED);
     CREATE_CASE("create: filterPasses 0", DNSR_ERROR_INVALID_SETTING, "filterPasses", settings.filterPasses = 0);

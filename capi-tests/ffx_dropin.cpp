@@ -7,7 +7,8 @@
  *     compiled against the SDK's headers would pass garbage), and the enum values integrations switch on;
  *   - versions: the asserts the SDK's sample makes (SDK 1.1.4 through fpGetSDKVersion, denoiser 1.3.0);
  *   - frames: six frames of a 37x23 mask (four noisy, two all lit) through the FFX API equal, bit for bit, the same
- *     frames through dnsr.h with the FidelityFX settings (DNSR_PRESET_BALANCED, a fresh context's);
+ *     frames through dnsr.h with the FidelityFX settings (DNSR_PRESET_BALANCED, a fresh context's); a second FFX
+ *     context writing the sample's RGBA8 output holds the same values, rounded, in every channel;
  *   - misuse the SDK does not catch (NULL pointers, a destroyed or never-created context, the reflections flag, an
  *     output format dnsr cannot write, a NULL image, a scratch buffer too small, an interface not from
  *     ffxGetInterfaceVK): each a specific FfxErrorCode with a message, nothing recorded;
@@ -63,7 +64,7 @@ static_assert(FFX_SDK_MAKE_VERSION(1, 1, 4) == 0x401004, "");
 #define TILES_Y ((H + 3u) / 4u)
 
 static Host host;
-static HostImage mask, depth, velocity, normals, outFfx, outNative;
+static HostImage mask, depth, velocity, normals, outFfx, outFfx8, outNative;
 static HostBuffer readback;
 
 // FFX_OK, or fail the test with the call, the code and dnsr's message.
@@ -99,7 +100,7 @@ static FfxResource resource(const HostImage &img, FfxResourceStates state, const
 }
 
 // The dispatch as the SDK's sample fills it (states and unpack values included), for a still camera.
-static Dispatch ffx_dispatch(VkCommandBuffer cmd, uint32_t frame)
+static Dispatch ffx_dispatch(VkCommandBuffer cmd, uint32_t frame, const HostImage &out = outFfx)
 {
     Dispatch d = {};
     d.commandList = ffxGetCommandListVK(cmd);
@@ -107,7 +108,7 @@ static Dispatch ffx_dispatch(VkCommandBuffer cmd, uint32_t frame)
     d.depth = resource(depth, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ, L"FidelityFX_ShadowDenoiser_InputDepth");
     d.velocity = resource(velocity, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ, L"FidelityFX_ShadowDenoiser_InputVelocity");
     d.normal = resource(normals, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ, L"FidelityFX_ShadowDenoiser_InputNormals");
-    d.shadowMaskOutput = resource(outFfx, FFX_RESOURCE_STATE_UNORDERED_ACCESS, L"FidelityFX_ShadowDenoiser_ShadowMaskOutput");
+    d.shadowMaskOutput = resource(out, FFX_RESOURCE_STATE_UNORDERED_ACCESS, L"FidelityFX_ShadowDenoiser_ShadowMaskOutput");
     d.motionVectorScale[0] = d.motionVectorScale[1] = 1.0f;
     d.normalsUnpackMul = 2.0f;
     d.normalsUnpackAdd = -1.0f;
@@ -157,6 +158,16 @@ static void read_output(const HostImage &img, std::vector<float> &out)
     host_cmd_copy(cmd, &img, &readback, 0, false);
     host_cmd_host_read_barrier(cmd);
     host_submit(&host, cmd);
+    if (img.format == VK_FORMAT_R8G8B8A8_UNORM) {
+        const uint8_t *texels = (const uint8_t *)readback.mapped;
+        out.resize(W * H);
+        for (uint32_t i = 0; i < W * H; i++) {
+            const uint8_t *t = texels + 4 * i;
+            CHECK(t[1] == t[0] && t[2] == t[0] && t[3] == t[0], "RGBA8 output channels differ at %u", i);
+            out[i] = t[0] / 255.0f;
+        }
+        return;
+    }
     out.assign((const float *)readback.mapped, (const float *)readback.mapped + W * H);
 }
 
@@ -187,14 +198,15 @@ static void integrate(Integration &in, uint32_t flags)
 
 static void frames_match_native(void)
 {
-    Integration in;
+    Integration in, in8;
     // The sample's flags: shadows, plus the classifier's depth-inverted bit (1 << 3) the denoiser ignores.
     integrate(in, FFX_DENOISER_SHADOWS | (1u << 3));
+    integrate(in8, FFX_DENOISER_SHADOWS);
     DnsrContextCreateInfo info = host_create_info(&host, W, H);
     DnsrContext native = nullptr;
     DNSR_CHECK(dnsr_context_create(&info, &native));
 
-    std::vector<float> a, b;
+    std::vector<float> a, b, c;
     for (uint32_t frame = 0; frame < 6; frame++) {
         bool allLit = frame >= 4;
         upload_mask(frame, allLit);
@@ -202,13 +214,18 @@ static void frames_match_native(void)
         host_cmd_full_barrier(cmd);
         Dispatch fd = ffx_dispatch(cmd, frame);
         FFX_CHECK(ffxDenoiserContextDispatchShadows(in.context.get(), &fd));
+        Dispatch fd8 = ffx_dispatch(cmd, frame, outFfx8);
+        FFX_CHECK(ffxDenoiserContextDispatchShadows(in8.context.get(), &fd8));
         DnsrShadowsDispatch nd = native_dispatch(cmd, frame);
         DNSR_CHECK(dnsr_shadows_record(native, &nd));
         host_submit(&host, cmd);
         read_output(outFfx, a);
         read_output(outNative, b);
+        read_output(outFfx8, c);
         for (uint32_t i = 0; i < W * H; i++) {
             CHECK(a[i] == b[i], "frame %u: FFX API %.9g, dnsr.h %.9g at (%u, %u)", frame, a[i], b[i], i % W, i / W);
+            CHECK(std::fabs(c[i] - b[i]) <= 0.5f / 255.0f + 1e-6f, "frame %u: RGBA8 %.9g, dnsr.h %.9g at (%u, %u)", frame,
+                  c[i], b[i], i % W, i / W);
         }
         float lo = a[0], hi = a[0];
         for (float v : a) lo = v < lo ? v : lo, hi = v > hi ? v : hi;
@@ -219,6 +236,7 @@ static void frames_match_native(void)
     for (float v : a) CHECK(v >= 0.0f && v <= 1.0f, "output %g outside [0, 1]", v);
     host_expect_clean(&host, "frames");
     FFX_CHECK(ffxDenoiserContextDestroy(in.context.get()));
+    FFX_CHECK(ffxDenoiserContextDestroy(in8.context.get()));
     DNSR_CHECK(dnsr_context_destroy(native));
 }
 
@@ -264,7 +282,7 @@ static void misuse(void)
     bad.depth.resource = nullptr;
     EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDispatchShadows(in.context.get(), &bad));
     bad = d;
-    bad.shadowMaskOutput.description.format = FFX_SURFACE_FORMAT_R8G8B8A8_UNORM;
+    bad.shadowMaskOutput.description.format = FFX_SURFACE_FORMAT_B8G8R8A8_UNORM;
     EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDispatchShadows(in.context.get(), &bad));
     bad = d;
     bad.velocity.state = FFX_RESOURCE_STATE_INDIRECT_ARGUMENT;
@@ -295,6 +313,7 @@ int main(void)
     host_image_create(&host, &normals, VK_FORMAT_R8G8B8A8_UNORM, W, H, read);
     host_image_create(&host, &outFfx, VK_FORMAT_R32_SFLOAT, W, H, VK_IMAGE_LAYOUT_GENERAL);
     host_image_create(&host, &outNative, VK_FORMAT_R32_SFLOAT, W, H, VK_IMAGE_LAYOUT_GENERAL);
+    host_image_create(&host, &outFfx8, VK_FORMAT_R8G8B8A8_UNORM, W, H, VK_IMAGE_LAYOUT_GENERAL);
     host_buffer_create(&host, &readback, W * H * sizeof(float));
     std::vector<float> depthData(W * H);
     std::vector<uint16_t> velocityData(W * H * 2, 0);
@@ -312,8 +331,8 @@ int main(void)
     misuse();
 
     host_buffer_destroy(&host, &readback);
-    for (HostImage *img : {&mask, &depth, &velocity, &normals, &outFfx, &outNative}) host_image_destroy(&host, img);
+    for (HostImage *img : {&mask, &depth, &velocity, &normals, &outFfx, &outFfx8, &outNative}) host_image_destroy(&host, img);
     host_destroy(&host);
-    std::printf("ffx_dropin: layout, versions, 6 frames equal to dnsr.h, %d misuse cases refused\n", cases);
+    std::printf("ffx_dropin: layout, versions, 6 frames equal to dnsr.h (R32F and RGBA8 outputs), %d misuse cases refused\n", cases);
     return 0;
 }

@@ -456,7 +456,9 @@ typedef struct DnsrContextCreateInfo {
    */
   DnsrPrecision precision;
   /**
-   * Output image format: VK_FORMAT_R8_UNORM, VK_FORMAT_R16_SFLOAT or VK_FORMAT_R32_SFLOAT.
+   * Output image format: VK_FORMAT_R8_UNORM, VK_FORMAT_R16_SFLOAT or VK_FORMAT_R32_SFLOAT, or a 4-channel
+   * VK_FORMAT_R8G8B8A8_UNORM / VK_FORMAT_R16G16B16A16_SFLOAT (the shadow in every channel, as FidelityFX's sample
+   * output). The device must support storage images of it.
    */
   VkFormat outputFormat;
   /**

@@ -69,7 +69,8 @@ pub struct ContextCreateInfo {
     pub depth: DepthFlags,
     /// Filter precision.
     pub precision: Precision,
-    /// Format of the output image: R8_UNORM, R16_SFLOAT or R32_SFLOAT (must support storage on the device).
+    /// Format of the output image: R8_UNORM, R16_SFLOAT or R32_SFLOAT, or R8G8B8A8_UNORM / R16G16B16A16_SFLOAT (the
+    /// shadow in every channel). Must support storage on the device.
     pub output_format: vk::Format,
     /// Number of independently denoised lights (each gets its own history), 1..=`MAX_LIGHT_COUNT`.
     pub light_count: u32,

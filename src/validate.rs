@@ -35,7 +35,7 @@ const NORMAL_FORMATS: &[F] = &[
     F::R32G32B32A32_SFLOAT,
 ];
 /// Output formats with a compiled final-pass variant.
-pub(crate) const OUTPUT_FORMATS: &[F] = &[F::R8_UNORM, F::R16_SFLOAT, F::R32_SFLOAT];
+pub(crate) const OUTPUT_FORMATS: &[F] = &[F::R8_UNORM, F::R16_SFLOAT, F::R32_SFLOAT, F::R8G8B8A8_UNORM, F::R16G16B16A16_SFLOAT];
 
 /// Every format a host image may have or dnsr creates (their features are queried once per context).
 pub(crate) fn known_formats() -> impl Iterator<Item = F> {

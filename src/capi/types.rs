@@ -370,7 +370,9 @@ pub struct DnsrContextCreateInfo {
     pub flags: DnsrContextCreateFlags,
     /// DNSR_PRECISION_FP32 (default) or DNSR_PRECISION_FP16.
     pub precision: DnsrPrecision,
-    /// Output image format: VK_FORMAT_R8_UNORM, VK_FORMAT_R16_SFLOAT or VK_FORMAT_R32_SFLOAT.
+    /// Output image format: VK_FORMAT_R8_UNORM, VK_FORMAT_R16_SFLOAT or VK_FORMAT_R32_SFLOAT, or a 4-channel
+    /// VK_FORMAT_R8G8B8A8_UNORM / VK_FORMAT_R16G16B16A16_SFLOAT (the shadow in every channel, as FidelityFX's sample
+    /// output). The device must support storage images of it.
     pub output_format: VkFormat,
     /// Number of lights with independent histories, 1..DNSR_MAX_LIGHT_COUNT (64). Device memory grows linearly
     /// with it (see dnsr_get_memory_requirements); a context that would not fit in the device's memory is refused

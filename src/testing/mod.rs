@@ -161,6 +161,21 @@ impl<'g> Runner<'g> {
             vk::Format::R32_SFLOAT => bytemuck::cast_slice::<u8, f32>(&raw).to_vec(),
             vk::Format::R16_SFLOAT => raw.chunks_exact(2).map(|c| f16_to_f32(u16::from_le_bytes([c[0], c[1]]))).collect(),
             vk::Format::R8_UNORM => raw.iter().map(|&b| b as f32 / 255.0).collect(),
+            // Four-channel outputs hold the shadow in every channel.
+            vk::Format::R8G8B8A8_UNORM => raw
+                .chunks_exact(4)
+                .map(|c| {
+                    assert!(c.iter().all(|&b| b == c[0]), "RGBA8 output channels differ: {c:?}");
+                    c[0] as f32 / 255.0
+                })
+                .collect(),
+            vk::Format::R16G16B16A16_SFLOAT => raw
+                .chunks_exact(8)
+                .map(|c| {
+                    assert!(c.chunks_exact(2).all(|h| h == &c[..2]), "RGBA16F output channels differ: {c:?}");
+                    f16_to_f32(u16::from_le_bytes([c[0], c[1]]))
+                })
+                .collect(),
             other => panic!("no readback for {other:?}"),
         };
         (result, out)

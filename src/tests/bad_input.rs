@@ -68,8 +68,8 @@ fn bad_create_infos_are_refused_with_specific_errors() {
             |e| matches!(e, Error::MissingFeature(_)),
         ),
         (
-            "RGBA8 output",
-            |i| i.output_format = vk::Format::R8G8B8A8_UNORM,
+            "BGRA8 output",
+            |i| i.output_format = vk::Format::B8G8R8A8_UNORM,
             |e| matches!(e, Error::UnsupportedFormat { role: Some(ImageRole::Output), .. }),
         ),
         ("0 filter passes", |i| i.settings.filter_passes = 0, |e| matches!(e, Error::InvalidSetting { name: "filter_passes", .. })),

@@ -347,7 +347,7 @@ fn a_render_rect_denoises_like_a_context_of_its_size() {
 fn every_output_format_and_filter_pass_count_works() {
     let g = gpu();
     let (w, h) = (24, 16);
-    for format in [vk::Format::R8_UNORM, vk::Format::R16_SFLOAT, vk::Format::R32_SFLOAT] {
+    for &format in crate::validate::OUTPUT_FORMATS {
         for precision in precisions(&g) {
             let mut info = g.create_info(w, h);
             info.output_format = format;

@@ -16,8 +16,9 @@
  *     starts from empty history (there is no reset field: to reset, destroy and create, or use dnsr.h's
  *     DNSR_DISPATCH_RESET). Resources are VkImages in the states they are in; dnsr creates the views it needs
  *     (kept for FFX_MAX_QUEUED_FRAMES later dispatches) and leaves every image in its state. Depth may be a depth
- *     image (DEPTHTARGET usage) or an R32_FLOAT colour copy. The output must be R8_UNORM, R16_FLOAT or R32_FLOAT
- *     and the same format on every dispatch of a context (else FFX_ERROR_INVALID_ARGUMENT). velocity is read in
+ *     image (DEPTHTARGET usage) or an R32_FLOAT colour copy. The output must be R8_UNORM, R16_FLOAT, R32_FLOAT,
+ *     R8G8B8A8_UNORM or R16G16B16A16_FLOAT (the shadow in every channel) and the same format on every dispatch of
+ *     a context (else FFX_ERROR_INVALID_ARGUMENT). velocity is read in
  *     the SDK's convention: history uv = uv + motionVectorScale * v. frameIndex is accepted and not needed (dnsr
  *     keeps its own history ping-pong). Bad input (a NULL image, an image smaller than the window, non-finite
  *     matrices) is refused with FFX_ERROR_INVALID_ARGUMENT and nothing is recorded, where the SDK returns FFX_OK.
@@ -86,7 +87,8 @@ typedef struct FfxDenoiserShadowsDispatchDescription {
     FfxResource velocity;
     /* World-space normals, decoded as rgb * normalsUnpackMul + normalsUnpackAdd. */
     FfxResource normal;
-    /* The denoised visibility (1 = lit): R8_UNORM, R16_FLOAT or R32_FLOAT storage image. */
+    /* The denoised visibility (1 = lit): an R8_UNORM, R16_FLOAT, R32_FLOAT, R8G8B8A8_UNORM or R16G16B16A16_FLOAT
+     * storage image (4-channel formats get the visibility in every channel). */
     FfxResource shadowMaskOutput;
     FfxFloat32x2 motionVectorScale;
     FfxFloat32 normalsUnpackMul;

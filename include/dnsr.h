@@ -69,6 +69,16 @@
 #define DNSR_VERSION_PATCH 0
 
 /**
+ * Capacity of DnsrDiagnosis::message, NUL included.
+ */
+#define DNSR_DIAGNOSIS_MESSAGE_SIZE 512
+
+/**
+ * Most diagnoses one call can report (one per kind, with room to grow): an array this long receives all.
+ */
+#define DNSR_MAX_DIAGNOSES 8
+
+/**
  * Result of every dnsr function. Negative values are errors; `dnsr_last_error_message` says what was wrong.
  */
 enum DnsrResult
@@ -945,6 +955,29 @@ typedef struct DnsrReferenceCallbacks {
 } DnsrReferenceCallbacks;
 
 /**
+ * What a diagnosis found.
+ */
+typedef uint32_t DnsrDiagnosisKind;
+
+/**
+ * One likely integration mistake.
+ */
+typedef struct DnsrDiagnosis {
+  /**
+   * DNSR_DIAGNOSIS_*.
+   */
+  DnsrDiagnosisKind kind;
+  /**
+   * The measured number the kind names (see each DNSR_DIAGNOSIS_* value).
+   */
+  double value;
+  /**
+   * What is wrong and what to change, in words, with C field names; NUL-terminated (truncated to fit).
+   */
+  char message[512];
+} DnsrDiagnosis;
+
+/**
  * `DnsrReferenceFrameInfo`.
  */
 #define DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO 6
@@ -973,6 +1006,37 @@ typedef struct DnsrReferenceCallbacks {
  * Forces 32 bits.
  */
 #define DNSR_REFERENCE_MAX_ENUM 2147483647
+
+/**
+ * Motion vectors point the wrong way (`value`: the factor on motionVectorScale that fits the camera motion).
+ */
+#define DNSR_DIAGNOSIS_VELOCITY_SIGN 0
+
+/**
+ * Motion vectors are scaled wrongly (`value`: the factor on motionVectorScale that fits the camera motion).
+ */
+#define DNSR_DIAGNOSIS_VELOCITY_SCALE 1
+
+/**
+ * Normals are not unit length after normalsUnpackMul/Add (`value`: their mean length).
+ */
+#define DNSR_DIAGNOSIS_NORMALS_NOT_UNIT 2
+
+/**
+ * The depth-inverted flag contradicts projectionInverse or the depth buffer (`value`: 0).
+ */
+#define DNSR_DIAGNOSIS_DEPTH_CONVENTION 3
+
+/**
+ * projectionInverse and viewProjectionInverse/eye describe different cameras (`value`: the largest relative
+ * difference of view distances).
+ */
+#define DNSR_DIAGNOSIS_MATRICES_INCONSISTENT 4
+
+/**
+ * Forces 32 bits.
+ */
+#define DNSR_DIAGNOSIS_MAX_ENUM 2147483647
 
 /**
  * `DnsrContextCreateInfo`.
@@ -1277,6 +1341,21 @@ const char *dnsr_last_error_message(void);
  */
 DnsrResult dnsr_reference_run_frame(const struct DnsrReferenceFrameInfo *pInfo,
                                     const struct DnsrReferenceCallbacks *pCallbacks);
+
+/**
+ * Looks at one frame of the engine's inputs (depth, normals and motion vectors through `pCallbacks`' readDepth,
+ * readNormal and readVelocity; the others are not called) with its dispatch constants (`pInfo`: the motion
+ * vector scale, the normal unpack, the matrices, the eye and DNSR_REFERENCE_DEPTH_INVERTED; pSettings and the
+ * other flags are not read) for the mistakes integrations make: motion vectors of the wrong sign or scale (needs
+ * a frame whose camera moved), normals that do not unpack to unit length, a depth-inverted flag that contradicts
+ * the projection or the depth buffer, matrices of different cameras.
+ * `*pDiagnosisCount` is the capacity of `pDiagnoses` on entry and the number written on return (with
+ * `pDiagnoses` NULL: the number found). DNSR_MAX_DIAGNOSES entries always suffice. No finding: count 0.
+ */
+DnsrResult dnsr_reference_diagnose(const struct DnsrReferenceFrameInfo *pInfo,
+                                   const struct DnsrReferenceCallbacks *pCallbacks,
+                                   uint32_t *pDiagnosisCount,
+                                   struct DnsrDiagnosis *pDiagnoses);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -121,7 +121,7 @@ pub(crate) fn guard(f: impl FnOnce(&mut Option<LogSink>) -> Result<DnsrResult, C
 /// `get_device_proc_addr` -> `vulkanFunctions.vkGetDeviceProcAddr`, `Context::resize` -> `dnsr_context_resize`).
 /// Only words that start in lower case and contain an underscore are Rust field names; Vulkan and dnsr names
 /// (`VK_KHR_push_descriptor`, `R16_SFLOAT`, `dnsr_...`) pass unchanged.
-fn c_names(message: &str) -> String {
+pub(crate) fn c_names(message: &str) -> String {
     let special = [
         ("get_instance_proc_addr", "vulkanFunctions.vkGetInstanceProcAddr"),
         ("get_device_proc_addr", "vulkanFunctions.vkGetDeviceProcAddr"),

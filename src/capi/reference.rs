@@ -103,6 +103,59 @@ fn mat(m: &[f32; 16]) -> DMat4 {
     DMat4::from_cols_array(&m.map(|v| v as f64))
 }
 
+/// The checks every reference entry point makes on its frame info: structure, extent, finite matrices.
+fn checked<'a>(
+    p_info: *const DnsrReferenceFrameInfo,
+    p_callbacks: *const DnsrReferenceCallbacks,
+) -> Result<(&'a DnsrReferenceFrameInfo, &'a DnsrReferenceCallbacks), CallError> {
+    let info = required(p_info, "pInfo")?;
+    let cb = required(p_callbacks, "pCallbacks")?;
+    check_type(info.s_type, DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO, "DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO", "pInfo")?;
+    check_no_next(info.p_next, "pInfo")?;
+    crate::validate::extent("pInfo->width/height", info.width, info.height, 16384)?;
+    for (name, m) in [
+        ("projectionInverse", &info.projection_inverse),
+        ("reprojectionMatrix", &info.reprojection_matrix),
+        ("viewProjectionInverse", &info.view_projection_inverse),
+    ] {
+        if m.iter().any(|v| !v.is_finite()) {
+            return Err(CallError::Core(crate::Error::NonFinite(name)));
+        }
+    }
+    Ok((info, cb))
+}
+
+/// Depth, normal texels and motion vectors of every pixel, as the engine's read callbacks return them.
+struct RawInputs {
+    depth: Vec<f32>,
+    normals: Vec<[f32; 4]>,
+    velocity: Vec<[f32; 2]>,
+}
+
+impl RawInputs {
+    fn read(info: &DnsrReferenceFrameInfo, cb: &DnsrReferenceCallbacks) -> Result<RawInputs, CallError> {
+        let missing = |name: &str| CallError::InvalidArgument(format!("pCallbacks->{name} is NULL"));
+        let read_depth = cb.read_depth.ok_or_else(|| missing("readDepth"))?;
+        let read_normal = cb.read_normal.ok_or_else(|| missing("readNormal"))?;
+        let read_velocity = cb.read_velocity.ok_or_else(|| missing("readVelocity"))?;
+        let (w, h) = (info.width as i32, info.height as i32);
+        let n = (info.width * info.height) as usize;
+        let mut raw = RawInputs { depth: vec![0.0; n], normals: vec![[0.0; 4]; n], velocity: vec![[0.0; 2]; n] };
+        for y in 0..h {
+            for x in 0..w {
+                let i = (y * w + x) as usize;
+                // SAFETY: the engine's callbacks, called as the header documents (rgb: 3 floats, xy: 2).
+                unsafe {
+                    raw.depth[i] = read_depth(cb.user_data, x, y);
+                    read_normal(cb.user_data, x, y, raw.normals[i].as_mut_ptr());
+                    read_velocity(cb.user_data, x, y, raw.velocity[i].as_mut_ptr());
+                }
+            }
+        }
+        Ok(raw)
+    }
+}
+
 /// Runs one frame of the CPU reference (f64) over the engine's data: read callbacks in, write callbacks out.
 /// Returns DNSR_ERROR_NON_FINITE for non-finite matrices, DNSR_ERROR_INVALID_ARGUMENT for a missing required
 /// callback. Single-threaded; meant for diffing a captured frame, not for real time.
@@ -112,25 +165,12 @@ pub extern "C" fn dnsr_reference_run_frame(
     p_callbacks: *const DnsrReferenceCallbacks,
 ) -> DnsrResult {
     guard(|_| {
-        let info = required(p_info, "pInfo")?;
-        let cb = required(p_callbacks, "pCallbacks")?;
-        check_type(info.s_type, DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO, "DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO", "pInfo")?;
-        check_no_next(info.p_next, "pInfo")?;
-        crate::validate::extent("pInfo->width/height", info.width, info.height, 16384)?;
+        let (info, cb) = checked(p_info, p_callbacks)?;
         let settings = match unsafe { info.p_settings.as_ref() } {
             Some(s) => settings_from_c(s, "pInfo->pSettings")?,
             None => crate::Settings::default(),
         };
         settings.validate()?;
-        for (name, m) in [
-            ("projectionInverse", &info.projection_inverse),
-            ("reprojectionMatrix", &info.reprojection_matrix),
-            ("viewProjectionInverse", &info.view_projection_inverse),
-        ] {
-            if m.iter().any(|v| !v.is_finite()) {
-                return Err(CallError::Core(crate::Error::NonFinite(name)));
-            }
-        }
         let missing = |name: &str| CallError::InvalidArgument(format!("pCallbacks->{name} is NULL"));
         let guided = info.flags & DNSR_REFERENCE_USE_HIT_DISTANCE != 0;
         let read_hit_distance = if guided {
@@ -140,9 +180,7 @@ pub extern "C" fn dnsr_reference_run_frame(
             None
         };
         let read_hit_mask = cb.read_hit_mask.ok_or_else(|| missing("readHitMask"))?;
-        let read_depth = cb.read_depth.ok_or_else(|| missing("readDepth"))?;
-        let read_normal = cb.read_normal.ok_or_else(|| missing("readNormal"))?;
-        let read_velocity = cb.read_velocity.ok_or_else(|| missing("readVelocity"))?;
+        let raw = RawInputs::read(info, cb)?;
         let reset = info.flags & DNSR_REFERENCE_RESET != 0;
         let previous = if reset {
             None
@@ -178,13 +216,9 @@ pub extern "C" fn dnsr_reference_run_frame(
         for y in 0..h {
             for x in 0..w {
                 let i = (y * w + x) as usize;
-                let (mut rgb, mut xy) = ([0f32; 3], [0f32; 2]);
-                unsafe {
-                    f.depth[i] = read_depth(user, x, y) as f64;
-                    read_normal(user, x, y, rgb.as_mut_ptr());
-                    read_velocity(user, x, y, xy.as_mut_ptr());
-                }
-                f.normals[i] = decode_normal(DVec3::from_array(rgb.map(|v| v as f64)), mul, add);
+                let (rgb, xy) = (raw.normals[i], raw.velocity[i]);
+                f.depth[i] = raw.depth[i] as f64;
+                f.normals[i] = decode_normal(DVec3::new(rgb[0] as f64, rgb[1] as f64, rgb[2] as f64), mul, add);
                 f.velocity[i] = DVec2::new(xy[0] as f64, xy[1] as f64) * scale;
                 if let Some(read) = read_hit_distance {
                     f.hit_distance[i] = unsafe { read(user, x, y) } as f64;
@@ -233,6 +267,101 @@ pub extern "C" fn dnsr_reference_run_frame(
                 }
             }
         }
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// What a diagnosis found.
+pub type DnsrDiagnosisKind = u32;
+/// Motion vectors point the wrong way (`value`: the factor on motionVectorScale that fits the camera motion).
+pub const DNSR_DIAGNOSIS_VELOCITY_SIGN: DnsrDiagnosisKind = 0;
+/// Motion vectors are scaled wrongly (`value`: the factor on motionVectorScale that fits the camera motion).
+pub const DNSR_DIAGNOSIS_VELOCITY_SCALE: DnsrDiagnosisKind = 1;
+/// Normals are not unit length after normalsUnpackMul/Add (`value`: their mean length).
+pub const DNSR_DIAGNOSIS_NORMALS_NOT_UNIT: DnsrDiagnosisKind = 2;
+/// The depth-inverted flag contradicts projectionInverse or the depth buffer (`value`: 0).
+pub const DNSR_DIAGNOSIS_DEPTH_CONVENTION: DnsrDiagnosisKind = 3;
+/// projectionInverse and viewProjectionInverse/eye describe different cameras (`value`: the largest relative
+/// difference of view distances).
+pub const DNSR_DIAGNOSIS_MATRICES_INCONSISTENT: DnsrDiagnosisKind = 4;
+/// Forces 32 bits.
+pub const DNSR_DIAGNOSIS_MAX_ENUM: DnsrDiagnosisKind = 0x7FFF_FFFF;
+
+/// Capacity of DnsrDiagnosis::message, NUL included.
+pub const DNSR_DIAGNOSIS_MESSAGE_SIZE: u32 = 512;
+/// Most diagnoses one call can report (one per kind, with room to grow): an array this long receives all.
+pub const DNSR_MAX_DIAGNOSES: u32 = 8;
+
+/// One likely integration mistake.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct DnsrDiagnosis {
+    /// DNSR_DIAGNOSIS_*.
+    pub kind: DnsrDiagnosisKind,
+    /// The measured number the kind names (see each DNSR_DIAGNOSIS_* value).
+    pub value: f64,
+    /// What is wrong and what to change, in words, with C field names; NUL-terminated (truncated to fit).
+    pub message: [std::ffi::c_char; 512],
+}
+
+/// Looks at one frame of the engine's inputs (depth, normals and motion vectors through `pCallbacks`' readDepth,
+/// readNormal and readVelocity; the others are not called) with its dispatch constants (`pInfo`: the motion
+/// vector scale, the normal unpack, the matrices, the eye and DNSR_REFERENCE_DEPTH_INVERTED; pSettings and the
+/// other flags are not read) for the mistakes integrations make: motion vectors of the wrong sign or scale (needs
+/// a frame whose camera moved), normals that do not unpack to unit length, a depth-inverted flag that contradicts
+/// the projection or the depth buffer, matrices of different cameras.
+/// `*pDiagnosisCount` is the capacity of `pDiagnoses` on entry and the number written on return (with
+/// `pDiagnoses` NULL: the number found). DNSR_MAX_DIAGNOSES entries always suffice. No finding: count 0.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_reference_diagnose(
+    p_info: *const DnsrReferenceFrameInfo,
+    p_callbacks: *const DnsrReferenceCallbacks,
+    p_diagnosis_count: *mut u32,
+    p_diagnoses: *mut DnsrDiagnosis,
+) -> DnsrResult {
+    use crate::reference::diagnostics::{diagnose, Diagnosis, HostFrame};
+    guard(|_| {
+        // SAFETY: a non-null count points at a u32 the caller owns.
+        let count = unsafe { p_diagnosis_count.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pDiagnosisCount is NULL".into()))?;
+        let (info, cb) = checked(p_info, p_callbacks)?;
+        let raw = RawInputs::read(info, cb)?;
+        let frame = HostFrame {
+            width: info.width,
+            height: info.height,
+            depth: &raw.depth,
+            normals: &raw.normals,
+            velocity: &raw.velocity,
+            motion_vector_scale: info.motion_vector_scale,
+            normals_unpack: [info.normals_unpack_mul, info.normals_unpack_add],
+            projection_inverse: mat(&info.projection_inverse),
+            reprojection: mat(&info.reprojection_matrix),
+            view_projection_inverse: mat(&info.view_projection_inverse),
+            eye: DVec3::from_array(info.eye.map(|v| v as f64)),
+            depth_inverted: info.flags & DNSR_REFERENCE_DEPTH_INVERTED != 0,
+        };
+        let found = diagnose(&frame);
+        if p_diagnoses.is_null() {
+            *count = found.len() as u32;
+            return Ok(DnsrResult::DNSR_SUCCESS);
+        }
+        let written = found.len().min(*count as usize);
+        for (k, d) in found.iter().take(written).enumerate() {
+            let (kind, value) = match d {
+                Diagnosis::VelocitySign { factor, .. } => (DNSR_DIAGNOSIS_VELOCITY_SIGN, *factor),
+                Diagnosis::VelocityScale { factor, .. } => (DNSR_DIAGNOSIS_VELOCITY_SCALE, *factor),
+                Diagnosis::NormalsNotUnit { mean_length, .. } => (DNSR_DIAGNOSIS_NORMALS_NOT_UNIT, *mean_length),
+                Diagnosis::DepthConvention { .. } => (DNSR_DIAGNOSIS_DEPTH_CONVENTION, 0.0),
+                Diagnosis::MatricesInconsistent { relative_error } => (DNSR_DIAGNOSIS_MATRICES_INCONSISTENT, *relative_error),
+            };
+            let mut out = DnsrDiagnosis { kind, value, message: [0; 512] };
+            let text = super::boundary::c_names(&d.to_string());
+            for (dst, &b) in out.message.iter_mut().zip(text.as_bytes().iter().take(511)) {
+                *dst = b as std::ffi::c_char;
+            }
+            // SAFETY: the caller's array holds at least *count entries.
+            unsafe { p_diagnoses.add(k).write(out) };
+        }
+        *count = written as u32;
         Ok(DnsrResult::DNSR_SUCCESS)
     })
 }

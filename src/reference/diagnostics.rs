@@ -76,7 +76,7 @@ impl std::fmt::Display for Diagnosis {
             Diagnosis::VelocitySign { factor, error } => write!(
                 f,
                 "motion vectors point the wrong way: with motion_vector_scale multiplied by {factor} they match the \
-                 camera motion (mean uv error {:.2e} instead of {:.2e}); dnsr expects prev_uv = uv + v * scale",
+                 camera motion (mean uv error {:.2e} instead of {:.2e}); dnsr expects previous uv = uv + v * scale",
                 error[1], error[0]
             ),
             Diagnosis::VelocityScale { factor, error } => write!(

@@ -33,6 +33,8 @@ const USAGE: &str = "usage: dnsr-bench [options]
   --copy-runs N               timed runs of the copy kernel, median reported (default 10)
   --out DIR                   where bench.json and bench.md go (default out/bench)
   --validation                enable the Vulkan validation layer; any message fails the run (exit 1)
+  --no-push-descriptors       dnsr's descriptor-set path even where VK_KHR_push_descriptor is enabled (what the
+                              FidelityFX layer records: it cannot know whether the engine enabled the extension)
 
 The device is the first whose name contains $DNSR_DEVICE (any device when unset). The commit recorded is
 $DNSR_COMMIT, else `git rev-parse HEAD` of the working directory.";
@@ -90,6 +92,7 @@ struct Options {
     out: PathBuf,
     validation: bool,
     light_angle: Option<f32>,
+    push_descriptors: bool,
 }
 
 fn parse_args() -> Options {
@@ -106,6 +109,7 @@ fn parse_args() -> Options {
         out: PathBuf::from("out/bench"),
         validation: false,
         light_angle: None,
+        push_descriptors: true,
     };
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
@@ -122,6 +126,7 @@ fn parse_args() -> Options {
             "--copy-runs" => o.copy_runs = number(args.next(), "--copy-runs", 1),
             "--out" => o.out = PathBuf::from(args.next().unwrap_or_else(|| usage("--out needs a directory"))),
             "--validation" => o.validation = true,
+            "--no-push-descriptors" => o.push_descriptors = false,
             "--light-angle" => {
                 let v = args.next().and_then(|v| v.parse::<f32>().ok());
                 o.light_angle = Some(v.unwrap_or_else(|| usage("--light-angle needs an angle in radians")));
@@ -145,7 +150,10 @@ fn main() {
     let opts = parse_args();
     let started = Instant::now();
     let date = utc(std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs()));
-    let gpu = Gpu::new(GpuOptions { validation: opts.validation, ..Default::default() });
+    let mut gpu = Gpu::new(GpuOptions { validation: opts.validation, ..Default::default() });
+    if !opts.push_descriptors {
+        gpu.features.push_descriptor = false;
+    }
     let device = DeviceInfo::query(&gpu);
     eprintln!("dnsr-bench: {} (Vulkan {}, driver {})", device.name, device.api_version, device.driver());
 

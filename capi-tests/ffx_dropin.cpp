@@ -17,7 +17,7 @@
 #include <FidelityFX/host/backends/vk/ffx_vk.h>
 #include <FidelityFX/host/ffx_denoiser.h>
 
-#include "host.h"
+#include "ffx_host.h"
 
 #include <cmath>
 #include <cstddef>
@@ -86,19 +86,6 @@ static HostBuffer readback;
     } while (0)
 static int cases = 0;
 
-static FfxResource resource(const HostImage &img, FfxResourceStates state, const wchar_t *name)
-{
-    VkImageCreateInfo info = {};
-    info.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
-    info.imageType = VK_IMAGE_TYPE_2D;
-    info.format = img.format;
-    info.extent = {img.width, img.height, 1};
-    info.mipLevels = 1;
-    info.arrayLayers = 1;
-    info.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
-    return ffxGetResourceVK((void *)img.image, ffxGetImageResourceDescriptionVK(img.image, info), name, state);
-}
-
 // The dispatch as the SDK's sample fills it (states and unpack values included), for a still camera.
 static Dispatch ffx_dispatch(VkCommandBuffer cmd, uint32_t frame, const HostImage &out = outFfx)
 {
@@ -124,17 +111,7 @@ static Dispatch ffx_dispatch(VkCommandBuffer cmd, uint32_t frame, const HostImag
 // The same frame through dnsr.h: the FidelityFX settings are a fresh context's defaults.
 static DnsrShadowsDispatch native_dispatch(VkCommandBuffer cmd, uint32_t frame)
 {
-    DnsrShadowsDispatch d;
-    std::memset(&d, 0, sizeof d);
-    d.sType = DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH;
-    d.commandBuffer = cmd;
-    d.hitMaskConvention = DNSR_HIT_MASK_OCCLUDED_BITS;
-    d.hitMask = host_image_desc(&mask);
-    d.depth = host_image_desc(&depth);
-    d.velocity = host_image_desc(&velocity);
-    d.normals = host_image_desc(&normals);
-    d.output = host_image_desc(&outNative);
-    host_dispatch_neutral(&d);
+    DnsrShadowsDispatch d = host_dispatch(cmd, &mask, &depth, &velocity, &normals, &outNative);
     d.normalsUnpackMul = 2.0f;
     d.normalsUnpackAdd = -1.0f;
     d.frameIndex = frame;

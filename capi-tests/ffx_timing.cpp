@@ -12,7 +12,7 @@
 #include <FidelityFX/host/backends/vk/ffx_vk.h>
 #include <FidelityFX/host/ffx_denoiser.h>
 
-#include "host.h"
+#include "ffx_host.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -31,19 +31,6 @@ static double median(std::vector<double> v)
 {
     std::sort(v.begin(), v.end());
     return v[v.size() / 2];
-}
-
-static FfxResource resource(const HostImage &img, FfxResourceStates state)
-{
-    VkImageCreateInfo info = {};
-    info.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
-    info.imageType = VK_IMAGE_TYPE_2D;
-    info.format = img.format;
-    info.extent = {img.width, img.height, 1};
-    info.mipLevels = 1;
-    info.arrayLayers = 1;
-    info.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
-    return ffxGetResourceVK((void *)img.image, ffxGetImageResourceDescriptionVK(img.image, info), L"", state);
 }
 
 static void identity(float *m)
@@ -137,11 +124,11 @@ int main(int argc, char **argv)
     double ffxMs = time_frames(timer, frames, [&](VkCommandBuffer cmd, uint32_t frame) {
         FfxDenoiserShadowsDispatchDescription d = {};
         d.commandList = ffxGetCommandListVK(cmd);
-        d.hitMaskResults = resource(mask, FFX_RESOURCE_STATE_GENERIC_READ);
-        d.depth = resource(depth, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ);
-        d.velocity = resource(velocity, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ);
-        d.normal = resource(normals, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ);
-        d.shadowMaskOutput = resource(outFfx, FFX_RESOURCE_STATE_UNORDERED_ACCESS);
+        d.hitMaskResults = resource(mask, FFX_RESOURCE_STATE_GENERIC_READ, L"");
+        d.depth = resource(depth, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ, L"");
+        d.velocity = resource(velocity, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ, L"");
+        d.normal = resource(normals, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ, L"");
+        d.shadowMaskOutput = resource(outFfx, FFX_RESOURCE_STATE_UNORDERED_ACCESS, L"");
         d.motionVectorScale[0] = d.motionVectorScale[1] = 1.0f;
         d.normalsUnpackMul = 2.0f, d.normalsUnpackAdd = -1.0f;
         identity(d.projectionInverse), identity(d.reprojectionMatrix), identity(d.viewProjectionInverse);
@@ -162,17 +149,7 @@ int main(int argc, char **argv)
         DnsrContext ctx = nullptr;
         DNSR_CHECK(dnsr_context_create(&info, &ctx));
         nativeMs[push] = time_frames(timer, frames, [&](VkCommandBuffer cmd, uint32_t frame) {
-            DnsrShadowsDispatch d;
-            std::memset(&d, 0, sizeof d);
-            d.sType = DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH;
-            d.commandBuffer = cmd;
-            d.hitMaskConvention = DNSR_HIT_MASK_OCCLUDED_BITS;
-            d.hitMask = host_image_desc(&mask);
-            d.depth = host_image_desc(&depth);
-            d.velocity = host_image_desc(&velocity);
-            d.normals = host_image_desc(&normals);
-            d.output = host_image_desc(&outNative);
-            host_dispatch_neutral(&d);
+            DnsrShadowsDispatch d = host_dispatch(cmd, &mask, &depth, &velocity, &normals, &outNative);
             d.normalsUnpackMul = 2.0f, d.normalsUnpackAdd = -1.0f;
             d.sync.inputSrcStages = d.sync.outputDstStages = VK_PIPELINE_STAGE_ALL_COMMANDS_BIT;
             d.sync.inputSrcAccess = VK_ACCESS_MEMORY_WRITE_BIT;

@@ -260,17 +260,7 @@ static void upload_mask(uint32_t bits)
 
 static DnsrShadowsDispatch dispatch(VkCommandBuffer cmd, uint32_t frame)
 {
-    DnsrShadowsDispatch d;
-    memset(&d, 0, sizeof d);
-    d.sType = DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH;
-    d.commandBuffer = cmd;
-    d.hitMaskConvention = DNSR_HIT_MASK_OCCLUDED_BITS;
-    d.hitMask = host_image_desc(&mask);
-    d.depth = host_image_desc(&depth);
-    d.velocity = host_image_desc(&velocity);
-    d.normals = host_image_desc(&normals);
-    d.output = host_image_desc(&output);
-    host_dispatch_neutral(&d);
+    DnsrShadowsDispatch d = host_dispatch(cmd, &mask, &depth, &velocity, &normals, &output);
     d.frameIndex = frame;
     return d;
 }

@@ -445,6 +445,23 @@ void host_dispatch_neutral(DnsrShadowsDispatch *d)
     d->sync.outputDstAccess = VK_ACCESS_TRANSFER_READ_BIT;
 }
 
+DnsrShadowsDispatch host_dispatch(VkCommandBuffer cmd, const HostImage *mask, const HostImage *depth, const HostImage *velocity,
+                                  const HostImage *normals, const HostImage *output)
+{
+    DnsrShadowsDispatch d;
+    memset(&d, 0, sizeof d);
+    d.sType = DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH;
+    d.commandBuffer = cmd;
+    d.hitMaskConvention = DNSR_HIT_MASK_OCCLUDED_BITS;
+    d.hitMask = host_image_desc(mask);
+    d.depth = host_image_desc(depth);
+    d.velocity = host_image_desc(velocity);
+    d.normals = host_image_desc(normals);
+    d.output = host_image_desc(output);
+    host_dispatch_neutral(&d);
+    return d;
+}
+
 size_t host_image_bytes(const HostImage *img)
 {
     return (size_t)img->width * img->height * img->texelBytes;

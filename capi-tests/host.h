@@ -136,6 +136,9 @@ size_t host_image_bytes(const HostImage *img);
 /* The scene-independent fields of a dispatch the tests share: unit motion-vector scale, normals stored as-is,
  * identity matrices, depth sigma 1, inputs written and output read by transfers. */
 void host_dispatch_neutral(DnsrShadowsDispatch *d);
+/* A dispatch of five host images (an OCCLUDED_BITS hit mask) into `cmd`, with host_dispatch_neutral's constants. */
+DnsrShadowsDispatch host_dispatch(VkCommandBuffer cmd, const HostImage *mask, const HostImage *depth, const HostImage *velocity,
+                                  const HostImage *normals, const HostImage *output);
 
 void host_buffer_create(Host *h, HostBuffer *b, VkDeviceSize size);
 void host_buffer_destroy(Host *h, HostBuffer *b);

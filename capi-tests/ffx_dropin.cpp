@@ -86,26 +86,9 @@ static HostBuffer readback;
     } while (0)
 static int cases = 0;
 
-// The dispatch as the SDK's sample fills it (states and unpack values included), for a still camera.
 static Dispatch ffx_dispatch(VkCommandBuffer cmd, uint32_t frame, const HostImage &out = outFfx)
 {
-    Dispatch d = {};
-    d.commandList = ffxGetCommandListVK(cmd);
-    d.hitMaskResults = resource(mask, FFX_RESOURCE_STATE_GENERIC_READ, L"FidelityFX_ShadowDenoiser_RayHit");
-    d.depth = resource(depth, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ, L"FidelityFX_ShadowDenoiser_InputDepth");
-    d.velocity = resource(velocity, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ, L"FidelityFX_ShadowDenoiser_InputVelocity");
-    d.normal = resource(normals, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ, L"FidelityFX_ShadowDenoiser_InputNormals");
-    d.shadowMaskOutput = resource(out, FFX_RESOURCE_STATE_UNORDERED_ACCESS, L"FidelityFX_ShadowDenoiser_ShadowMaskOutput");
-    d.motionVectorScale[0] = d.motionVectorScale[1] = 1.0f;
-    d.normalsUnpackMul = 2.0f;
-    d.normalsUnpackAdd = -1.0f;
-    for (int i = 0; i < 16; i++) {
-        float v = (i % 5 == 0) ? 1.0f : 0.0f;
-        d.projectionInverse[i] = d.reprojectionMatrix[i] = d.viewProjectionInverse[i] = v;
-    }
-    d.frameIndex = frame;
-    d.depthSimilaritySigma = 1.0f;
-    return d;
+    return sample_dispatch(cmd, frame, mask, depth, velocity, normals, out);
 }
 
 // The same frame through dnsr.h: the FidelityFX settings are a fresh context's defaults.

@@ -33,11 +33,6 @@ static double median(std::vector<double> v)
     return v[v.size() / 2];
 }
 
-static void identity(float *m)
-{
-    for (int i = 0; i < 16; i++) m[i] = (i % 5 == 0) ? 1.0f : 0.0f;
-}
-
 // Records `record` between two timestamps `frames` times (one submit each) and returns the median GPU ms.
 template <typename F> static double time_frames(Timer &t, int frames, F record)
 {
@@ -122,18 +117,7 @@ int main(int argc, char **argv)
     std::vector<FfxDenoiserContext> ffx(1);
     CHECK(ffxDenoiserContextCreate(ffx.data(), &desc) == FFX_OK, "%s", dnsr_last_error_message());
     double ffxMs = time_frames(timer, frames, [&](VkCommandBuffer cmd, uint32_t frame) {
-        FfxDenoiserShadowsDispatchDescription d = {};
-        d.commandList = ffxGetCommandListVK(cmd);
-        d.hitMaskResults = resource(mask, FFX_RESOURCE_STATE_GENERIC_READ, L"");
-        d.depth = resource(depth, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ, L"");
-        d.velocity = resource(velocity, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ, L"");
-        d.normal = resource(normals, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ, L"");
-        d.shadowMaskOutput = resource(outFfx, FFX_RESOURCE_STATE_UNORDERED_ACCESS, L"");
-        d.motionVectorScale[0] = d.motionVectorScale[1] = 1.0f;
-        d.normalsUnpackMul = 2.0f, d.normalsUnpackAdd = -1.0f;
-        identity(d.projectionInverse), identity(d.reprojectionMatrix), identity(d.viewProjectionInverse);
-        d.frameIndex = frame;
-        d.depthSimilaritySigma = 1.0f;
+        FfxDenoiserShadowsDispatchDescription d = sample_dispatch(cmd, frame, mask, depth, velocity, normals, outFfx);
         CHECK(ffxDenoiserContextDispatchShadows(ffx.data(), &d) == FFX_OK, "%s", dnsr_last_error_message());
     });
     CHECK(ffxDenoiserContextDestroy(ffx.data()) == FFX_OK, "%s", dnsr_last_error_message());

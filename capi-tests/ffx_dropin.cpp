@@ -9,6 +9,8 @@
  *   - frames: six frames of a 37x23 mask (four noisy, two all lit) through the FFX API equal, bit for bit, the same
  *     frames through dnsr.h with the FidelityFX settings (DNSR_PRESET_BALANCED, a fresh context's); a second FFX
  *     context writing the sample's RGBA8 output holds the same values, rounded, in every channel;
+ *   - the depth buffer itself (D32_SFLOAT, reverse-Z, FFX_DENOISER_ENABLE_DEPTH_INVERTED) equals dnsr.h with
+ *     DNSR_CONTEXT_CREATE_DEPTH_INVERTED on it;
  *   - misuse the SDK does not catch (NULL pointers, a destroyed or never-created context, the reflections flag, an
  *     output format dnsr cannot write, a NULL image, a scratch buffer too small, an interface not from
  *     ffxGetInterfaceVK): each a specific FfxErrorCode with a message, nothing recorded;
@@ -64,7 +66,7 @@ static_assert(FFX_SDK_MAKE_VERSION(1, 1, 4) == 0x401004, "");
 #define TILES_Y ((H + 3u) / 4u)
 
 static Host host;
-static HostImage mask, depth, velocity, normals, outFfx, outFfx8, outNative;
+static HostImage mask, depth, depthBuffer, velocity, velocityVarying, normals, outFfx, outFfx8, outNative;
 static HostBuffer readback;
 
 // FFX_OK, or fail the test with the call, the code and dnsr's message.
@@ -200,6 +202,45 @@ static void frames_match_native(void)
     DNSR_CHECK(dnsr_context_destroy(native));
 }
 
+// The depth buffer itself (D32_SFLOAT, described by ffxGetImageResourceDescriptionVK with DEPTHTARGET usage, where
+// the SDK needed an R32_FLOAT copy), reverse-Z, with FFX_DENOISER_ENABLE_DEPTH_INVERTED: equal to dnsr.h with
+// DNSR_CONTEXT_CREATE_DEPTH_INVERTED on the same image. Odd columns move 2 px, even ones stay: each 2x2 quad takes
+// the motion of its closest pixel, which only the depth-inverted flag identifies (without it the outputs differ).
+static void depth_buffer_reverse_z(void)
+{
+    Integration in;
+    integrate(in, FFX_DENOISER_SHADOWS | FFX_DENOISER_ENABLE_DEPTH_INVERTED);
+    DnsrContextCreateInfo info = host_create_info(&host, W, H);
+    info.flags |= DNSR_CONTEXT_CREATE_DEPTH_INVERTED;
+    DnsrContext native = nullptr;
+    DNSR_CHECK(dnsr_context_create(&info, &native));
+    std::vector<float> a, b;
+    for (uint32_t frame = 0; frame < 3; frame++) {
+        upload_mask(frame + 10, false);
+        VkCommandBuffer cmd = host_begin(&host);
+        host_cmd_full_barrier(cmd);
+        Dispatch fd = ffx_dispatch(cmd, frame);
+        fd.depth = resource(depthBuffer, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ, L"depth buffer");
+        fd.velocity = resource(velocityVarying, FFX_RESOURCE_STATE_PIXEL_COMPUTE_READ, L"velocity");
+        CHECK(fd.depth.description.usage & FFX_RESOURCE_USAGE_DEPTHTARGET, "D32_SFLOAT not described as a depth target");
+        FFX_CHECK(ffxDenoiserContextDispatchShadows(in.context.get(), &fd));
+        DnsrShadowsDispatch nd = native_dispatch(cmd, frame);
+        nd.depth = host_image_desc(&depthBuffer);
+        nd.velocity = host_image_desc(&velocityVarying);
+        DNSR_CHECK(dnsr_shadows_record(native, &nd));
+        host_submit(&host, cmd);
+        read_output(outFfx, a);
+        read_output(outNative, b);
+        for (uint32_t i = 0; i < W * H; i++) {
+            CHECK(a[i] == b[i], "reverse-Z frame %u: FFX API %.9g, dnsr.h %.9g at (%u, %u)", frame, a[i], b[i], i % W, i / W);
+        }
+    }
+    std::printf("depth buffer, reverse-Z: FFX API == dnsr.h on 3 frames\n");
+    host_expect_clean(&host, "reverse-Z");
+    FFX_CHECK(ffxDenoiserContextDestroy(in.context.get()));
+    DNSR_CHECK(dnsr_context_destroy(native));
+}
+
 static void misuse(void)
 {
     Integration in;
@@ -269,6 +310,8 @@ int main(void)
     VkImageLayout read = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     host_image_create(&host, &mask, VK_FORMAT_R32_UINT, TILES_X, TILES_Y, VK_IMAGE_LAYOUT_GENERAL);
     host_image_create(&host, &depth, VK_FORMAT_R32_SFLOAT, W, H, read);
+    host_image_create(&host, &depthBuffer, VK_FORMAT_D32_SFLOAT, W, H, read);
+    host_image_create(&host, &velocityVarying, VK_FORMAT_R32G32_SFLOAT, W, H, read);
     host_image_create(&host, &velocity, VK_FORMAT_R16G16_SFLOAT, W, H, read);
     host_image_create(&host, &normals, VK_FORMAT_R8G8B8A8_UNORM, W, H, read);
     host_image_create(&host, &outFfx, VK_FORMAT_R32_SFLOAT, W, H, VK_IMAGE_LAYOUT_GENERAL);
@@ -284,14 +327,20 @@ int main(void)
         normalData[4 * i + 2] = 255;
     }
     host_upload(&host, &depth, depthData.data(), depthData.size() * sizeof(float));
+    for (float &d : depthData) d = 1.0f - d; /* the same surfaces in reverse-Z */
+    std::vector<float> varying(W * H * 2, 0.0f);
+    for (uint32_t i = 0; i < W * H; i++) varying[2 * i] = (i % W) % 2 ? 2.0f / W : 0.0f;
+    host_upload(&host, &velocityVarying, varying.data(), varying.size() * sizeof(float));
+    host_upload(&host, &depthBuffer, depthData.data(), depthData.size() * sizeof(float));
     host_upload(&host, &velocity, velocityData.data(), velocityData.size() * sizeof(uint16_t));
     host_upload(&host, &normals, normalData.data(), normalData.size());
 
     frames_match_native();
+    depth_buffer_reverse_z();
     misuse();
 
     host_buffer_destroy(&host, &readback);
-    for (HostImage *img : {&mask, &depth, &velocity, &normals, &outFfx, &outFfx8, &outNative}) host_image_destroy(&host, img);
+    for (HostImage *img : {&mask, &depth, &depthBuffer, &velocity, &velocityVarying, &normals, &outFfx, &outFfx8, &outNative}) host_image_destroy(&host, img);
     host_destroy(&host);
     std::printf("ffx_dropin: layout, versions, 6 frames equal to dnsr.h (R32F and RGBA8 outputs), %d misuse cases refused\n", cases);
     return 0;

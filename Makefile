@@ -89,7 +89,8 @@ clean:
 
 # Installs the C library: libdnsr.so.<version> (soname libdnsr.so.<abi>, plus the libdnsr.so.<abi> and
 # libdnsr.so links), libdnsr.a, dnsr.h, the FidelityFX compatibility headers (include/dnsr-ffx), dnsr.pc for
-# pkg-config and a CMake package (find_package(dnsr) -> dnsr::dnsr, and dnsr::ffx for FFX integrations). `make install PREFIX=$HOME/.local`, or for packaging `make install PREFIX=/usr DESTDIR=$pkgdir`.
+# pkg-config, a CMake package (find_package(dnsr) -> dnsr::dnsr, and dnsr::ffx for FFX integrations) and the
+# shader sources (share/dnsr/shaders, for engines compiling the passes with their own callbacks). `make install PREFIX=$HOME/.local`, or for packaging `make install PREFIX=/usr DESTDIR=$pkgdir`.
 # `make uninstall` (same PREFIX/LIBDIR/INCLUDEDIR/DESTDIR) removes exactly those files.
 PREFIX ?= /usr/local
 LIBDIR ?= $(PREFIX)/lib
@@ -105,6 +106,9 @@ DNSR_TARGET_DIR := $(or $(CARGO_TARGET_DIR),target)
 DNSR_CMAKEDIR := $(LIBDIR)/cmake/dnsr
 DNSR_TEMPLATES := capi-tests/install/templates
 DNSR_FFX_HEADERS := $(wildcard include/ffx/FidelityFX/host/*.h)
+DNSR_SHADER_SOURCES := $(wildcard shaders/*.glsl shaders/*.comp)
+DATADIR ?= $(PREFIX)/share
+DNSR_SHADERDIR := $(DATADIR)/dnsr/shaders
 # Template substitutions; in dnsr.pc, libdir and includedir are written relative to ${prefix} when under it.
 DNSR_SED := -e 's|@VERSION@|$(DNSR_VERSION)|g' -e 's|@ABI@|$(DNSR_ABI)|g' \
 	-e 's|@PREFIX@|$(PREFIX)|g' \
@@ -129,6 +133,10 @@ install:
 	install -d '$(DESTDIR)$(INCLUDEDIR)/dnsr-ffx/FidelityFX/host/backends/vk'
 	install -m 644 $(DNSR_FFX_HEADERS) '$(DESTDIR)$(INCLUDEDIR)/dnsr-ffx/FidelityFX/host'
 	install -m 644 include/ffx/FidelityFX/host/backends/vk/ffx_vk.h '$(DESTDIR)$(INCLUDEDIR)/dnsr-ffx/FidelityFX/host/backends/vk'
+	@# The shader sources, for engines that compile the passes against their own callbacks (docs/callbacks.md).
+	install -d '$(DESTDIR)$(DNSR_SHADERDIR)/generated'
+	install -m 644 $(DNSR_SHADER_SOURCES) '$(DESTDIR)$(DNSR_SHADERDIR)'
+	install -m 644 shaders/generated/dnsr_constants.glsl '$(DESTDIR)$(DNSR_SHADERDIR)/generated'
 	sed $(DNSR_SED) $(DNSR_TEMPLATES)/dnsr.pc.in > '$(DESTDIR)$(LIBDIR)/pkgconfig/dnsr.pc'
 	sed $(DNSR_SED) $(DNSR_TEMPLATES)/dnsrConfig.cmake.in > '$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfig.cmake'
 	sed $(DNSR_SED) $(DNSR_TEMPLATES)/dnsrConfigVersion.cmake.in > '$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfigVersion.cmake'
@@ -143,4 +151,7 @@ uninstall:
 	rm -f $(addprefix '$(DESTDIR)$(INCLUDEDIR)/dnsr-ffx/FidelityFX/host/,$(addsuffix ',$(notdir $(DNSR_FFX_HEADERS)))) \
 		'$(DESTDIR)$(INCLUDEDIR)/dnsr-ffx/FidelityFX/host/backends/vk/ffx_vk.h'
 	rmdir -p '$(DESTDIR)$(INCLUDEDIR)/dnsr-ffx/FidelityFX/host/backends/vk' 2>/dev/null || true
+	rm -f $(addprefix '$(DESTDIR)$(DNSR_SHADERDIR)/,$(addsuffix ',$(notdir $(DNSR_SHADER_SOURCES)))) \
+		'$(DESTDIR)$(DNSR_SHADERDIR)/generated/dnsr_constants.glsl'
+	rmdir -p '$(DESTDIR)$(DNSR_SHADERDIR)/generated' 2>/dev/null || true
 	rmdir '$(DESTDIR)$(DNSR_CMAKEDIR)' 2>/dev/null || true

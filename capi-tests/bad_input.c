@@ -203,6 +203,29 @@ static void create_calls(void)
                 info.outputFormat = VK_FORMAT_B8G8R8A8_UNORM);
     CREATE_CASE("create: UNDEFINED output format", DNSR_ERROR_UNSUPPORTED_FORMAT, "output image format",
                 info.outputFormat = VK_FORMAT_UNDEFINED);
+    /* Shader overrides: checked before anything is created. */
+    static const uint32_t not_spirv[4] = {0x6e697323u, 0x6564756cu, 0u, 0u};
+    DnsrShaderOverride overrides[2] = {{"filter_final_r32f", not_spirv, sizeof not_spirv},
+                                       {"filter_final_r99", not_spirv, sizeof not_spirv}};
+    CREATE_CASE("create: shader override that is not SPIR-V", DNSR_ERROR_SHADER_INTERFACE, "is not SPIR-V",
+                info.shaderOverrideCount = 1; info.pShaderOverrides = &overrides[0]);
+    CREATE_CASE("create: shader override of an unknown variant", DNSR_ERROR_SHADER_INTERFACE, "filter_final_r99",
+                info.shaderOverrideCount = 1; info.pShaderOverrides = &overrides[1]);
+    CREATE_CASE("create: shaderOverrideCount without pShaderOverrides", DNSR_ERROR_INVALID_ARGUMENT, "pShaderOverrides",
+                info.shaderOverrideCount = 2);
+    DnsrShaderOverride odd = {"filter_final_r32f", not_spirv, 6};
+    CREATE_CASE("create: shader override of 6 bytes", DNSR_ERROR_INVALID_ARGUMENT, "codeSize",
+                info.shaderOverrideCount = 1; info.pShaderOverrides = &odd);
+    {
+        uint32_t n = 0;
+        expect("dnsr_get_shader_variants: NULL count", dnsr_get_shader_variants(NULL, NULL), DNSR_ERROR_INVALID_ARGUMENT, "pCount");
+        CHECK(dnsr_get_shader_variants(&n, NULL) == DNSR_SUCCESS && n > 10, "dnsr_get_shader_variants count %u", n);
+        DnsrShaderVariantInfo first;
+        n = 1;
+        CHECK(dnsr_get_shader_variants(&n, &first) == DNSR_SUCCESS && n == 1 && strcmp(first.pName, "prepare") == 0 &&
+                  strcmp(first.pSource, "prepare.comp") == 0,
+              "dnsr_get_shader_variants first entry");
+    }
     CREATE_CASE("create: filterPasses 0", DNSR_ERROR_INVALID_SETTING, "filterPasses", settings.filterPasses = 0);
     CREATE_CASE("create: filterPasses 5", DNSR_ERROR_INVALID_SETTING, "filterPasses", settings.filterPasses = 5);
     CREATE_CASE("create: NaN disocclusion threshold", DNSR_ERROR_INVALID_SETTING, "disocclusionThresholdFacing",

@@ -199,6 +199,24 @@ typedef int32_t DnsrResult;
 typedef struct DnsrContext_T DnsrContext_T;
 
 /**
+ * A pass variant an engine may compile (dnsr_get_shader_variants). The strings are static.
+ */
+typedef struct DnsrShaderVariantInfo {
+  /**
+   * The name a DnsrShaderOverride gives.
+   */
+  const char *pName;
+  /**
+   * Its entry file under dnsr's shader sources (installed in share/dnsr/shaders).
+   */
+  const char *pSource;
+  /**
+   * Its preprocessor definitions, space-separated, each passed to glslc as -D<definition>.
+   */
+  const char *pDefines;
+} DnsrShaderVariantInfo;
+
+/**
  * Structure type tags (`sType`).
  */
 typedef uint32_t DnsrStructureType;
@@ -405,6 +423,24 @@ typedef struct DnsrDebugNameCallback {
 } DnsrDebugNameCallback;
 
 /**
+ * One pass variant's SPIR-V, compiled by the engine.
+ */
+typedef struct DnsrShaderOverride {
+  /**
+   * Required. The variant it replaces, e.g. "tile_classification_r16f" (NUL-terminated).
+   */
+  const char *pVariantName;
+  /**
+   * Required. The SPIR-V module (SPIR-V 1.3: glslc --target-env=vulkan1.1).
+   */
+  const uint32_t *pCode;
+  /**
+   * Size of pCode in bytes (a multiple of 4).
+   */
+  uintptr_t codeSize;
+} DnsrShaderOverride;
+
+/**
  * Everything needed to create a context. Read during `dnsr_context_create` only (callback structs are copied;
  * the function pointers and user data they hold must stay valid until the context is destroyed).
  */
@@ -505,6 +541,17 @@ typedef struct DnsrContextCreateInfo {
    * Optional. Debug names of dnsr's Vulkan objects.
    */
   const struct DnsrDebugNameCallback *pDebugNameCallback;
+  /**
+   * Number of entries in pShaderOverrides (0: dnsr's embedded SPIR-V for every pass).
+   */
+  uint32_t shaderOverrideCount;
+  /**
+   * Optional (with shaderOverrideCount 0). Pass variants the engine compiled against its own callbacks file
+   * (docs/callbacks.md; dnsr_get_shader_variants lists the variants, their entry files and definitions). Read
+   * during dnsr_context_create only. Each is checked against the interface dnsr relies on; a mismatch is
+   * DNSR_ERROR_SHADER_INTERFACE naming the variant and what differs, and nothing is created.
+   */
+  const struct DnsrShaderOverride *pShaderOverrides;
 } DnsrContextCreateInfo;
 
 /**
@@ -1238,6 +1285,14 @@ extern "C" {
  * (the header's) to detect a header/library mismatch.
  */
 uint32_t dnsr_version(void);
+
+/**
+ * The pass variants an engine may compile against its own callbacks file (docs/callbacks.md), for
+ * DnsrContextCreateInfo::pShaderOverrides. `*pCount` is the capacity of `pVariants` on entry and the number
+ * written on return; with `pVariants` NULL it receives the number of variants.
+ */
+DnsrResult dnsr_get_shader_variants(uint32_t *pCount,
+                                    struct DnsrShaderVariantInfo *pVariants);
 
 /**
  * Creates a context. On success writes the handle to `*pContext`; on failure writes NULL (when `pContext` is

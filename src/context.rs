@@ -117,6 +117,23 @@ fn check_features(vk: &Vk, info: &ContextCreateInfo) -> Result<()> {
     Ok(())
 }
 
+/// Every override names a variant once and fits dnsr's interface (checked before anything is created).
+fn check_shader_overrides(overrides: &[crate::ShaderOverride]) -> Result<()> {
+    for (i, o) in overrides.iter().enumerate() {
+        if !crate::shader_variants().any(|v| v.name == o.variant) {
+            return Err(Error::ShaderInterface(format!(
+                "shader override {i} names \"{}\", which is not a dnsr shader variant (shader_variants lists them)",
+                o.variant
+            )));
+        }
+        if overrides[..i].iter().any(|p| p.variant == o.variant) {
+            return Err(Error::ShaderInterface(format!("shader override {i}: \"{}\" is overridden twice", o.variant)));
+        }
+        crate::gpu::shader::check_override(&o.variant, &o.spirv)?;
+    }
+    Ok(())
+}
+
 impl Context {
     /// Creates pipelines and internal state for `info.width` x `info.height`. Every unsupported combination
     /// is reported here rather than at the first dispatch.
@@ -127,6 +144,7 @@ impl Context {
         validate::light_count(info.light_count)?;
         validate::frames_in_flight(info.max_frames_in_flight)?;
         info.settings.validate()?;
+        check_shader_overrides(&info.shader_overrides)?;
         check_features(&vk, info)?;
         let family = validate::queue_family(&vk, info.queue_family_index)?;
         let supported_stages = validate::supported_stages(&vk, &family);
@@ -154,7 +172,7 @@ impl Context {
             supported_stages,
         };
         // On any error below, dropping `ctx` releases what was created so far.
-        let pipelines = ctx.pipelines.insert(ctx.create_pipelines(push.is_some())?);
+        let pipelines = ctx.pipelines.insert(ctx.create_pipelines(push.is_some(), &info.shader_overrides)?);
         let layouts = roles().map(|r| pipelines.for_role(r));
         ctx.binder = Some(Binder::new(&ctx.vk, push, layouts, info.light_count, info.max_frames_in_flight)?);
         ctx.create_sampler_and_constants()?;
@@ -165,7 +183,7 @@ impl Context {
         Ok(ctx)
     }
 
-    fn create_pipelines(&self, push: bool) -> Result<Pipelines> {
+    fn create_pipelines(&self, push: bool, overrides: &[crate::ShaderOverride]) -> Result<Pipelines> {
         let names = [
             prepare::SHADER,
             tile_classification::shader(self.precision, self.output_format).expect("output format checked"),
@@ -176,7 +194,8 @@ impl Context {
         ];
         let mut made: Vec<Pipeline> = Vec::with_capacity(names.len());
         for name in names {
-            match Pipeline::new(&self.vk, name, variant(name).spirv, push) {
+            let spirv = overrides.iter().find(|o| o.variant == name).map_or(variant(name).spirv, |o| &o.spirv[..]);
+            match Pipeline::new(&self.vk, name, spirv, push) {
                 Ok(p) => made.push(p),
                 Err(e) => {
                     made.iter_mut().for_each(|p| p.destroy(&self.vk));

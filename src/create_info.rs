@@ -85,6 +85,21 @@ pub struct ContextCreateInfo {
     pub settings: Settings,
     /// Host allocators and debug names (all optional).
     pub hooks: HostHooks,
+    /// Pass variants the engine compiled itself, against its own callbacks file (docs/callbacks.md); the
+    /// embedded SPIR-V is used for every variant not named here. Each is checked against the interface dnsr
+    /// relies on (entry point, workgroup size, bindings, push constants, specialization constants) before
+    /// anything is created.
+    pub shader_overrides: Vec<ShaderOverride>,
+}
+
+/// One pass variant's SPIR-V, compiled by the engine (see `shader_variants` for the names, entry files and
+/// definitions; compile with `SHADER_COMPILE_ARGS`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ShaderOverride {
+    /// The variant it replaces, e.g. `"tile_classification_r16f"`.
+    pub variant: String,
+    /// The SPIR-V module, as bytes (a multiple of 4, host byte order).
+    pub spirv: Vec<u8>,
 }
 
 impl ContextCreateInfo {
@@ -117,6 +132,7 @@ impl ContextCreateInfo {
             enable_timestamps: false,
             settings: Settings::default(),
             hooks: HostHooks::default(),
+            shader_overrides: Vec::new(),
         }
     }
 }

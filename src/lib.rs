@@ -25,8 +25,10 @@ mod validate;
 pub use ash;
 pub use context::{memory_requirements, Context, MIN_API_VERSION};
 pub use create_info::{
-    ContextCreateInfo, DepthFlags, EnabledFeatures, Precision, DEFAULT_MAX_FRAMES_IN_FLIGHT, MAX_FRAMES_IN_FLIGHT, MAX_LIGHT_COUNT,
+    ContextCreateInfo, DepthFlags, EnabledFeatures, Precision, ShaderOverride, DEFAULT_MAX_FRAMES_IN_FLIGHT, MAX_FRAMES_IN_FLIGHT,
+    MAX_LIGHT_COUNT,
 };
+pub use gpu::shader::{shader_variants, ShaderVariantInfo, SHADER_COMPILE_ARGS};
 pub use dispatch::{DebugView, HitMaskConvention, HostImage, HostSync, Rect, ShadowsDispatch};
 pub use error::{Error, ImageRole, Result};
 pub use glam;

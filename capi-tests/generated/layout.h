@@ -61,7 +61,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrSettings, minShadowSigma) == 76, "offsetof(DnsrS
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, stableHistorySamples) == 80, "offsetof(DnsrSettings, stableHistorySamples)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, historyFlipSamples) == 84, "offsetof(DnsrSettings, historyFlipSamples)");
 
-DNSR_STATIC_ASSERT(sizeof(DnsrContextCreateInfo) == 136, "sizeof(DnsrContextCreateInfo)");
+DNSR_STATIC_ASSERT(sizeof(DnsrContextCreateInfo) == 152, "sizeof(DnsrContextCreateInfo)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrContextCreateInfo) == 8, "alignof(DnsrContextCreateInfo)");
 DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, sType) == 0, "offsetof(DnsrContextCreateInfo, sType)");
 DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, pNext) == 8, "offsetof(DnsrContextCreateInfo, pNext)");
@@ -84,6 +84,20 @@ DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, pAllocationCallbacks) == 104,
 DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, pGpuMemoryCallbacks) == 112, "offsetof(DnsrContextCreateInfo, pGpuMemoryCallbacks)");
 DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, pLogCallback) == 120, "offsetof(DnsrContextCreateInfo, pLogCallback)");
 DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, pDebugNameCallback) == 128, "offsetof(DnsrContextCreateInfo, pDebugNameCallback)");
+DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, shaderOverrideCount) == 136, "offsetof(DnsrContextCreateInfo, shaderOverrideCount)");
+DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, pShaderOverrides) == 144, "offsetof(DnsrContextCreateInfo, pShaderOverrides)");
+
+DNSR_STATIC_ASSERT(sizeof(DnsrShaderOverride) == 24, "sizeof(DnsrShaderOverride)");
+DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrShaderOverride) == 8, "alignof(DnsrShaderOverride)");
+DNSR_STATIC_ASSERT(offsetof(DnsrShaderOverride, pVariantName) == 0, "offsetof(DnsrShaderOverride, pVariantName)");
+DNSR_STATIC_ASSERT(offsetof(DnsrShaderOverride, pCode) == 8, "offsetof(DnsrShaderOverride, pCode)");
+DNSR_STATIC_ASSERT(offsetof(DnsrShaderOverride, codeSize) == 16, "offsetof(DnsrShaderOverride, codeSize)");
+
+DNSR_STATIC_ASSERT(sizeof(DnsrShaderVariantInfo) == 24, "sizeof(DnsrShaderVariantInfo)");
+DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrShaderVariantInfo) == 8, "alignof(DnsrShaderVariantInfo)");
+DNSR_STATIC_ASSERT(offsetof(DnsrShaderVariantInfo, pName) == 0, "offsetof(DnsrShaderVariantInfo, pName)");
+DNSR_STATIC_ASSERT(offsetof(DnsrShaderVariantInfo, pSource) == 8, "offsetof(DnsrShaderVariantInfo, pSource)");
+DNSR_STATIC_ASSERT(offsetof(DnsrShaderVariantInfo, pDefines) == 16, "offsetof(DnsrShaderVariantInfo, pDefines)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrHostImage) == 32, "sizeof(DnsrHostImage)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrHostImage) == 8, "alignof(DnsrHostImage)");
@@ -192,5 +206,11 @@ DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, writeReprojection) == 80, "o
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, writeMoments) == 88, "offsetof(DnsrReferenceCallbacks, writeMoments)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, writeHistory) == 96, "offsetof(DnsrReferenceCallbacks, writeHistory)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readHitDistance) == 104, "offsetof(DnsrReferenceCallbacks, readHitDistance)");
+
+DNSR_STATIC_ASSERT(sizeof(DnsrDiagnosis) == 528, "sizeof(DnsrDiagnosis)");
+DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrDiagnosis) == 8, "alignof(DnsrDiagnosis)");
+DNSR_STATIC_ASSERT(offsetof(DnsrDiagnosis, kind) == 0, "offsetof(DnsrDiagnosis, kind)");
+DNSR_STATIC_ASSERT(offsetof(DnsrDiagnosis, value) == 8, "offsetof(DnsrDiagnosis, value)");
+DNSR_STATIC_ASSERT(offsetof(DnsrDiagnosis, message) == 16, "offsetof(DnsrDiagnosis, message)");
 
 #endif

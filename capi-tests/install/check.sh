@@ -48,6 +48,12 @@ echo "== FidelityFX integration: the installed include/dnsr-ffx headers and libd
 cc -std=c11 -Wall -Wextra -Werror -I"$tmp/include/dnsr-ffx" -o "$work/consumer-ffx" "$root/capi-tests/ffx_header_c11.c" $flags
 LD_LIBRARY_PATH=$tmp/lib "$work/consumer-ffx"
 
+echo "== shader sources: an installed entry file compiles as dnsr's own variant does"
+glslc --target-env=vulkan1.1 -I"$tmp/share/dnsr/shaders" -DDNSR_OUTPUT_FORMAT=r16f \
+    "$tmp/share/dnsr/shaders/tile_classification.comp" -o "$work/tile_classification_r16f.spv"
+cmp "$work/tile_classification_r16f.spv" "$root/shaders/spv/tile_classification_r16f.spv" \
+    || fail "the installed sources do not compile to the embedded tile_classification_r16f"
+
 echo "== CMake (Vulkan::Headers from Vulkan-Headers' package)"
 cmake -S "$here/consumer" -B "$work/cmake" -DCMAKE_PREFIX_PATH="$tmp" -DCMAKE_BUILD_TYPE=Release \
     -DCMAKE_C_FLAGS="-Wall -Wextra -Werror" >"$work/cmake.log" || { cat "$work/cmake.log"; fail "cmake configure"; }

@@ -131,6 +131,7 @@ pub(crate) fn c_names(message: &str) -> String {
         ("Context::resize", "dnsr_context_resize"),
         ("(MAX_LIGHT_COUNT)", "(DNSR_MAX_LIGHT_COUNT)"),
         ("(MAX_FRAMES_IN_FLIGHT)", "(DNSR_MAX_FRAMES_IN_FLIGHT)"),
+        ("(shader_variants lists them)", "(dnsr_get_shader_variants lists them)"),
     ];
     let mut text = message.to_string();
     for (rust, c) in special {
@@ -143,7 +144,9 @@ pub(crate) fn c_names(message: &str) -> String {
         rest = &rest[start..];
         let end = rest.find(|c: char| !(c.is_ascii_alphanumeric() || c == '_')).unwrap_or(rest.len());
         let word = &rest[..end];
-        if word.starts_with(|c: char| c.is_ascii_lowercase()) && word.contains('_') && !word.starts_with("dnsr_") {
+        // A quoted word is a name the caller gave (a shader variant, a GLSL binding): it stays as written.
+        let quoted = out.ends_with('"') || out.ends_with('\'');
+        if word.starts_with(|c: char| c.is_ascii_lowercase()) && word.contains('_') && !word.starts_with("dnsr_") && !quoted {
             out.push_str(&camel(word));
         } else {
             out.push_str(word);
@@ -211,6 +214,7 @@ mod tests {
         assert_eq!(c_names("call Context::resize again"), "call dnsr_context_resize again");
         assert_eq!(c_names("sync.input_src_access: x"), "sync.inputSrcAccess: x");
         assert_eq!(c_names("light_count is 65; [1, 64] (MAX_LIGHT_COUNT)"), "lightCount is 65; [1, 64] (DNSR_MAX_LIGHT_COUNT)");
+        assert_eq!(c_names("override \"filter_final_r8\" binds 'engine_depth'"), "override \"filter_final_r8\" binds 'engine_depth'");
     }
 
     #[test]

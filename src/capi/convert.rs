@@ -162,8 +162,39 @@ pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo, sink: &mut Option<Lo
         enable_timestamps: c.flags & DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS != 0,
         settings,
         hooks,
+        shader_overrides: shader_overrides_from_c(c)?,
     };
     Ok(info)
+}
+
+fn shader_overrides_from_c(c: &DnsrContextCreateInfo) -> Result<Vec<crate::ShaderOverride>, CallError> {
+    if c.shader_override_count == 0 {
+        return Ok(Vec::new());
+    }
+    if c.p_shader_overrides.is_null() {
+        return Err(CallError::InvalidArgument(format!(
+            "pCreateInfo->shaderOverrideCount is {} but pShaderOverrides is NULL",
+            c.shader_override_count
+        )));
+    }
+    // SAFETY: the caller's array holds shaderOverrideCount entries.
+    let all = unsafe { std::slice::from_raw_parts(c.p_shader_overrides, c.shader_override_count as usize) };
+    all.iter()
+        .enumerate()
+        .map(|(i, o)| {
+            let what = format!("pCreateInfo->pShaderOverrides[{i}]");
+            if o.p_variant_name.is_null() || o.p_code.is_null() {
+                return Err(CallError::InvalidArgument(format!("{what}: pVariantName and pCode are required")));
+            }
+            if o.code_size % 4 != 0 || o.code_size == 0 {
+                return Err(CallError::InvalidArgument(format!("{what}.codeSize is {}; SPIR-V is whole 32-bit words", o.code_size)));
+            }
+            // SAFETY: a NUL-terminated name and codeSize bytes of code, as the header requires.
+            let variant = unsafe { std::ffi::CStr::from_ptr(o.p_variant_name) }.to_string_lossy().into_owned();
+            let spirv = unsafe { std::slice::from_raw_parts(o.p_code as *const u8, o.code_size) }.to_vec();
+            Ok(crate::ShaderOverride { variant, spirv })
+        })
+        .collect()
 }
 
 fn image(i: &DnsrHostImage) -> HostImage {

@@ -43,6 +43,35 @@ pub extern "C" fn dnsr_version() -> u32 {
     (DNSR_VERSION_MAJOR << 22) | (DNSR_VERSION_MINOR << 12) | DNSR_VERSION_PATCH
 }
 
+/// The pass variants an engine may compile against its own callbacks file (docs/callbacks.md), for
+/// DnsrContextCreateInfo::pShaderOverrides. `*pCount` is the capacity of `pVariants` on entry and the number
+/// written on return; with `pVariants` NULL it receives the number of variants.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_get_shader_variants(p_count: *mut u32, p_variants: *mut DnsrShaderVariantInfo) -> DnsrResult {
+    use std::ffi::CString;
+    use std::sync::OnceLock;
+    static STRINGS: OnceLock<Vec<[CString; 3]>> = OnceLock::new();
+    guard(|_| {
+        let count = unsafe { p_count.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pCount is NULL".into()))?;
+        let all = STRINGS.get_or_init(|| {
+            let c = |s: &str| CString::new(s).expect("variant strings have no NUL");
+            crate::shader_variants().map(|v| [c(v.name), c(v.source), c(&v.defines.join(" "))]).collect()
+        });
+        if p_variants.is_null() {
+            *count = all.len() as u32;
+            return Ok(DnsrResult::DNSR_SUCCESS);
+        }
+        let written = all.len().min(*count as usize);
+        for (i, [name, source, defines]) in all.iter().take(written).enumerate() {
+            let info = DnsrShaderVariantInfo { p_name: name.as_ptr(), p_source: source.as_ptr(), p_defines: defines.as_ptr() };
+            // SAFETY: the caller's array holds *pCount entries.
+            unsafe { p_variants.add(i).write(info) };
+        }
+        *count = written as u32;
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
 /// Creates a context. On success writes the handle to `*pContext`; on failure writes NULL (when `pContext` is
 /// not NULL) and creates nothing.
 #[unsafe(no_mangle)]

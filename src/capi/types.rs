@@ -394,6 +394,37 @@ pub struct DnsrContextCreateInfo {
     pub p_log_callback: *const DnsrLogCallback,
     /// Optional. Debug names of dnsr's Vulkan objects.
     pub p_debug_name_callback: *const DnsrDebugNameCallback,
+    /// Number of entries in pShaderOverrides (0: dnsr's embedded SPIR-V for every pass).
+    pub shader_override_count: u32,
+    /// Optional (with shaderOverrideCount 0). Pass variants the engine compiled against its own callbacks file
+    /// (docs/callbacks.md; dnsr_get_shader_variants lists the variants, their entry files and definitions). Read
+    /// during dnsr_context_create only. Each is checked against the interface dnsr relies on; a mismatch is
+    /// DNSR_ERROR_SHADER_INTERFACE naming the variant and what differs, and nothing is created.
+    pub p_shader_overrides: *const DnsrShaderOverride,
+}
+
+/// One pass variant's SPIR-V, compiled by the engine.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct DnsrShaderOverride {
+    /// Required. The variant it replaces, e.g. "tile_classification_r16f" (NUL-terminated).
+    pub p_variant_name: *const c_char,
+    /// Required. The SPIR-V module (SPIR-V 1.3: glslc --target-env=vulkan1.1).
+    pub p_code: *const u32,
+    /// Size of pCode in bytes (a multiple of 4).
+    pub code_size: usize,
+}
+
+/// A pass variant an engine may compile (dnsr_get_shader_variants). The strings are static.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct DnsrShaderVariantInfo {
+    /// The name a DnsrShaderOverride gives.
+    pub p_name: *const c_char,
+    /// Its entry file under dnsr's shader sources (installed in share/dnsr/shaders).
+    pub p_source: *const c_char,
+    /// Its preprocessor definitions, space-separated, each passed to glslc as -D<definition>.
+    pub p_defines: *const c_char,
 }
 
 /// One of the host's images, as used by one dispatch.

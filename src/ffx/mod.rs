@@ -291,6 +291,8 @@ fn create_info(device: &resources::Device, width: u32, height: u32, depth_invert
         p_gpu_memory_callbacks: std::ptr::null(),
         p_log_callback: std::ptr::null(),
         p_debug_name_callback: std::ptr::null(),
+        shader_override_count: 0,
+        p_shader_overrides: std::ptr::null(),
     }
 }
 

@@ -84,6 +84,26 @@ pub(crate) fn variant_name(stem: &str, output: Option<vk::Format>, precision: cr
     VARIANTS.iter().find(|v| v.name == name).map(|v| v.name)
 }
 
+/// A pass variant an engine may compile itself (`ContextCreateInfo::shader_overrides`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ShaderVariantInfo {
+    /// The name a `ShaderOverride` gives, e.g. `"filter_final_r16f"`.
+    pub name: &'static str,
+    /// Its entry file under dnsr's shader sources (installed as share/dnsr/shaders), e.g. `"filter.comp"`.
+    pub source: &'static str,
+    /// The preprocessor definitions to compile it with (`-D` each).
+    pub defines: &'static [&'static str],
+}
+
+/// Every pass variant dnsr may create; a context creates the ones its precision and output format select.
+pub fn shader_variants() -> impl Iterator<Item = ShaderVariantInfo> {
+    VARIANTS.iter().map(|v| ShaderVariantInfo { name: v.name, source: v.source, defines: v.defines })
+}
+
+/// The glslc arguments dnsr's own variants are compiled with, besides `-I<shader dir>` and the definitions:
+/// SPIR-V 1.3, which the reflection dnsr uses reads completely.
+pub const SHADER_COMPILE_ARGS: &[&str] = &["--target-env=vulkan1.1"];
+
 pub(crate) fn variant(name: &str) -> &'static ShaderVariant {
     VARIANTS.iter().find(|v| v.name == name).expect("shader variant names are compile-time constants")
 }
@@ -106,30 +126,113 @@ pub(crate) struct Interface {
     pub specializes: Specialization,
 }
 
+/// A module's instructions: (opcode, operands), after checking the header.
+fn instructions(spirv: &[u8]) -> Result<Vec<(u32, Vec<u32>)>> {
+    const MAGIC: u32 = 0x0723_0203;
+    if spirv.len() % 4 != 0 || spirv.len() < 20 {
+        return Err(Error::ShaderInterface(format!("is not SPIR-V: {} bytes (a module is whole 32-bit words, 5 or more)", spirv.len())));
+    }
+    let words: Vec<u32> = spirv.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+    if words[0] != MAGIC {
+        return Err(Error::ShaderInterface(format!("is not SPIR-V: first word 0x{:08x}, not the magic number 0x{MAGIC:08x}", words[0])));
+    }
+    let mut out = Vec::new();
+    // The header is 5 words; then instructions, each (word count << 16 | opcode) followed by its operands.
+    let mut i = 5;
+    while i < words.len() {
+        let (count, opcode) = ((words[i] >> 16) as usize, words[i] & 0xFFFF);
+        if count == 0 || i + count > words.len() {
+            return Err(Error::ShaderInterface(format!("is not valid SPIR-V: instruction of {count} words at word {i}")));
+        }
+        out.push((opcode, words[i + 1..i + count].to_vec()));
+        i += count;
+    }
+    Ok(out)
+}
+
 /// The specialization constant ids a module declares (OpDecorate SpecId), as a mask; an id dnsr does not set is
 /// refused.
 fn specialization_ids(spirv: &[u8]) -> Result<Specialization> {
     const OP_DECORATE: u32 = 71;
     const DECORATION_SPEC_ID: u32 = 1;
-    let words: Vec<u32> = spirv.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
     let mut mask = 0;
-    // The header is 5 words; then instructions, each (word count << 16 | opcode) followed by its operands.
-    let mut i = 5;
-    while i < words.len() {
-        let (count, opcode) = ((words[i] >> 16) as usize, words[i] & 0xFFFF);
-        if count == 0 {
-            return Err(Error::ShaderInterface(format!("SPIR-V instruction of zero words at word {i}")));
-        }
-        if opcode == OP_DECORATE && count >= 4 && i + 3 < words.len() && words[i + 2] == DECORATION_SPEC_ID {
-            let id = words[i + 3];
+    for (opcode, ops) in instructions(spirv)? {
+        if opcode == OP_DECORATE && ops.len() >= 3 && ops[1] == DECORATION_SPEC_ID {
+            let id = ops[2];
             if id >= SPEC_COUNT as u32 {
                 return Err(Error::ShaderInterface(format!("specialization constant id {id}; dnsr sets ids 0..{SPEC_COUNT}")));
             }
             mask |= 1 << id;
         }
-        i += count;
     }
     Ok(mask)
+}
+
+/// The workgroup size of the module's GLCompute entry point named "main"; an error without one.
+fn entry_workgroup_size(spirv: &[u8]) -> Result<[u32; 3]> {
+    const OP_ENTRY_POINT: u32 = 15;
+    const OP_EXECUTION_MODE: u32 = 16;
+    const GL_COMPUTE: u32 = 5;
+    const LOCAL_SIZE: u32 = 17;
+    let all = instructions(spirv)?;
+    // OpEntryPoint: execution model, function id, then the name as a NUL-terminated string packed in words.
+    let main = all.iter().find_map(|(opcode, ops)| {
+        let name: Vec<u8> = ops.iter().skip(2).flat_map(|w| w.to_le_bytes()).take_while(|&b| b != 0).collect();
+        (*opcode == OP_ENTRY_POINT && ops.len() >= 3 && ops[0] == GL_COMPUTE && name == b"main").then(|| ops[1])
+    });
+    let main = main.ok_or_else(|| Error::ShaderInterface("has no GLCompute entry point named \"main\"".into()))?;
+    all.iter()
+        .find_map(|(opcode, ops)| {
+            (*opcode == OP_EXECUTION_MODE && ops.len() == 5 && ops[0] == main && ops[1] == LOCAL_SIZE).then(|| [ops[2], ops[3], ops[4]])
+        })
+        .ok_or_else(|| Error::ShaderInterface("entry point \"main\" has no literal LocalSize (dnsr dispatches fixed workgroups)".into()))
+}
+
+/// Checks an engine's SPIR-V for `name` against what dnsr relies on in its own variant: the entry point and
+/// workgroup size its dispatches assume, each binding it declares at the number and of the type dnsr binds
+/// there (it may leave some out), the push-constant and constants-block sizes, the specialization constants.
+pub(crate) fn check_override(name: &str, spirv: &[u8]) -> Result<()> {
+    let fail = |what: String| Error::ShaderInterface(format!("shader override \"{name}\": {what}"));
+    let wrap = |e: Error| match e {
+        Error::ShaderInterface(m) => fail(m),
+        other => other,
+    };
+    let own = variant(name);
+    let version = instructions(spirv).map(|_| u32::from_le_bytes([spirv[4], spirv[5], spirv[6], spirv[7]])).map_err(wrap)?;
+    // The reflection library dnsr uses aborts the process on SPIR-V 1.4 and later, and misses buffers before 1.3.
+    if version != 0x0001_0300 {
+        return Err(fail(format!(
+            "SPIR-V {}.{}; dnsr reads SPIR-V 1.3 (compile with --target-env=vulkan1.1)",
+            (version >> 16) & 0xFF,
+            (version >> 8) & 0xFF
+        )));
+    }
+    let (size, expected_size) = (entry_workgroup_size(spirv).map_err(wrap)?, entry_workgroup_size(own.spirv)?);
+    if size != expected_size {
+        return Err(fail(format!("workgroup size {size:?}; dnsr dispatches {expected_size:?}")));
+    }
+    let (theirs, ours) = (reflect(spirv).map_err(wrap)?, reflect(own.spirv)?);
+    for b in &theirs.bindings {
+        let Some(expected) = ours.bindings.iter().find(|o| o.resource == b.resource) else {
+            return Err(fail(format!("binds {:?} (binding {}), which this pass is not given", b.resource, b.binding)));
+        };
+        if b.binding != expected.binding {
+            return Err(fail(format!("{:?} is binding {}; dnsr binds it at {}", b.resource, b.binding, expected.binding)));
+        }
+    }
+    if theirs.push_constant_bytes != ours.push_constant_bytes {
+        return Err(fail(format!("push constants of {} bytes; dnsr pushes {}", theirs.push_constant_bytes, ours.push_constant_bytes)));
+    }
+    if theirs.uniform_bytes.is_some_and(|b| Some(b) != ours.uniform_bytes) {
+        return Err(fail(format!("constants block of {:?} bytes; dnsr writes {:?}", theirs.uniform_bytes, ours.uniform_bytes)));
+    }
+    if theirs.specializes != ours.specializes {
+        return Err(fail(format!(
+            "declares specialization constants (mask) {:#b}; dnsr's variant declares {:#b} (keep dnsr_common.glsl's declarations)",
+            theirs.specializes, ours.specializes
+        )));
+    }
+    Ok(())
 }
 
 /// Reflects a module and checks every binding against the interface dnsr knows.

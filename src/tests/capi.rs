@@ -34,6 +34,8 @@ fn create_info(g: &crate::testing::gpu::Gpu, w: u32, h: u32) -> DnsrContextCreat
         p_gpu_memory_callbacks: std::ptr::null(),
         p_log_callback: std::ptr::null(),
         p_debug_name_callback: std::ptr::null(),
+        shader_override_count: 0,
+        p_shader_overrides: std::ptr::null(),
     }
 }
 

@@ -218,8 +218,11 @@ fn generated_layout_header() -> String {
     check!(DnsrContextCreateInfo {
         s_type, p_next, instance, physical_device, device, vulkan_functions, api_version, queue_family_index,
         enabled_features, width, height, flags, precision, output_format, light_count, max_frames_in_flight, p_settings,
-        p_allocation_callbacks, p_gpu_memory_callbacks, p_log_callback, p_debug_name_callback,
+        p_allocation_callbacks, p_gpu_memory_callbacks, p_log_callback, p_debug_name_callback, shader_override_count,
+        p_shader_overrides,
     });
+    check!(DnsrShaderOverride { p_variant_name, p_code, code_size });
+    check!(DnsrShaderVariantInfo { p_name, p_source, p_defines });
     check!(DnsrHostImage { image, view, format, layout, width, height });
     check!(DnsrRect { x, y, width, height });
     check!(DnsrHostSync { input_src_stages, input_src_access, output_dst_stages, output_dst_access });
@@ -246,6 +249,7 @@ fn generated_layout_header() -> String {
             read_previous_moments, read_history, write_output, write_tile_meta, write_reprojection, write_moments,
             write_history, read_hit_distance,
         });
+        check!(DnsrDiagnosis { kind, value, message });
     }
     s.push_str("#endif\n");
     s.replace("_Alignof", "DNSR_ALIGNOF").replacen(

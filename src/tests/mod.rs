@@ -9,6 +9,7 @@ mod extremes;
 mod parity;
 mod interface;
 mod resources;
+mod shader_overrides;
 
 use crate::testing::gpu::{Gpu, GpuOptions};
 use crate::testing::scene::{render, Camera, FrameInputs};

@@ -1,0 +1,135 @@
+//! Engine-compiled pass variants (`ContextCreateInfo::shader_overrides`): one built from an edited callbacks file
+//! is what runs, and every interface mismatch is refused at creation with the variant and the difference named.
+
+use super::{gpu, static_frame};
+use crate::testing::Runner;
+use crate::{Context, Error, ShaderOverride};
+use ash::vk;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// dnsr's shader sources copied to a fresh directory, the callbacks file edited by `edit`.
+fn sources(edit: &dyn Fn(String) -> String) -> PathBuf {
+    static N: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
+    let n = N.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("dnsr-overrides-{}-{n}", std::process::id()));
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
+    for sub in ["", "generated"] {
+        std::fs::create_dir_all(dir.join(sub)).unwrap();
+        for e in std::fs::read_dir(root.join(sub)).unwrap() {
+            let path = e.unwrap().path();
+            if matches!(path.extension().and_then(|x| x.to_str()), Some("glsl" | "comp")) {
+                std::fs::copy(&path, dir.join(sub).join(path.file_name().unwrap())).unwrap();
+            }
+        }
+    }
+    let callbacks = dir.join("dnsr_callbacks_default.glsl");
+    std::fs::write(&callbacks, edit(std::fs::read_to_string(&callbacks).unwrap())).unwrap();
+    dir
+}
+
+/// A variant compiled as an engine would: its entry file and definitions (shader_variants) and
+/// SHADER_COMPILE_ARGS, plus `extra` arguments.
+fn compile(dir: &Path, name: &str, extra: &[&str]) -> ShaderOverride {
+    let v = crate::shader_variants().find(|v| v.name == name).unwrap();
+    let out = dir.join(format!("{name}.spv"));
+    let mut cmd = Command::new("glslc");
+    cmd.args(crate::SHADER_COMPILE_ARGS).args(extra).arg(format!("-I{}", dir.display()));
+    for d in v.defines {
+        cmd.arg(format!("-D{d}"));
+    }
+    let output = cmd.arg(dir.join(v.source)).arg("-o").arg(&out).output().expect("glslc (make test installs it)");
+    assert!(output.status.success(), "glslc {name}: {}", String::from_utf8_lossy(&output.stderr));
+    ShaderOverride { variant: name.into(), spirv: std::fs::read(&out).unwrap() }
+}
+
+#[test]
+fn an_override_built_from_an_edited_callbacks_file_is_what_runs() {
+    let g = gpu();
+    let (w, h) = (40, 24);
+    // The engine's callbacks write 1 - shadow: every output pixel must be the default's complement.
+    let dir = sources(&|s| s.replace("vec4(shadow))", "vec4(1.0 - shadow))"));
+    let mut info = g.create_info(w, h);
+    info.output_format = vk::Format::R32_SFLOAT;
+    let mut plain = Runner::new(&g, &info).unwrap();
+    info.shader_overrides = ["tile_classification_r32f", "filter_later_final_r32f", "filter_final_r32f"]
+        .iter()
+        .map(|name| compile(&dir, name, &[]))
+        .collect();
+    let mut engine = Runner::new(&g, &info).unwrap();
+    let field = |x: f64, z: f64| (0.5 + 0.4 * (x * 0.9).sin() * (z * 0.7).cos()).clamp(0.0, 1.0);
+    for frame in 0..4 {
+        let f = static_frame(w, h, &field, frame + 1);
+        let (a, b) = (plain.frame(&f, frame == 0), engine.frame(&f, frame == 0));
+        for (i, (a, b)) in a.iter().zip(&b).enumerate() {
+            assert!((1.0 - a - b).abs() <= 1e-6, "frame {frame} pixel {i}: default {a}, override {b}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    g.assert_clean();
+}
+
+#[test]
+fn mismatched_overrides_are_refused_before_anything_is_created() {
+    let g = gpu();
+    let dir = sources(&|s| s);
+    let good = compile(&dir, "filter_final_r16f", &[]);
+    let patched = |find: &[u8], replace: &[u8]| {
+        let mut o = good.clone();
+        let at = o.spirv.windows(find.len()).position(|w| w == find).expect("pattern in the module");
+        o.spirv[at..at + find.len()].copy_from_slice(replace);
+        o
+    };
+    // OpExecutionMode %main LocalSize x y z: 6 words, opcode 16, mode 17.
+    let local_size = {
+        let words: Vec<u32> = good.spirv.chunks_exact(4).map(|c| u32::from_le_bytes(c.try_into().unwrap())).collect();
+        let at = words.windows(3).position(|w| w[0] == (6 << 16 | 16) && w[2] == 17).expect("LocalSize");
+        let mut o = good.clone();
+        let x = 4 * (at + 3);
+        o.spirv[x..x + 4].copy_from_slice(&(words[at + 3] * 2).to_le_bytes());
+        o
+    };
+    let edited = |edit: &dyn Fn(String) -> String| {
+        let d = sources(edit);
+        let o = compile(&d, "filter_final_r16f", &[]);
+        std::fs::remove_dir_all(&d).ok();
+        o
+    };
+    let sampler_normals = edited(&|s| s.replace("uniform texture2D dnsr_normals;", "uniform sampler2D dnsr_normals;"));
+    let moved_normals = edited(&|s| s.replace("binding = 6) uniform texture2D dnsr_normals", "binding = 30) uniform texture2D dnsr_normals"));
+    let extra = edited(&|s| {
+        s.replace("float dnsr_read_depth(ivec2 p) { return texelFetch(dnsr_depth, p + dnsr_get_offset(), 0).r; }",
+            "layout(set = 0, binding = 40) uniform texture2D engine_depth;\n\
+             float dnsr_read_depth(ivec2 p) { return texelFetch(engine_depth, p, 0).r; }")
+    });
+    let spirv15 = compile(&dir, "filter_final_r16f", &["--target-env=vulkan1.2"]);
+    let cases: Vec<(&str, Vec<ShaderOverride>, &str)> = vec![
+        ("not SPIR-V", vec![ShaderOverride { variant: "filter_final_r16f".into(), spirv: b"#version 450\nvoid main(){}".to_vec() }], "is not SPIR-V"),
+        ("unknown variant", vec![ShaderOverride { variant: "filter_final_rgb9e5".into(), ..good.clone() }], "not a dnsr shader variant"),
+        ("twice", vec![good.clone(), good.clone()], "overridden twice"),
+        ("SPIR-V 1.5", vec![ShaderOverride { variant: "filter_final_r16f".into(), spirv: spirv15.spirv }], "SPIR-V 1.5"),
+        ("entry point renamed", vec![patched(b"main\0", b"mian\0")], "entry point named \"main\""),
+        ("workgroup size", vec![local_size], "workgroup size"),
+        ("normals as a combined sampler", vec![sampler_normals], "dnsr_normals"),
+        ("normals at another binding", vec![moved_normals], "Normals is binding 30; dnsr binds it at"),
+        ("an engine binding", vec![extra], "unknown binding 'engine_depth'"),
+    ];
+    for (what, overrides, expect) in cases {
+        let mut info = g.create_info(24, 16);
+        info.shader_overrides = overrides;
+        match Context::new(&info) {
+            Ok(_) => panic!("{what}: accepted"),
+            Err(Error::ShaderInterface(m)) => {
+                assert!(m.contains(expect), "{what}: message {m:?} lacks {expect:?}");
+                eprintln!("{what}: {m}");
+            }
+            Err(e) => panic!("{what}: {e:?}"),
+        }
+    }
+    // The embedded module itself, as an override, is accepted.
+    let mut info = g.create_info(24, 16);
+    info.shader_overrides = vec![good];
+    Context::new(&info).unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+    g.assert_clean();
+}

@@ -313,7 +313,8 @@ static uint32_t texel_bytes(VkFormat f)
     case VK_FORMAT_R32_SFLOAT:
     case VK_FORMAT_D32_SFLOAT:
     case VK_FORMAT_R8G8B8A8_UNORM:
-    case VK_FORMAT_R16G16_SFLOAT: return 4;
+    case VK_FORMAT_R16G16_SFLOAT:
+    case VK_FORMAT_R16G16_SNORM: return 4;
     case VK_FORMAT_R32G32_SFLOAT:
     case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;
     case VK_FORMAT_R32G32B32A32_SFLOAT:

@@ -89,6 +89,8 @@ pub struct Context {
     frames_recorded: u64,
     /// Stages `HostSync` may name on this device and queue family.
     supported_stages: vk::PipelineStageFlags,
+    /// Engine-compiled classification or filter variants decode the G-buffer: its formats are theirs to choose.
+    engine_reads: bool,
 }
 
 fn check_features(vk: &Vk, info: &ContextCreateInfo) -> Result<()> {
@@ -170,6 +172,7 @@ impl Context {
             timestamps: None,
             frames_recorded: 0,
             supported_stages,
+            engine_reads: info.shader_overrides.iter().any(|o| o.variant != crate::passes::prepare::SHADER),
         };
         // On any error below, dropping `ctx` releases what was created so far.
         let pipelines = ctx.pipelines.insert(ctx.create_pipelines(push.is_some(), &info.shader_overrides)?);
@@ -378,7 +381,7 @@ impl Context {
         if self.lights.len() != self.light_count as usize {
             return Err(Error::NotResized);
         }
-        let rect = validate::dispatch(&self.vk, d, self.size, self.output_format, self.light_count, self.supported_stages)?;
+        let rect = validate::dispatch(&self.vk, d, self.size, self.output_format, self.light_count, self.supported_stages, self.engine_reads)?;
         let extent = [rect.width, rect.height];
         let run_prepare = d.hit_mask_convention == HitMaskConvention::OccludedBits;
 

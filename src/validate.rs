@@ -100,7 +100,9 @@ fn host_image(
     if img.view == vk::ImageView::null() {
         return Err(Error::NullHandle(name.1));
     }
-    if !formats.contains(&img.format) || !vk.format_features(img.format).contains(feature) {
+    // An empty list: any format the device supports for `feature` (the engine's callbacks decode it).
+    let listed = formats.is_empty() || formats.contains(&img.format);
+    if !listed || !vk.format_features(img.format).contains(feature) {
         return Err(Error::UnsupportedFormat { role: Some(role), format: img.format });
     }
     if !layouts.contains(&img.layout) {
@@ -117,6 +119,8 @@ fn finite_mat(what: &'static str, m: &glam::Mat4) -> Result<()> {
 }
 
 /// Validates a dispatch for a context of `size` writing `output_format`; returns the effective render rect.
+/// `engine_reads`: the context runs engine-compiled variants, whose callbacks decode the G-buffer, so its depth,
+/// velocity, normals and hit distances may have any format the device can sample.
 pub(crate) fn dispatch(
     vk: &Vk,
     d: &ShadowsDispatch,
@@ -124,22 +128,24 @@ pub(crate) fn dispatch(
     output_format: F,
     lights: u32,
     supported_stages: vk::PipelineStageFlags,
+    engine_reads: bool,
 ) -> Result<Rect> {
+    let decoded = |formats: &'static [F]| if engine_reads { &[][..] } else { formats };
     if d.light_index >= lights {
         return Err(Error::InvalidLightIndex { index: d.light_index, count: lights });
     }
     let sampled = vk::FormatFeatureFlags::SAMPLED_IMAGE;
     let tiles = [size[0].div_ceil(8), size[1].div_ceil(4)];
     host_image(vk, ImageRole::HitMask, &d.hit_mask, &[F::R32_UINT], SAMPLED_LAYOUTS, tiles, sampled)?;
-    host_image(vk, ImageRole::Depth, &d.depth, DEPTH_FORMATS, DEPTH_LAYOUTS, size, sampled)?;
-    host_image(vk, ImageRole::Velocity, &d.velocity, VELOCITY_FORMATS, SAMPLED_LAYOUTS, size, sampled)?;
-    host_image(vk, ImageRole::Normals, &d.normals, NORMAL_FORMATS, SAMPLED_LAYOUTS, size, sampled)?;
+    host_image(vk, ImageRole::Depth, &d.depth, decoded(DEPTH_FORMATS), DEPTH_LAYOUTS, size, sampled)?;
+    host_image(vk, ImageRole::Velocity, &d.velocity, decoded(VELOCITY_FORMATS), SAMPLED_LAYOUTS, size, sampled)?;
+    host_image(vk, ImageRole::Normals, &d.normals, decoded(NORMAL_FORMATS), SAMPLED_LAYOUTS, size, sampled)?;
     if d.output.format != output_format && d.output.view != vk::ImageView::null() && d.output.image != vk::Image::null() {
         return Err(Error::OutputFormatMismatch { declared: d.output.format, context: output_format });
     }
     host_image(vk, ImageRole::Output, &d.output, &[output_format], OUTPUT_LAYOUTS, size, vk::FormatFeatureFlags::STORAGE_IMAGE)?;
     if let Some(hit_distance) = &d.hit_distance {
-        host_image(vk, ImageRole::HitDistance, hit_distance, HIT_DISTANCE_FORMATS, SAMPLED_LAYOUTS, size, sampled)?;
+        host_image(vk, ImageRole::HitDistance, hit_distance, decoded(HIT_DISTANCE_FORMATS), SAMPLED_LAYOUTS, size, sampled)?;
         light_angular_size(d.light_angular_size)?;
     }
 

@@ -54,6 +54,13 @@ glslc --target-env=vulkan1.1 -I"$tmp/share/dnsr/shaders" -DDNSR_OUTPUT_FORMAT=r1
 cmp "$work/tile_classification_r16f.spv" "$root/shaders/spv/tile_classification_r16f.spv" \
     || fail "the installed sources do not compile to the embedded tile_classification_r16f"
 
+echo "== custom G-buffer example: the passes compiled from the installed sources with the engine's callbacks"
+bash "$root/examples-c/custom_gbuffer/build_shaders.sh" "$tmp/share/dnsr/shaders" "$work/custom-spv"
+# shellcheck disable=SC2086 # the flags are words
+cc -std=c11 -Wall -Wextra -Werror -I"$root/capi-tests" -o "$work/custom_gbuffer" \
+    "$root/examples-c/custom_gbuffer/custom_gbuffer.c" "$root/capi-tests/host.c" $flags -lvulkan -lm
+LD_LIBRARY_PATH=$tmp/lib "$work/custom_gbuffer" "$work/custom-spv"
+
 echo "== CMake (Vulkan::Headers from Vulkan-Headers' package)"
 cmake -S "$here/consumer" -B "$work/cmake" -DCMAKE_PREFIX_PATH="$tmp" -DCMAKE_BUILD_TYPE=Release \
     -DCMAKE_C_FLAGS="-Wall -Wextra -Werror" >"$work/cmake.log" || { cat "$work/cmake.log"; fail "cmake configure"; }

@@ -8,7 +8,7 @@ use ash::vk;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// dnsr's shader sources copied to a fresh directory, the callbacks file edited by `edit`.
+/// dnsr's shader sources copied to a fresh directory, the standard callbacks edited by `edit`.
 fn sources(edit: &dyn Fn(String) -> String) -> PathBuf {
     static N: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
     let n = N.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
@@ -23,7 +23,7 @@ fn sources(edit: &dyn Fn(String) -> String) -> PathBuf {
             }
         }
     }
-    let callbacks = dir.join("dnsr_callbacks_default.glsl");
+    let callbacks = dir.join("dnsr_callbacks_standard.glsl");
     std::fs::write(&callbacks, edit(std::fs::read_to_string(&callbacks).unwrap())).unwrap();
     dir
 }

@@ -1,0 +1,147 @@
+// dnsr standard callbacks: the Get/Read/Write functions the pass cores call, implemented over dnsr's standard
+// bindings. The pass entry files include dnsr_callbacks_default.glsl, which includes this file; an engine with an
+// unusual G-buffer replaces dnsr_callbacks_default.glsl with its own (docs/callbacks.md). To change only the
+// G-buffer depth and normal reads it defines DNSR_ENGINE_DEPTH_NORMALS, includes this file, then declares
+// dnsr_depth and dnsr_normals (bindings 4 and 6) and dnsr_read_depth / dnsr_read_normal itself.
+//
+// The entry file defines exactly one of DNSR_PASS_PREPARE, DNSR_PASS_TILE_CLASSIFICATION, DNSR_PASS_FILTER
+// before including the callbacks, so each pass declares only the resources it touches.
+//
+// Coordinates handed to callbacks are relative to the render rectangle; callbacks add its offset.
+
+#ifndef DNSR_CALLBACKS_STANDARD_GLSL
+#define DNSR_CALLBACKS_STANDARD_GLSL
+
+#extension GL_EXT_samplerless_texture_functions : require
+
+#include "generated/dnsr_constants.glsl"
+#include "dnsr_precision.glsl"
+
+layout(set = 0, binding = 0, std140) uniform DnsrConstantsBlock { DnsrFrameConstants dnsr_constants; };
+
+// ---- Get: constants ------------------------------------------------------------------------------------------
+ivec2 dnsr_get_extent() { return ivec2(dnsr_constants.rect.zw); }
+vec2 dnsr_get_inv_extent() { return dnsr_constants.inv_extent.xy; }
+ivec2 dnsr_get_offset() { return ivec2(dnsr_constants.rect.xy); }
+mat4 dnsr_get_projection_inverse() { return dnsr_constants.projection_inverse; }
+mat4 dnsr_get_reprojection_matrix() { return dnsr_constants.reprojection; }
+mat4 dnsr_get_view_projection_inverse() { return dnsr_constants.view_projection_inverse; }
+vec3 dnsr_get_eye() { return dnsr_constants.eye_depth_sigma.xyz; }
+float dnsr_get_depth_similarity_sigma() { return dnsr_constants.eye_depth_sigma.w; }
+bool dnsr_get_is_reset() { return (dnsr_constants.flags.x & DNSR_FLAG_RESET) != 0u; }
+bool dnsr_get_is_depth_inverted() { return (dnsr_constants.flags.x & DNSR_FLAG_DEPTH_INVERTED) != 0u; }
+vec4 dnsr_get_disocclusion_settings() { return dnsr_constants.disocclusion; }
+vec4 dnsr_get_rejection_settings() { return dnsr_constants.rejection; }
+vec4 dnsr_get_temporal_settings() { return dnsr_constants.temporal; }
+vec4 dnsr_get_filter_settings() { return dnsr_constants.filtering; }
+vec4 dnsr_get_run_settings() { return dnsr_constants.runs; }
+// x: tan(light angular diameter / 2); a pixel's world size at linear depth z is y + z * z; w: the filter's sigma
+// in penumbra half-widths.
+vec4 dnsr_get_penumbra_settings() { return dnsr_constants.penumbra; }
+
+// Decoded host G-buffer reads shared by the classification and filter passes.
+#if (defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER)) && !defined(DNSR_ENGINE_DEPTH_NORMALS)
+layout(set = 0, binding = 4) uniform texture2D dnsr_depth;
+layout(set = 0, binding = 6) uniform texture2D dnsr_normals;
+
+float dnsr_read_depth(ivec2 p) { return texelFetch(dnsr_depth, p + dnsr_get_offset(), 0).r; }
+
+// World-space unit normal, or vec3(0) when the stored normal is not usable (zero, NaN, Inf): a zero normal
+// matches nothing in the edge stops, so a broken G-buffer texel cannot spread into its neighbours.
+vec3 dnsr_read_normal(ivec2 p) {
+    vec3 n = texelFetch(dnsr_normals, p + dnsr_get_offset(), 0).xyz * dnsr_constants.motion_normals.z
+           + dnsr_constants.motion_normals.w;
+    float len2 = dot(n, n);
+    return (len2 > 1e-12 && len2 < 1e30) ? n * inversesqrt(len2) : vec3(0.0);
+}
+#endif
+
+#ifdef DNSR_PASS_PREPARE
+layout(set = 0, binding = 1) uniform utexture2D dnsr_hit_mask;
+layout(set = 0, binding = 2, r32ui) uniform writeonly uimage2D dnsr_tile_mask_out;
+
+ivec2 dnsr_get_tile_offset() { return dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT); }
+uint dnsr_read_hit_mask(ivec2 tile) { return texelFetch(dnsr_hit_mask, tile + dnsr_get_tile_offset(), 0).r; }
+void dnsr_write_tile_mask(ivec2 tile, uint lit_bits) { imageStore(dnsr_tile_mask_out, tile + dnsr_get_tile_offset(), uvec4(lit_bits)); }
+#endif
+
+#ifdef DNSR_PASS_TILE_CLASSIFICATION
+layout(set = 0, binding = 3) uniform utexture2D dnsr_tile_mask;
+layout(set = 0, binding = 5) uniform texture2D dnsr_velocity;
+layout(set = 0, binding = 7) uniform texture2D dnsr_previous_depth;
+layout(set = 0, binding = 8, r32f) uniform writeonly image2D dnsr_depth_copy;
+layout(set = 0, binding = 9) uniform texture2D dnsr_previous_moments;
+layout(set = 0, binding = 10, rgba32f) uniform writeonly image2D dnsr_moments;
+layout(set = 0, binding = 11) uniform sampler2D dnsr_history;
+layout(set = 0, binding = 12, DNSR_INTERMEDIATE_FORMAT) uniform writeonly image2D dnsr_reprojection;
+layout(set = 0, binding = 13, r32ui) uniform writeonly uimage2D dnsr_tile_meta_out;
+
+ivec2 dnsr_get_tile_offset() { return dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT); }
+uint dnsr_read_tile_mask(ivec2 tile) { return texelFetch(dnsr_tile_mask, tile + dnsr_get_tile_offset(), 0).r; }
+// Screen-uv displacement from this pixel to where its surface was last frame (prev_uv = uv + velocity).
+vec2 dnsr_read_velocity(ivec2 p) {
+    return texelFetch(dnsr_velocity, p + dnsr_get_offset(), 0).xy * dnsr_constants.motion_normals.xy;
+}
+float dnsr_read_previous_depth(ivec2 p) { return texelFetch(dnsr_previous_depth, p + dnsr_get_offset(), 0).r; }
+// (mean, sum of squared deviations, sample count, run of identical samples: +n lit, -n shadowed).
+vec4 dnsr_read_previous_moments(ivec2 p) { return texelFetch(dnsr_previous_moments, p + dnsr_get_offset(), 0); }
+// Bilinear history at a rect-relative uv; the sampler clamps to the edge of the internal image.
+float dnsr_read_history(vec2 uv) {
+    vec2 texel = (uv * vec2(dnsr_get_extent()) + vec2(dnsr_get_offset())) / vec2(textureSize(dnsr_history, 0));
+    return textureLod(dnsr_history, texel, 0.0).r;
+}
+float dnsr_read_history_texel(ivec2 p) { return texelFetch(dnsr_history, p + dnsr_get_offset(), 0).r; }
+void dnsr_write_depth_copy(ivec2 p, float depth) { imageStore(dnsr_depth_copy, p + dnsr_get_offset(), vec4(depth)); }
+void dnsr_write_moments(ivec2 p, vec4 m) { imageStore(dnsr_moments, p + dnsr_get_offset(), m); }
+void dnsr_write_reprojection(ivec2 p, vec2 mean_var) { imageStore(dnsr_reprojection, p + dnsr_get_offset(), vec4(mean_var, 0.0, 0.0)); }
+void dnsr_write_tile_meta(ivec2 tile, uint meta) { imageStore(dnsr_tile_meta_out, tile + dnsr_get_tile_offset(), uvec4(meta)); }
+// Penumbra guidance: the host's distance to the first occluder (read where the mask says the ray hit), and each
+// tile's blocker estimate for the filter (-1: unknown).
+layout(set = 0, binding = 21) uniform texture2D dnsr_hit_distance;
+layout(set = 0, binding = 22, r32f) uniform writeonly image2D dnsr_tile_blocker_out;
+float dnsr_read_hit_distance(ivec2 p) { return texelFetch(dnsr_hit_distance, p + dnsr_get_offset(), 0).r; }
+void dnsr_write_tile_blocker(ivec2 tile, float distance) { imageStore(dnsr_tile_blocker_out, tile + dnsr_get_tile_offset(), vec4(distance)); }
+// The host's output, written here for cleared tiles only (their final value is known; later filter passes skip
+// them).
+layout(set = 0, binding = 17, DNSR_OUTPUT_FORMAT) uniform writeonly image2D dnsr_output;
+void dnsr_write_output(ivec2 p, float shadow) { imageStore(dnsr_output, p + dnsr_get_offset(), vec4(shadow)); }
+#endif
+
+#ifdef DNSR_PASS_FILTER
+layout(push_constant) uniform DnsrPushBlock { DnsrFilterPush dnsr_push; };
+layout(set = 0, binding = 14) uniform utexture2D dnsr_tile_meta;
+// A sampler so that the later passes can gather the variances of 2x2 texels in one fetch.
+layout(set = 0, binding = 15) uniform sampler2D dnsr_filter_input;
+layout(set = 0, binding = 16, DNSR_INTERMEDIATE_FORMAT) uniform writeonly image2D dnsr_filter_output;
+layout(set = 0, binding = 19) uniform texture2D dnsr_guide;
+layout(set = 0, binding = 20, rgba32f) uniform writeonly image2D dnsr_guide_out;
+#ifdef DNSR_FINAL_PASS
+layout(set = 0, binding = 17, DNSR_OUTPUT_FORMAT) uniform writeonly image2D dnsr_output;
+// This frame's moments, read only by the debug views.
+layout(set = 0, binding = 18) uniform texture2D dnsr_debug_moments;
+#endif
+
+int dnsr_get_filter_step() { return int(dnsr_push.pass.x); }
+bool dnsr_get_write_internal() { return (dnsr_push.pass.y & DNSR_PASS_WRITE_INTERNAL) != 0u; }
+bool dnsr_get_skip_cleared() { return (dnsr_push.pass.y & DNSR_PASS_SKIP_CLEARED) != 0u; }
+bool dnsr_get_write_guide() { return (dnsr_push.pass.y & DNSR_PASS_WRITE_GUIDE) != 0u; }
+// The filter's own per-pixel geometry, written by the first pass for the later ones: (linear depth or -1, normal).
+vec4 dnsr_read_guide(ivec2 p) { return texelFetch(dnsr_guide, p + dnsr_get_offset(), 0); }
+void dnsr_write_guide(ivec2 p, float linear_depth, vec3 normal) { imageStore(dnsr_guide_out, p + dnsr_get_offset(), vec4(linear_depth, normal)); }
+uint dnsr_read_tile_meta(ivec2 tile) { return texelFetch(dnsr_tile_meta, tile + dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT), 0).r; }
+layout(set = 0, binding = 23) uniform texture2D dnsr_tile_blocker;
+float dnsr_read_tile_blocker(ivec2 tile) { return texelFetch(dnsr_tile_blocker, tile + dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT), 0).r; }
+vec2 dnsr_read_filter_input(ivec2 p) { return texelFetch(dnsr_filter_input, p + dnsr_get_offset(), 0).xy; }
+// Variances of the 2x2 texels around the texel corner at the top left of pixel `corner`.
+vec4 dnsr_gather_filter_variance(ivec2 corner) {
+    return textureGather(dnsr_filter_input, vec2(corner + dnsr_get_offset()) * dnsr_constants.inv_extent.zw, 1);
+}
+void dnsr_write_filter_output(ivec2 p, vec2 mean_var) { imageStore(dnsr_filter_output, p + dnsr_get_offset(), vec4(mean_var, 0.0, 0.0)); }
+#ifdef DNSR_FINAL_PASS
+void dnsr_write_output(ivec2 p, float shadow) { imageStore(dnsr_output, p + dnsr_get_offset(), vec4(shadow)); }
+uint dnsr_get_debug_view() { return dnsr_push.pass.w; }
+vec3 dnsr_read_debug_moments(ivec2 p) { return texelFetch(dnsr_debug_moments, p + dnsr_get_offset(), 0).xyz; }
+#endif
+#endif
+
+#endif

@@ -1,5 +1,5 @@
 //! The CPU reference: every pass in f64, written for clarity against the same Get/Read/Write interface the
-//! shaders call (`dnsr_get_*`, `dnsr_read_*`, `dnsr_write_*` in shaders/dnsr_callbacks_default.glsl). It is the
+//! shaders call (`dnsr_get_*`, `dnsr_read_*`, `dnsr_write_*` in shaders/dnsr_callbacks_standard.glsl). It is the
 //! executable specification: the GPU passes must match it within the parity tolerances.
 //!
 //! Coordinates handed to the interface are relative to the render rectangle, as on the GPU.

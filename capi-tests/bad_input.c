@@ -491,6 +491,15 @@ static void dispatch_calls(void)
     DISPATCH_CASE("record: access without stage", DNSR_ERROR_INVALID_HOST_SYNC, "inputSrcStages is empty",
                   d.sync.inputSrcStages = 0;
                   d.sync.inputSrcAccess = VK_ACCESS_SHADER_WRITE_BIT);
+    DnsrEngineImage engine_images[2] = {{DNSR_ENGINE_BINDING_BASE + DNSR_MAX_ENGINE_IMAGES, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL},
+                                        {DNSR_ENGINE_BINDING_BASE, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL}};
+    DISPATCH_CASE("record: engine image count without array", DNSR_ERROR_INVALID_ARGUMENT, "pEngineImages is NULL",
+                  d.engineImageCount = 1);
+    DISPATCH_CASE("record: engine image past the range", DNSR_ERROR_INVALID_ARGUMENT, "engine images are bindings 32..39",
+                  d.engineImageCount = 1; d.pEngineImages = &engine_images[0]);
+    DnsrEngineImage twice[2] = {engine_images[1], engine_images[1]};
+    DISPATCH_CASE("record: engine image given twice", DNSR_ERROR_INVALID_ARGUMENT, "given twice",
+                  d.engineImageCount = 2; d.pEngineImages = twice);
     DISPATCH_CASE("record: mesh shader stage", DNSR_ERROR_INVALID_HOST_SYNC, "sync.outputDstStages",
                   d.sync.outputDstStages = VK_PIPELINE_STAGE_MESH_SHADER_BIT_EXT);
 

@@ -79,6 +79,16 @@
 #define DNSR_MAX_DIAGNOSES 8
 
 /**
+ * First binding number of an engine's own images in dnsr's set 0 (see DnsrShadowsDispatch::pEngineImages).
+ */
+#define DNSR_ENGINE_BINDING_BASE 32
+
+/**
+ * How many engine images one dispatch can bind.
+ */
+#define DNSR_MAX_ENGINE_IMAGES 8
+
+/**
  * Result of every dnsr function. Negative values are errors; `dnsr_last_error_message` says what was wrong.
  */
 enum DnsrResult
@@ -656,6 +666,25 @@ typedef struct DnsrHostSync {
 typedef uint32_t DnsrDebugView;
 
 /**
+ * One of the engine's images, bound for its own shader variants.
+ */
+typedef struct DnsrEngineImage {
+  /**
+   * The binding its shader declares, DNSR_ENGINE_BINDING_BASE .. DNSR_ENGINE_BINDING_BASE + 7.
+   */
+  uint32_t binding;
+  /**
+   * Required. A 2D view, as the shader declares it (sampled texture2D or storage image2D).
+   */
+  VkImageView view;
+  /**
+   * Its layout while the commands execute: GENERAL, SHADER_READ_ONLY_OPTIMAL or READ_ONLY_OPTIMAL when sampled,
+   * GENERAL for a storage image.
+   */
+  VkImageLayout layout;
+} DnsrEngineImage;
+
+/**
  * One frame of one light: the FidelityFX dispatch description plus dnsr's additions. Matrices are column-major
  * float[16] mapping column vectors; clip space is Vulkan's (uv (0,0) top-left = NDC (-1,-1), depth 0..1).
  */
@@ -780,6 +809,16 @@ typedef struct DnsrShadowsDispatch {
    * DNSR_ERROR_INVALID_ARGUMENT.
    */
   float lightAngularSize;
+  /**
+   * Number of entries in pEngineImages (0 without engine-compiled shader variants).
+   */
+  uint32_t engineImageCount;
+  /**
+   * Optional (with engineImageCount 0). The engine's own images its shader variants (pShaderOverrides) declare
+   * at bindings DNSR_ENGINE_BINDING_BASE.. of set 0; each such binding of this frame's passes must be given.
+   * Views are borrowed for the frame, like the other images.
+   */
+  const struct DnsrEngineImage *pEngineImages;
 } DnsrShadowsDispatch;
 
 /**

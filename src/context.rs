@@ -11,7 +11,7 @@ use crate::gpu::memory::{self, Memory};
 use crate::host::ResourceKind;
 use crate::gpu::loader::Vk;
 use crate::gpu::shader::{variant, Pipeline, SPEC_PENUMBRA_GUIDED, SPEC_STABLE_HISTORY};
-use crate::passes::bindings::image;
+use crate::passes::bindings::{image, Binding};
 use crate::passes::{FramePasses, Pass, Role};
 use crate::passes::{filter, prepare, tile_classification, FrameViews};
 use crate::settings::{check_filter_passes, Settings};
@@ -352,7 +352,47 @@ impl Context {
             moments: light.moments[cur].view,
             // Without a guide (one filter pass: the pass never touches it) the bindings take an image of its format.
             guide: light.guide.as_ref().map_or(light.moments[cur].view, |g| g.view),
+            engine: d.engine_images.map(|e| e.map_or(Binding::default(), |e| image(e.view, e.layout))),
         }
+    }
+
+    /// Every engine image the enabled passes' (engine-compiled) variants declare is given, in a layout its
+    /// descriptor type allows.
+    fn check_engine_images(&self, d: &ShadowsDispatch, passes: &crate::passes::FramePasses) -> Result<()> {
+        let pipelines = self.pipelines.as_ref().expect("created");
+        for pass in passes.iter().filter(|p| p.enabled) {
+            for b in &pipelines.for_role(pass.role).interface.bindings {
+                let Some(slot) = b.resource.engine_slot() else { continue };
+                let binding = crate::ENGINE_BINDING_BASE + slot as u32;
+                let storage = b.descriptor_type == vk::DescriptorType::STORAGE_IMAGE;
+                let allowed: &[vk::ImageLayout] = if storage {
+                    &[vk::ImageLayout::GENERAL]
+                } else {
+                    &[vk::ImageLayout::GENERAL, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL, vk::ImageLayout::READ_ONLY_OPTIMAL]
+                };
+                match d.engine_images[slot] {
+                    None => {
+                        return Err(Error::InvalidValue {
+                            field: "engine_images",
+                            value: format!("no image at binding {binding}"),
+                            allowed: "an image for every engine binding the shader overrides of this frame's passes declare",
+                        })
+                    }
+                    Some(e) if e.view == vk::ImageView::null() => {
+                        return Err(Error::InvalidValue { field: "engine_images", value: format!("binding {binding}: null view"), allowed: "a 2D view" })
+                    }
+                    Some(e) if !allowed.contains(&e.layout) => {
+                        return Err(Error::InvalidValue {
+                            field: "engine_images",
+                            value: format!("binding {binding} ({}) in layout {:?}", if storage { "storage" } else { "sampled" }, e.layout),
+                            allowed: "GENERAL, SHADER_READ_ONLY_OPTIMAL or READ_ONLY_OPTIMAL for a sampled image; GENERAL for a storage image",
+                        })
+                    }
+                    Some(_) => {}
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Writes the bindings of the frame's enabled passes into the light's next descriptor ring slot (nothing to
@@ -385,9 +425,10 @@ impl Context {
         let extent = [rect.width, rect.height];
         let run_prepare = d.hit_mask_convention == HitMaskConvention::OccludedBits;
 
-        // Everything that can fail was checked above. Nothing below fails.
         let views = self.frame_views(d, self.lights[d.light_index as usize].parity);
         let passes = crate::passes::frame(&views, self.settings.filter_passes, run_prepare, d.debug_view);
+        self.check_engine_images(d, &passes)?;
+        // Everything that can fail was checked above. Nothing below fails.
         let sets = self.write_descriptors(d.light_index, &passes);
         let pipelines = self.pipelines.as_ref().expect("created");
         let dev = &self.vk.device;
@@ -584,12 +625,18 @@ impl Context {
 }
 
 /// Images the passes recorded since the last barrier read and wrote (fixed capacity: no allocation).
-#[derive(Default)]
 struct Hazards {
     read: [vk::ImageView; 2 * crate::gpu::descriptors::MAX_BINDINGS],
     written: [vk::ImageView; 2 * crate::gpu::descriptors::MAX_BINDINGS],
     reads: usize,
     writes: usize,
+}
+
+impl Default for Hazards {
+    fn default() -> Self {
+        let none = [vk::ImageView::null(); 2 * crate::gpu::descriptors::MAX_BINDINGS];
+        Hazards { read: none, written: none, reads: 0, writes: 0 }
+    }
 }
 
 impl Hazards {

@@ -138,6 +138,25 @@ pub struct ShadowsDispatch {
     pub sync: HostSync,
     /// What the output shows (the shadow unless a debug view is chosen).
     pub debug_view: DebugView,
+    /// Images the engine's own shader variants read or write (`ContextCreateInfo::shader_overrides`): slot i is
+    /// binding `ENGINE_BINDING_BASE + i` of set 0. Every binding an override of this frame's passes declares
+    /// must be given; dnsr binds them without knowing what they hold. Empty without overrides.
+    pub engine_images: [Option<EngineImage>; MAX_ENGINE_IMAGES],
+}
+
+/// The first binding number of an engine's own images in dnsr's set 0.
+pub const ENGINE_BINDING_BASE: u32 = 32;
+/// How many engine images one dispatch can bind (bindings `ENGINE_BINDING_BASE..ENGINE_BINDING_BASE + 8`).
+pub const MAX_ENGINE_IMAGES: usize = 8;
+
+/// One of the engine's images, bound for its own shader variants.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct EngineImage {
+    /// A view the engine's shader declares (a 2D view for `texture2D` / `image2D`).
+    pub view: vk::ImageView,
+    /// Its layout while the commands execute: GENERAL, SHADER_READ_ONLY_OPTIMAL or READ_ONLY_OPTIMAL for a sampled
+    /// image, GENERAL for a storage image.
+    pub layout: vk::ImageLayout,
 }
 
 impl Default for ShadowsDispatch {
@@ -165,6 +184,7 @@ impl Default for ShadowsDispatch {
             render_rect: None,
             sync: HostSync::default(),
             debug_view: DebugView::None,
+            engine_images: [None; MAX_ENGINE_IMAGES],
         }
     }
 }

@@ -29,7 +29,9 @@ pub use create_info::{
     MAX_LIGHT_COUNT,
 };
 pub use gpu::shader::{shader_variants, ShaderVariantInfo, SHADER_COMPILE_ARGS};
-pub use dispatch::{DebugView, HitMaskConvention, HostImage, HostSync, Rect, ShadowsDispatch};
+pub use dispatch::{
+    DebugView, EngineImage, HitMaskConvention, HostImage, HostSync, Rect, ShadowsDispatch, ENGINE_BINDING_BASE, MAX_ENGINE_IMAGES,
+};
 pub use error::{Error, ImageRole, Result};
 pub use glam;
 pub use host::{DebugNamer, GpuAllocation, GpuMemoryAllocator, HostHooks, ResourceKind};

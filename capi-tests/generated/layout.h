@@ -122,7 +122,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrHostSync, inputSrcAccess) == 4, "offsetof(DnsrHo
 DNSR_STATIC_ASSERT(offsetof(DnsrHostSync, outputDstStages) == 8, "offsetof(DnsrHostSync, outputDstStages)");
 DNSR_STATIC_ASSERT(offsetof(DnsrHostSync, outputDstAccess) == 12, "offsetof(DnsrHostSync, outputDstAccess)");
 
-DNSR_STATIC_ASSERT(sizeof(DnsrShadowsDispatch) == 504, "sizeof(DnsrShadowsDispatch)");
+DNSR_STATIC_ASSERT(sizeof(DnsrShadowsDispatch) == 512, "sizeof(DnsrShadowsDispatch)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrShadowsDispatch) == 8, "alignof(DnsrShadowsDispatch)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, sType) == 0, "offsetof(DnsrShadowsDispatch, sType)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, pNext) == 8, "offsetof(DnsrShadowsDispatch, pNext)");
@@ -149,6 +149,14 @@ DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, sync) == 444, "offsetof(DnsrSha
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, debugView) == 460, "offsetof(DnsrShadowsDispatch, debugView)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, hitDistance) == 464, "offsetof(DnsrShadowsDispatch, hitDistance)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, lightAngularSize) == 496, "offsetof(DnsrShadowsDispatch, lightAngularSize)");
+DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, engineImageCount) == 500, "offsetof(DnsrShadowsDispatch, engineImageCount)");
+DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, pEngineImages) == 504, "offsetof(DnsrShadowsDispatch, pEngineImages)");
+
+DNSR_STATIC_ASSERT(sizeof(DnsrEngineImage) == 24, "sizeof(DnsrEngineImage)");
+DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrEngineImage) == 8, "alignof(DnsrEngineImage)");
+DNSR_STATIC_ASSERT(offsetof(DnsrEngineImage, binding) == 0, "offsetof(DnsrEngineImage, binding)");
+DNSR_STATIC_ASSERT(offsetof(DnsrEngineImage, view) == 8, "offsetof(DnsrEngineImage, view)");
+DNSR_STATIC_ASSERT(offsetof(DnsrEngineImage, layout) == 16, "offsetof(DnsrEngineImage, layout)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrPassTimings) == 88, "sizeof(DnsrPassTimings)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrPassTimings) == 8, "alignof(DnsrPassTimings)");

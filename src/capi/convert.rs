@@ -252,6 +252,37 @@ pub(crate) fn dispatch_from_c(c: &DnsrShadowsDispatch) -> Result<(vk::CommandBuf
             output_dst_stages: c.sync.output_dst_stages,
             output_dst_access: c.sync.output_dst_access,
         },
+        engine_images: engine_images_from_c(c)?,
     };
     Ok((c.command_buffer, d))
+}
+
+fn engine_images_from_c(c: &DnsrShadowsDispatch) -> Result<[Option<crate::EngineImage>; crate::MAX_ENGINE_IMAGES], CallError> {
+    let mut out = [None; crate::MAX_ENGINE_IMAGES];
+    if c.engine_image_count == 0 {
+        return Ok(out);
+    }
+    if c.p_engine_images.is_null() {
+        return Err(CallError::InvalidArgument(format!(
+            "pDispatch->engineImageCount is {} but pEngineImages is NULL",
+            c.engine_image_count
+        )));
+    }
+    // SAFETY: the caller's array holds engineImageCount entries.
+    for (i, e) in unsafe { std::slice::from_raw_parts(c.p_engine_images, c.engine_image_count as usize) }.iter().enumerate() {
+        let slot = e.binding.wrapping_sub(crate::ENGINE_BINDING_BASE) as usize;
+        if slot >= crate::MAX_ENGINE_IMAGES {
+            return Err(CallError::InvalidArgument(format!(
+                "pDispatch->pEngineImages[{i}].binding is {}; engine images are bindings {}..{}",
+                e.binding,
+                crate::ENGINE_BINDING_BASE,
+                crate::ENGINE_BINDING_BASE + crate::MAX_ENGINE_IMAGES as u32 - 1
+            )));
+        }
+        if out[slot].is_some() {
+            return Err(CallError::InvalidArgument(format!("pDispatch->pEngineImages[{i}]: binding {} is given twice", e.binding)));
+        }
+        out[slot] = Some(crate::EngineImage { view: e.view, layout: e.layout });
+    }
+    Ok(out)
 }

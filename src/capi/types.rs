@@ -555,6 +555,31 @@ pub struct DnsrShadowsDispatch {
     /// a point light (hard shadows: no spatial filtering). NaN/Inf: DNSR_ERROR_NON_FINITE; out of range:
     /// DNSR_ERROR_INVALID_ARGUMENT.
     pub light_angular_size: f32,
+    /// Number of entries in pEngineImages (0 without engine-compiled shader variants).
+    pub engine_image_count: u32,
+    /// Optional (with engineImageCount 0). The engine's own images its shader variants (pShaderOverrides) declare
+    /// at bindings DNSR_ENGINE_BINDING_BASE.. of set 0; each such binding of this frame's passes must be given.
+    /// Views are borrowed for the frame, like the other images.
+    pub p_engine_images: *const DnsrEngineImage,
+}
+
+/// First binding number of an engine's own images in dnsr's set 0 (see DnsrShadowsDispatch::pEngineImages).
+pub const DNSR_ENGINE_BINDING_BASE: u32 = 32;
+/// How many engine images one dispatch can bind.
+pub const DNSR_MAX_ENGINE_IMAGES: u32 = 8;
+const _: () = assert!(DNSR_ENGINE_BINDING_BASE == crate::ENGINE_BINDING_BASE && DNSR_MAX_ENGINE_IMAGES as usize == crate::MAX_ENGINE_IMAGES);
+
+/// One of the engine's images, bound for its own shader variants.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DnsrEngineImage {
+    /// The binding its shader declares, DNSR_ENGINE_BINDING_BASE .. DNSR_ENGINE_BINDING_BASE + 7.
+    pub binding: u32,
+    /// Required. A 2D view, as the shader declares it (sampled texture2D or storage image2D).
+    pub view: VkImageView,
+    /// Its layout while the commands execute: GENERAL, SHADER_READ_ONLY_OPTIMAL or READ_ONLY_OPTIMAL when sampled,
+    /// GENERAL for a storage image.
+    pub layout: VkImageLayout,
 }
 
 /// GPU time of each pass of one completed frame, in milliseconds.

@@ -443,6 +443,8 @@ impl Denoiser {
             debug_view: DNSR_DEBUG_VIEW_NONE,
             hit_distance: DnsrHostImage::default(),
             light_angular_size: 0.0,
+            engine_image_count: 0,
+            p_engine_images: std::ptr::null(),
         };
         check(dnsr_shadows_record(self.context, &dispatch))?;
         self.output_format = Some(output_format);

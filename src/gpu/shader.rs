@@ -212,7 +212,7 @@ pub(crate) fn check_override(name: &str, spirv: &[u8]) -> Result<()> {
         return Err(fail(format!("workgroup size {size:?}; dnsr dispatches {expected_size:?}")));
     }
     let (theirs, ours) = (reflect(spirv).map_err(wrap)?, reflect(own.spirv)?);
-    for b in &theirs.bindings {
+    for b in theirs.bindings.iter().filter(|b| b.resource.engine_slot().is_none()) {
         let Some(expected) = ours.bindings.iter().find(|o| o.resource == b.resource) else {
             return Err(fail(format!("binds {:?} (binding {}), which this pass is not given", b.resource, b.binding)));
         };
@@ -243,8 +243,21 @@ pub(crate) fn reflect(spirv: &[u8]) -> Result<Interface> {
     for b in raw {
         let [name, type_name] = &b.names;
         let found = Resource::from_glsl_name(name).or_else(|| Resource::from_glsl_name(type_name));
-        let (resource, expected) =
-            found.ok_or_else(|| Error::ShaderInterface(format!("unknown binding '{name}' ({type_name})")))?;
+        // Any other name is an engine image when it sits in the engine's binding range as an image.
+        let engine = || {
+            let slot = b.binding.checked_sub(crate::ENGINE_BINDING_BASE)? as usize;
+            let image = matches!(b.descriptor_type, Some(vk::DescriptorType::SAMPLED_IMAGE | vk::DescriptorType::STORAGE_IMAGE));
+            Some((Resource::engine(slot).filter(|_| image)?, b.descriptor_type?))
+        };
+        let (resource, expected) = found.or_else(engine).ok_or_else(|| {
+            Error::ShaderInterface(format!(
+                "unknown binding '{name}' ({type_name}) at binding {}: dnsr's own are named dnsr_*, an engine's own \
+                 images go at bindings {}..{} of set 0 (sampled or storage images)",
+                b.binding,
+                crate::ENGINE_BINDING_BASE,
+                crate::ENGINE_BINDING_BASE + crate::MAX_ENGINE_IMAGES as u32 - 1
+            ))
+        })?;
         if b.descriptor_type != Some(expected) || b.set != 0 || b.count != 1 {
             return Err(Error::ShaderInterface(format!(
                 "binding '{name}' is set {} binding {} of type {:?} x{}; dnsr expects set 0, one {expected:?}",

@@ -30,12 +30,35 @@ pub(crate) enum Resource {
     HitDistance,
     TileBlockerOut,
     TileBlocker,
+    /// An engine's own images (bindings ENGINE_BINDING_BASE.., any name), declared by engine-compiled variants.
+    Engine0,
+    Engine1,
+    Engine2,
+    Engine3,
+    Engine4,
+    Engine5,
+    Engine6,
+    Engine7,
 }
 
-pub(crate) const RESOURCE_COUNT: usize = Resource::TileBlocker as usize + 1;
+pub(crate) const RESOURCE_COUNT: usize = Resource::Engine7 as usize + 1;
+const NAMED_COUNT: usize = Resource::TileBlocker as usize + 1;
+
+impl Resource {
+    /// The engine image at slot `slot` (binding ENGINE_BINDING_BASE + slot).
+    pub(crate) fn engine(slot: usize) -> Option<Resource> {
+        use Resource::*;
+        [Engine0, Engine1, Engine2, Engine3, Engine4, Engine5, Engine6, Engine7].get(slot).copied()
+    }
+
+    /// The engine slot of an engine resource.
+    pub(crate) fn engine_slot(self) -> Option<usize> {
+        (self as usize).checked_sub(Resource::Engine0 as usize)
+    }
+}
 
 /// (GLSL name, resource, descriptor type the shader must declare it as).
-const TABLE: [(&str, Resource, vk::DescriptorType); RESOURCE_COUNT] = [
+const TABLE: [(&str, Resource, vk::DescriptorType); NAMED_COUNT] = [
     ("DnsrConstantsBlock", Resource::Constants, vk::DescriptorType::UNIFORM_BUFFER),
     ("dnsr_hit_mask", Resource::HitMask, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_tile_mask_out", Resource::TileMaskOut, vk::DescriptorType::STORAGE_IMAGE),

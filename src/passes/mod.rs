@@ -161,15 +161,20 @@ pub(crate) struct FrameViews {
     pub previous_moments: vk::ImageView,
     pub moments: vk::ImageView,
     pub guide: vk::ImageView,
+    /// The engine's own images (slot i: binding ENGINE_BINDING_BASE + i), for its shader variants.
+    pub engine: [Binding; crate::MAX_ENGINE_IMAGES],
 }
 
 impl FrameViews {
-    /// The bindings every pass shares: constants and the G-buffer.
+    /// The bindings every pass shares: constants, the G-buffer and the engine's images.
     fn base_table(&self) -> BindingTable {
         let mut t = BindingTable::default();
         t[Resource::Constants as usize] = Binding { buffer: self.constants, ..Default::default() };
         t[Resource::Depth as usize] = self.depth;
         t[Resource::Normals as usize] = self.normals;
+        for (slot, &b) in self.engine.iter().enumerate() {
+            t[Resource::engine(slot).expect("slot below MAX_ENGINE_IMAGES") as usize] = b;
+        }
         t
     }
 }

@@ -75,6 +75,8 @@ fn c_dispatch(d: &crate::ShadowsDispatch, cmd: vk::CommandBuffer) -> DnsrShadows
         debug_view: DNSR_DEBUG_VIEW_NONE,
         hit_distance: d.hit_distance.as_ref().map(host).unwrap_or_default(),
         light_angular_size: d.light_angular_size,
+        engine_image_count: 0,
+        p_engine_images: std::ptr::null(),
     }
 }
 

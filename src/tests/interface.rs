@@ -230,8 +230,9 @@ fn generated_layout_header() -> String {
         s_type, p_next, command_buffer, light_index, flags, hit_mask_convention, hit_mask, depth, velocity, normals,
         output, motion_vector_scale, normals_unpack_mul, normals_unpack_add, eye, frame_index, projection_inverse,
         reprojection_matrix, view_projection_inverse, depth_similarity_sigma, render_rect, sync, debug_view, hit_distance,
-        light_angular_size,
+        light_angular_size, engine_image_count, p_engine_images,
     });
+    check!(DnsrEngineImage { binding, view, layout });
     check!(DnsrPassTimings { s_type, p_next, frame, prepare_ms, tile_classification_ms, filter_ms, filter_passes, total_ms });
     check!(DnsrDeviceRequirements {
         s_type, p_next, min_api_version, required_extension_count, pp_required_extension_names,

@@ -133,3 +133,54 @@ fn mismatched_overrides_are_refused_before_anything_is_created() {
     std::fs::remove_dir_all(&dir).ok();
     g.assert_clean();
 }
+
+#[test]
+fn engine_images_are_bound_where_the_overrides_declare_them() {
+    let g = gpu();
+    let (w, h) = (40, 24);
+    // The engine's callbacks read depth from an image of its own at binding ENGINE_BINDING_BASE.
+    let dir = sources(&|s| {
+        s.replace(
+            "float dnsr_read_depth(ivec2 p) { return texelFetch(dnsr_depth, p + dnsr_get_offset(), 0).r; }",
+            "layout(set = 0, binding = 32) uniform texture2D engine_depth;\n\
+             float dnsr_read_depth(ivec2 p) { return texelFetch(engine_depth, p + dnsr_get_offset(), 0).r; }",
+        )
+    });
+    let mut info = g.create_info(w, h);
+    info.output_format = vk::Format::R32_SFLOAT;
+    let mut plain = Runner::new(&g, &info).unwrap();
+    info.shader_overrides = ["tile_classification_r32f", "filter", "filter_later", "filter_later_final_r32f"]
+        .iter()
+        .map(|name| compile(&dir, name, &[]))
+        .collect();
+    let mut engine = Runner::new(&g, &info).unwrap();
+    let field = |x: f64, z: f64| (0.5 + 0.4 * (x * 0.9).sin() * (z * 0.7).cos()).clamp(0.0, 1.0);
+    let f = static_frame(w, h, &field, 3);
+    // Bound: the engine image is the depth image itself, so the result is dnsr's own.
+    let mut d = engine.dispatch(&f);
+    d.engine_images[0] = Some(crate::EngineImage { view: d.depth.view, layout: d.depth.layout });
+    d.reset = true;
+    let a = plain.frame(&f, true);
+    assert_eq!(engine.run(&f, &d).unwrap(), a);
+    // Not given, or in a layout a sampled image cannot be in: refused, nothing recorded.
+    let mut missing = d;
+    missing.engine_images[0] = None;
+    let mut wrong = d;
+    wrong.engine_images[0] = Some(crate::EngineImage { view: d.depth.view, layout: vk::ImageLayout::TRANSFER_DST_OPTIMAL });
+    for (what, bad, expect) in [("missing", missing, "no image at binding 32"), ("layout", wrong, "TRANSFER_DST_OPTIMAL")] {
+        match engine.run(&f, &bad) {
+            Err(e @ Error::InvalidValue { field: "engine_images", .. }) => {
+                assert!(e.to_string().contains(expect), "{what}: {e}");
+                eprintln!("{what}: {e}");
+            }
+            other => panic!("{what}: {other:?}"),
+        }
+    }
+    // The context is intact: the next frame equals the plain one's.
+    let f2 = static_frame(w, h, &field, 4);
+    let mut d2 = engine.dispatch(&f2);
+    d2.engine_images[0] = Some(crate::EngineImage { view: d2.depth.view, layout: d2.depth.layout });
+    assert_eq!(engine.run(&f2, &d2).unwrap(), plain.frame(&f2, false));
+    std::fs::remove_dir_all(&dir).ok();
+    g.assert_clean();
+}

@@ -45,6 +45,7 @@ struct Options {
     std::string outDir = "out/viewer";
     std::string screenshot;
     bool pointLight = false;
+    bool packedGbuffer = false;
     float lightAngleDeg = 3.0f;
     bool hitDistance = true;  // penumbra guidance (DNSR_DISPATCH_USE_HIT_DISTANCE)
     bool lightMotion = false;
@@ -66,7 +67,9 @@ const char *kUsage =
     "  --point-light           a spherical point light instead of the directional light\n"
     "  --light-angle DEG       angular radius of the light, 0..30 (default 3; sets the penumbra width)\n"
     "  --light-motion          start with the light moving (key L toggles it)\n"
-    "  --hit-distance on|off   penumbra guidance: give dnsr each shadow ray's distance to its nearest occluder and\n"
+    "  --gbuffer default|packed  packed: keep linear depth and octahedral RG16 normals, and run dnsr's passes\n"
+    "                          compiled against examples-c/custom_gbuffer's callbacks (default: default)\n"
+  "  --hit-distance on|off   penumbra guidance: give dnsr each shadow ray's distance to its nearest occluder and\n"
     "                          the light's angular diameter (DNSR_DISPATCH_USE_HIT_DISTANCE; default on; key H)\n"
     "  --reference-samples N   shadow rays per pixel of the reference, 1..65536 (default 256)\n"
     "  --save-reference FILE   headless: also write the last frame's reference (and depth) to FILE\n"
@@ -161,6 +164,10 @@ Options parseOptions(int argc, char **argv)
             auto it = std::find(std::begin(names), std::end(names), v);
             if (it == std::end(names)) throw UsageError("--preset wants fast, balanced or quality, got '" + v + "'");
             o.preset = static_cast<DnsrPreset>(it - std::begin(names));
+        } else if (a == "--gbuffer") {
+            std::string v = value();
+            if (v != "default" && v != "packed") throw UsageError("--gbuffer wants default or packed, got '" + v + "'");
+            o.packedGbuffer = v == "packed";
         } else if (a == "--hit-distance") {
             std::string v = value();
             if (v != "on" && v != "off") throw UsageError("--hit-distance wants on or off, got '" + v + "'");
@@ -513,6 +520,7 @@ private:
         rs.width = opt_.width, rs.height = opt_.height;
         rs.sceneRadius = scene_.radius;
         rs.preset = opt_.preset;
+        rs.packedGbuffer = opt_.packedGbuffer;
         renderer_.create(ctx_, *scene_.scene, rs);
         std::printf("viewer: %s on %s, %ux%u, %u triangles, BVH %u nodes (depth %u), push descriptors %s\n",
                     opt_.scene.c_str(), ctx_.properties.deviceName, opt_.width, opt_.height, renderer_.triangles,
@@ -633,6 +641,7 @@ private:
         json += "  \"light_angular_size_rad\": " + fmt(last.lightAngularSize, 6) + ",\n";
         const char *presets[] = {"fast", "balanced", "quality"};
         json += std::string("  \"preset\": \"") + presets[opt_.preset] + "\",\n";
+        json += std::string("  \"gbuffer\": \"") + (opt_.packedGbuffer ? "packed" : "default") + "\",\n";
         json += "  \"reference_samples\": " + std::to_string(referenceSamples) + ",\n";
         json += "  \"reference_file\": " + (loadedReference_ ? jsonString(opt_.loadReference) : "null") + ",\n";
         json += "  \"pixels_compared\": " + std::to_string(e.pixels) + ",\n";

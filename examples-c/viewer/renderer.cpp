@@ -21,6 +21,32 @@ const uint32_t kReferenceSpv[] =
 const uint32_t kCompositeSpv[] =
 #include "composite.comp.inc"
     ;
+const uint32_t kPrimaryPackedSpv[] =  // also writes the packed G-buffer (--gbuffer packed)
+#include "primary_packed.comp.inc"
+    ;
+// dnsr's passes compiled against examples-c/custom_gbuffer/engine_callbacks.glsl (CMake), for --gbuffer packed.
+const uint32_t kDnsrClassification[] =
+#include "dnsr_tile_classification_r32f.inc"
+    ;
+const uint32_t kDnsrFilter[] =
+#include "dnsr_filter.inc"
+    ;
+const uint32_t kDnsrFilterLater[] =
+#include "dnsr_filter_later.inc"
+    ;
+const uint32_t kDnsrFilterFinal[] =
+#include "dnsr_filter_final_r32f.inc"
+    ;
+const uint32_t kDnsrFilterLaterFinal[] =
+#include "dnsr_filter_later_final_r32f.inc"
+    ;
+const DnsrShaderOverride kPackedOverrides[] = {
+    {"tile_classification_r32f", kDnsrClassification, sizeof kDnsrClassification},
+    {"filter", kDnsrFilter, sizeof kDnsrFilter},
+    {"filter_later", kDnsrFilterLater, sizeof kDnsrFilterLater},
+    {"filter_final_r32f", kDnsrFilterFinal, sizeof kDnsrFilterFinal},
+    {"filter_later_final_r32f", kDnsrFilterLaterFinal, sizeof kDnsrFilterLaterFinal},
+};
 
 // Host copy of shaders/common.glsl's FrameConstants (std140: vec4-aligned members only, so no padding rules).
 struct FrameConstants {
@@ -49,6 +75,8 @@ enum Binding : uint32_t {
     kReference,
     kDisplay,
     kHitDistance,  // declared in shadow.comp only (its format depends on the device)
+    kLinearDepth,  // these two in primary.comp's packed variant only
+    kOctNormals,
     kBindingCount
 };
 
@@ -130,6 +158,11 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
     // but writing R16F from a shader needs shaderStorageImageExtendedFormats; R32F otherwise.
     hitDistance_ = ctx.createImage(ctx.storageImageExtendedFormats ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT, w,
                                    h, usage);
+    if (settings.packedGbuffer && !ctx.storageImageExtendedFormats)
+        throw VulkanError("--gbuffer packed writes RG16_SNORM normals, which needs shaderStorageImageExtendedFormats");
+    linearDepth_ = ctx.createImage(VK_FORMAT_R32_SFLOAT, w, h, usage);
+    octNormals_ = ctx.createImage(ctx.storageImageExtendedFormats ? VK_FORMAT_R16G16_SNORM : VK_FORMAT_R32G32_SFLOAT, w,
+                                  h, usage);
 
     // Readback buffer: one section per image, each starting at a multiple of 16 bytes (a buffer-image copy's
     // offset must be a multiple of the texel size, up to 16 for RGBA32F; odd render sizes break 4-byte sections).
@@ -152,7 +185,7 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
     VkCommandBuffer cmd = ctx.beginOneTimeCommands();
     std::vector<VkImageMemoryBarrier> toGeneral;
     for (const GpuImage *img : {&rayOrigin_, &depth_, &normals_, &velocity_, &albedo_, &hitMask_, &denoised_,
-                                &reference_, &display_, &hitDistance_}) {
+                                &reference_, &display_, &hitDistance_, &linearDepth_, &octNormals_}) {
         auto b = vkStruct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
         b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
         b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
@@ -174,7 +207,8 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
     ctx.submitAndWait(cmd);
 
     createDescriptors();
-    primary_ = ctx.createComputePipeline(pipelineLayout_, kPrimarySpv, sizeof kPrimarySpv);
+    primary_ = settings.packedGbuffer ? ctx.createComputePipeline(pipelineLayout_, kPrimaryPackedSpv, sizeof kPrimaryPackedSpv)
+                                      : ctx.createComputePipeline(pipelineLayout_, kPrimarySpv, sizeof kPrimarySpv);
     shadow_ = ctx.storageImageExtendedFormats
                   ? ctx.createComputePipeline(pipelineLayout_, kShadowSpv, sizeof kShadowSpv)
                   : ctx.createComputePipeline(pipelineLayout_, kShadowR32fSpv, sizeof kShadowR32fSpv);
@@ -233,8 +267,8 @@ void Renderer::createDescriptors()
                                          {nodes_.buffer, 0, VK_WHOLE_SIZE},
                                          {triGeometry_.buffer, 0, VK_WHOLE_SIZE},
                                          {triShading_.buffer, 0, VK_WHOLE_SIZE}};
-    const GpuImage *images[] = {&rayOrigin_, &depth_,    &normals_,   &velocity_, &albedo_,
-                                &hitMask_,   &denoised_, &reference_, &display_,  &hitDistance_};
+    const GpuImage *images[] = {&rayOrigin_, &depth_,    &normals_,   &velocity_, &albedo_,       &hitMask_,
+                                &denoised_,  &reference_, &display_, &hitDistance_, &linearDepth_, &octNormals_};
     VkDescriptorImageInfo imageInfos[kBindingCount - 4];
     std::vector<VkWriteDescriptorSet> writes(kBindingCount,
                                              vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET));
@@ -275,6 +309,11 @@ void Renderer::createDenoiser()
     info.precision = DNSR_PRECISION_FP32;
     info.outputFormat = VK_FORMAT_R32_SFLOAT;
     info.lightCount = 1;
+    if (settings_.packedGbuffer) {
+        // The engine's own G-buffer encoding: dnsr runs passes compiled against its callbacks.
+        info.shaderOverrideCount = sizeof kPackedOverrides / sizeof kPackedOverrides[0];
+        info.pShaderOverrides = kPackedOverrides;
+    }
     DnsrResult r = dnsr_context_create(&info, &denoiser_);
     if (r != DNSR_SUCCESS) dnsrFail("dnsr_context_create", r);
     DnsrSettings dnsrSettings;
@@ -368,9 +407,9 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
     d.flags = (in.cameraCut ? DNSR_DISPATCH_RESET : 0) | (in.hitDistance ? DNSR_DISPATCH_USE_HIT_DISTANCE : 0);
     d.hitMaskConvention = DNSR_HIT_MASK_OCCLUDED_BITS;  // bit = 1: the ray hit an occluder
     d.hitMask = hostImage(hitMask_);
-    d.depth = hostImage(depth_);
+    d.depth = hostImage(settings_.packedGbuffer ? linearDepth_ : depth_);
     d.velocity = hostImage(velocity_);
-    d.normals = hostImage(normals_);
+    d.normals = hostImage(settings_.packedGbuffer ? octNormals_ : normals_);
     d.output = hostImage(denoised_);
     if (in.hitDistance) {
         // Written by the shadow pass above, like the hit mask: the same input barrier (sync below) covers it.
@@ -472,7 +511,7 @@ void Renderer::destroy()
     if (setLayout_) vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
     if (timestamps_) vkDestroyQueryPool(dev, timestamps_, nullptr);
     for (GpuImage *img : {&rayOrigin_, &depth_, &normals_, &velocity_, &albedo_, &hitMask_, &denoised_, &reference_,
-                          &display_, &hitDistance_})
+                          &display_, &hitDistance_, &linearDepth_, &octNormals_})
         ctx_->destroyImage(*img);
     for (GpuBuffer *b : {&frameConstants_, &nodes_, &triGeometry_, &triShading_, &readback_}) ctx_->destroyBuffer(*b);
     ctx_ = nullptr;

@@ -37,6 +37,8 @@ struct RendererSettings {
     float sceneRadius = 1.0f;  // sets the shadow-ray offset
     float ambient = 0.2f;
     DnsrPreset preset = DNSR_PRESET_BALANCED;  // dnsr's settings (dnsr_settings_init_preset)
+    // Linear depth and octahedral normals, read by dnsr through custom callbacks (examples-c/custom_gbuffer).
+    bool packedGbuffer = false;
 };
 
 struct FrameInput {
@@ -115,6 +117,7 @@ private:
 
     GpuBuffer frameConstants_, nodes_, triGeometry_, triShading_, readback_;
     GpuImage rayOrigin_, depth_, normals_, velocity_, albedo_, hitMask_, denoised_, reference_, display_, hitDistance_;
+    GpuImage linearDepth_, octNormals_;  // --gbuffer packed
     VkDeviceSize depthOffset_ = 0, maskOffset_ = 0, denoisedOffset_ = 0, referenceOffset_ = 0, displayOffset_ = 0,
                  normalsOffset_ = 0, velocityOffset_ = 0;
 

@@ -110,6 +110,23 @@ PY
 echo "headless: $quality"
 [[ $quality == ok* ]] || fail "denoised RMSE is not below 0.7x the noisy RMSE"
 
+# ---- --gbuffer packed: linear depth and octahedral normals through dnsr passes compiled against custom callbacks
+# (examples-c/custom_gbuffer): the same scene, validation clean, the same error against the same reference ----
+status=0
+"$viewer" --headless --validate --gbuffer packed --frames 8 --size 160x96 --out "$tmp/packed" \
+  > "$tmp/packed.log" 2>&1 || status=$?
+(( status == 0 )) || { cat "$tmp/packed.log"; fail "--gbuffer packed exited with status $status"; }
+python3 - "$out/report.json" "$tmp/packed/report.json" <<'PY' || fail "--gbuffer packed check failed"
+import json, sys
+default, packed = (json.load(open(p)) for p in sys.argv[1:])
+assert packed["gbuffer"] == "packed" and default["gbuffer"] == "default", "G-buffer mode not recorded"
+assert packed["rmse"]["noisy"] == default["rmse"]["noisy"], "the packed run traced other rays"
+d, p = default["rmse"]["denoised"], packed["rmse"]["denoised"]
+# RG16 octahedral normals against RGBA16F ones: nearly, not exactly, the same edge stops.
+assert abs(p - d) <= 1e-3, f"denoised RMSE {d:.5f} with dnsr's callbacks, {p:.5f} with the engine's"
+print(f"packed G-buffer: denoised RMSE {p:.5f} (default {d:.5f})")
+PY
+
 # ---- dnsr presets: Quality through dnsr_settings_init_preset, validation clean; a bad name is a usage error ----
 # Also the unguided path (--hit-distance off), and a reference saved by one run and measured against by another
 # (the guided Quality run: same frames, so the same last frame; the RMSE must then be that of a rendered one).

@@ -6,6 +6,18 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
+#ifdef PACKED_GBUFFER
+// --gbuffer packed: the G-buffer an engine might keep instead (examples-c/custom_gbuffer): linear view depth and
+// octahedral normals, read by dnsr through that example's callbacks.
+layout(set = 0, binding = 14, r32f) uniform image2D linearDepthImage;   // distance along the view axis, 0 for sky
+layout(set = 0, binding = 15, rg16_snorm) uniform image2D octNormalImage;
+
+vec2 octEncode(vec3 n) {
+    n /= abs(n.x) + abs(n.y) + abs(n.z);
+    return n.z >= 0.0 ? n.xy : (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+}
+#endif
+
 void main()
 {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -61,4 +73,11 @@ void main()
     imageStore(velocityImage, pixel, vec4(velocity, 0.0, 0.0));
     imageStore(albedoImage, pixel, albedo);
     imageStore(rayOriginImage, pixel, rayOrigin);
+#ifdef PACKED_GBUFFER
+    // The view axis: from the eye through the centre of the screen.
+    vec4 centreH = frame.invViewProj * vec4(0.0, 0.0, 1.0, 1.0);
+    vec3 forward = normalize(centreH.xyz / centreH.w - frame.eye.xyz);
+    imageStore(linearDepthImage, pixel, vec4(hit ? dot(p - frame.eye.xyz, forward) : 0.0));
+    imageStore(octNormalImage, pixel, vec4(hit ? octEncode(normal) : vec2(0.0), 0.0, 0.0));
+#endif
 }

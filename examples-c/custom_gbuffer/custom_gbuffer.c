@@ -10,9 +10,10 @@
  *
  * To show the result is dnsr's, it runs the same scene twice, side by side: the engine's encoding through its
  * callbacks, and the same depth and normals converted to dnsr's default formats through the default callbacks.
- * Every output pixel of every frame must agree within 1e-4.
+ * Every output pixel of every frame must agree within 1e-4. Both contexts record GPU timestamps: it prints what
+ * the engine's callbacks cost against the default ones (median over the frames after the first quarter).
  *
- *   build_shaders.sh <prefix>/share/dnsr/shaders spv && custom_gbuffer spv
+ *   build_shaders.sh <prefix>/share/dnsr/shaders spv && custom_gbuffer spv [--size WxH] [--frames N] [--no-layers]
  */
 #include "host.h"
 
@@ -21,13 +22,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define W 64u
-#define H 40u
-#define FRAMES 6u
 #define NEAR 0.5f
 #define FAR 50.0f
 
 static Host host;
+static uint32_t W = 64, H = 40, FRAMES = 6;
 
 /* The engine's compiled variants, read from `dir`: the names are dnsr's (dnsr_get_shader_variants). */
 static const char *const kVariants[] = {"tile_classification_r32f", "filter", "filter_later", "filter_final_r32f",
@@ -95,17 +94,51 @@ static void oct_decode(const int16_t e[2], float n[3])
     for (int k = 0; k < 3; k++) n[k] /= len;
 }
 
+static int compare_floats(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return (x > y) - (x < y);
+}
+
+/* GPU milliseconds of the most recent completed frame of `ctx`. */
+static float frame_ms(DnsrContext ctx)
+{
+    DnsrPassTimings t;
+    memset(&t, 0, sizeof t);
+    t.sType = DNSR_STRUCTURE_TYPE_PASS_TIMINGS;
+    DNSR_CHECK(dnsr_context_get_timings(ctx, &t));
+    return t.totalMs;
+}
+
 int main(int argc, char **argv)
 {
-    CHECK(argc == 2, "usage: custom_gbuffer SPV_DIR (see build_shaders.sh)");
+    HostOptions options = {0};
+    CHECK(argc >= 2, "usage: custom_gbuffer SPV_DIR [--size WxH] [--frames N] [--no-layers] (see build_shaders.sh)");
+    for (int i = 2; i < argc; i++) {
+        if (!strcmp(argv[i], "--size") && i + 1 < argc) {
+            CHECK(sscanf(argv[++i], "%ux%u", &W, &H) == 2 && W >= 8 && H >= 8, "--size wants WxH, 8 or more");
+        } else if (!strcmp(argv[i], "--frames") && i + 1 < argc) {
+            FRAMES = (uint32_t)atoi(argv[++i]);
+            CHECK(FRAMES >= 2, "--frames wants 2 or more");
+        } else {
+            CHECK(!strcmp(argv[i], "--no-layers"), "unknown argument %s", argv[i]);
+            options.noLayers = true; /* a machine without the validation layer (timing runs) */
+        }
+    }
     load_overrides(argv[1]);
-    host_create(&host);
+    host_create_with(&host, &options);
 
     /* The scene: a floor tilting away from the camera under a bumpy normal field, sky in the top rows. */
     float pinv[16];
     projection_inverse(pinv);
-    static float hwDepth[W * H], linear[W * H], worldNormal[W * H][4];
-    static int16_t octNormal[W * H][2];
+    size_t n = (size_t)W * H;
+    float *hwDepth = malloc(n * sizeof(float)), *linear = malloc(n * sizeof(float));
+    float(*worldNormal)[4] = malloc(n * sizeof *worldNormal);
+    int16_t(*octNormal)[2] = malloc(n * sizeof *octNormal);
+    float *zeros = calloc(2 * n, sizeof(float));
+    uint32_t *bits = malloc(((W + 7) / 8) * ((H + 3) / 4) * sizeof(uint32_t));
+    float *msPlain = malloc(FRAMES * sizeof(float)), *msEngine = malloc(FRAMES * sizeof(float));
+    CHECK(hwDepth && linear && worldNormal && octNormal && zeros && bits && msPlain && msEngine, "out of memory");
     for (uint32_t y = 0; y < H; y++)
         for (uint32_t x = 0; x < W; x++) {
             uint32_t i = y * W + x;
@@ -134,15 +167,15 @@ int main(int argc, char **argv)
     host_image_create(&host, &velocity, VK_FORMAT_R32G32_SFLOAT, W, H, read);
     host_image_create(&host, &outDefault, VK_FORMAT_R32_SFLOAT, W, H, VK_IMAGE_LAYOUT_GENERAL);
     host_image_create(&host, &outEngine, VK_FORMAT_R32_SFLOAT, W, H, VK_IMAGE_LAYOUT_GENERAL);
-    host_upload(&host, &depthDefault, hwDepth, sizeof hwDepth);
-    host_upload(&host, &depthEngine, linear, sizeof linear);
-    host_upload(&host, &normalsDefault, worldNormal, sizeof worldNormal);
-    host_upload(&host, &normalsEngine, octNormal, sizeof octNormal);
-    static float zeros[W * H * 2];
-    host_upload(&host, &velocity, zeros, sizeof zeros);
+    host_upload(&host, &depthDefault, hwDepth, n * sizeof(float));
+    host_upload(&host, &depthEngine, linear, n * sizeof(float));
+    host_upload(&host, &normalsDefault, worldNormal, n * sizeof *worldNormal);
+    host_upload(&host, &normalsEngine, octNormal, n * sizeof *octNormal);
+    host_upload(&host, &velocity, zeros, 2 * n * sizeof(float));
 
     /* The engine's context: the same create info plus its compiled variants. */
     DnsrContextCreateInfo info = host_create_info(&host, W, H);
+    info.flags |= DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS;
     DnsrContext plain = NULL, engine = NULL;
     DNSR_CHECK(dnsr_context_create(&info, &plain));
     info.shaderOverrideCount = (uint32_t)VARIANT_COUNT;
@@ -153,10 +186,9 @@ int main(int argc, char **argv)
     host_buffer_create(&host, &readback, 2 * W * H * sizeof(float));
     float worst = 0;
     for (uint32_t frame = 0; frame < FRAMES; frame++) {
-        static uint32_t bits[((W + 7) / 8) * ((H + 3) / 4)];
         uint32_t s = 977u * (frame + 1);
         for (uint32_t i = 0; i < tx * ty; i++) s = s * 1664525u + 1013904223u, bits[i] = s ^ (s >> 11);
-        host_upload(&host, &mask, bits, sizeof bits);
+        host_upload(&host, &mask, bits, (size_t)tx * ty * sizeof(uint32_t));
 
         VkCommandBuffer cmd = host_begin(&host);
         host_cmd_full_barrier(cmd);
@@ -175,8 +207,9 @@ int main(int argc, char **argv)
         host_cmd_host_read_barrier(cmd);
         host_submit(&host, cmd);
 
-        const float *a = readback.mapped, *b = a + W * H;
-        for (uint32_t i = 0; i < W * H; i++) {
+        msPlain[frame] = frame_ms(plain), msEngine[frame] = frame_ms(engine);
+        const float *a = readback.mapped, *b = a + n;
+        for (uint32_t i = 0; i < n; i++) {
             float diff = fabsf(a[i] - b[i]);
             worst = diff > worst ? diff : worst;
             CHECK(diff <= 1e-4f, "frame %u pixel (%u, %u): default callbacks %.7f, engine callbacks %.7f", frame,
@@ -184,8 +217,12 @@ int main(int argc, char **argv)
         }
     }
     host_expect_clean(&host, "custom_gbuffer");
-    printf("custom_gbuffer: %u frames, engine callbacks (linear depth, octahedral RG16 normals) = default path "
-           "within %.2g (bound 1e-4)\n", FRAMES, worst);
+    uint32_t skip = FRAMES / 4, timed = FRAMES - skip;
+    qsort(msPlain + skip, timed, sizeof(float), compare_floats);
+    qsort(msEngine + skip, timed, sizeof(float), compare_floats);
+    printf("custom_gbuffer: %s, %ux%u, %u frames, engine callbacks (linear depth, octahedral RG16 normals) = "
+           "default path within %.2g (bound 1e-4); GPU ms (median of %u): default %.3f, engine callbacks %.3f\n",
+           host.deviceName, W, H, FRAMES, worst, timed, msPlain[skip + timed / 2], msEngine[skip + timed / 2]);
 
     DNSR_CHECK(dnsr_context_destroy(engine));
     DNSR_CHECK(dnsr_context_destroy(plain));
@@ -194,5 +231,6 @@ int main(int argc, char **argv)
     for (size_t i = 0; i < sizeof images / sizeof images[0]; i++) host_image_destroy(&host, images[i]);
     host_destroy(&host);
     for (size_t i = 0; i < VARIANT_COUNT; i++) free(code[i]);
+    free(hwDepth), free(linear), free(worldNormal), free(octNormal), free(zeros), free(bits), free(msPlain), free(msEngine);
     return 0;
 }

@@ -138,15 +138,17 @@ install:
 	install -m 644 $(DNSR_SHADER_SOURCES) '$(DESTDIR)$(DNSR_SHADERDIR)'
 	install -m 644 shaders/generated/dnsr_constants.glsl '$(DESTDIR)$(DNSR_SHADERDIR)/generated'
 	sed $(DNSR_SED) $(DNSR_TEMPLATES)/dnsr.pc.in > '$(DESTDIR)$(LIBDIR)/pkgconfig/dnsr.pc'
+	sed $(DNSR_SED) $(DNSR_TEMPLATES)/dnsr-ffx.pc.in > '$(DESTDIR)$(LIBDIR)/pkgconfig/dnsr-ffx.pc'
 	sed $(DNSR_SED) $(DNSR_TEMPLATES)/dnsrConfig.cmake.in > '$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfig.cmake'
 	sed $(DNSR_SED) $(DNSR_TEMPLATES)/dnsrConfigVersion.cmake.in > '$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfigVersion.cmake'
-	chmod 644 '$(DESTDIR)$(LIBDIR)/pkgconfig/dnsr.pc' '$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfig.cmake' '$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfigVersion.cmake'
+	chmod 644 '$(DESTDIR)$(LIBDIR)/pkgconfig/dnsr.pc' '$(DESTDIR)$(LIBDIR)/pkgconfig/dnsr-ffx.pc' '$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfig.cmake' '$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfigVersion.cmake'
 	@echo "installed dnsr $(DNSR_VERSION) (soname libdnsr.so.$(DNSR_ABI)) to $(DESTDIR)$(PREFIX)"
 
 uninstall:
 	rm -f '$(DESTDIR)$(LIBDIR)/libdnsr.so.$(DNSR_VERSION)' '$(DESTDIR)$(LIBDIR)/libdnsr.so.$(DNSR_ABI)' \
 		'$(DESTDIR)$(LIBDIR)/libdnsr.so' '$(DESTDIR)$(LIBDIR)/libdnsr.a' '$(DESTDIR)$(INCLUDEDIR)/dnsr.h' \
-		'$(DESTDIR)$(LIBDIR)/pkgconfig/dnsr.pc' '$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfig.cmake' \
+		'$(DESTDIR)$(LIBDIR)/pkgconfig/dnsr.pc' '$(DESTDIR)$(LIBDIR)/pkgconfig/dnsr-ffx.pc' \
+		'$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfig.cmake' \
 		'$(DESTDIR)$(DNSR_CMAKEDIR)/dnsrConfigVersion.cmake'
 	rm -f $(addprefix '$(DESTDIR)$(INCLUDEDIR)/dnsr-ffx/FidelityFX/host/,$(addsuffix ',$(notdir $(DNSR_FFX_HEADERS)))) \
 		'$(DESTDIR)$(INCLUDEDIR)/dnsr-ffx/FidelityFX/host/backends/vk/ffx_vk.h'

@@ -45,7 +45,11 @@ grep -qF "[$soname]" <<<"$needed" || fail "consumer does not record $soname"
 LD_LIBRARY_PATH=$tmp/lib "$work/consumer-pc"
 
 echo "== FidelityFX integration: the installed include/dnsr-ffx headers and libdnsr alone"
-cc -std=c11 -Wall -Wextra -Werror -I"$tmp/include/dnsr-ffx" -o "$work/consumer-ffx" "$root/capi-tests/ffx_header_c11.c" $flags
+ffx_flags=$(PKG_CONFIG_PATH=$tmp/lib/pkgconfig pkg-config --cflags --libs dnsr-ffx)
+echo "pkg-config --cflags --libs dnsr-ffx: $ffx_flags"
+[[ $ffx_flags == *"$tmp/include/dnsr-ffx"* ]] || fail "dnsr-ffx.pc does not add include/dnsr-ffx"
+# shellcheck disable=SC2086 # the flags are words
+cc -std=c11 -Wall -Wextra -Werror -o "$work/consumer-ffx" "$root/capi-tests/ffx_header_c11.c" $ffx_flags
 LD_LIBRARY_PATH=$tmp/lib "$work/consumer-ffx"
 
 echo "== shader sources: an installed entry file compiles as dnsr's own variant does"

@@ -91,6 +91,8 @@ pub struct Context {
     supported_stages: vk::PipelineStageFlags,
     /// Engine-compiled classification or filter variants decode the G-buffer: its formats are theirs to choose.
     engine_reads: bool,
+    /// Some pipeline declares engine images (bindings ENGINE_BINDING_BASE..): dispatches must give them.
+    engine_images_declared: bool,
 }
 
 fn check_features(vk: &Vk, info: &ContextCreateInfo) -> Result<()> {
@@ -173,10 +175,12 @@ impl Context {
             frames_recorded: 0,
             supported_stages,
             engine_reads: info.shader_overrides.iter().any(|o| o.variant != crate::passes::prepare::SHADER),
+            engine_images_declared: false,
         };
         // On any error below, dropping `ctx` releases what was created so far.
         let pipelines = ctx.pipelines.insert(ctx.create_pipelines(push.is_some(), &info.shader_overrides)?);
         let layouts = roles().map(|r| pipelines.for_role(r));
+        ctx.engine_images_declared = layouts.iter().any(|p| p.interface.bindings.iter().any(|b| b.resource.engine_slot().is_some()));
         ctx.binder = Some(Binder::new(&ctx.vk, push, layouts, info.light_count, info.max_frames_in_flight)?);
         ctx.create_sampler_and_constants()?;
         if info.enable_timestamps {
@@ -357,38 +361,17 @@ impl Context {
     }
 
     /// Every engine image the enabled passes' (engine-compiled) variants declare is given, in a layout its
-    /// descriptor type allows.
+    /// descriptor type allows. Nothing to check (and no work on the recording path) without such variants.
     fn check_engine_images(&self, d: &ShadowsDispatch, passes: &crate::passes::FramePasses) -> Result<()> {
+        if !self.engine_images_declared {
+            return Ok(());
+        }
         let pipelines = self.pipelines.as_ref().expect("created");
         for pass in passes.iter().filter(|p| p.enabled) {
             for b in &pipelines.for_role(pass.role).interface.bindings {
-                let Some(slot) = b.resource.engine_slot() else { continue };
-                let binding = crate::ENGINE_BINDING_BASE + slot as u32;
-                let storage = b.descriptor_type == vk::DescriptorType::STORAGE_IMAGE;
-                let allowed: &[vk::ImageLayout] = if storage {
-                    &[vk::ImageLayout::GENERAL]
-                } else {
-                    &[vk::ImageLayout::GENERAL, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL, vk::ImageLayout::READ_ONLY_OPTIMAL]
-                };
-                match d.engine_images[slot] {
-                    None => {
-                        return Err(Error::InvalidValue {
-                            field: "engine_images",
-                            value: format!("no image at binding {binding}"),
-                            allowed: "an image for every engine binding the shader overrides of this frame's passes declare",
-                        })
-                    }
-                    Some(e) if e.view == vk::ImageView::null() => {
-                        return Err(Error::InvalidValue { field: "engine_images", value: format!("binding {binding}: null view"), allowed: "a 2D view" })
-                    }
-                    Some(e) if !allowed.contains(&e.layout) => {
-                        return Err(Error::InvalidValue {
-                            field: "engine_images",
-                            value: format!("binding {binding} ({}) in layout {:?}", if storage { "storage" } else { "sampled" }, e.layout),
-                            allowed: "GENERAL, SHADER_READ_ONLY_OPTIMAL or READ_ONLY_OPTIMAL for a sampled image; GENERAL for a storage image",
-                        })
-                    }
-                    Some(_) => {}
+                if let Some(slot) = b.resource.engine_slot() {
+                    let storage = b.descriptor_type == vk::DescriptorType::STORAGE_IMAGE;
+                    validate::engine_image(crate::ENGINE_BINDING_BASE + slot as u32, storage, d.engine_images[slot])?;
                 }
             }
         }

@@ -185,6 +185,25 @@ pub(crate) fn dispatch(
     Ok(rect)
 }
 
+/// Checks one engine image at `binding` that an engine-compiled variant declares as a sampled or (`storage`) a
+/// storage image: given, with a view, in a layout its descriptor type can be used in.
+pub(crate) fn engine_image(binding: u32, storage: bool, image: Option<crate::EngineImage>) -> Result<()> {
+    let invalid = |value: String, allowed: &'static str| Err(Error::InvalidValue { field: "engine_images", value, allowed });
+    let layouts: &[L] = if storage { &[L::GENERAL] } else { SAMPLED_LAYOUTS };
+    match image {
+        None => invalid(
+            format!("no image at binding {binding}"),
+            "an image for every engine binding the shader overrides of this frame's passes declare",
+        ),
+        Some(e) if e.view == vk::ImageView::null() => invalid(format!("binding {binding}: null view"), "a 2D view"),
+        Some(e) if !layouts.contains(&e.layout) => invalid(
+            format!("binding {binding} ({}) in layout {:?}", if storage { "storage" } else { "sampled" }, e.layout),
+            "GENERAL, SHADER_READ_ONLY_OPTIMAL or READ_ONLY_OPTIMAL for a sampled image; GENERAL for a storage image",
+        ),
+        Some(_) => Ok(()),
+    }
+}
+
 /// Checks the light's angular diameter of penumbra guidance (radians).
 pub(crate) fn light_angular_size(angle: f32) -> Result<()> {
     if !angle.is_finite() {

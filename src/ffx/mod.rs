@@ -15,7 +15,7 @@ use crate::capi::types::*;
 use crate::capi::{dnsr_context_create, dnsr_context_destroy, dnsr_shadows_record};
 use ash::vk;
 use resources::{host_image, ViewRing};
-use std::collections::HashMap;
+use std::collections::BTreeMap;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::{Mutex, MutexGuard};
 use types::*;
@@ -243,7 +243,7 @@ impl Drop for Denoiser {
 
 /// Live contexts by id; the caller's FfxDenoiserContext holds a magic and the id, so that a context that was never
 /// created, or was destroyed, is recognised instead of dereferenced.
-static CONTEXTS: Mutex<Option<HashMap<u64, Denoiser>>> = Mutex::new(None);
+static CONTEXTS: Mutex<BTreeMap<u64, Denoiser>> = Mutex::new(BTreeMap::new());
 static NEXT_ID: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
 const CONTEXT_MAGIC: u32 = u32::from_le_bytes(*b"dnsr");
 
@@ -256,8 +256,7 @@ fn context_id(context: &FfxDenoiserContext) -> u64 {
 
 fn with_context<T>(context: *mut FfxDenoiserContext, f: impl FnOnce(&mut Denoiser) -> Result<T, Failure>) -> Result<T, Failure> {
     let Some(context) = (unsafe { context.as_ref() }) else { return fail(FFX_ERROR_INVALID_POINTER, "context is NULL") };
-    let mut contexts = lock(&CONTEXTS);
-    match contexts.get_or_insert_with(HashMap::new).get_mut(&context_id(context)) {
+    match lock(&CONTEXTS).get_mut(&context_id(context)) {
         Some(d) => f(d),
         None => fail(FFX_ERROR_INVALID_ARGUMENT, "context is not a live FfxDenoiserContext (never created, or destroyed)"),
     }
@@ -330,7 +329,7 @@ pub extern "C" fn ffxDenoiserContextCreate(context: *mut FfxDenoiserContext, des
         let dnsr = new_dnsr_context(&create_info(&device, width, height, depth_inverted, vk::Format::R8_UNORM))?;
         let id = NEXT_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         let denoiser = Denoiser { context: dnsr, device, output_format: None, depth_inverted, width, height, views: ViewRing::default(), dispatches: 0 };
-        lock(&CONTEXTS).get_or_insert_with(HashMap::new).insert(id, denoiser);
+        lock(&CONTEXTS).insert(id, denoiser);
         out.data[1] = id as u32;
         out.data[2] = (id >> 32) as u32;
         out.data[0] = CONTEXT_MAGIC;
@@ -343,7 +342,7 @@ pub extern "C" fn ffxDenoiserContextCreate(context: *mut FfxDenoiserContext, des
 pub extern "C" fn ffxDenoiserContextDestroy(context: *mut FfxDenoiserContext) -> FfxErrorCode {
     guard(|| {
         let Some(c) = (unsafe { context.as_mut() }) else { return fail(FFX_ERROR_INVALID_POINTER, "context is NULL") };
-        let removed = lock(&CONTEXTS).get_or_insert_with(HashMap::new).remove(&context_id(c));
+        let removed = lock(&CONTEXTS).remove(&context_id(c));
         match removed {
             Some(denoiser) => {
                 c.data[0] = 0;

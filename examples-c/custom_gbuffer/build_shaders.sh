@@ -1,11 +1,18 @@
 #!/usr/bin/env bash
 # Compiles the pass variants custom_gbuffer.c overrides from dnsr's installed shader sources with this
 # directory's engine_callbacks.glsl, as an engine's build would.
-#   build_shaders.sh <prefix>/share/dnsr/shaders OUT_DIR
+#   build_shaders.sh <prefix>/share/dnsr/shaders OUT_DIR [c]
+# writes OUT_DIR/<variant>.spv, or with `c` OUT_DIR/<variant>.inc (C initialiser lists, glslc -mfmt=c, which the
+# viewer's build embeds).
 # The variants are those of an FP32 context with an R32_SFLOAT output (dnsr_get_shader_variants lists every
 # variant with its entry file and definitions); prepare reads no G-buffer and keeps dnsr's own SPIR-V.
 set -euo pipefail
-shaders=$1 out=$2
+shaders=$1 out=$2 format=${3:-spv}
+case $format in
+spv) extra=() suffix=spv ;;
+c) extra=(-mfmt=c) suffix=inc ;;
+*) echo "build_shaders.sh: the third argument is c or nothing, not '$format'" >&2; exit 2 ;;
+esac
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 mkdir -p "$out/src"
 cp -r "$shaders/." "$out/src/"
@@ -13,7 +20,7 @@ cp "$here/engine_callbacks.glsl" "$out/src/dnsr_callbacks_default.glsl"
 compile() { # compile NAME ENTRY DEFINES...
     local name=$1 entry=$2
     shift 2
-    glslc --target-env=vulkan1.1 -I"$out/src" "$@" "$out/src/$entry" -o "$out/$name.spv"
+    glslc --target-env=vulkan1.1 -I"$out/src" "${extra[@]}" "$@" "$out/src/$entry" -o "$out/$name.$suffix"
 }
 compile tile_classification_r32f tile_classification.comp -DDNSR_OUTPUT_FORMAT=r32f
 compile filter filter.comp

@@ -24,21 +24,22 @@ const uint32_t kCompositeSpv[] =
 const uint32_t kPrimaryPackedSpv[] =  // also writes the packed G-buffer (--gbuffer packed)
 #include "primary_packed.comp.inc"
     ;
-// dnsr's passes compiled against examples-c/custom_gbuffer/engine_callbacks.glsl (CMake), for --gbuffer packed.
+// dnsr's passes compiled against examples-c/custom_gbuffer/engine_callbacks.glsl by its build_shaders.sh (CMake),
+// for --gbuffer packed.
 const uint32_t kDnsrClassification[] =
-#include "dnsr_tile_classification_r32f.inc"
+#include "dnsr_engine/tile_classification_r32f.inc"
     ;
 const uint32_t kDnsrFilter[] =
-#include "dnsr_filter.inc"
+#include "dnsr_engine/filter.inc"
     ;
 const uint32_t kDnsrFilterLater[] =
-#include "dnsr_filter_later.inc"
+#include "dnsr_engine/filter_later.inc"
     ;
 const uint32_t kDnsrFilterFinal[] =
-#include "dnsr_filter_final_r32f.inc"
+#include "dnsr_engine/filter_final_r32f.inc"
     ;
 const uint32_t kDnsrFilterLaterFinal[] =
-#include "dnsr_filter_later_final_r32f.inc"
+#include "dnsr_engine/filter_later_final_r32f.inc"
     ;
 const DnsrShaderOverride kPackedOverrides[] = {
     {"tile_classification_r32f", kDnsrClassification, sizeof kDnsrClassification},

@@ -451,6 +451,11 @@ typedef struct DnsrShaderOverride {
 } DnsrShaderOverride;
 
 /**
+ * What the engine's shadow rays deliver per pixel (DnsrContextCreateInfo::shadowInput).
+ */
+typedef uint32_t DnsrShadowInput;
+
+/**
  * Everything needed to create a context. Read during `dnsr_context_create` only (callback structs are copied;
  * the function pointers and user data they hold must stay valid until the context is destroyed).
  */
@@ -564,6 +569,11 @@ typedef struct DnsrContextCreateInfo {
    * any format the device can sample (the engine's callbacks decode them).
    */
   const struct DnsrShaderOverride *pShaderOverrides;
+  /**
+   * DNSR_SHADOW_INPUT_HIT_MASK (0, default) or DNSR_SHADOW_INPUT_VISIBILITY: which of hitMask / visibility every
+   * dispatch of this context passes.
+   */
+  DnsrShadowInput shadowInput;
 } DnsrContextCreateInfo;
 
 /**
@@ -819,6 +829,14 @@ typedef struct DnsrShadowsDispatch {
    * Views are borrowed for the frame, like the other images.
    */
   const struct DnsrEngineImage *pEngineImages;
+  /**
+   * Required with DNSR_SHADOW_INPUT_VISIBILITY, all zero otherwise (and hitMask all zero with it). W x H, per
+   * pixel the fraction of its shadow rays that reached the light (1 lit, 0 shadowed): VK_FORMAT_R8_UNORM,
+   * R16_UNORM, R16_SFLOAT or R32_SFLOAT, sampled layouts as for the hit mask. Values are clamped to [0, 1] and
+   * NaN reads as 0. With k rays per pixel store hits / k (R8_UNORM stores 1/2, 1/4 ... only approximately,
+   * which is harmless: only exact 0 and 1 are treated specially). hitMaskConvention is ignored.
+   */
+  struct DnsrHostImage visibility;
 } DnsrShadowsDispatch;
 
 /**
@@ -1200,6 +1218,24 @@ typedef struct DnsrDiagnosis {
  * Forces 32 bits.
  */
 #define DNSR_PRECISION_MAX_ENUM 2147483647
+
+/**
+ * One ray per pixel, packed into the 8x4-tile hit mask (DnsrShadowsDispatch::hitMask), as FidelityFX.
+ */
+#define DNSR_SHADOW_INPUT_HIT_MASK 0
+
+/**
+ * The fraction of the pixel's rays that reached the light, in [0, 1] (DnsrShadowsDispatch::visibility): for
+ * engines tracing several rays per pixel, sampling area lights, or mixing analytic and traced shadows. Only exact
+ * 0 and 1 count as uniform or extend runs of identical samples; the temporal moments are those of the per-frame
+ * values, so k rays per pixel give the variance of a mean of k samples.
+ */
+#define DNSR_SHADOW_INPUT_VISIBILITY 1
+
+/**
+ * Forces 32 bits.
+ */
+#define DNSR_SHADOW_INPUT_MAX_ENUM 2147483647
 
 /**
  * One filter pass: the cheapest setting whose error stays near the FidelityFX defaults'.

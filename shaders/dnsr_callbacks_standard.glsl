@@ -78,6 +78,12 @@ layout(set = 0, binding = 13, r32ui) uniform writeonly uimage2D dnsr_tile_meta_o
 
 ivec2 dnsr_get_tile_offset() { return dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT); }
 uint dnsr_read_tile_mask(ivec2 tile) { return texelFetch(dnsr_tile_mask, tile + dnsr_get_tile_offset(), 0).r; }
+#ifdef DNSR_VISIBILITY_INPUT
+// Visibility input (a context created with a visibility input): the fraction of the pixel's shadow rays that
+// reached the light, in [0, 1] (the core clamps, and reads NaN as 0). Replaces the tile mask.
+layout(set = 0, binding = 24) uniform texture2D dnsr_visibility;
+float dnsr_read_visibility(ivec2 p) { return texelFetch(dnsr_visibility, p + dnsr_get_offset(), 0).r; }
+#endif
 // Screen-uv displacement from this pixel to where its surface was last frame (prev_uv = uv + velocity).
 vec2 dnsr_read_velocity(ivec2 p) {
     return texelFetch(dnsr_velocity, p + dnsr_get_offset(), 0).xy * dnsr_constants.motion_normals.xy;

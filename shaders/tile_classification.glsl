@@ -14,9 +14,18 @@ const ivec2 DNSR_GROUP_TILES = DNSR_WIDE_GROUP_SIZE / DNSR_TILE_SIZE;
 const ivec2 DNSR_WINDOW_TILES = DNSR_GROUP_TILES + ivec2(2, 4);
 const int DNSR_WINDOW_ROWS = DNSR_WIDE_GROUP_SIZE.y + 2 * DNSR_MOMENT_RADIUS;
 
+// Lit bits of the window's tiles: exactly lit pixels (v = 1) with a visibility input.
 shared uint s_words[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
+#ifdef DNSR_VISIBILITY_INPUT
+// Visibility input (DNSR_VISIBILITY_INPUT): each window pixel's visibility in [0, 1] (0 outside the rectangle),
+// and the bits of exactly shadowed pixels (v = 0) for the uniform test. The window is as many pixels wide as tall.
+const int DNSR_WINDOW_COLUMNS = DNSR_WINDOW_TILES.x * DNSR_TILE_WIDTH;
+shared float s_visibility[DNSR_WINDOW_ROWS][DNSR_WINDOW_COLUMNS];
+shared uint s_dark[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
+#endif
 // Horizontal pass of the separable Gaussian for the group's columns over its window rows:
-// x = weighted lit count, y = weight of the taps inside the render rectangle.
+// x = weighted lit count, y = weight of the taps inside the render rectangle. With a visibility input:
+// x = weighted sum of visibilities, y = of their squares (the weight is the column's g_inside_weight).
 shared vec2 s_hsum[DNSR_WINDOW_ROWS][DNSR_WIDE_GROUP_WIDTH];
 // Closeness key (smaller = closer to the camera) and velocity of each pixel, for the 2x2 quad vote.
 shared float s_quad_key[DNSR_WIDE_GROUP_HEIGHT][DNSR_WIDE_GROUP_WIDTH];
@@ -53,11 +62,31 @@ uint dnsr_tile_valid_bits(ivec2 tile) {
 
 ivec2 dnsr_window_base_tile(ivec2 group_origin) { return (group_origin / DNSR_TILE_SIZE) - ivec2(1, 2); }
 
-// Lit bit of a pixel in the group's window. The caller ensures the pixel is inside the render rectangle.
-float dnsr_window_lit(ivec2 p, ivec2 base_tile) {
-    ivec2 w = (p >> ivec2(3, 2)) - base_tile;
+// This frame's sample of the group's pixel `lid`: its lit bit, or its visibility. Inside the render rectangle.
+float dnsr_window_sample(ivec2 p, ivec2 lid) {
+#ifdef DNSR_VISIBILITY_INPUT
+    return s_visibility[lid.y + DNSR_MOMENT_RADIUS][lid.x + DNSR_MOMENT_RADIUS];
+#else
+    ivec2 w = (p >> ivec2(3, 2)) - g_window_base;
     return float((s_words[w.y][w.x] >> dnsr_tile_bit(p)) & 1u);
+#endif
 }
+
+// Bits of window tile w whose pixels are exactly shadowed (all unlit bits of a hit mask).
+uint dnsr_window_dark(ivec2 w) {
+#ifdef DNSR_VISIBILITY_INPUT
+    return s_dark[w.y][w.x];
+#else
+    return ~s_words[w.y][w.x];
+#endif
+}
+
+// A stored visibility as the passes use it: clamped to [0, 1], NaN read as 0 (shadowed).
+float dnsr_sanitize_visibility(float v) { return v >= 0.0 ? min(v, 1.0) : 0.0; }
+
+// Only exact samples (0 or 1: always so for a hit mask) extend runs of identical samples; with a visibility
+// input, a pixel whose rays disagreed lies in a penumbra.
+bool dnsr_is_exact(float x) { return x == 0.0 || x == 1.0; }
 
 // Gaussian weights of the local-moment window, computed once per invocation (the loops over them unroll, so the
 // table lives in registers).
@@ -71,25 +100,42 @@ void dnsr_init_moment_weights() {
 
 float dnsr_moment_weight(int i) { return g_moment_weight[abs(i)]; }
 
-// Spatial mean and variance of the binary mask around p (normalised over taps inside the rectangle).
-vec2 dnsr_local_moments(ivec2 lid) {
+// Weight of the taps of the invocation's column inside the render rectangle, per window row.
+float g_inside_weight;
+
+// Spatial mean and variance of the samples around p (normalised over taps inside the rectangle). For a binary
+// mask the variance is mean - mean^2; visibilities need the weighted mean of their squares.
+vec2 dnsr_local_moments(ivec2 p, ivec2 lid) {
     vec2 sum = vec2(0.0);
+#ifdef DNSR_VISIBILITY_INPUT
+    float rows = 0.0;
+    for (int j = -DNSR_MOMENT_RADIUS; j <= DNSR_MOMENT_RADIUS; ++j) {
+        float w = dnsr_moment_weight(j);
+        sum += w * s_hsum[lid.y + DNSR_MOMENT_RADIUS + j][lid.x];
+        int y = p.y + j;
+        rows += y >= 0 && y < dnsr_get_extent().y ? w : 0.0;
+    }
+    float weight = max(rows * g_inside_weight, 1e-20);
+    float mean = sum.x / weight;
+    return vec2(mean, max(sum.y / weight - mean * mean, 0.0));
+#else
     for (int j = -DNSR_MOMENT_RADIUS; j <= DNSR_MOMENT_RADIUS; ++j) {
         sum += dnsr_moment_weight(j) * s_hsum[lid.y + DNSR_MOMENT_RADIUS + j][lid.x];
     }
     float mean = sum.x / max(sum.y, 1e-20);
     return vec2(mean, max(mean - mean * mean, 0.0));
+#endif
 }
 
-// 0: mixed, 1: every valid bit within +-8 px of the group's tile `t` is lit, 2: every one is shadowed.
+// 0: mixed, 1: every valid pixel within +-8 px of the group's tile `t` is exactly lit, 2: every one is exactly
+// shadowed.
 uint dnsr_uniform_state(ivec2 t) {
     bool all_lit = true, all_shadow = true;
     for (int r = 0; r < 5; ++r) {
         for (int c = 0; c < 3; ++c) {
-            uint word = s_words[t.y + r][t.x + c];
             uint valid = dnsr_tile_valid_bits(g_window_base + t + ivec2(c, r));
-            all_lit = all_lit && (word & valid) == valid;
-            all_shadow = all_shadow && (word & valid) == 0u;
+            all_lit = all_lit && (s_words[t.y + r][t.x + c] & valid) == valid;
+            all_shadow = all_shadow && (dnsr_window_dark(t + ivec2(c, r)) & valid) == valid;
         }
     }
     return all_lit ? 1u : (all_shadow ? 2u : 0u);
@@ -123,6 +169,7 @@ void dnsr_sum_hit_part(int thread) {
     int k = thread / DNSR_HIT_PARTS;
     ivec2 w = ivec2(k % DNSR_WINDOW_TILES.x, k / DNSR_WINDOW_TILES.x);
     ivec2 tile = g_window_base + w;
+    // Pixels with a ray that hit: not exactly lit.
     uint shadowed = ~s_words[w.y][w.x] & dnsr_tile_valid_bits(tile);
     vec2 part = vec2(0.0);
     for (int i = 0; i < DNSR_HIT_PIXELS; ++i) {
@@ -151,9 +198,10 @@ float dnsr_tile_blocker(ivec2 t) {
     return sum.y > 0.0 ? sum.x / sum.y : -1.0;
 }
 
-// A previous run that is stable (stable_after > 0 samples or more) and of the same value as sample x.
+// A previous run that is stable (stable_after > 0 samples or more) and of the same value as sample x, which is
+// exact.
 bool dnsr_stable_agreeing(float run, float x, float stable_after) {
-    return stable_after > 0.0 && abs(run) >= stable_after && (x >= 0.5 ? run > 0.0 : run < 0.0);
+    return dnsr_is_exact(x) && stable_after > 0.0 && abs(run) >= stable_after && (x >= 0.5 ? run > 0.0 : run < 0.0);
 }
 
 // A pixel of a cleared tile: its value is known exactly; keep the state of the next frame consistent with it.
@@ -176,11 +224,29 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     ivec2 own_tile = lid / DNSR_TILE_SIZE;
     bool tile_writer = all(equal(lid % DNSR_TILE_SIZE, ivec2(0)));
 
+#ifdef DNSR_VISIBILITY_INPUT
+    if (thread < DNSR_WINDOW_TILE_COUNT) {
+        ivec2 w = ivec2(thread % DNSR_WINDOW_TILES.x, thread / DNSR_WINDOW_TILES.x);
+        s_words[w.y][w.x] = 0u;
+        s_dark[w.y][w.x] = 0u;
+    }
+    barrier();
+    for (int i = thread; i < DNSR_WINDOW_ROWS * DNSR_WINDOW_COLUMNS; i += DNSR_WIDE_GROUP_INVOCATIONS) {
+        ivec2 w = ivec2(i % DNSR_WINDOW_COLUMNS, i / DNSR_WINDOW_COLUMNS);
+        ivec2 q = g_window_base * DNSR_TILE_SIZE + w;
+        bool q_inside = dnsr_inside(q);
+        float v = q_inside ? dnsr_sanitize_visibility(dnsr_read_visibility(q)) : 0.0;
+        s_visibility[w.y][w.x] = v;
+        if (q_inside && v == 1.0) atomicOr(s_words[w.y / DNSR_TILE_HEIGHT][w.x / DNSR_TILE_WIDTH], 1u << dnsr_tile_bit(q));
+        if (q_inside && v == 0.0) atomicOr(s_dark[w.y / DNSR_TILE_HEIGHT][w.x / DNSR_TILE_WIDTH], 1u << dnsr_tile_bit(q));
+    }
+#else
     if (thread < DNSR_WINDOW_TILES.x * DNSR_WINDOW_TILES.y) {
         ivec2 w = ivec2(thread % DNSR_WINDOW_TILES.x, thread / DNSR_WINDOW_TILES.x);
         ivec2 tile = g_window_base + w;
         s_words[w.y][w.x] = dnsr_tile_valid_bits(tile) != 0u ? dnsr_read_tile_mask(tile) : 0u;
     }
+#endif
     if (tile_writer) s_tile_has_receiver[own_tile.y][own_tile.x] = 0u;
 
     float depth = inside ? dnsr_read_depth(p) : 0.0;
@@ -228,10 +294,18 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     for (int i = -DNSR_MOMENT_RADIUS; i <= DNSR_MOMENT_RADIUS; ++i) {
         inside_weight += dnsr_moment_weight(i) * float((columns_inside >> uint(int(own) + i)) & 1u);
     }
+    g_inside_weight = inside_weight;
     for (int row = lid.y; row < DNSR_WINDOW_ROWS; row += DNSR_WIDE_GROUP_HEIGHT) {
         int y = origin.y - DNSR_MOMENT_RADIUS + row;
         vec2 sum = vec2(0.0);
         if (y >= 0 && y < dnsr_get_extent().y) {
+#ifdef DNSR_VISIBILITY_INPUT
+            // Columns outside the rectangle hold 0: they add nothing, and inside_weight leaves them out.
+            for (int i = -DNSR_MOMENT_RADIUS; i <= DNSR_MOMENT_RADIUS; ++i) {
+                float v = s_visibility[row][int(own) + i];
+                sum += dnsr_moment_weight(i) * vec2(v, v * v);
+            }
+#else
             int wy = (y >> 2) - g_window_base.y;
             uint shift = uint(8 * (y & 3));
             uint lit = 0u;
@@ -244,6 +318,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
                 lit_sum += dnsr_moment_weight(i) * pair;
             }
             sum = vec2(lit_sum, inside_weight);
+#endif
         }
         s_hsum[row][lid.x] = sum;
     }
@@ -270,8 +345,8 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     vec4 disocc = dnsr_get_disocclusion_settings();
     vec4 reject = dnsr_get_rejection_settings();
     vec4 temporal = dnsr_get_temporal_settings();
-    vec2 local = dnsr_local_moments(lid);
-    float x = dnsr_window_lit(p, g_window_base);
+    vec2 local = dnsr_local_moments(p, lid);
+    float x = dnsr_window_sample(p, lid);
 
     // Velocity of the closest receiver of the 2x2 quad: thin foreground keeps its own motion at silhouettes.
     ivec2 q = lid & ~1;
@@ -347,7 +422,8 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     m.y += (x - m_old) * (x - m.x);
     float variance = m.z > 1.0 ? m.y / (m.z - 1.0) : 1.0;
     float flip_after = floor(dnsr_get_run_settings().y);
-    m.w = dnsr_sample_run(m.w, x, stable_after);
+    // A sample that is not exact (the pixel's rays disagreed) ends any run: the pixel lies in a penumbra.
+    m.w = dnsr_is_exact(x) ? dnsr_sample_run(m.w, x, stable_after) : 0.0;
     // Enough identical samples in a row: the input resolves this pixel (a hard edge, say), and the local
     // distribution, which straddles the edge, must not pull its history (nor reject it).
     bool stable = stable_after > 0.0 && abs(m.w) >= stable_after;

@@ -1,7 +1,7 @@
 //! The denoiser context: pipelines, internal state per light, and recording into the host's command buffer.
 
 use crate::constants::{FrameConstants, FLAG_DEPTH_INVERTED, FLAG_RESET};
-use crate::create_info::{ContextCreateInfo, EnabledFeatures, Precision};
+use crate::create_info::{ContextCreateInfo, EnabledFeatures, Precision, ShadowInput};
 use crate::dispatch::{HitMaskConvention, ShadowsDispatch};
 use crate::error::{vk_check, Error, Result};
 use crate::gpu::barrier;
@@ -75,6 +75,7 @@ pub struct Context {
     size: [u32; 2],
     precision: Precision,
     output_format: vk::Format,
+    shadow_input: ShadowInput,
     depth_inverted: bool,
     features: EnabledFeatures,
     settings: Settings,
@@ -161,6 +162,7 @@ impl Context {
             size: [info.width, info.height],
             precision: info.precision,
             output_format: info.output_format,
+            shadow_input: info.shadow_input,
             depth_inverted: info.depth.inverted,
             features: info.features,
             settings: info.settings,
@@ -193,7 +195,7 @@ impl Context {
     fn create_pipelines(&self, push: bool, overrides: &[crate::ShaderOverride]) -> Result<Pipelines> {
         let names = [
             prepare::SHADER,
-            tile_classification::shader(self.precision, self.output_format).expect("output format checked"),
+            tile_classification::shader(self.precision, self.output_format, self.shadow_input).expect("output format checked"),
             filter::shader(self.precision, None, false).expect("non-final variant exists"),
             filter::shader(self.precision, None, true).expect("non-final variant exists"),
             filter::shader(self.precision, Some(self.output_format), true).expect("output format checked"),
@@ -333,6 +335,7 @@ impl Context {
         FrameViews {
             constants: self.constants_buffer,
             hit_mask: host(&d.hit_mask),
+            visibility: host(&d.visibility),
             depth: host(&d.depth),
             velocity: host(&d.velocity),
             normals: host(&d.normals),
@@ -404,9 +407,18 @@ impl Context {
         if self.lights.len() != self.light_count as usize {
             return Err(Error::NotResized);
         }
-        let rect = validate::dispatch(&self.vk, d, self.size, self.output_format, self.light_count, self.supported_stages, self.engine_reads)?;
+        let rules = validate::DispatchRules {
+            size: self.size,
+            output_format: self.output_format,
+            lights: self.light_count,
+            supported_stages: self.supported_stages,
+            engine_reads: self.engine_reads,
+            shadow_input: self.shadow_input,
+        };
+        let rect = validate::dispatch(&self.vk, d, &rules)?;
         let extent = [rect.width, rect.height];
-        let run_prepare = d.hit_mask_convention == HitMaskConvention::OccludedBits;
+        // Classification reads visibility itself; a hit mask of lit bits is read as it is.
+        let run_prepare = self.shadow_input == ShadowInput::HitMask && d.hit_mask_convention == HitMaskConvention::OccludedBits;
 
         let views = self.frame_views(d, self.lights[d.light_index as usize].parity);
         let passes = crate::passes::frame(&views, self.settings.filter_passes, run_prepare, d.debug_view);

@@ -34,6 +34,19 @@ pub enum Precision {
     Fp16,
 }
 
+/// What the engine's shadow rays deliver per pixel.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ShadowInput {
+    /// One ray per pixel, packed into the 8x4-tile hit mask (`ShadowsDispatch::hit_mask`), as FidelityFX.
+    #[default]
+    HitMask,
+    /// The fraction of the pixel's rays that reached the light, in [0, 1] (`ShadowsDispatch::visibility`): for
+    /// engines tracing several rays per pixel, sampling area lights, or mixing analytic and traced shadows. Only
+    /// exact 0 and 1 count as uniform (cleared tiles) or extend runs of identical samples; the temporal moments
+    /// are those of the per-frame values, so k rays per pixel give the variance of a mean of k samples.
+    Visibility,
+}
+
 /// Most lights one context denoises (`ContextCreateInfo::light_count`).
 pub const MAX_LIGHT_COUNT: u32 = 64;
 /// Most frames of one light that may be in flight on the GPU at once (`ContextCreateInfo::max_frames_in_flight`).
@@ -69,6 +82,8 @@ pub struct ContextCreateInfo {
     pub depth: DepthFlags,
     /// Filter precision.
     pub precision: Precision,
+    /// The shadow input every dispatch of this context passes: the hit mask or per-pixel visibility.
+    pub shadow_input: ShadowInput,
     /// Format of the output image: R8_UNORM, R16_SFLOAT or R32_SFLOAT, or R8G8B8A8_UNORM / R16G16B16A16_SFLOAT (the
     /// shadow in every channel). Must support storage on the device.
     pub output_format: vk::Format,
@@ -127,6 +142,7 @@ impl ContextCreateInfo {
             height,
             depth: DepthFlags::default(),
             precision: Precision::Fp32,
+            shadow_input: ShadowInput::HitMask,
             output_format: vk::Format::R16_SFLOAT,
             light_count: 1,
             max_frames_in_flight: DEFAULT_MAX_FRAMES_IN_FLIGHT,

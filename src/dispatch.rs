@@ -86,7 +86,14 @@ pub struct ShadowsDispatch {
     /// Which light's history to use, below `ContextCreateInfo::light_count`.
     pub light_index: u32,
     /// Hit mask: R32_UINT, ceil(W/8) x ceil(H/4), bit (y%4)*8 + (x%8) of tile (x/8, y/4). Sampled read.
+    /// Required with `ShadowInput::HitMask` (the default); must be left null with `ShadowInput::Visibility`.
     pub hit_mask: HostImage,
+    /// Per-pixel visibility, W x H: the fraction of the pixel's shadow rays that reached the light (1 lit, 0
+    /// shadowed), R8_UNORM, R16_UNORM, R16_SFLOAT or R32_SFLOAT, sampled. Required with `ShadowInput::Visibility`;
+    /// must be left null otherwise. Values are clamped to [0, 1] and NaN reads as 0. With k rays per pixel store
+    /// hits / k (R8_UNORM represents 1/2, 1/4 ... only approximately, which is harmless: only exact 0 and 1 are
+    /// treated specially).
+    pub visibility: HostImage,
     /// How the hit mask bits are to be read.
     pub hit_mask_convention: HitMaskConvention,
     /// Depth, W x H: D32_SFLOAT, D16_UNORM, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT, D32_SFLOAT_S8_UINT,
@@ -164,6 +171,7 @@ impl Default for ShadowsDispatch {
         ShadowsDispatch {
             light_index: 0,
             hit_mask: HostImage::default(),
+            visibility: HostImage::default(),
             hit_mask_convention: HitMaskConvention::OccludedBits,
             depth: HostImage::default(),
             velocity: HostImage::default(),

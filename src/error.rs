@@ -18,6 +18,8 @@ pub enum ImageRole {
     Output,
     /// The optional per-pixel distance to the first occluder (penumbra guidance).
     HitDistance,
+    /// Per-pixel visibility (a context with `ShadowInput::Visibility`).
+    Visibility,
 }
 
 impl ImageRole {
@@ -30,6 +32,7 @@ impl ImageRole {
             ImageRole::Normals => "normals",
             ImageRole::Output => "output",
             ImageRole::HitDistance => "hit_distance",
+            ImageRole::Visibility => "visibility",
         }
     }
 }

@@ -25,7 +25,7 @@ mod validate;
 pub use ash;
 pub use context::{memory_requirements, Context, MIN_API_VERSION};
 pub use create_info::{
-    ContextCreateInfo, DepthFlags, EnabledFeatures, Precision, ShaderOverride, DEFAULT_MAX_FRAMES_IN_FLIGHT, MAX_FRAMES_IN_FLIGHT,
+    ContextCreateInfo, DepthFlags, EnabledFeatures, Precision, ShaderOverride, ShadowInput, DEFAULT_MAX_FRAMES_IN_FLIGHT, MAX_FRAMES_IN_FLIGHT,
     MAX_LIGHT_COUNT,
 };
 pub use gpu::shader::{shader_variants, ShaderVariantInfo, SHADER_COMPILE_ARGS};

@@ -1,6 +1,6 @@
 //! Checks of a dispatch before anything is recorded. Each failure names the field and the reason.
 
-use crate::create_info::{MAX_FRAMES_IN_FLIGHT, MAX_LIGHT_COUNT};
+use crate::create_info::{ShadowInput, MAX_FRAMES_IN_FLIGHT, MAX_LIGHT_COUNT};
 use crate::dispatch::{HostImage, HostSync, Rect, ShadowsDispatch};
 use crate::error::{Error, ImageRole, Result};
 use crate::gpu::loader::Vk;
@@ -20,6 +20,7 @@ const DEPTH_FORMATS: &[F] = &[
     F::R16_UNORM,
 ];
 const HIT_DISTANCE_FORMATS: &[F] = &[F::R16_SFLOAT, F::R32_SFLOAT];
+const VISIBILITY_FORMATS: &[F] = &[F::R8_UNORM, F::R16_UNORM, F::R16_SFLOAT, F::R32_SFLOAT];
 const VELOCITY_FORMATS: &[F] =
     &[F::R16G16_SFLOAT, F::R32G32_SFLOAT, F::R16G16_SNORM, F::R16G16B16A16_SFLOAT, F::R32G32B32A32_SFLOAT];
 const NORMAL_FORMATS: &[F] = &[
@@ -93,6 +94,7 @@ fn host_image(
         ImageRole::Normals => ("normals.image", "normals.view"),
         ImageRole::Output => ("output.image", "output.view"),
         ImageRole::HitDistance => ("hit_distance.image", "hit_distance.view"),
+        ImageRole::Visibility => ("visibility.image", "visibility.view"),
     };
     if img.image == vk::Image::null() {
         return Err(Error::NullHandle(name.0));
@@ -118,25 +120,46 @@ fn finite_mat(what: &'static str, m: &glam::Mat4) -> Result<()> {
     if m.is_finite() { Ok(()) } else { Err(Error::NonFinite(what)) }
 }
 
-/// Validates a dispatch for a context of `size` writing `output_format`; returns the effective render rect.
-/// `engine_reads`: the context runs engine-compiled variants, whose callbacks decode the G-buffer, so its depth,
-/// velocity, normals and hit distances may have any format the device can sample.
-pub(crate) fn dispatch(
-    vk: &Vk,
-    d: &ShadowsDispatch,
-    size: [u32; 2],
-    output_format: F,
-    lights: u32,
-    supported_stages: vk::PipelineStageFlags,
-    engine_reads: bool,
-) -> Result<Rect> {
+/// What a context accepts in its dispatches.
+pub(crate) struct DispatchRules {
+    pub size: [u32; 2],
+    pub output_format: F,
+    pub lights: u32,
+    pub supported_stages: vk::PipelineStageFlags,
+    /// The context runs engine-compiled variants, whose callbacks decode the G-buffer, so its depth, velocity,
+    /// normals and hit distances may have any format the device can sample.
+    pub engine_reads: bool,
+    pub shadow_input: ShadowInput,
+}
+
+/// The shadow input a context does not take is left null, so that a dispatch meant for another context (or a
+/// field filled by mistake) is not silently ignored.
+fn unused_input(img: &HostImage, field: &'static str, allowed: &'static str) -> Result<()> {
+    if img.image != vk::Image::null() || img.view != vk::ImageView::null() {
+        return Err(Error::InvalidValue { field, value: "an image".into(), allowed });
+    }
+    Ok(())
+}
+
+/// Validates a dispatch for a context with `rules`; returns the effective render rect.
+pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, rules: &DispatchRules) -> Result<Rect> {
+    let DispatchRules { size, output_format, lights, supported_stages, engine_reads, shadow_input } = *rules;
     let decoded = |formats: &'static [F]| if engine_reads { &[][..] } else { formats };
     if d.light_index >= lights {
         return Err(Error::InvalidLightIndex { index: d.light_index, count: lights });
     }
     let sampled = vk::FormatFeatureFlags::SAMPLED_IMAGE;
     let tiles = [size[0].div_ceil(8), size[1].div_ceil(4)];
-    host_image(vk, ImageRole::HitMask, &d.hit_mask, &[F::R32_UINT], SAMPLED_LAYOUTS, tiles, sampled)?;
+    match shadow_input {
+        ShadowInput::HitMask => {
+            host_image(vk, ImageRole::HitMask, &d.hit_mask, &[F::R32_UINT], SAMPLED_LAYOUTS, tiles, sampled)?;
+            unused_input(&d.visibility, "visibility", "null: the context takes a hit mask (ShadowInput::HitMask)")?;
+        }
+        ShadowInput::Visibility => {
+            host_image(vk, ImageRole::Visibility, &d.visibility, decoded(VISIBILITY_FORMATS), SAMPLED_LAYOUTS, size, sampled)?;
+            unused_input(&d.hit_mask, "hit_mask", "null: the context takes per-pixel visibility (ShadowInput::Visibility)")?;
+        }
+    }
     host_image(vk, ImageRole::Depth, &d.depth, decoded(DEPTH_FORMATS), DEPTH_LAYOUTS, size, sampled)?;
     host_image(vk, ImageRole::Velocity, &d.velocity, decoded(VELOCITY_FORMATS), SAMPLED_LAYOUTS, size, sampled)?;
     host_image(vk, ImageRole::Normals, &d.normals, decoded(NORMAL_FORMATS), SAMPLED_LAYOUTS, size, sampled)?;

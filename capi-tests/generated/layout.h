@@ -61,7 +61,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrSettings, minShadowSigma) == 76, "offsetof(DnsrS
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, stableHistorySamples) == 80, "offsetof(DnsrSettings, stableHistorySamples)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, historyFlipSamples) == 84, "offsetof(DnsrSettings, historyFlipSamples)");
 
-DNSR_STATIC_ASSERT(sizeof(DnsrContextCreateInfo) == 152, "sizeof(DnsrContextCreateInfo)");
+DNSR_STATIC_ASSERT(sizeof(DnsrContextCreateInfo) == 160, "sizeof(DnsrContextCreateInfo)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrContextCreateInfo) == 8, "alignof(DnsrContextCreateInfo)");
 DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, sType) == 0, "offsetof(DnsrContextCreateInfo, sType)");
 DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, pNext) == 8, "offsetof(DnsrContextCreateInfo, pNext)");
@@ -86,6 +86,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, pLogCallback) == 120, "offset
 DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, pDebugNameCallback) == 128, "offsetof(DnsrContextCreateInfo, pDebugNameCallback)");
 DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, shaderOverrideCount) == 136, "offsetof(DnsrContextCreateInfo, shaderOverrideCount)");
 DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, pShaderOverrides) == 144, "offsetof(DnsrContextCreateInfo, pShaderOverrides)");
+DNSR_STATIC_ASSERT(offsetof(DnsrContextCreateInfo, shadowInput) == 152, "offsetof(DnsrContextCreateInfo, shadowInput)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrShaderOverride) == 24, "sizeof(DnsrShaderOverride)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrShaderOverride) == 8, "alignof(DnsrShaderOverride)");
@@ -122,7 +123,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrHostSync, inputSrcAccess) == 4, "offsetof(DnsrHo
 DNSR_STATIC_ASSERT(offsetof(DnsrHostSync, outputDstStages) == 8, "offsetof(DnsrHostSync, outputDstStages)");
 DNSR_STATIC_ASSERT(offsetof(DnsrHostSync, outputDstAccess) == 12, "offsetof(DnsrHostSync, outputDstAccess)");
 
-DNSR_STATIC_ASSERT(sizeof(DnsrShadowsDispatch) == 512, "sizeof(DnsrShadowsDispatch)");
+DNSR_STATIC_ASSERT(sizeof(DnsrShadowsDispatch) == 544, "sizeof(DnsrShadowsDispatch)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrShadowsDispatch) == 8, "alignof(DnsrShadowsDispatch)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, sType) == 0, "offsetof(DnsrShadowsDispatch, sType)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, pNext) == 8, "offsetof(DnsrShadowsDispatch, pNext)");
@@ -151,6 +152,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, hitDistance) == 464, "offsetof(
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, lightAngularSize) == 496, "offsetof(DnsrShadowsDispatch, lightAngularSize)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, engineImageCount) == 500, "offsetof(DnsrShadowsDispatch, engineImageCount)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, pEngineImages) == 504, "offsetof(DnsrShadowsDispatch, pEngineImages)");
+DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, visibility) == 512, "offsetof(DnsrShadowsDispatch, visibility)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrEngineImage) == 24, "sizeof(DnsrEngineImage)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrEngineImage) == 8, "alignof(DnsrEngineImage)");

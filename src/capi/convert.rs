@@ -153,6 +153,11 @@ pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo, sink: &mut Option<Lo
             inverted: c.flags & DNSR_CONTEXT_CREATE_DEPTH_INVERTED != 0,
         },
         precision: precision_from_c(c.precision)?,
+        shadow_input: match c.shadow_input {
+            DNSR_SHADOW_INPUT_HIT_MASK => crate::ShadowInput::HitMask,
+            DNSR_SHADOW_INPUT_VISIBILITY => crate::ShadowInput::Visibility,
+            other => return Err(CallError::InvalidArgument(format!("pCreateInfo->shadowInput {other} is not a DnsrShadowInput"))),
+        },
         output_format: c.output_format,
         light_count: c.light_count,
         max_frames_in_flight: match c.max_frames_in_flight {
@@ -228,6 +233,7 @@ pub(crate) fn dispatch_from_c(c: &DnsrShadowsDispatch) -> Result<(vk::CommandBuf
         debug_view,
         light_index: c.light_index,
         hit_mask: image(&c.hit_mask),
+        visibility: image(&c.visibility),
         hit_mask_convention,
         depth: image(&c.depth),
         velocity: image(&c.velocity),

@@ -146,6 +146,18 @@ pub const DNSR_PRECISION_FP16: DnsrPrecision = 1;
 /// Forces 32 bits.
 pub const DNSR_PRECISION_MAX_ENUM: DnsrPrecision = 0x7FFF_FFFF;
 
+/// What the engine's shadow rays deliver per pixel (DnsrContextCreateInfo::shadowInput).
+pub type DnsrShadowInput = u32;
+/// One ray per pixel, packed into the 8x4-tile hit mask (DnsrShadowsDispatch::hitMask), as FidelityFX.
+pub const DNSR_SHADOW_INPUT_HIT_MASK: DnsrShadowInput = 0;
+/// The fraction of the pixel's rays that reached the light, in [0, 1] (DnsrShadowsDispatch::visibility): for
+/// engines tracing several rays per pixel, sampling area lights, or mixing analytic and traced shadows. Only exact
+/// 0 and 1 count as uniform or extend runs of identical samples; the temporal moments are those of the per-frame
+/// values, so k rays per pixel give the variance of a mean of k samples.
+pub const DNSR_SHADOW_INPUT_VISIBILITY: DnsrShadowInput = 1;
+/// Forces 32 bits.
+pub const DNSR_SHADOW_INPUT_MAX_ENUM: DnsrShadowInput = 0x7FFF_FFFF;
+
 /// Named settings (`dnsr_settings_init_preset`), chosen from the accuracy measurements in docs/accuracy.md.
 pub type DnsrPreset = u32;
 /// One filter pass: the cheapest setting whose error stays near the FidelityFX defaults'.
@@ -403,6 +415,9 @@ pub struct DnsrContextCreateInfo {
     /// of a classification or filter variant, the dispatch's depth, velocity, normals and hit distances may have
     /// any format the device can sample (the engine's callbacks decode them).
     pub p_shader_overrides: *const DnsrShaderOverride,
+    /// DNSR_SHADOW_INPUT_HIT_MASK (0, default) or DNSR_SHADOW_INPUT_VISIBILITY: which of hitMask / visibility every
+    /// dispatch of this context passes.
+    pub shadow_input: DnsrShadowInput,
 }
 
 /// One pass variant's SPIR-V, compiled by the engine.
@@ -561,6 +576,12 @@ pub struct DnsrShadowsDispatch {
     /// at bindings DNSR_ENGINE_BINDING_BASE.. of set 0; each such binding of this frame's passes must be given.
     /// Views are borrowed for the frame, like the other images.
     pub p_engine_images: *const DnsrEngineImage,
+    /// Required with DNSR_SHADOW_INPUT_VISIBILITY, all zero otherwise (and hitMask all zero with it). W x H, per
+    /// pixel the fraction of its shadow rays that reached the light (1 lit, 0 shadowed): VK_FORMAT_R8_UNORM,
+    /// R16_UNORM, R16_SFLOAT or R32_SFLOAT, sampled layouts as for the hit mask. Values are clamped to [0, 1] and
+    /// NaN reads as 0. With k rays per pixel store hits / k (R8_UNORM stores 1/2, 1/4 ... only approximately,
+    /// which is harmless: only exact 0 and 1 are treated specially). hitMaskConvention is ignored.
+    pub visibility: DnsrHostImage,
 }
 
 /// First binding number of an engine's own images in dnsr's set 0 (see DnsrShadowsDispatch::pEngineImages).

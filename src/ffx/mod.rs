@@ -292,6 +292,7 @@ fn create_info(device: &resources::Device, width: u32, height: u32, depth_invert
         p_debug_name_callback: std::ptr::null(),
         shader_override_count: 0,
         p_shader_overrides: std::ptr::null(),
+        shadow_input: DNSR_SHADOW_INPUT_HIT_MASK,
     }
 }
 
@@ -444,6 +445,7 @@ impl Denoiser {
             light_angular_size: 0.0,
             engine_image_count: 0,
             p_engine_images: std::ptr::null(),
+            visibility: DnsrHostImage::default(),
         };
         check(dnsr_shadows_record(self.context, &dispatch))?;
         self.output_format = Some(output_format);

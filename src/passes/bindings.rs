@@ -30,6 +30,7 @@ pub(crate) enum Resource {
     HitDistance,
     TileBlockerOut,
     TileBlocker,
+    Visibility,
     /// An engine's own images (bindings ENGINE_BINDING_BASE.., any name), declared by engine-compiled variants.
     Engine0,
     Engine1,
@@ -42,7 +43,7 @@ pub(crate) enum Resource {
 }
 
 pub(crate) const RESOURCE_COUNT: usize = Resource::Engine7 as usize + 1;
-const NAMED_COUNT: usize = Resource::TileBlocker as usize + 1;
+const NAMED_COUNT: usize = Resource::Visibility as usize + 1;
 
 impl Resource {
     /// The engine image at slot `slot` (binding ENGINE_BINDING_BASE + slot).
@@ -83,6 +84,7 @@ const TABLE: [(&str, Resource, vk::DescriptorType); NAMED_COUNT] = [
     ("dnsr_hit_distance", Resource::HitDistance, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_tile_blocker_out", Resource::TileBlockerOut, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_tile_blocker", Resource::TileBlocker, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_visibility", Resource::Visibility, vk::DescriptorType::SAMPLED_IMAGE),
 ];
 
 impl Resource {

@@ -137,6 +137,8 @@ const GENERAL: vk::ImageLayout = vk::ImageLayout::GENERAL;
 pub(crate) struct FrameViews {
     pub constants: vk::Buffer,
     pub hit_mask: Binding,
+    /// The host's visibility (a visibility input; null otherwise, and no pass declares it).
+    pub visibility: Binding,
     pub depth: Binding,
     pub velocity: Binding,
     pub normals: Binding,
@@ -168,7 +170,7 @@ pub(crate) struct FrameViews {
 impl FrameViews {
     /// The bindings every pass shares: constants, the G-buffer and the engine's images.
     fn base_table(&self) -> BindingTable {
-        let mut t = BindingTable::default();
+        let mut t: BindingTable = [Binding::default(); bindings::RESOURCE_COUNT];
         t[Resource::Constants as usize] = Binding { buffer: self.constants, ..Default::default() };
         t[Resource::Depth as usize] = self.depth;
         t[Resource::Normals as usize] = self.normals;

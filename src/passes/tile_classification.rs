@@ -3,18 +3,24 @@
 
 use super::bindings::Resource;
 use super::{internal, FrameViews, Grid, Pass, Role};
-use crate::create_info::Precision;
+use crate::create_info::{Precision, ShadowInput};
 use ash::vk;
 
-/// The variant for a precision and the context's output format (it writes the output of cleared tiles).
-pub(crate) fn shader(precision: Precision, output: vk::Format) -> Option<&'static str> {
-    crate::gpu::shader::variant_name("tile_classification", Some(output), precision)
+/// The variant for a precision, the context's output format (it writes the output of cleared tiles) and its
+/// shadow input (the visibility variant reads per-pixel visibility instead of the tile mask).
+pub(crate) fn shader(precision: Precision, output: vk::Format, input: ShadowInput) -> Option<&'static str> {
+    let stem = match input {
+        ShadowInput::HitMask => "tile_classification",
+        ShadowInput::Visibility => "tile_classification_visibility",
+    };
+    crate::gpu::shader::variant_name(stem, Some(output), precision)
 }
 
 /// One invocation per pixel, groups of `WIDE_GROUP` pixels (2x2 blocks of two tiles each).
 pub(crate) fn pass(v: &FrameViews) -> Pass {
     let mut t = v.base_table();
     t[Resource::TileMask as usize] = v.tile_mask;
+    t[Resource::Visibility as usize] = v.visibility;
     t[Resource::Velocity as usize] = v.velocity;
     t[Resource::PreviousDepth as usize] = internal(v.previous_depth);
     t[Resource::DepthCopy as usize] = internal(v.depth_copy);

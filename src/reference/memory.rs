@@ -32,6 +32,8 @@ pub struct Frame {
     pub hit_distance: Vec<f64>,
     /// Host hit mask (FidelityFX convention), one word per tile.
     pub hit_mask: Vec<u32>,
+    /// Host visibility per pixel, as stored; `Some` makes it the shadow input instead of the hit mask.
+    pub visibility: Option<Vec<f64>>,
     /// Depth per pixel.
     pub depth: Vec<f64>,
     /// Scaled motion vectors per pixel.
@@ -84,6 +86,7 @@ impl Frame {
             penumbra: None,
             hit_distance: vec![0.0; n],
             hit_mask: vec![0; tiles],
+            visibility: None,
             depth: vec![1.0; n],
             velocity: vec![DVec2::ZERO; n],
             normals: vec![DVec3::ZERO; n],
@@ -167,11 +170,17 @@ impl Get for Frame {
     fn penumbra(&self) -> Option<Penumbra> {
         self.penumbra
     }
+    fn visibility_input(&self) -> bool {
+        self.visibility.is_some()
+    }
 }
 
 impl Read for Frame {
     fn read_hit_mask(&self, tile: Coord) -> u32 {
         self.hit_mask[self.tile(tile)]
+    }
+    fn read_visibility(&self, p: Coord) -> f64 {
+        self.visibility.as_ref().expect("visibility input")[self.px(p)]
     }
     fn read_tile_mask(&self, tile: Coord) -> u32 {
         self.tile_mask[self.tile(tile)]

@@ -44,6 +44,8 @@ pub trait Get {
     fn is_final_pass(&self) -> bool;
     /// Penumbra guidance of this frame (None without a hit-distance input).
     fn penumbra(&self) -> Option<Penumbra>;
+    /// The shadow input is per-pixel visibility (`read_visibility`) instead of the hit mask.
+    fn visibility_input(&self) -> bool;
 }
 
 /// The inputs passes read (`dnsr_read_*`). Each pass reads only what it needs.
@@ -74,6 +76,8 @@ pub trait Read: Get {
     fn read_hit_distance(&self, p: Coord) -> f64;
     /// A tile's blocker distance as classification estimated it (-1: unknown).
     fn read_tile_blocker(&self, tile: Coord) -> f64;
+    /// Host visibility of a pixel, as stored (read only with `visibility_input`; see `sanitize_visibility`).
+    fn read_visibility(&self, p: Coord) -> f64;
 }
 
 /// The outputs passes write (`dnsr_write_*`).
@@ -194,10 +198,15 @@ pub fn decode_normal(raw: DVec3, mul: f64, add: f64) -> DVec3 {
     if len2 > 1e-12 && len2 < 1e30 { n / len2.sqrt() } else { DVec3::ZERO }
 }
 
-/// Runs the whole frame: prepare (unless the mask already holds lit bits), tile classification, filter passes.
-/// `io` carries the inputs and the previous frame's state and receives every output.
+/// A stored visibility as the passes use it: clamped to [0, 1], NaN read as 0 (shadowed).
+pub fn sanitize_visibility(v: f64) -> f64 {
+    if v >= 0.0 { v.min(1.0) } else { 0.0 }
+}
+
+/// Runs the whole frame: prepare (unless the mask already holds lit bits, or the input is visibility), tile
+/// classification, filter passes. `io` carries the inputs and the previous frame's state and receives every output.
 pub fn run_frame<Io: Read + Write>(io: &mut Io, run_prepare: bool) {
-    if run_prepare {
+    if run_prepare && !io.visibility_input() {
         prepare::run(io);
     }
     tile_classification::run(io);

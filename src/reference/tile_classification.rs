@@ -25,42 +25,72 @@ pub fn tile_valid_bits<Io: Read + ?Sized>(io: &Io, tile: Coord) -> u32 {
     (0..n[1]).fold(0, |bits, r| bits | (row << (8 * r)))
 }
 
-fn lit<Io: Read + ?Sized>(io: &Io, p: Coord) -> f64 {
+/// The pixel's sample this frame: its lit bit, or its visibility in [0, 1] with a visibility input.
+fn sample<Io: Read + ?Sized>(io: &Io, p: Coord) -> f64 {
+    if io.visibility_input() {
+        return super::sanitize_visibility(io.read_visibility(p));
+    }
     let word = io.read_tile_mask([p[0].div_euclid(8), p[1].div_euclid(4)]);
     ((word >> tile_bit(p)) & 1) as f64
+}
+
+/// A sample that is exactly lit or exactly shadowed: only those extend runs of identical samples (always so for
+/// a hit mask; with visibility, a pixel whose rays disagreed this frame lies in a penumbra).
+pub fn is_exact(x: f64) -> bool {
+    x == 0.0 || x == 1.0
+}
+
+/// The bits of a valid tile whose sample is exactly 1 (`lit` true) or exactly 0.
+fn exact_word<Io: Read + ?Sized>(io: &Io, tile: Coord, lit: bool) -> u32 {
+    if !io.visibility_input() {
+        let word = io.read_tile_mask(tile);
+        return if lit { word } else { !word };
+    }
+    let e = io.extent();
+    (0..TILE[0] * TILE[1]).fold(0, |bits, b| {
+        let p = [tile[0] * TILE[0] + b % TILE[0], tile[1] * TILE[1] + b / TILE[0]];
+        let inside = p[0] < e[0] && p[1] < e[1];
+        let hit = inside && sample(io, p) == if lit { 1.0 } else { 0.0 };
+        bits | (hit as u32) << b
+    })
 }
 
 fn moment_weight<Io: Read + ?Sized>(io: &Io, i: i32) -> f64 {
     (-(io.settings().spatial_falloff as f64) * (i * i) as f64 / 81.0).exp()
 }
 
-/// Spatial mean and variance of the binary mask in the 17x17 Gaussian window (taps inside the rectangle only).
+/// Spatial mean and variance of the samples in the 17x17 Gaussian window (taps inside the rectangle only). For
+/// a binary mask the variance is mean - mean^2; visibilities need the weighted mean of their squares.
 pub fn local_moments<Io: Read + ?Sized>(io: &Io, p: Coord) -> DVec2 {
-    let mut sum = DVec2::ZERO;
+    let mut sum = glam::DVec3::ZERO;
     for j in -MOMENT_RADIUS..=MOMENT_RADIUS {
-        let mut row = DVec2::ZERO;
+        let mut row = glam::DVec3::ZERO;
         for i in -MOMENT_RADIUS..=MOMENT_RADIUS {
             let q = [p[0] + i, p[1] + j];
             if inside(io, q) {
-                row += moment_weight(io, i) * DVec2::new(lit(io, q), 1.0);
+                let v = sample(io, q);
+                row += moment_weight(io, i) * glam::DVec3::new(v, v * v, 1.0);
             }
         }
         sum += moment_weight(io, j) * row;
     }
-    let mean = sum.x / sum.y.max(1e-20);
-    DVec2::new(mean, (mean - mean * mean).max(0.0))
+    let mean = sum.x / sum.z.max(1e-20);
+    let square = if io.visibility_input() { sum.y / sum.z.max(1e-20) } else { mean };
+    DVec2::new(mean, (square - mean * mean).max(0.0))
 }
 
-/// 0: mixed; 1: every valid bit within +-8 px of the tile is lit; 2: every one is shadowed.
+/// 0: mixed; 1: every valid pixel within +-8 px of the tile is exactly lit; 2: every one is exactly shadowed.
 pub fn uniform_state<Io: Read + ?Sized>(io: &Io, tile: Coord) -> u32 {
     let (mut all_lit, mut all_shadow) = (true, true);
     for dy in -2..=2 {
         for dx in -1..=1 {
             let t = [tile[0] + dx, tile[1] + dy];
             let valid = tile_valid_bits(io, t);
-            let word = if valid != 0 { io.read_tile_mask(t) } else { 0 };
-            all_lit &= word & valid == valid;
-            all_shadow &= word & valid == 0;
+            if valid == 0 {
+                continue;
+            }
+            all_lit &= exact_word(io, t, true) & valid == valid;
+            all_shadow &= exact_word(io, t, false) & valid == valid;
         }
     }
     if all_lit { 1 } else if all_shadow { 2 } else { 0 }
@@ -126,9 +156,10 @@ pub fn sample_run(previous: f64, x: f64, stable_after: f64) -> f64 {
     if lit { start } else { -start }
 }
 
-/// A previous run that is stable (`stable_after` > 0 samples or more) and of the same value as sample `x`.
+/// A previous run that is stable (`stable_after` > 0 samples or more) and of the same value as sample `x`, which
+/// is exact.
 fn stable_agreeing(run: f64, x: f64, stable_after: f64) -> bool {
-    stable_after > 0.0 && run.abs() >= stable_after && if x >= 0.5 { run > 0.0 } else { run < 0.0 }
+    is_exact(x) && stable_after > 0.0 && run.abs() >= stable_after && if x >= 0.5 { run > 0.0 } else { run < 0.0 }
 }
 
 /// The temporal part for one receiver pixel of a mixed tile: returns (moments, (shadow, variance)).
@@ -147,7 +178,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     let e = io.extent();
 
     let local = local_moments(io, p);
-    let x = lit(io, p);
+    let x = sample(io, p);
     let uv = pixel_uv(io, p);
     let ndc = uv_to_ndc(uv);
     let history_uv = uv + quad_velocity(io, p);
@@ -226,7 +257,8 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     m.y += (x - m_old) * (x - m.x);
     let mut variance = if m.z > 1.0 { m.y / (m.z - 1.0) } else { 1.0 };
     let flip_after = (s.history_flip_samples as f64).floor();
-    m.w = sample_run(m.w, x, stable_after);
+    // A sample that is not exact (the pixel's rays disagreed) ends any run: the pixel lies in a penumbra.
+    m.w = if is_exact(x) { sample_run(m.w, x, stable_after) } else { 0.0 };
     // Enough identical samples in a row: the input resolves this pixel (a hard edge, say), and the local
     // distribution, which straddles the edge, must not pull its history (nor reject it). Its history is clamped
     // to what the run allows instead: within RUN_CLAMP_SAMPLES / n of the run's value (the rule of three).
@@ -290,7 +322,8 @@ pub fn tile_blocker<Io: Read + ?Sized>(io: &Io, tile: Coord) -> f64 {
             if valid == 0 {
                 continue;
             }
-            let shadowed = !io.read_tile_mask(t) & valid;
+            // Pixels with a ray that hit: not exactly lit.
+            let shadowed = !exact_word(io, t, true) & valid;
             for bit in (0..TILE[0] * TILE[1]).filter(|b| shadowed >> b & 1 != 0) {
                 let d = io.read_hit_distance([t[0] * TILE[0] + bit % TILE[0], t[1] * TILE[1] + bit / TILE[0]]);
                 if usable_hit_distance(d) {

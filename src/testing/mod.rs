@@ -15,8 +15,8 @@ use scene::FrameInputs;
 
 const READ: vk::ImageLayout = vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL;
 
-/// Mask, depth, velocity, normals, output and hit-distance images for one render size.
-fn host_images(gpu: &Gpu, w: u32, h: u32, output_format: vk::Format) -> [TestImage; 6] {
+/// Mask, depth, velocity, normals, output, hit-distance and visibility images for one render size.
+fn host_images(gpu: &Gpu, w: u32, h: u32, output_format: vk::Format, visibility_format: vk::Format) -> [TestImage; 7] {
     [
         gpu.image(vk::Format::R32_UINT, w.div_ceil(8), h.div_ceil(4), READ),
         gpu.image(vk::Format::R32_SFLOAT, w, h, READ),
@@ -25,12 +25,14 @@ fn host_images(gpu: &Gpu, w: u32, h: u32, output_format: vk::Format) -> [TestIma
         // Resting in TRANSFER_SRC_OPTIMAL exercises dnsr's transition to GENERAL and back.
         gpu.image(output_format, w, h, vk::ImageLayout::TRANSFER_SRC_OPTIMAL),
         gpu.image(vk::Format::R32_SFLOAT, w, h, READ),
+        gpu.image(visibility_format, w, h, READ),
     ]
 }
 
-/// Staging for one frame: mask, depth, velocity (2), normals (4), hit distance, output, in 4-byte words per pixel.
+/// Staging for one frame: mask, depth, velocity (2), normals (4), hit distance, visibility, output, in 4-byte words
+/// per pixel.
 fn staging_bytes(w: u32, h: u32) -> u64 {
-    (w * h) as u64 * 4 * 10 + 80
+    (w * h) as u64 * 4 * 11 + 96
 }
 
 /// Host images for one render size, plus staging memory.
@@ -51,10 +53,48 @@ pub struct Runner<'g> {
     pub output: TestImage,
     /// Hit distance (R32_SFLOAT), uploaded every frame.
     pub hit_distance: TestImage,
+    /// Visibility (R32_SFLOAT unless `set_visibility_format`), uploaded every frame; the dispatch's shadow input
+    /// when the context takes visibility.
+    pub visibility: TestImage,
     /// Penumbra guidance for `dispatch`: the light's angular size, or None for none.
     pub guidance: Option<f32>,
+    visibility_input: bool,
     staging: Staging,
     cmd: vk::CommandBuffer,
+}
+
+/// Visibility values in an upload format's texel bytes.
+fn encode_visibility(v: &[f32], format: vk::Format) -> Vec<u8> {
+    match format {
+        vk::Format::R32_SFLOAT => bytemuck::cast_slice(v).to_vec(),
+        vk::Format::R16_SFLOAT => v.iter().flat_map(|&x| f32_to_f16(x).to_le_bytes()).collect(),
+        vk::Format::R16_UNORM => v.iter().flat_map(|&x| ((x.clamp(0.0, 1.0) * 65535.0).round() as u16).to_le_bytes()).collect(),
+        vk::Format::R8_UNORM => v.iter().map(|&x| (x.clamp(0.0, 1.0) * 255.0).round() as u8).collect(),
+        other => panic!("no visibility upload for {other:?}"),
+    }
+}
+
+/// Converts f32 to an IEEE half (round to nearest even; NaN stays NaN, overflow goes to infinity).
+pub fn f32_to_f16(x: f32) -> u16 {
+    let bits = x.to_bits();
+    let sign = ((bits >> 16) & 0x8000) as u16;
+    if x.is_nan() {
+        return sign | 0x7E00;
+    }
+    let a = x.abs();
+    if a >= 65520.0 {
+        return sign | 0x7C00;
+    }
+    if a < 6.103_515_6e-5 {
+        // Subnormal: multiples of 2^-24.
+        return sign | (a * 16_777_216.0).round_ties_even() as u16;
+    }
+    let exp = ((bits >> 23) & 0xFF) as i32 - 127 + 15;
+    let mant = bits & 0x7F_FFFF;
+    let half = ((exp as u32) << 10) | (mant >> 13);
+    let rest = mant & 0x1FFF;
+    let round = (rest > 0x1000 || (rest == 0x1000 && half & 1 == 1)) as u32;
+    sign | (half + round) as u16
 }
 
 /// Converts an IEEE half to f32.
@@ -73,16 +113,21 @@ impl<'g> Runner<'g> {
     /// Creates the context and the host images for `info`'s size.
     pub fn new(gpu: &'g Gpu, info: &ContextCreateInfo) -> crate::Result<Runner<'g>> {
         let ctx = Context::new(info)?;
-        let [mask, depth, velocity, normals, output, hit_distance] = host_images(gpu, info.width, info.height, info.output_format);
+        let [mask, depth, velocity, normals, output, hit_distance, visibility] =
+            host_images(gpu, info.width, info.height, info.output_format, vk::Format::R32_SFLOAT);
         let staging = gpu.staging(staging_bytes(info.width, info.height));
         let cmd = gpu.command_buffer();
-        Ok(Runner { gpu, ctx, mask, depth, velocity, normals, output, hit_distance, guidance: None, staging, cmd })
+        let visibility_input = info.shadow_input == crate::ShadowInput::Visibility;
+        Ok(Runner { gpu, ctx, mask, depth, velocity, normals, output, hit_distance, visibility, visibility_input, guidance: None, staging, cmd })
     }
 
     /// A dispatch for `f` over this runner's images (no reset; penumbra guidance as `guidance` says).
     pub fn dispatch(&self, f: &FrameInputs) -> ShadowsDispatch {
+        let (hit_mask, visibility) =
+            if self.visibility_input { (Default::default(), self.visibility.host()) } else { (self.mask.host(), Default::default()) };
         ShadowsDispatch {
-            hit_mask: self.mask.host(),
+            hit_mask,
+            visibility,
             depth: self.depth.host(),
             velocity: self.velocity.host(),
             normals: self.normals.host(),
@@ -130,21 +175,23 @@ impl<'g> Runner<'g> {
             Vec::new()
         };
         let normals: &[u8] = if packed.is_empty() { bytemuck::cast_slice(&f.normals) } else { bytemuck::cast_slice(&packed) };
-        let parts: [&[u8]; 5] = [
+        let visibility = encode_visibility(&f.visibility, self.visibility.format);
+        let parts: [&[u8]; 6] = [
             bytemuck::cast_slice(&f.mask),
             bytemuck::cast_slice(&f.depth),
             bytemuck::cast_slice(&f.velocity),
             normals,
             bytemuck::cast_slice(&f.hit_distance),
+            &visibility,
         ];
-        let mut offsets = [0u64; 6];
+        let mut offsets = [0u64; 7];
         for (i, p) in parts.iter().enumerate() {
             self.staging.write(offsets[i] as usize, p);
             offsets[i + 1] = (offsets[i] + p.len() as u64).next_multiple_of(16);
         }
-        let out_offset = offsets[5];
+        let out_offset = offsets[6];
         let gpu = self.gpu;
-        let images = [&self.mask, &self.depth, &self.velocity, &self.normals, &self.hit_distance];
+        let images = [&self.mask, &self.depth, &self.velocity, &self.normals, &self.hit_distance, &self.visibility];
         let (ctx, staging, output) = (&mut self.ctx, &self.staging, &self.output);
         let result = gpu.submit_with(self.cmd, |cmd| {
             full_barrier(&gpu.device, cmd);
@@ -193,19 +240,32 @@ impl<'g> Runner<'g> {
         self.normals = g.image(normals, w, h, READ);
     }
 
+    /// Replaces the visibility image with another format (R8_UNORM, R16_UNORM, R16_SFLOAT or R32_SFLOAT).
+    pub fn set_visibility_format(&mut self, format: vk::Format) {
+        let g = self.gpu;
+        let (w, h) = (self.visibility.width, self.visibility.height);
+        g.destroy_image(&self.visibility);
+        self.visibility = g.image(format, w, h, READ);
+    }
+
     /// Resizes the context and recreates the host images for the new size.
     pub fn resize(&mut self, width: u32, height: u32) -> crate::Result<()> {
         let g = self.gpu;
         unsafe { g.device.device_wait_idle().ok() };
         self.ctx.resize(width, height)?;
         let format = self.output.format;
-        for img in [&self.mask, &self.depth, &self.velocity, &self.normals, &self.output, &self.hit_distance] {
+        for img in self.images() {
             g.destroy_image(img);
         }
         g.destroy_staging(&self.staging);
-        [self.mask, self.depth, self.velocity, self.normals, self.output, self.hit_distance] = host_images(g, width, height, format);
+        [self.mask, self.depth, self.velocity, self.normals, self.output, self.hit_distance, self.visibility] =
+            host_images(g, width, height, format, self.visibility.format);
         self.staging = g.staging(staging_bytes(width, height));
         Ok(())
+    }
+
+    fn images(&self) -> [&TestImage; 7] {
+        [&self.mask, &self.depth, &self.velocity, &self.normals, &self.output, &self.hit_distance, &self.visibility]
     }
 
     /// Runs one frame of `f` with the default dispatch (plus `reset`).
@@ -220,7 +280,7 @@ impl Drop for Runner<'_> {
         let g = self.gpu;
         unsafe { g.device.device_wait_idle().ok() };
         g.free_command_buffer(self.cmd);
-        for img in [&self.mask, &self.depth, &self.velocity, &self.normals, &self.output, &self.hit_distance] {
+        for img in self.images() {
             g.destroy_image(img);
         }
         g.destroy_staging(&self.staging);

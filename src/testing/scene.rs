@@ -95,6 +95,9 @@ pub struct FrameInputs {
     pub mask: Vec<u32>,
     /// Distance to the occluder where the mask says the ray hit (0 elsewhere): the penumbra guidance input.
     pub hit_distance: Vec<f32>,
+    /// Per-pixel visibility for a visibility input (`ShadowInput::Visibility`): the mask's ray as 0 or 1, or the
+    /// mean of k rays after `trace_rays`.
+    pub visibility: Vec<f32>,
     /// True visibility per pixel (1 for sky).
     pub truth: Vec<f32>,
     /// Receiver (plane) pixels.
@@ -122,6 +125,7 @@ impl FrameInputs {
             normals: vec![[0.0, 1.0, 0.0, 0.0]; n],
             velocity: vec![[0.0; 2]; n],
             hit_distance: vec![0.0; n],
+            visibility: vec![1.0; n],
             mask: vec![0; (width.div_ceil(8) * height.div_ceil(4)) as usize],
             truth: vec![1.0; n],
             receiver: vec![false; n],
@@ -214,7 +218,26 @@ pub fn render_with_blockers(
             if !lit {
                 f.mask[((y / 4) * tw + x / 8) as usize] |= 1 << ((y % 4) * 8 + (x % 8));
             }
+            f.visibility[i] = lit as u32 as f32;
         }
     }
     f
+}
+
+impl FrameInputs {
+    /// Makes `visibility` the mean of `rays` shadow rays per receiver: the mask's ray (drawn with `seed`, so one
+    /// ray equals the mask) and `rays - 1` more, each hitting with probability 1 - truth.
+    pub fn trace_rays(&mut self, rays: u32, seed: u64) {
+        for y in 0..self.height {
+            for x in 0..self.width {
+                let i = (y * self.width + x) as usize;
+                if !self.receiver[i] {
+                    continue;
+                }
+                let first = (self.mask[((y / 4) * self.width.div_ceil(8) + x / 8) as usize] >> ((y % 4) * 8 + (x % 8))) & 1 == 0;
+                let more = (1..rays).filter(|&r| hash01(seed ^ (r as u64).wrapping_mul(0xA24B_AED4_963E_E407), x, y) < self.truth[i] as f64);
+                self.visibility[i] = (first as u32 + more.count() as u32) as f32 / rays as f32;
+            }
+        }
+    }
 }

@@ -36,6 +36,7 @@ fn create_info(g: &crate::testing::gpu::Gpu, w: u32, h: u32) -> DnsrContextCreat
         p_debug_name_callback: std::ptr::null(),
         shader_override_count: 0,
         p_shader_overrides: std::ptr::null(),
+        shadow_input: DNSR_SHADOW_INPUT_HIT_MASK,
     }
 }
 
@@ -77,6 +78,7 @@ fn c_dispatch(d: &crate::ShadowsDispatch, cmd: vk::CommandBuffer) -> DnsrShadows
         light_angular_size: d.light_angular_size,
         engine_image_count: 0,
         p_engine_images: std::ptr::null(),
+        visibility: host(&d.visibility),
     }
 }
 

@@ -219,7 +219,7 @@ fn generated_layout_header() -> String {
         s_type, p_next, instance, physical_device, device, vulkan_functions, api_version, queue_family_index,
         enabled_features, width, height, flags, precision, output_format, light_count, max_frames_in_flight, p_settings,
         p_allocation_callbacks, p_gpu_memory_callbacks, p_log_callback, p_debug_name_callback, shader_override_count,
-        p_shader_overrides,
+        p_shader_overrides, shadow_input,
     });
     check!(DnsrShaderOverride { p_variant_name, p_code, code_size });
     check!(DnsrShaderVariantInfo { p_name, p_source, p_defines });
@@ -230,7 +230,7 @@ fn generated_layout_header() -> String {
         s_type, p_next, command_buffer, light_index, flags, hit_mask_convention, hit_mask, depth, velocity, normals,
         output, motion_vector_scale, normals_unpack_mul, normals_unpack_add, eye, frame_index, projection_inverse,
         reprojection_matrix, view_projection_inverse, depth_similarity_sigma, render_rect, sync, debug_view, hit_distance,
-        light_angular_size, engine_image_count, p_engine_images,
+        light_angular_size, engine_image_count, p_engine_images, visibility,
     });
     check!(DnsrEngineImage { binding, view, layout });
     check!(DnsrPassTimings { s_type, p_next, frame, prepare_ms, tile_classification_ms, filter_ms, filter_passes, total_ms });

@@ -1005,7 +1005,7 @@ typedef struct DnsrReferenceCallbacks {
    */
   void *userData;
   /**
-   * Required. Hit mask word of a tile.
+   * Required (optional with DNSR_REFERENCE_VISIBILITY_INPUT: not called). Hit mask word of a tile.
    */
   uint32_t (*readHitMask)(void *user, int32_t tile_x, int32_t tile_y);
   /**
@@ -1058,6 +1058,11 @@ typedef struct DnsrReferenceCallbacks {
    * DnsrShadowsDispatch::hitDistance; called for every pixel, used where the mask says the ray hit).
    */
   float (*readHitDistance)(void *user, int32_t x, int32_t y);
+  /**
+   * Optional (required with DNSR_REFERENCE_VISIBILITY_INPUT). A pixel's visibility as stored (see
+   * DnsrShadowsDispatch::visibility).
+   */
+  float (*readVisibility)(void *user, int32_t x, int32_t y);
 } DnsrReferenceCallbacks;
 
 /**
@@ -1107,6 +1112,11 @@ typedef struct DnsrDiagnosis {
  * Penumbra guidance, as DNSR_DISPATCH_USE_HIT_DISTANCE: `readHitDistance` and `lightAngularSize` are used.
  */
 #define DNSR_REFERENCE_USE_HIT_DISTANCE (1 << 3)
+
+/**
+ * A visibility input, as DNSR_SHADOW_INPUT_VISIBILITY: `readVisibility` is called instead of `readHitMask`.
+ */
+#define DNSR_REFERENCE_VISIBILITY_INPUT (1 << 4)
 
 /**
  * Forces 32 bits.

@@ -21,6 +21,8 @@ pub const DNSR_REFERENCE_DEPTH_INVERTED: DnsrReferenceFlags = 1 << 1;
 pub const DNSR_REFERENCE_HIT_MASK_LIT_BITS: DnsrReferenceFlags = 1 << 2;
 /// Penumbra guidance, as DNSR_DISPATCH_USE_HIT_DISTANCE: `readHitDistance` and `lightAngularSize` are used.
 pub const DNSR_REFERENCE_USE_HIT_DISTANCE: DnsrReferenceFlags = 1 << 3;
+/// A visibility input, as DNSR_SHADOW_INPUT_VISIBILITY: `readVisibility` is called instead of `readHitMask`.
+pub const DNSR_REFERENCE_VISIBILITY_INPUT: DnsrReferenceFlags = 1 << 4;
 /// Forces 32 bits.
 pub const DNSR_REFERENCE_MAX_ENUM: DnsrReferenceFlags = 0x7FFF_FFFF;
 
@@ -69,7 +71,7 @@ pub struct DnsrReferenceFrameInfo {
 pub struct DnsrReferenceCallbacks {
     /// Optional. Passed to every callback.
     pub user_data: *mut c_void,
-    /// Required. Hit mask word of a tile.
+    /// Required (optional with DNSR_REFERENCE_VISIBILITY_INPUT: not called). Hit mask word of a tile.
     pub read_hit_mask: Option<unsafe extern "C" fn(user: *mut c_void, tile_x: i32, tile_y: i32) -> u32>,
     /// Required. Raw depth.
     pub read_depth: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32) -> f32>,
@@ -97,6 +99,9 @@ pub struct DnsrReferenceCallbacks {
     /// Optional (required with DNSR_REFERENCE_USE_HIT_DISTANCE). Hit distance of a pixel (see
     /// DnsrShadowsDispatch::hitDistance; called for every pixel, used where the mask says the ray hit).
     pub read_hit_distance: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32) -> f32>,
+    /// Optional (required with DNSR_REFERENCE_VISIBILITY_INPUT). A pixel's visibility as stored (see
+    /// DnsrShadowsDispatch::visibility).
+    pub read_visibility: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32) -> f32>,
 }
 
 fn mat(m: &[f32; 16]) -> DMat4 {
@@ -179,7 +184,9 @@ pub extern "C" fn dnsr_reference_run_frame(
         } else {
             None
         };
-        let read_hit_mask = cb.read_hit_mask.ok_or_else(|| missing("readHitMask"))?;
+        let visibility_input = info.flags & DNSR_REFERENCE_VISIBILITY_INPUT != 0;
+        let read_visibility = if visibility_input { Some(cb.read_visibility.ok_or_else(|| missing("readVisibility"))?) } else { None };
+        let read_hit_mask = if visibility_input { None } else { Some(cb.read_hit_mask.ok_or_else(|| missing("readHitMask"))?) };
         let raw = RawInputs::read(info, cb)?;
         let reset = info.flags & DNSR_REFERENCE_RESET != 0;
         let previous = if reset {
@@ -206,10 +213,15 @@ pub extern "C" fn dnsr_reference_run_frame(
         }
         let user = cb.user_data;
         let (tw, th) = ((w + 7) / 8, (h + 3) / 4);
-        for ty in 0..th {
-            for tx in 0..tw {
-                f.hit_mask[(ty * tw + tx) as usize] = unsafe { read_hit_mask(user, tx, ty) };
+        if let Some(read) = read_hit_mask {
+            for ty in 0..th {
+                for tx in 0..tw {
+                    f.hit_mask[(ty * tw + tx) as usize] = unsafe { read(user, tx, ty) };
+                }
             }
+        }
+        if let Some(read) = read_visibility {
+            f.visibility = Some((0..h).flat_map(|y| (0..w).map(move |x| (x, y))).map(|(x, y)| unsafe { read(user, x, y) } as f64).collect());
         }
         let scale = DVec2::new(info.motion_vector_scale[0] as f64, info.motion_vector_scale[1] as f64);
         let (mul, add) = (info.normals_unpack_mul as f64, info.normals_unpack_add as f64);

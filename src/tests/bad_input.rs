@@ -107,6 +107,64 @@ fn bad_create_infos_are_refused_with_specific_errors() {
     g.assert_clean();
 }
 
+type DispatchCase = (&'static str, fn(&mut ShadowsDispatch), fn(&Error) -> bool);
+
+/// Each case's edit of `good` is refused with its error, records nothing and leaves the (all-lit) output alone.
+fn refused_record_nothing(r: &mut Runner, frame: &crate::testing::scene::FrameInputs, good: &ShadowsDispatch, cases: &[DispatchCase]) {
+    for (name, edit, check) in cases {
+        let mut d = *good;
+        edit(&mut d);
+        let before = r.ctx.recording_state(0);
+        let (result, out) = r.run_raw(frame, &d);
+        let e = result.expect_err(name);
+        assert!(check(&e), "{name}: unexpected error {e:?}");
+        assert!(!e.to_string().is_empty());
+        assert_eq!(r.ctx.recording_state(0), before, "{name}: state changed");
+        assert!(out.iter().all(|&o| o == 1.0), "{name}: something ran");
+        r.gpu.assert_clean();
+    }
+}
+
+#[test]
+fn bad_visibility_dispatches_record_nothing() {
+    let g = gpu();
+    let (w, h) = (32, 16);
+    let mut info = g.create_info(w, h);
+    info.output_format = vk::Format::R32_SFLOAT;
+    info.shadow_input = crate::ShadowInput::Visibility;
+    let mut r = Runner::new(&g, &info).unwrap();
+    let mut f = static_frame(w, h, &|_, _| 1.0, 1);
+    f.trace_rays(2, 1);
+    assert!(r.frame(&f, false).iter().all(|&o| o == 1.0));
+    let mut shadow = static_frame(w, h, &|_, _| 0.0, 2);
+    shadow.trace_rays(2, 2);
+    let good = r.dispatch(&shadow);
+    assert!(good.hit_mask.view == vk::ImageView::null() && good.visibility.view != vk::ImageView::null());
+    let cases: &[DispatchCase] = &[
+        ("no visibility", |d| d.visibility = HostImage::default(), |e| *e == Error::NullHandle("visibility.image")),
+        ("null visibility view", |d| d.visibility.view = vk::ImageView::null(), |e| *e == Error::NullHandle("visibility.view")),
+        (
+            "integer visibility",
+            |d| d.visibility.format = vk::Format::R32_UINT,
+            |e| matches!(e, Error::UnsupportedFormat { role: Some(ImageRole::Visibility), .. }),
+        ),
+        (
+            "visibility of tile size",
+            |d| (d.visibility.width, d.visibility.height) = (4, 4),
+            |e| matches!(e, Error::ImageExtentMismatch { role: ImageRole::Visibility, .. }),
+        ),
+        (
+            "visibility in attachment layout",
+            |d| d.visibility.layout = vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+            |e| matches!(e, Error::UnsupportedLayout { role: ImageRole::Visibility, .. }),
+        ),
+        ("hit mask given as well", |d| d.hit_mask = d.depth, |e| matches!(e, Error::InvalidValue { field: "hit_mask", .. })),
+    ];
+    refused_record_nothing(&mut r, &shadow, &good, cases);
+    assert!(r.run(&shadow, &good).unwrap().iter().all(|&o| o == 0.0));
+    g.assert_clean();
+}
+
 #[test]
 fn bad_dispatches_record_nothing() {
     let g = gpu();
@@ -288,19 +346,13 @@ fn bad_dispatches_record_nothing() {
             |e| matches!(e, Error::InvalidRenderRect { .. }),
         ),
         ("light index", |d| d.light_index = 1, |e| matches!(e, Error::InvalidLightIndex { index: 1, count: 1 })),
+        (
+            "visibility given to a hit-mask context",
+            |d| d.visibility = d.hit_distance.unwrap(),
+            |e| matches!(e, Error::InvalidValue { field: "visibility", .. }),
+        ),
     ];
-    for (name, edit, check) in cases {
-        let mut d = good;
-        edit(&mut d);
-        let before = r.ctx.recording_state(0);
-        let (result, out) = r.run_raw(&shadow, &d);
-        let e = result.expect_err(name);
-        assert!(check(&e), "{name}: unexpected error {e:?}");
-        assert!(!e.to_string().is_empty());
-        assert_eq!(r.ctx.recording_state(0), before, "{name}: state changed");
-        assert!(out.iter().all(|&o| o == 1.0), "{name}: something ran");
-        g.assert_clean();
-    }
+    refused_record_nothing(&mut r, &shadow, &good, cases);
     // A null command buffer.
     assert_eq!(r.ctx.record_shadows(vk::CommandBuffer::null(), &good), Err(Error::NullHandle("command_buffer")));
     // Settings are validated too, and a refused change keeps the old settings.

@@ -221,6 +221,10 @@ mod reference_table {
         let d = data(user);
         d.f.hit_distance[idx(d, x, y)]
     }
+    unsafe extern "C" fn read_visibility(user: *mut c_void, x: i32, y: i32) -> f32 {
+        let d = data(user);
+        d.f.visibility[idx(d, x, y)]
+    }
     unsafe extern "C" fn write_output(user: *mut c_void, x: i32, y: i32, value: f32) {
         let d = data(user);
         let i = idx(d, x, y);
@@ -228,13 +232,16 @@ mod reference_table {
     }
 
     /// An engine's first frame (reset) through the C reference table equals dnsr's GPU output on the same data,
-    /// without and with penumbra guidance.
+    /// without and with penumbra guidance, and with a visibility input.
     #[test]
     fn the_c_reference_table_reproduces_the_gpu_frame() {
         let g = gpu();
+        let one_ray = reference_frame(&g, None, false);
+        let four_rays = reference_frame(&g, None, true);
+        assert!(one_ray.iter().zip(&four_rays).any(|(a, b)| (a - b).abs() > 1e-3), "the visibility input changed nothing");
         let mut unguided = Vec::new();
         for guidance in [None, Some(0.3f32)] {
-            let out = reference_frame(&g, guidance);
+            let out = reference_frame(&g, guidance, false);
             if guidance.is_some() {
                 let changed = out.iter().zip(&unguided).map(|(a, b): (&f32, &f32)| (a - b).abs()).fold(0.0, f32::max);
                 assert!(changed > 1e-3, "guidance changed nothing: the guided path is not exercised");
@@ -245,13 +252,17 @@ mod reference_table {
     }
 
     /// Runs the frame on the GPU and through the C reference; checks they agree and returns the GPU output.
-    fn reference_frame(g: &crate::testing::gpu::Gpu, guidance: Option<f32>) -> Vec<f32> {
+    fn reference_frame(g: &crate::testing::gpu::Gpu, guidance: Option<f32>, visibility: bool) -> Vec<f32> {
         let (w, h) = (37, 23);
         let mut info = g.create_info(w, h);
         info.output_format = vk::Format::R32_SFLOAT;
+        if visibility {
+            info.shadow_input = crate::ShadowInput::Visibility;
+        }
         let mut r = Runner::new(g, &info).unwrap();
         r.guidance = guidance;
         let mut f = static_frame(w, h, &smooth, 7);
+        f.trace_rays(4, 7);
         f.hit_distance = (0..w * h).map(|i| 0.2 + (i % 5) as f32 * 0.1).collect();
         let d = r.dispatch(&f);
         let gpu_out = r.frame(&f, true);
@@ -262,7 +273,9 @@ mod reference_table {
             p_next: std::ptr::null(),
             width: w,
             height: h,
-            flags: DNSR_REFERENCE_RESET | if guidance.is_some() { DNSR_REFERENCE_USE_HIT_DISTANCE } else { 0 },
+            flags: DNSR_REFERENCE_RESET
+                | if guidance.is_some() { DNSR_REFERENCE_USE_HIT_DISTANCE } else { 0 }
+                | if visibility { DNSR_REFERENCE_VISIBILITY_INPUT } else { 0 },
             p_settings: std::ptr::null(),
             motion_vector_scale: d.motion_vector_scale.to_array(),
             normals_unpack_mul: d.normals_unpack_mul,
@@ -276,7 +289,7 @@ mod reference_table {
         };
         let callbacks = DnsrReferenceCallbacks {
             user_data: &mut user as *mut Data as *mut c_void,
-            read_hit_mask: Some(read_hit_mask),
+            read_hit_mask: if visibility { None } else { Some(read_hit_mask) },
             read_depth: Some(read_depth),
             read_normal: Some(read_normal),
             read_velocity: Some(read_velocity),
@@ -289,6 +302,7 @@ mod reference_table {
             write_moments: None,
             write_history: None,
             read_hit_distance: Some(read_hit_distance),
+            read_visibility: Some(read_visibility),
         };
         assert_eq!(dnsr_reference_run_frame(&frame, &callbacks), DnsrResult::DNSR_SUCCESS);
         let worst = gpu_out.iter().zip(&user.output).map(|(a, b)| (a - b).abs()).fold(0.0f32, f32::max);
@@ -296,6 +310,10 @@ mod reference_table {
         // A frame without RESET needs the previous-state callbacks; guidance needs its callback and a valid angle.
         let no_reset = DnsrReferenceFrameInfo { flags: 0, ..frame };
         assert_eq!(dnsr_reference_run_frame(&no_reset, &callbacks), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);
+        if visibility {
+            let no_callback = DnsrReferenceCallbacks { read_visibility: None, ..callbacks };
+            assert_eq!(dnsr_reference_run_frame(&frame, &no_callback), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);
+        }
         if guidance.is_some() {
             let no_callback = DnsrReferenceCallbacks { read_hit_distance: None, ..callbacks };
             assert_eq!(dnsr_reference_run_frame(&frame, &no_callback), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);

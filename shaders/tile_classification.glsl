@@ -161,6 +161,17 @@ float dnsr_sample_run(float previous, float x, float stable_after) {
     return lit ? start : -start;
 }
 
+// The run after a sample that is not exact (a pixel whose rays disagreed): no run of identical samples, but a
+// stable run it interrupts is broken (a marker of half a sample of the other value), and a break already under way
+// stays one, so that the first exact sample of the other value after a penumbra passed restarts the history as it
+// does after a single ray.
+float dnsr_fractional_run(float previous, float stable_after) {
+    float n = abs(previous);
+    if (stable_after > 0.0 && n >= stable_after) return previous > 0.0 ? -0.5 : 0.5;
+    if (fract(n) == 0.5) return previous > 0.0 ? 0.5 : -0.5;
+    return 0.0;
+}
+
 bool dnsr_usable_hit_distance(float d) { return d > 0.0 && d < 1.0 / 0.0; }
 
 // Penumbra guidance, first half: invocation `thread` sums the usable hit distances of its share of one window
@@ -422,8 +433,8 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     m.y += (x - m_old) * (x - m.x);
     float variance = m.z > 1.0 ? m.y / (m.z - 1.0) : 1.0;
     float flip_after = floor(dnsr_get_run_settings().y);
-    // A sample that is not exact (the pixel's rays disagreed) ends any run: the pixel lies in a penumbra.
-    m.w = dnsr_is_exact(x) ? dnsr_sample_run(m.w, x, stable_after) : 0.0;
+    bool exact = dnsr_is_exact(x);
+    m.w = exact ? dnsr_sample_run(m.w, x, stable_after) : dnsr_fractional_run(m.w, stable_after);
     // Enough identical samples in a row: the input resolves this pixel (a hard edge, say), and the local
     // distribution, which straddles the edge, must not pull its history (nor reject it).
     bool stable = stable_after > 0.0 && abs(m.w) >= stable_after;
@@ -432,7 +443,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     // Restart from the new samples, the history from the local mean. (A few samples of the other value also occur
     // in a penumbra close to 0 or 1, where the local mean stays on the old side.)
     bool breaking = flip_after > 0.0 && fract(abs(m.w)) == 0.5;
-    bool flipped = breaking && (abs(m.w) == flip_after + 0.5 || abs(x - local.x) < 0.5);
+    bool flipped = breaking && exact && (abs(m.w) == flip_after + 0.5 || abs(x - local.x) < 0.5);
     if (flipped) {
         float n = floor(abs(m.w));
         m = vec4(x, 0.0, n, x >= 0.5 ? n : -n);

@@ -234,12 +234,22 @@ fn frame_inputs(seq: &Sequence, t: u32) -> FrameInputs {
     render_with_blockers(W, H, &cam, &prev, 1e9, &move |x, z| field(t, x, z), &move |x, z| blocker(t, x, z), seed)
 }
 
-/// What a run varies: the settings, the filter precision, and penumbra guidance (the light's angular size) or none.
+/// What a run varies: the settings, the filter precision, penumbra guidance (the light's angular size) or none,
+/// and the shadow input: the 1-spp hit mask (None) or the visibility of k rays per pixel.
 #[derive(Clone, Copy)]
 struct Mode {
     settings: Settings,
     precision: Precision,
     guidance: Option<f32>,
+    rays: Option<u32>,
+}
+
+/// The frame's visibility traced with `rays` rays per pixel (the first is the hit mask's).
+fn with_rays(mut f: FrameInputs, rays: Option<u32>, t: u32) -> FrameInputs {
+    if let Some(k) = rays {
+        f.trace_rays(k, 0x0AA5_0000 + t as u64 * 104_729);
+    }
+    f
 }
 
 fn run(gpu: &Gpu, seq: &Sequence, mode: Mode) -> Run {
@@ -247,6 +257,9 @@ fn run(gpu: &Gpu, seq: &Sequence, mode: Mode) -> Run {
     info.output_format = vk::Format::R32_SFLOAT;
     info.precision = mode.precision;
     info.settings = mode.settings;
+    if mode.rays.is_some() {
+        info.shadow_input = dnsr::ShadowInput::Visibility;
+    }
     let mut r = Runner::new(gpu, &info).expect("context");
     r.guidance = mode.guidance;
     let (mut prev_out, mut prev_truth): (Vec<f32>, Vec<f32>) = (Vec::new(), Vec::new());
@@ -256,7 +269,7 @@ fn run(gpu: &Gpu, seq: &Sequence, mode: Mode) -> Run {
     let mut lag = None;
     let mut last = (Vec::new(), Vec::new(), Vec::new());
     for t in 0..FRAMES {
-        let f = frame_inputs(seq, t);
+        let f = with_rays(frame_inputs(seq, t), mode.rays, t);
         let out = r.frame(&f, t == 0);
         let err = dnsr::testing::images::rmse(&out, &f.truth, &f.receiver);
         per_frame.push(err);
@@ -348,6 +361,55 @@ fn header(sequences: &[Sequence]) -> String {
 }
 
 /// The penumbra-guidance table: each preset with and without the hit-distance input, and image strips.
+/// Several rays per pixel through the visibility input: the presets at 1, 2 and 4 rays, and how their error falls.
+fn rays_section(gpu: &Gpu, md: &mut String) {
+    const RAYS: [u32; 3] = [1, 2, 4];
+    let _ = writeln!(*md, "\n## Rays per pixel (visibility input)\n");
+    let input: Vec<String> = RAYS
+        .iter()
+        .map(|&k| {
+            let errs: Vec<f64> = SEQUENCES
+                .iter()
+                .map(|q| {
+                    let f = with_rays(frame_inputs(q, FRAMES - 1), Some(k), FRAMES - 1);
+                    dnsr::testing::images::rmse(&f.visibility, &f.truth, &f.receiver)
+                })
+                .collect();
+            format!("{k} ray{}: {:.3}", if k > 1 { "s" } else { "" }, errs.iter().sum::<f64>() / errs.len() as f64)
+        })
+        .collect();
+    let _ = writeln!(*md, "Input RMSE (mean over the sequences, last frame): {}.\n\n{}", input.join(", "), header(&SEQUENCES));
+    let mut curve = Vec::new();
+    for preset in [Preset::Fast, Preset::Balanced, Preset::Quality] {
+        let mask = |rays| Mode { settings: Settings::preset(preset), precision: Precision::Fp32, guidance: None, rays };
+        let hit_mask: Vec<Run> = SEQUENCES.iter().map(|q| run(gpu, q, mask(None))).collect();
+        let _ = writeln!(*md, "{}", row(&format!("{preset:?}, hit mask"), &hit_mask));
+        let mut scores = Vec::new();
+        for k in RAYS {
+            let runs: Vec<Run> = SEQUENCES.iter().map(|q| run(gpu, q, mask(Some(k)))).collect();
+            let label = format!("{preset:?}, {k} ray{} (visibility)", if k > 1 { "s" } else { "" });
+            let _ = writeln!(*md, "{}", row(&label, &runs));
+            eprintln!("{label}: mean RMSE {:.4}", score(&runs));
+            scores.push(score(&runs));
+        }
+        curve.push(format!(
+            "{preset:?} {} ({} of 1 ray; 1/sqrt(k) would be {})",
+            scores.iter().map(|s| format!("{s:.4}")).collect::<Vec<_>>().join(" / "),
+            scores.iter().map(|s| format!("{:.2}", s / scores[0])).collect::<Vec<_>>().join(" / "),
+            RAYS.iter().map(|&k| format!("{:.2}", 1.0 / (k as f64).sqrt())).collect::<Vec<_>>().join(" / "),
+        ));
+    }
+    let _ = writeln!(
+        *md,
+        "\nMean RMSE at 1 / 2 / 4 rays per pixel: {}.\n\nk rays per pixel: `ShadowInput::Visibility` with \
+         `ShadowsDispatch::visibility` = hits / k (the first ray is the hit mask's, so 1 ray through the visibility \
+         input is the hit mask's frame). The input's own error falls as 1/sqrt(k); the denoised error falls more \
+         slowly, because part of it is bias (the filter's blur of the penumbrae, the lag of moving shadows) that \
+         more rays do not remove.",
+        curve.join("; ")
+    );
+}
+
 fn guided_section(gpu: &Gpu, md: &mut String, img_dir: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
     // Penumbra guidance: the same presets with and without the hit-distance input, on sequences that have one.
     let _ = writeln!(
@@ -368,7 +430,7 @@ fn guided_section(gpu: &Gpu, md: &mut String, img_dir: &std::path::Path) -> Resu
     let mut guided_runs = Vec::new();
     for preset in [Preset::Fast, Preset::Balanced, Preset::Quality] {
         for guidance in [None, Some(LIGHT_ANGLE as f32)] {
-            let mode = Mode { settings: Settings::preset(preset), precision: Precision::Fp32, guidance };
+            let mode = Mode { settings: Settings::preset(preset), precision: Precision::Fp32, guidance, rays: None };
             let runs: Vec<Run> = GUIDED_SEQUENCES.iter().map(|q| run(gpu, q, mode)).collect();
             let label = format!("{preset:?}{}", if guidance.is_some() { ", guided" } else { "" });
             let _ = writeln!(*md, "{}", row(&label, &runs));
@@ -402,19 +464,21 @@ fn guided_section(gpu: &Gpu, md: &mut String, img_dir: &std::path::Path) -> Resu
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut out_dir = PathBuf::from("docs");
     let mut guided_only = false;
+    let mut rays_only = false;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
             "--out" => out_dir = PathBuf::from(args.next().ok_or("--out needs a folder")?),
             "--guided-only" => guided_only = true,
-            _ => return Err(format!("unknown argument {a}; usage: dnsr-accuracy [--out DIR] [--guided-only]").into()),
+            "--rays-only" => rays_only = true,
+            _ => return Err(format!("unknown argument {a}; usage: dnsr-accuracy [--out DIR] [--guided-only] [--rays-only]").into()),
         }
     }
     let img_dir = out_dir.join("accuracy");
     std::fs::create_dir_all(&img_dir)?;
     let gpu = Gpu::new(GpuOptions { validation: false, ..Default::default() });
     let all = |settings: Settings, precision: Precision| -> Vec<Run> {
-        SEQUENCES.iter().map(|q| run(&gpu, q, Mode { settings, precision, guidance: None })).collect()
+        SEQUENCES.iter().map(|q| run(&gpu, q, Mode { settings, precision, guidance: None, rays: None })).collect()
     };
 
     let mut md = String::new();
@@ -443,8 +507,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .collect();
     let _ = writeln!(md, "\n1-spp input RMSE: {}\n", noisy.iter().map(|e| format!("{e:.3}")).collect::<Vec<_>>().join(", "));
 
-    if guided_only {
-        guided_section(&gpu, &mut md, &img_dir)?;
+    if guided_only || rays_only {
+        if guided_only {
+            guided_section(&gpu, &mut md, &img_dir)?;
+        }
+        if rays_only {
+            rays_section(&gpu, &mut md);
+        }
         std::fs::write(out_dir.join("accuracy.md"), md)?;
         return Ok(());
     }
@@ -476,6 +545,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
 
     guided_section(&gpu, &mut md, &img_dir)?;
+    rays_section(&gpu, &mut md);
 
     // The two knobs Quality adds to the FidelityFX set, each swept on top of the other Quality knobs
     // (stable_history_samples 0 turns both off: Quality before they existed).

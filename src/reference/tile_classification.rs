@@ -156,6 +156,21 @@ pub fn sample_run(previous: f64, x: f64, stable_after: f64) -> f64 {
     if lit { start } else { -start }
 }
 
+/// The run after a sample that is not exact (a pixel whose rays disagreed): no run of identical samples, but a
+/// stable run it interrupts is broken (a marker of half a sample of the other value), and a break already under
+/// way stays one, so that the first exact sample of the other value after a penumbra passed restarts the history
+/// as it does after a single ray.
+pub fn fractional_run(previous: f64, stable_after: f64) -> f64 {
+    let n = previous.abs();
+    if stable_after > 0.0 && n >= stable_after {
+        return if previous > 0.0 { -0.5 } else { 0.5 };
+    }
+    if n.fract() == 0.5 {
+        return if previous > 0.0 { 0.5 } else { -0.5 };
+    }
+    0.0
+}
+
 /// A previous run that is stable (`stable_after` > 0 samples or more) and of the same value as sample `x`, which
 /// is exact.
 fn stable_agreeing(run: f64, x: f64, stable_after: f64) -> bool {
@@ -257,8 +272,8 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     m.y += (x - m_old) * (x - m.x);
     let mut variance = if m.z > 1.0 { m.y / (m.z - 1.0) } else { 1.0 };
     let flip_after = (s.history_flip_samples as f64).floor();
-    // A sample that is not exact (the pixel's rays disagreed) ends any run: the pixel lies in a penumbra.
-    m.w = if is_exact(x) { sample_run(m.w, x, stable_after) } else { 0.0 };
+    let exact = is_exact(x);
+    m.w = if exact { sample_run(m.w, x, stable_after) } else { fractional_run(m.w, stable_after) };
     // Enough identical samples in a row: the input resolves this pixel (a hard edge, say), and the local
     // distribution, which straddles the edge, must not pull its history (nor reject it). Its history is clamped
     // to what the run allows instead: within RUN_CLAMP_SAMPLES / n of the run's value (the rule of three).
@@ -267,7 +282,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     // distribution already leans to it: the shadow moved over this pixel. Restart from the new samples, the
     // history from the local mean.
     let breaking = flip_after > 0.0 && m.w.abs().fract() == 0.5;
-    let flipped = breaking && (m.w.abs() == flip_after + 0.5 || (x - local.x).abs() < 0.5);
+    let flipped = breaking && exact && (m.w.abs() == flip_after + 0.5 || (x - local.x).abs() < 0.5);
     if flipped {
         let n = m.w.abs().floor();
         m = DVec4::new(x, 0.0, n, if x >= 0.5 { n } else { -n });

@@ -46,6 +46,7 @@ struct Options {
     std::string screenshot;
     bool pointLight = false;
     bool packedGbuffer = false;
+    uint32_t rays = 1;  // shadow rays per pixel (more than 1: DNSR_SHADOW_INPUT_VISIBILITY)
     float lightAngleDeg = 3.0f;
     bool hitDistance = true;  // penumbra guidance (DNSR_DISPATCH_USE_HIT_DISTANCE)
     bool lightMotion = false;
@@ -69,7 +70,9 @@ const char *kUsage =
     "  --light-motion          start with the light moving (key L toggles it)\n"
     "  --gbuffer default|packed  packed: keep linear depth and octahedral RG16 normals, and run dnsr's passes\n"
     "                          compiled against examples-c/custom_gbuffer's callbacks (default: default)\n"
-  "  --hit-distance on|off   penumbra guidance: give dnsr each shadow ray's distance to its nearest occluder and\n"
+    "  --rays N                shadow rays per pixel, 1..64 (default 1: the hit mask; more: their lit fraction as\n"
+    "                          per-pixel visibility, DNSR_SHADOW_INPUT_VISIBILITY)\n"
+    "  --hit-distance on|off   penumbra guidance: give dnsr each shadow ray's distance to its nearest occluder and\n"
     "                          the light's angular diameter (DNSR_DISPATCH_USE_HIT_DISTANCE; default on; key H)\n"
     "  --reference-samples N   shadow rays per pixel of the reference, 1..65536 (default 256)\n"
     "  --save-reference FILE   headless: also write the last frame's reference (and depth) to FILE\n"
@@ -168,6 +171,8 @@ Options parseOptions(int argc, char **argv)
             std::string v = value();
             if (v != "default" && v != "packed") throw UsageError("--gbuffer wants default or packed, got '" + v + "'");
             o.packedGbuffer = v == "packed";
+        } else if (a == "--rays") {
+            o.rays = parseCount("--rays", value(), 1, 64);
         } else if (a == "--hit-distance") {
             std::string v = value();
             if (v != "on" && v != "off") throw UsageError("--hit-distance wants on or off, got '" + v + "'");
@@ -194,6 +199,8 @@ Options parseOptions(int argc, char **argv)
         o.height = o.headless ? 192 : 540;
     }
     if (o.headless && !o.frames) o.frames = 16;
+    // The packed build's classification variants read the hit mask (examples-c/custom_gbuffer overrides those only).
+    if (o.packedGbuffer && o.rays > 1) throw UsageError("--gbuffer packed takes one ray per pixel (--rays 1)");
     if (o.headless && !o.screenshot.empty()) throw UsageError("--screenshot is for window mode (headless writes PNGs)");
     if (!o.screenshot.empty() && !o.frames) throw UsageError("--screenshot needs --frames N");
     if (!o.headless && !(o.saveReference.empty() && o.loadReference.empty()))
@@ -521,6 +528,7 @@ private:
         rs.sceneRadius = scene_.radius;
         rs.preset = opt_.preset;
         rs.packedGbuffer = opt_.packedGbuffer;
+        rs.rays = opt_.rays;
         renderer_.create(ctx_, *scene_.scene, rs);
         std::printf("viewer: %s on %s, %ux%u, %u triangles, BVH %u nodes (depth %u), push descriptors %s\n",
                     opt_.scene.c_str(), ctx_.properties.deviceName, opt_.width, opt_.height, renderer_.triangles,
@@ -642,6 +650,7 @@ private:
         const char *presets[] = {"fast", "balanced", "quality"};
         json += std::string("  \"preset\": \"") + presets[opt_.preset] + "\",\n";
         json += std::string("  \"gbuffer\": \"") + (opt_.packedGbuffer ? "packed" : "default") + "\",\n";
+        json += "  \"rays_per_pixel\": " + std::to_string(opt_.rays) + ",\n";
         json += "  \"reference_samples\": " + std::to_string(referenceSamples) + ",\n";
         json += "  \"reference_file\": " + (loadedReference_ ? jsonString(opt_.loadReference) : "null") + ",\n";
         json += "  \"pixels_compared\": " + std::to_string(e.pixels) + ",\n";

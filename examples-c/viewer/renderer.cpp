@@ -78,6 +78,7 @@ enum Binding : uint32_t {
     kHitDistance,  // declared in shadow.comp only (its format depends on the device)
     kLinearDepth,  // these two in primary.comp's packed variant only
     kOctNormals,
+    kVisibility,   // shadow.comp, with --rays k > 1
     kBindingCount
 };
 
@@ -164,6 +165,9 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
     linearDepth_ = ctx.createImage(VK_FORMAT_R32_SFLOAT, w, h, usage);
     octNormals_ = ctx.createImage(ctx.storageImageExtendedFormats ? VK_FORMAT_R16G16_SNORM : VK_FORMAT_R32G32_SFLOAT, w,
                                   h, usage);
+    // --rays k: each pixel's lit fraction, R16F like the hit distance (dnsr accepts R8/R16 UNORM, R16F, R32F).
+    visibility_ = ctx.createImage(ctx.storageImageExtendedFormats ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT, w,
+                                  h, usage);
 
     // Readback buffer: one section per image, each starting at a multiple of 16 bytes (a buffer-image copy's
     // offset must be a multiple of the texel size, up to 16 for RGBA32F; odd render sizes break 4-byte sections).
@@ -186,7 +190,7 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
     VkCommandBuffer cmd = ctx.beginOneTimeCommands();
     std::vector<VkImageMemoryBarrier> toGeneral;
     for (const GpuImage *img : {&rayOrigin_, &depth_, &normals_, &velocity_, &albedo_, &hitMask_, &denoised_,
-                                &reference_, &display_, &hitDistance_, &linearDepth_, &octNormals_}) {
+                                &reference_, &display_, &hitDistance_, &linearDepth_, &octNormals_, &visibility_}) {
         auto b = vkStruct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
         b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
         b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
@@ -269,7 +273,8 @@ void Renderer::createDescriptors()
                                          {triGeometry_.buffer, 0, VK_WHOLE_SIZE},
                                          {triShading_.buffer, 0, VK_WHOLE_SIZE}};
     const GpuImage *images[] = {&rayOrigin_, &depth_,    &normals_,   &velocity_, &albedo_,       &hitMask_,
-                                &denoised_,  &reference_, &display_, &hitDistance_, &linearDepth_, &octNormals_};
+                                &denoised_,  &reference_, &display_, &hitDistance_, &linearDepth_, &octNormals_,
+                                &visibility_};
     VkDescriptorImageInfo imageInfos[kBindingCount - 4];
     std::vector<VkWriteDescriptorSet> writes(kBindingCount,
                                              vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET));
@@ -310,6 +315,8 @@ void Renderer::createDenoiser()
     info.precision = DNSR_PRECISION_FP32;
     info.outputFormat = VK_FORMAT_R32_SFLOAT;
     info.lightCount = 1;
+    // --rays k > 1: several rays per pixel, handed over as per-pixel visibility instead of the hit mask.
+    info.shadowInput = settings_.rays > 1 ? DNSR_SHADOW_INPUT_VISIBILITY : DNSR_SHADOW_INPUT_HIT_MASK;
     if (settings_.packedGbuffer) {
         // The engine's own G-buffer encoding: dnsr runs passes compiled against its callbacks.
         info.shaderOverrideCount = sizeof kPackedOverrides / sizeof kPackedOverrides[0];
@@ -386,7 +393,7 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
 
     // Mode 1: the rays find their nearest occluder and write its distance (penumbra guidance); mode 0: any
     // occluder ends a ray, and the hit-distance image is left alone. The hit mask is the same either way.
-    dispatch(cmd, shadow_, divUp(tilesX(), 8), divUp(tilesY(), 8), in.hitDistance ? 1u : 0u);
+    dispatch(cmd, shadow_, divUp(tilesX(), 8), divUp(tilesY(), 8), in.hitDistance ? 1u : 0u, 0, settings_.rays);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterShadow);
 
     // Reference samples, in chunks; each chunk adds to the sum the previous one wrote.
@@ -407,7 +414,10 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
     d.lightIndex = 0;
     d.flags = (in.cameraCut ? DNSR_DISPATCH_RESET : 0) | (in.hitDistance ? DNSR_DISPATCH_USE_HIT_DISTANCE : 0);
     d.hitMaskConvention = DNSR_HIT_MASK_OCCLUDED_BITS;  // bit = 1: the ray hit an occluder
-    d.hitMask = hostImage(hitMask_);
+    if (settings_.rays > 1)
+        d.visibility = hostImage(visibility_);  // the hit mask stays empty: the context takes visibility
+    else
+        d.hitMask = hostImage(hitMask_);
     d.depth = hostImage(settings_.packedGbuffer ? linearDepth_ : depth_);
     d.velocity = hostImage(velocity_);
     d.normals = hostImage(settings_.packedGbuffer ? octNormals_ : normals_);
@@ -512,7 +522,7 @@ void Renderer::destroy()
     if (setLayout_) vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
     if (timestamps_) vkDestroyQueryPool(dev, timestamps_, nullptr);
     for (GpuImage *img : {&rayOrigin_, &depth_, &normals_, &velocity_, &albedo_, &hitMask_, &denoised_, &reference_,
-                          &display_, &hitDistance_, &linearDepth_, &octNormals_})
+                          &display_, &hitDistance_, &linearDepth_, &octNormals_, &visibility_})
         ctx_->destroyImage(*img);
     for (GpuBuffer *b : {&frameConstants_, &nodes_, &triGeometry_, &triShading_, &readback_}) ctx_->destroyBuffer(*b);
     ctx_ = nullptr;

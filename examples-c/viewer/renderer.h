@@ -39,6 +39,8 @@ struct RendererSettings {
     DnsrPreset preset = DNSR_PRESET_BALANCED;  // dnsr's settings (dnsr_settings_init_preset)
     // Linear depth and octahedral normals, read by dnsr through custom callbacks (examples-c/custom_gbuffer).
     bool packedGbuffer = false;
+    // Shadow rays per pixel: 1 packs them into the hit mask; more go to dnsr as per-pixel visibility.
+    uint32_t rays = 1;
 };
 
 struct FrameInput {
@@ -118,6 +120,7 @@ private:
     GpuBuffer frameConstants_, nodes_, triGeometry_, triShading_, readback_;
     GpuImage rayOrigin_, depth_, normals_, velocity_, albedo_, hitMask_, denoised_, reference_, display_, hitDistance_;
     GpuImage linearDepth_, octNormals_;  // --gbuffer packed
+    GpuImage visibility_;                // --rays k > 1
     VkDeviceSize depthOffset_ = 0, maskOffset_ = 0, denoisedOffset_ = 0, referenceOffset_ = 0, displayOffset_ = 0,
                  normalsOffset_ = 0, velocityOffset_ = 0;
 

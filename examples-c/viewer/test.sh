@@ -127,6 +127,25 @@ assert abs(p - d) <= 1e-3, f"denoised RMSE {d:.5f} with dnsr's callbacks, {p:.5f
 print(f"packed G-buffer: denoised RMSE {p:.5f} (default {d:.5f})")
 PY
 
+# ---- --rays 4: four rays per pixel handed to dnsr as per-pixel visibility (DNSR_SHADOW_INPUT_VISIBILITY):
+# validation clean, and a lower error than one ray on the same scene; --rays with --gbuffer packed is refused ----
+status=0
+"$viewer" --headless --validate --rays 4 --frames 8 --size 160x96 --out "$tmp/rays" > "$tmp/rays.log" 2>&1 || status=$?
+(( status == 0 )) || { cat "$tmp/rays.log"; fail "--rays 4 exited with status $status"; }
+python3 - "$out/report.json" "$tmp/rays/report.json" <<'PY' || fail "--rays 4 check failed"
+import json, sys
+one, four = (json.load(open(p)) for p in sys.argv[1:])
+assert one["rays_per_pixel"] == 1 and four["rays_per_pixel"] == 4, "rays per pixel not recorded"
+d1, d4 = one["rmse"]["denoised"], four["rmse"]["denoised"]
+assert d4 < d1, f"4 rays per pixel denoised to RMSE {d4:.5f}, no better than 1 ray ({d1:.5f})"
+print(f"rays per pixel: denoised RMSE 1 ray {d1:.5f}, 4 rays {d4:.5f}")
+PY
+status=0
+"$viewer" --headless --rays 2 --gbuffer packed --frames 1 --size 16x16 --out "$tmp/bad-rays" > /dev/null 2> "$tmp/rays.err" ||
+  status=$?
+(( status == 2 )) && grep -qF -- "--gbuffer packed takes one ray per pixel" "$tmp/rays.err" ||
+  fail "--rays 2 --gbuffer packed: status $status, message: $(cat "$tmp/rays.err")"
+
 # ---- dnsr presets: Quality through dnsr_settings_init_preset, validation clean; a bad name is a usage error ----
 # Also the unguided path (--hit-distance off), and a reference saved by one run and measured against by another
 # (the guided Quality run: same frames, so the same last frame; the RMSE must then be that of a rendered one).

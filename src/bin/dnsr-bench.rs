@@ -22,6 +22,8 @@ const USAGE: &str = "usage: dnsr-bench [options]
   --presets a[,b...]          fast, balanced, quality (default: all)
   --precisions a[,b...]       fp32, fp16 (default: both; fp16 is skipped when the device lacks it)
   --fp16                      same as --precisions fp16
+  --rays K                    the shadow input is per-pixel visibility (ShadowInput::Visibility, R8_UNORM) of K
+                              rays per pixel instead of the hit mask (the byte model still counts the hit mask's)
   --light-angle RAD           penumbra guidance on: a hit-distance image (1.0 everywhere, R16_SFLOAT) and this
                               light angular size in radians (default: no guidance)
   --frames N                  timed frames per configuration (default 200)
@@ -92,6 +94,7 @@ struct Options {
     out: PathBuf,
     validation: bool,
     light_angle: Option<f32>,
+    rays: Option<u32>,
     push_descriptors: bool,
 }
 
@@ -109,6 +112,7 @@ fn parse_args() -> Options {
         out: PathBuf::from("out/bench"),
         validation: false,
         light_angle: None,
+        rays: None,
         push_descriptors: true,
     };
     let mut args = std::env::args().skip(1);
@@ -127,6 +131,7 @@ fn parse_args() -> Options {
             "--out" => o.out = PathBuf::from(args.next().unwrap_or_else(|| usage("--out needs a directory"))),
             "--validation" => o.validation = true,
             "--no-push-descriptors" => o.push_descriptors = false,
+            "--rays" => o.rays = Some(number(args.next(), "--rays", 1) as u32),
             "--light-angle" => {
                 let v = args.next().and_then(|v| v.parse::<f32>().ok());
                 o.light_angle = Some(v.unwrap_or_else(|| usage("--light-angle needs an angle in radians")));
@@ -172,7 +177,7 @@ fn main() {
     for &size in &opts.sizes {
         for &scene in &opts.scenes {
             let t = Instant::now();
-            let gpu_scene = build(&gpu, scene, size.0, size.1);
+            let gpu_scene = build(&gpu, scene, size.0, size.1, opts.rays);
             eprintln!("dnsr-bench: {}x{} {}: {} frames generated in {:.1} s", size.0, size.1, scene.id(), gpu_scene.frames.len(), t.elapsed().as_secs_f64());
             for &precision in &precisions {
                 for &preset in &opts.presets {

@@ -80,6 +80,7 @@ impl Camera {
 pub type Visibility<'a> = &'a dyn Fn(f64, f64) -> f64;
 
 /// One frame of G-buffer, mask and truth, plus the matrices dnsr needs.
+#[derive(Clone)]
 pub struct FrameInputs {
     /// Width in pixels.
     pub width: u32,

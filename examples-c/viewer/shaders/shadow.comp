@@ -1,5 +1,7 @@
 #version 450
-// shadow.comp: ONE jittered shadow ray per pixel, packed into dnsr's hit mask. One invocation per 8x4 tile
+// shadow.comp: one jittered shadow ray per pixel, packed into dnsr's hit mask (or, with --rays k, k rays per
+// pixel whose lit fraction goes to the visibility image dnsr reads with DNSR_SHADOW_INPUT_VISIBILITY; the mask
+// then holds each pixel's first ray, for the noisy view). One invocation per 8x4 tile
 // traces the tile's 32 rays and writes the tile's word once: no atomics and no subgroup operations, so the
 // result does not depend on the device's subgroup size. Bit (y % 4) * 8 + (x % 8) is set when the ray hit an
 // occluder (the FidelityFX convention, DNSR_HIT_MASK_OCCLUDED_BITS); sky pixels stay 0 (not occluded).
@@ -10,10 +12,13 @@
 // ray to the nearest occluder (0 where the ray was not occluded: dnsr reads it only where the mask says it was).
 // Written only when pc.mode is 1. Binding 13 is not in common.glsl: R16F storage needs the device feature
 // shaderStorageImageExtendedFormats, so this shader is also built with HIT_DISTANCE_R32F for devices without it.
+// The visibility image (binding 16) likewise.
 #ifdef HIT_DISTANCE_R32F
 layout(set = 0, binding = 13, r32f) uniform writeonly image2D hitDistanceImage;
+layout(set = 0, binding = 16, r32f) uniform writeonly image2D visibilityImage;
 #else
 layout(set = 0, binding = 13, r16f) uniform writeonly image2D hitDistanceImage;
+layout(set = 0, binding = 16, r16f) uniform writeonly image2D visibilityImage;
 #endif
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -23,20 +28,30 @@ void main()
     uvec2 tile = gl_GlobalInvocationID.xy;
     if (any(greaterThanEqual(tile, frame.size.zw))) return;
     bool writeDistance = pc.mode == 1u;
+    uint rays = max(pc.sampleCount, 1u);  // rays per pixel: more than 1 writes the visibility image
     uint mask = 0u;
     for (uint bit = 0u; bit < 32u; bit++) {
         uvec2 pixel = tile * uvec2(8u, 4u) + uvec2(bit % 8u, bit / 8u);
         if (any(greaterThanEqual(pixel, frame.size.xy))) continue;  // partial tile at the right/bottom edge
         vec4 origin = imageLoad(rayOriginImage, ivec2(pixel));
-        float hitDistance = 0.0;
+        float hitDistance = 0.0, lit = float(rays);
         if (origin.w != 0.0) {  // not sky
             vec3 n = imageLoad(normalImage, ivec2(pixel)).xyz;
-            // This frame's sample of the pixel's sequence: successive frames walk the R2 sequence, so the
-            // denoiser's temporal accumulation sees well-spread samples rather than white noise.
-            vec2 u = sample2D(pixel, frame.info.x, 0x9e3779b9u);
-            if (shadowRay(origin.xyz, n, u, writeDistance, hitDistance)) mask |= 1u << bit;
+            // This frame's samples of the pixel's sequence: successive frames walk the R2 sequence, so the
+            // denoiser's temporal accumulation sees well-spread samples rather than white noise. The first ray's
+            // distance is the guidance (dnsr reads it where the pixel is not fully lit).
+            for (uint r = 0u; r < rays; r++) {
+                vec2 u = sample2D(pixel, frame.info.x * rays + r, 0x9e3779b9u);
+                float d = 0.0;
+                if (shadowRay(origin.xyz, n, u, writeDistance, d)) {
+                    lit -= 1.0;
+                    if (r == 0u) mask |= 1u << bit;
+                    if (hitDistance == 0.0) hitDistance = d;
+                }
+            }
         }
         if (writeDistance) imageStore(hitDistanceImage, ivec2(pixel), vec4(hitDistance));
+        if (rays > 1u) imageStore(visibilityImage, ivec2(pixel), vec4(lit / float(rays)));
     }
     imageStore(hitMaskImage, ivec2(tile), uvec4(mask));
 }

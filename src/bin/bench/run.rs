@@ -49,7 +49,8 @@ fn dispatch(scene: &GpuScene, index: usize, output: &TestImage, guidance: Option
     ShadowsDispatch {
         hit_distance: guidance.map(|g| g.hit_distance.host()),
         light_angular_size: guidance.map_or(0.0, |g| g.light_angular_size),
-        hit_mask: scene.masks[f.mask].host(),
+        hit_mask: if scene.visibility_input { Default::default() } else { scene.masks[f.mask].host() },
+        visibility: if scene.visibility_input { scene.masks[f.mask].host() } else { Default::default() },
         depth: g.depth.host(),
         velocity: g.velocity.host(),
         normals: g.normals.host(),
@@ -85,6 +86,9 @@ pub fn run(
     info.precision = precision;
     info.output_format = vk::Format::R16_SFLOAT;
     info.settings = Settings::preset(preset);
+    if scene.visibility_input {
+        info.shadow_input = dnsr::ShadowInput::Visibility;
+    }
     let mut ctx = Context::new(&info).map_err(|e| format!("Context::new: {e}"))?;
     let output = gpu.image(vk::Format::R16_SFLOAT, w, h, READ);
     let cmd = gpu.command_buffer();

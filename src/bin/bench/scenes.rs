@@ -83,7 +83,10 @@ pub struct GBuffer {
 }
 
 pub struct GpuScene {
+    /// The shadow input of each cycle frame: a hit mask, or with `visibility_input` an R8_UNORM visibility image.
     pub masks: Vec<TestImage>,
+    /// The scene was built with `--rays k`: per-pixel visibility of k rays instead of the hit mask.
+    pub visibility_input: bool,
     pub gbuffers: Vec<GBuffer>,
     pub frames: Vec<Frame>,
     /// Fractions of the pixels (mean over the frames): sky, lit, shadowed, penumbra (visibility within 0.02 of
@@ -142,27 +145,47 @@ fn frame_of(f: &FrameInputs, mask: usize, gbuffer: usize) -> Frame {
     }
 }
 
-/// Generates `scene` at `w` x `h` and uploads every frame of its cycle.
-pub fn build(gpu: &Gpu, scene: SceneId, w: u32, h: u32) -> GpuScene {
+/// The shadow input of `f` whose hit mask is `mask`: that mask, or (`rays`) the R8_UNORM visibility of `rays` rays
+/// per pixel, the first being the mask's.
+fn upload_input(gpu: &Gpu, f: &FrameInputs, mask: &[u32], rays: Option<u32>, seed: u64) -> TestImage {
+    let Some(k) = rays else { return upload_mask(gpu, f.width, f.height, mask) };
+    let mut g = FrameInputs { mask: mask.to_vec(), visibility: vec![1.0; f.visibility.len()], ..f.clone() };
+    g.trace_rays(k, seed);
+    let bytes: Vec<u8> = g.visibility.iter().map(|&v| (v * 255.0).round() as u8).collect();
+    upload(gpu, vk::Format::R8_UNORM, f.width, f.height, &bytes)
+}
+
+/// Generates `scene` at `w` x `h` and uploads every frame of its cycle; with `rays`, the shadow input is the
+/// visibility of that many rays per pixel.
+pub fn build(gpu: &Gpu, scene: SceneId, w: u32, h: u32, rays: Option<u32>) -> GpuScene {
     let penumbra = |x: f64, z: f64| 0.5 + 0.3 * (x * 0.9).sin() * (z * 0.7).cos();
     let static_scene = |half_width: f64, field: &dyn Fn(f64, f64) -> f64| {
         let cam = Camera::above(0.0, 0.0, 10.0);
         let f = render(w, h, &cam, &cam, half_width, field, 1);
         let masks = (0..STATIC_CYCLE as u64)
-            .map(|k| if k == 0 { upload_mask(gpu, w, h, &f.mask) } else { upload_mask(gpu, w, h, &redraw_mask(&f, k + 1)) })
+            .map(|k| {
+                let mask = if k == 0 { f.mask.clone() } else { redraw_mask(&f, k + 1) };
+                upload_input(gpu, &f, &mask, rays, 1000 + k)
+            })
             .collect();
         let frames = (0..STATIC_CYCLE).map(|k| frame_of(&f, k, 0)).collect();
-        GpuScene { masks, gbuffers: vec![upload_gbuffer(gpu, &f)], frames, coverage: coverage(&f) }
+        GpuScene { masks, visibility_input: rays.is_some(), gbuffers: vec![upload_gbuffer(gpu, &f)], frames, coverage: coverage(&f) }
     };
     match scene {
         SceneId::PenumbraHeavy => static_scene(1e9, &penumbra),
         SceneId::AllLit => static_scene(1e9, &|_, _| 1.0),
         SceneId::Sky90 => static_scene(0.6, &penumbra),
         SceneId::Typical => {
-            let mut s = GpuScene { masks: Vec::new(), gbuffers: Vec::new(), frames: Vec::new(), coverage: [0.0; 4] };
+            let mut s = GpuScene {
+                masks: Vec::new(),
+                visibility_input: rays.is_some(),
+                gbuffers: Vec::new(),
+                frames: Vec::new(),
+                coverage: [0.0; 4],
+            };
             for k in 0..TYPICAL_CYCLE {
                 let f = typical_frame(w, h, k, k as u64 + 1);
-                s.masks.push(upload_mask(gpu, w, h, &f.mask));
+                s.masks.push(upload_input(gpu, &f, &f.mask, rays, 2000 + k as u64));
                 s.gbuffers.push(upload_gbuffer(gpu, &f));
                 s.frames.push(frame_of(&f, k, k));
                 for (c, v) in s.coverage.iter_mut().zip(coverage(&f)) {

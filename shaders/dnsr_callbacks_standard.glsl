@@ -57,12 +57,23 @@ vec3 dnsr_read_normal(ivec2 p) {
 #endif
 
 #ifdef DNSR_PASS_PREPARE
-layout(set = 0, binding = 1) uniform utexture2D dnsr_hit_mask;
 layout(set = 0, binding = 2, r32ui) uniform writeonly uimage2D dnsr_tile_mask_out;
 
 ivec2 dnsr_get_tile_offset() { return dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT); }
+#ifndef DNSR_VISIBILITY_INPUT
+layout(set = 0, binding = 1) uniform utexture2D dnsr_hit_mask;
 uint dnsr_read_hit_mask(ivec2 tile) { return texelFetch(dnsr_hit_mask, tile + dnsr_get_tile_offset(), 0).r; }
+#endif
 void dnsr_write_tile_mask(ivec2 tile, uint lit_bits) { imageStore(dnsr_tile_mask_out, tile + dnsr_get_tile_offset(), uvec4(lit_bits)); }
+#ifdef DNSR_VISIBILITY_INPUT
+// Visibility input (a context created with a visibility input): the fraction of the pixel's shadow rays that
+// reached the light, in [0, 1] (the core clamps, and reads NaN as 0); prepare writes the tile words of exactly
+// lit pixels (the tile mask) and of exactly shadowed ones (the dark mask) from it.
+layout(set = 0, binding = 24) uniform texture2D dnsr_visibility;
+layout(set = 0, binding = 25, r32ui) uniform writeonly uimage2D dnsr_tile_dark_out;
+float dnsr_read_visibility(ivec2 p) { return texelFetch(dnsr_visibility, p + dnsr_get_offset(), 0).r; }
+void dnsr_write_tile_dark(ivec2 tile, uint dark_bits) { imageStore(dnsr_tile_dark_out, tile + dnsr_get_tile_offset(), uvec4(dark_bits)); }
+#endif
 #endif
 
 #ifdef DNSR_PASS_TILE_CLASSIFICATION
@@ -79,10 +90,12 @@ layout(set = 0, binding = 13, r32ui) uniform writeonly uimage2D dnsr_tile_meta_o
 ivec2 dnsr_get_tile_offset() { return dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT); }
 uint dnsr_read_tile_mask(ivec2 tile) { return texelFetch(dnsr_tile_mask, tile + dnsr_get_tile_offset(), 0).r; }
 #ifdef DNSR_VISIBILITY_INPUT
-// Visibility input (a context created with a visibility input): the fraction of the pixel's shadow rays that
-// reached the light, in [0, 1] (the core clamps, and reads NaN as 0). Replaces the tile mask.
+// Visibility input: each pixel's visibility (see the prepare pass), and the words of exactly shadowed pixels
+// prepare wrote (the tile mask holds the exactly lit ones).
 layout(set = 0, binding = 24) uniform texture2D dnsr_visibility;
+layout(set = 0, binding = 26) uniform utexture2D dnsr_tile_dark;
 float dnsr_read_visibility(ivec2 p) { return texelFetch(dnsr_visibility, p + dnsr_get_offset(), 0).r; }
+uint dnsr_read_tile_dark(ivec2 tile) { return texelFetch(dnsr_tile_dark, tile + dnsr_get_tile_offset(), 0).r; }
 #endif
 // Screen-uv displacement from this pixel to where its surface was last frame (prev_uv = uv + velocity).
 vec2 dnsr_read_velocity(ivec2 p) {

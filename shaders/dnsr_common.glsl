@@ -47,6 +47,9 @@ float dnsr_linear_depth(vec2 ndc, float depth) {
     return abs(v.z / v.w);
 }
 
+// A stored visibility as the passes use it: clamped to [0, 1], NaN read as 0 (shadowed).
+float dnsr_sanitize_visibility(float v) { return v >= 0.0 ? min(v, 1.0) : 0.0; }
+
 bool dnsr_finite(float x) { return !isnan(x) && !isinf(x); }
 bool dnsr_finite(vec2 x) { return dnsr_finite(x.x) && dnsr_finite(x.y); }
 

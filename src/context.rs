@@ -176,7 +176,7 @@ impl Context {
             timestamps: None,
             frames_recorded: 0,
             supported_stages,
-            engine_reads: info.shader_overrides.iter().any(|o| o.variant != crate::passes::prepare::SHADER),
+            engine_reads: info.shader_overrides.iter().any(|o| o.variant != crate::passes::prepare::shader(ShadowInput::HitMask)),
             engine_images_declared: false,
         };
         // On any error below, dropping `ctx` releases what was created so far.
@@ -194,7 +194,7 @@ impl Context {
 
     fn create_pipelines(&self, push: bool, overrides: &[crate::ShaderOverride]) -> Result<Pipelines> {
         let names = [
-            prepare::SHADER,
+            prepare::shader(self.shadow_input),
             tile_classification::shader(self.precision, self.output_format, self.shadow_input).expect("output format checked"),
             filter::shader(self.precision, None, false).expect("non-final variant exists"),
             filter::shader(self.precision, None, true).expect("non-final variant exists"),
@@ -349,6 +349,7 @@ impl Context {
                 HitMaskConvention::OccludedBits => image(light.tile_mask.view, vk::ImageLayout::GENERAL),
                 HitMaskConvention::LitBits => host(&d.hit_mask),
             },
+            tile_dark: light.tile_dark.view,
             tile_meta: light.tile_meta.view,
             reprojection: light.reprojection.view,
             history: light.history.view,
@@ -417,8 +418,8 @@ impl Context {
         };
         let rect = validate::dispatch(&self.vk, d, &rules)?;
         let extent = [rect.width, rect.height];
-        // Classification reads visibility itself; a hit mask of lit bits is read as it is.
-        let run_prepare = self.shadow_input == ShadowInput::HitMask && d.hit_mask_convention == HitMaskConvention::OccludedBits;
+        // A hit mask of lit bits is read as it is (visibility always goes through prepare).
+        let run_prepare = self.shadow_input == ShadowInput::Visibility || d.hit_mask_convention == HitMaskConvention::OccludedBits;
 
         let views = self.frame_views(d, self.lights[d.light_index as usize].parity);
         let passes = crate::passes::frame(&views, self.settings.filter_passes, run_prepare, d.debug_view);

@@ -58,6 +58,7 @@ fn image_specs(extent: [u32; 2], precision: Precision, filter_passes: u32) -> im
     let rg = intermediate_format(precision);
     [
         (TILE_FORMAT, tiles, "tile_mask"),
+        (TILE_FORMAT, tiles, "tile_dark"),
         (TILE_FORMAT, tiles, "tile_meta"),
         (TILE_BLOCKER_FORMAT, tiles, "tile_blocker"),
         (rg, extent, "reprojection"),
@@ -90,6 +91,9 @@ pub(crate) fn texel_bytes(extent: [u32; 2], precision: Precision, filter_passes:
 
 pub(crate) struct LightState {
     pub tile_mask: InternalImage,
+    /// The exactly shadowed pixels of each tile, written by prepare with a visibility input; 4 bytes per tile, so
+    /// always allocated.
+    pub tile_dark: InternalImage,
     pub tile_meta: InternalImage,
     /// Written and read only with penumbra guidance; 4 bytes per tile, so always allocated.
     pub tile_blocker: InternalImage,
@@ -127,6 +131,7 @@ impl LightState {
         let mut next = || it.next().expect("one image per spec");
         let mut state = LightState {
             tile_mask: next(),
+            tile_dark: next(),
             tile_meta: next(),
             tile_blocker: next(),
             reprojection: next(),
@@ -167,7 +172,7 @@ impl LightState {
     }
 
     pub(crate) fn images(&self) -> impl Iterator<Item = &InternalImage> {
-        [&self.tile_mask, &self.tile_meta, &self.tile_blocker, &self.reprojection, &self.history]
+        [&self.tile_mask, &self.tile_dark, &self.tile_meta, &self.tile_blocker, &self.reprojection, &self.history]
             .into_iter()
             .chain(self.depth.iter())
             .chain(self.moments.iter())
@@ -180,7 +185,7 @@ impl LightState {
     }
 
     pub(crate) fn destroy(&mut self, vk: &Vk) {
-        for img in [&mut self.tile_mask, &mut self.tile_meta, &mut self.tile_blocker, &mut self.reprojection, &mut self.history]
+        for img in [&mut self.tile_mask, &mut self.tile_dark, &mut self.tile_meta, &mut self.tile_blocker, &mut self.reprojection, &mut self.history]
             .into_iter()
             .chain(self.depth.iter_mut())
             .chain(self.moments.iter_mut())

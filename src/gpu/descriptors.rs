@@ -15,7 +15,7 @@ use crate::passes::Role;
 use ash::vk;
 
 /// Most bindings any pass declares.
-pub(crate) const MAX_BINDINGS: usize = 24;
+pub(crate) const MAX_BINDINGS: usize = 26;
 
 /// The descriptor sets one record writes, one per pipeline role: every pass of the longest frame, and the single
 /// pass of a one-pass frame.

@@ -31,6 +31,7 @@ macro_rules! variant {
 /// Every SPIR-V module dnsr embeds. `cargo test spirv_is_current` recompiles each with glslc and compares.
 pub(crate) const VARIANTS: &[ShaderVariant] = &[
     variant!("prepare", "prepare.comp", []),
+    variant!("prepare_visibility", "prepare.comp", ["DNSR_VISIBILITY_INPUT"]),
     variant!("tile_classification_r8", "tile_classification.comp", ["DNSR_OUTPUT_FORMAT=r8"]),
     variant!("tile_classification_r16f", "tile_classification.comp", ["DNSR_OUTPUT_FORMAT=r16f"]),
     variant!("tile_classification_r32f", "tile_classification.comp", ["DNSR_OUTPUT_FORMAT=r32f"]),

@@ -31,6 +31,8 @@ pub(crate) enum Resource {
     TileBlockerOut,
     TileBlocker,
     Visibility,
+    TileDarkOut,
+    TileDark,
     /// An engine's own images (bindings ENGINE_BINDING_BASE.., any name), declared by engine-compiled variants.
     Engine0,
     Engine1,
@@ -43,7 +45,7 @@ pub(crate) enum Resource {
 }
 
 pub(crate) const RESOURCE_COUNT: usize = Resource::Engine7 as usize + 1;
-const NAMED_COUNT: usize = Resource::Visibility as usize + 1;
+const NAMED_COUNT: usize = Resource::TileDark as usize + 1;
 
 impl Resource {
     /// The engine image at slot `slot` (binding ENGINE_BINDING_BASE + slot).
@@ -85,6 +87,8 @@ const TABLE: [(&str, Resource, vk::DescriptorType); NAMED_COUNT] = [
     ("dnsr_tile_blocker_out", Resource::TileBlockerOut, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_tile_blocker", Resource::TileBlocker, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_visibility", Resource::Visibility, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_tile_dark_out", Resource::TileDarkOut, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_tile_dark", Resource::TileDark, vk::DescriptorType::SAMPLED_IMAGE),
 ];
 
 impl Resource {

@@ -153,6 +153,8 @@ pub(crate) struct FrameViews {
     pub output: vk::ImageView,
     /// The lit-bit tile mask: dnsr's internal image, or the host's mask when it already holds lit bits.
     pub tile_mask: Binding,
+    /// The exactly shadowed pixels per tile (visibility input).
+    pub tile_dark: vk::ImageView,
     pub tile_meta: vk::ImageView,
     pub reprojection: vk::ImageView,
     pub history: vk::ImageView,

@@ -1,15 +1,26 @@
-//! prepare: FidelityFX hit mask (1 = occluded) -> internal lit-bit tile mask. Shader: shaders/prepare.comp.
-//! Skipped when the host's mask already holds lit bits.
+//! prepare: FidelityFX hit mask (1 = occluded) -> internal lit-bit tile mask, or with a visibility input the tile
+//! words of exactly lit and exactly shadowed pixels. Shader: shaders/prepare.comp. Skipped when the host's mask
+//! already holds lit bits.
 
 use super::bindings::Resource;
 use super::{internal, FrameViews, Grid, Pass, Role};
+use crate::create_info::ShadowInput;
 
-pub(crate) const SHADER: &str = "prepare";
+/// The variant for a shadow input.
+pub(crate) fn shader(input: ShadowInput) -> &'static str {
+    match input {
+        ShadowInput::HitMask => "prepare",
+        ShadowInput::Visibility => "prepare_visibility",
+    }
+}
 
-/// One invocation per tile of the render rectangle. Reads the host mask, writes the internal lit-bit mask.
+/// One invocation per tile of the render rectangle. Reads the host mask (or visibility), writes the internal
+/// tile words.
 pub(crate) fn pass(v: &FrameViews, enabled: bool) -> Pass {
     let mut t = v.base_table();
     t[Resource::HitMask as usize] = v.hit_mask;
+    t[Resource::Visibility as usize] = v.visibility;
+    t[Resource::TileDarkOut as usize] = internal(v.tile_dark);
     t[Resource::TileMaskOut as usize] = internal(v.tile_mask.view);
     Pass { role: Role::Prepare, bindings: t, grid: Grid::Tiles, group: super::GROUP, push: None, spec: 0, enabled }
 }

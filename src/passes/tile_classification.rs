@@ -21,6 +21,7 @@ pub(crate) fn pass(v: &FrameViews) -> Pass {
     let mut t = v.base_table();
     t[Resource::TileMask as usize] = v.tile_mask;
     t[Resource::Visibility as usize] = v.visibility;
+    t[Resource::TileDark as usize] = internal(v.tile_dark);
     t[Resource::Velocity as usize] = v.velocity;
     t[Resource::PreviousDepth as usize] = internal(v.previous_depth);
     t[Resource::DepthCopy as usize] = internal(v.depth_copy);

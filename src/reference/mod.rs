@@ -203,8 +203,9 @@ pub fn sanitize_visibility(v: f64) -> f64 {
     if v >= 0.0 { v.min(1.0) } else { 0.0 }
 }
 
-/// Runs the whole frame: prepare (unless the mask already holds lit bits, or the input is visibility), tile
-/// classification, filter passes. `io` carries the inputs and the previous frame's state and receives every output.
+/// Runs the whole frame: prepare (unless the mask already holds lit bits; with a visibility input the reference
+/// derives the tile words where classification needs them), tile classification, filter passes. `io` carries the
+/// inputs and the previous frame's state and receives every output.
 pub fn run_frame<Io: Read + Write>(io: &mut Io, run_prepare: bool) {
     if run_prepare && !io.visibility_input() {
         prepare::run(io);

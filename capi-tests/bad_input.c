@@ -196,6 +196,7 @@ static void create_calls(void)
     CREATE_CASE("create: unknown feature bits", DNSR_ERROR_INVALID_ARGUMENT,
                 "pCreateInfo->enabledFeatures has unknown bits 0x200", info.enabledFeatures |= 1u << 9);
     CREATE_CASE("create: precision 7", DNSR_ERROR_INVALID_ARGUMENT, "precision 7", info.precision = 7);
+    CREATE_CASE("create: shadowInput 5", DNSR_ERROR_INVALID_ARGUMENT, "shadowInput 5", info.shadowInput = 5);
     CREATE_CASE("create: FP16 without DNSR_FEATURE_FLOAT16", DNSR_ERROR_MISSING_FEATURE, "DNSR_FEATURE_FLOAT16",
                 info.precision = DNSR_PRECISION_FP16;
                 info.enabledFeatures &= ~(DnsrFeatureFlags)DNSR_FEATURE_FLOAT16);
@@ -403,6 +404,22 @@ static void dispatch_calls(void)
     DISPATCH_CASE("record: hitMaskConvention 9", DNSR_ERROR_INVALID_ARGUMENT, "hitMaskConvention 9",
                   d.hitMaskConvention = 9);
     DISPATCH_CASE("record: lightIndex 1", DNSR_ERROR_INVALID_LIGHT_INDEX, "light index 1", d.lightIndex = 1);
+    /* The shadow input the context does not take is refused, not ignored; a visibility context needs visibility. */
+    DISPATCH_CASE("record: visibility given to a hit-mask context", DNSR_ERROR_INVALID_ARGUMENT,
+                  "the context takes a hit mask", d.visibility = d.depth);
+    {
+        DnsrContextCreateInfo vinfo = good_info;
+        vinfo.shadowInput = DNSR_SHADOW_INPUT_VISIBILITY;
+        DnsrContext vctx = NULL;
+        DNSR_CHECK(dnsr_context_create(&vinfo, &vctx));
+        RECORD_CASE("record: visibility context without visibility", vctx, DNSR_ERROR_NULL_HANDLE, "visibility.image",
+                    (void)0);
+        RECORD_CASE("record: visibility context given a hit mask too", vctx, DNSR_ERROR_INVALID_ARGUMENT,
+                    "the context takes per-pixel visibility", d.visibility = d.depth);
+        RECORD_CASE("record: integer visibility", vctx, DNSR_ERROR_UNSUPPORTED_FORMAT, "visibility image format",
+                    d.visibility = d.depth; d.visibility.format = VK_FORMAT_R32_UINT; d.hitMask = (DnsrHostImage){0});
+        dnsr_context_destroy(vctx);
+    }
 
     DISPATCH_CASE("record: null hitMask view", DNSR_ERROR_NULL_HANDLE, "hitMask.view", d.hitMask.view = VK_NULL_HANDLE);
     DISPATCH_CASE("record: null depth view", DNSR_ERROR_NULL_HANDLE, "depth.view", d.depth.view = VK_NULL_HANDLE);

@@ -136,7 +136,7 @@ pub(crate) struct DispatchRules {
 /// field filled by mistake) is not silently ignored.
 fn unused_input(img: &HostImage, field: &'static str, allowed: &'static str) -> Result<()> {
     if img.image != vk::Image::null() || img.view != vk::ImageView::null() {
-        return Err(Error::InvalidValue { field, value: "an image".into(), allowed });
+        return Err(Error::InvalidValue { field, value: "given".into(), allowed });
     }
     Ok(())
 }
@@ -153,11 +153,11 @@ pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, rules: &DispatchRules) -> R
     match shadow_input {
         ShadowInput::HitMask => {
             host_image(vk, ImageRole::HitMask, &d.hit_mask, &[F::R32_UINT], SAMPLED_LAYOUTS, tiles, sampled)?;
-            unused_input(&d.visibility, "visibility", "null: the context takes a hit mask (ShadowInput::HitMask)")?;
+            unused_input(&d.visibility, "visibility", "leave it null: the context takes a hit mask (ShadowInput::HitMask)")?;
         }
         ShadowInput::Visibility => {
             host_image(vk, ImageRole::Visibility, &d.visibility, decoded(VISIBILITY_FORMATS), SAMPLED_LAYOUTS, size, sampled)?;
-            unused_input(&d.hit_mask, "hit_mask", "null: the context takes per-pixel visibility (ShadowInput::Visibility)")?;
+            unused_input(&d.hit_mask, "hit_mask", "leave it null: the context takes per-pixel visibility (ShadowInput::Visibility)")?;
         }
     }
     host_image(vk, ImageRole::Depth, &d.depth, decoded(DEPTH_FORMATS), DEPTH_LAYOUTS, size, sampled)?;

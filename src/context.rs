@@ -581,6 +581,7 @@ impl Context {
 #[cfg(test)]
 pub(crate) struct Internals {
     pub tile_mask: vk::Image,
+    pub tile_dark: vk::Image,
     pub tile_meta: vk::Image,
     pub tile_blocker: vk::Image,
     pub reprojection: vk::Image,
@@ -597,6 +598,7 @@ impl Context {
         let l = &self.lights[light];
         Internals {
             tile_mask: l.tile_mask.image,
+            tile_dark: l.tile_dark.image,
             tile_meta: l.tile_meta.image,
             tile_blocker: l.tile_blocker.image,
             reprojection: l.reprojection.image,

@@ -48,6 +48,8 @@ pub struct Frame {
     pub history: Vec<f64>,
     /// Output: lit-bit tile mask.
     pub tile_mask: Vec<u32>,
+    /// Output: the exactly shadowed pixels per tile (visibility input).
+    pub tile_dark: Vec<u32>,
     /// Output: tile metadata.
     pub tile_meta: Vec<u32>,
     /// Output: each tile's blocker distance (penumbra guidance).
@@ -94,6 +96,7 @@ impl Frame {
             previous_moments: vec![DVec4::ZERO; n],
             history: vec![0.0; n],
             tile_mask: vec![0; tiles],
+            tile_dark: vec![0; tiles],
             tile_meta: vec![0; tiles],
             tile_blocker: vec![-1.0; tiles],
             depth_copy: vec![0.0; n],
@@ -231,12 +234,19 @@ impl Read for Frame {
     fn read_tile_blocker(&self, tile: Coord) -> f64 {
         self.tile_blocker[self.tile(tile)]
     }
+    fn read_tile_dark(&self, tile: Coord) -> u32 {
+        self.tile_dark[self.tile(tile)]
+    }
 }
 
 impl Write for Frame {
     fn write_tile_mask(&mut self, tile: Coord, lit_bits: u32) {
         let i = self.tile(tile);
         self.tile_mask[i] = lit_bits;
+    }
+    fn write_tile_dark(&mut self, tile: Coord, dark_bits: u32) {
+        let i = self.tile(tile);
+        self.tile_dark[i] = dark_bits;
     }
     fn write_depth_copy(&mut self, p: Coord, depth: f64) {
         let i = self.px(p);

@@ -78,12 +78,16 @@ pub trait Read: Get {
     fn read_tile_blocker(&self, tile: Coord) -> f64;
     /// Host visibility of a pixel, as stored (read only with `visibility_input`; see `sanitize_visibility`).
     fn read_visibility(&self, p: Coord) -> f64;
+    /// Internal dark mask word: the tile's exactly shadowed pixels (visibility input).
+    fn read_tile_dark(&self, tile: Coord) -> u32;
 }
 
 /// The outputs passes write (`dnsr_write_*`).
 pub trait Write {
     /// Internal tile mask word.
     fn write_tile_mask(&mut self, tile: Coord, lit_bits: u32);
+    /// Internal dark mask word (visibility input).
+    fn write_tile_dark(&mut self, tile: Coord, dark_bits: u32);
     /// This frame's depth copy.
     fn write_depth_copy(&mut self, p: Coord, depth: f64);
     /// This frame's moments.
@@ -203,11 +207,11 @@ pub fn sanitize_visibility(v: f64) -> f64 {
     if v >= 0.0 { v.min(1.0) } else { 0.0 }
 }
 
-/// Runs the whole frame: prepare (unless the mask already holds lit bits; with a visibility input the reference
-/// derives the tile words where classification needs them), tile classification, filter passes. `io` carries the
-/// inputs and the previous frame's state and receives every output.
+/// Runs the whole frame: prepare (unless a hit mask already holds lit bits: `run_prepare` false; a visibility input
+/// always goes through it), tile classification, filter passes. `io` carries the inputs and the previous frame's
+/// state and receives every output.
 pub fn run_frame<Io: Read + Write>(io: &mut Io, run_prepare: bool) {
-    if run_prepare && !io.visibility_input() {
+    if run_prepare || io.visibility_input() {
         prepare::run(io);
     }
     tile_classification::run(io);

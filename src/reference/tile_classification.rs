@@ -40,19 +40,14 @@ pub fn is_exact(x: f64) -> bool {
     x == 0.0 || x == 1.0
 }
 
-/// The bits of a valid tile whose sample is exactly 1 (`lit` true) or exactly 0.
+/// The bits of a tile whose sample is exactly 1 (`lit` true) or exactly 0: the tile mask and its complement, or
+/// with a visibility input the two words prepare wrote.
 fn exact_word<Io: Read + ?Sized>(io: &Io, tile: Coord, lit: bool) -> u32 {
-    if !io.visibility_input() {
-        let word = io.read_tile_mask(tile);
-        return if lit { word } else { !word };
+    match (lit, io.visibility_input()) {
+        (true, _) => io.read_tile_mask(tile),
+        (false, false) => !io.read_tile_mask(tile),
+        (false, true) => io.read_tile_dark(tile),
     }
-    let e = io.extent();
-    (0..TILE[0] * TILE[1]).fold(0, |bits, b| {
-        let p = [tile[0] * TILE[0] + b % TILE[0], tile[1] * TILE[1] + b / TILE[0]];
-        let inside = p[0] < e[0] && p[1] < e[1];
-        let hit = inside && sample(io, p) == if lit { 1.0 } else { 0.0 };
-        bits | (hit as u32) << b
-    })
 }
 
 fn moment_weight<Io: Read + ?Sized>(io: &Io, i: i32) -> f64 {

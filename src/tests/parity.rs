@@ -161,6 +161,7 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     let after = r.ctx.internals(0);
     let (tw, th) = (w.div_ceil(8), h.div_ceil(4));
     let tile_mask: Vec<u32> = download(g, after.tile_mask, vk::Format::R32_UINT, tw, th);
+    let tile_dark: Vec<u32> = download(g, after.tile_dark, vk::Format::R32_UINT, tw, th);
     let tile_meta: Vec<u32> = download(g, after.tile_meta, vk::Format::R32_UINT, tw, th);
     let tile_blocker: Vec<f32> = download(g, after.tile_blocker, vk::Format::R32_SFLOAT, tw, th);
     let moments: Vec<[f32; 4]> = download(g, after.moments, vk::Format::R32G32B32A32_SFLOAT, w, h);
@@ -188,9 +189,10 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     cpu.half_intermediates = precision == Precision::Fp16;
     reference::run_frame(&mut cpu, true);
 
-    // Exact integer state, and every tile state present (a visibility input has no tile mask).
-    if !visibility_input {
-        assert_eq!(tile_mask, cpu.tile_mask, "tile mask");
+    // Exact integer state, and every tile state present.
+    assert_eq!(tile_mask, cpu.tile_mask, "tile mask");
+    if visibility_input {
+        assert_eq!(tile_dark, cpu.tile_dark, "dark mask");
     }
     assert_eq!(tile_meta, cpu.tile_meta, "tile metadata");
     for state in [0, crate::passes::TILE_CLEARED, crate::passes::TILE_CLEARED | crate::passes::TILE_LIT] {

@@ -2,7 +2,7 @@
 
 use crate::constants::{FrameConstants, FLAG_DEPTH_INVERTED, FLAG_RESET};
 use crate::create_info::{ContextCreateInfo, EnabledFeatures, Precision, ShadowInput};
-use crate::dispatch::{HitMaskConvention, ShadowsDispatch};
+use crate::dispatch::{HitMaskConvention, LightDispatch, Rect, ShadowsDispatch, MAX_LIGHTS_PER_RECORD};
 use crate::error::{vk_check, Error, Result};
 use crate::gpu::barrier;
 use crate::gpu::descriptors::{roles, Binder, RecordSets};
@@ -27,7 +27,16 @@ pub fn memory_requirements(width: u32, height: u32, precision: Precision, filter
     check_filter_passes(filter_passes)?;
     validate::light_count(light_count)?;
     let per_light = crate::state::texel_bytes([width, height], precision, filter_passes);
-    Ok(per_light * light_count as u64 + std::mem::size_of::<FrameConstants>() as u64)
+    Ok(per_light * light_count as u64 + constants_bytes(light_count))
+}
+
+/// Bytes between the constants of consecutive lights of one record: the block rounded up to 256, the largest
+/// minUniformBufferOffsetAlignment Vulkan allows, so the layout needs no device query.
+const CONSTANTS_STRIDE: vk::DeviceSize = (std::mem::size_of::<FrameConstants>() as vk::DeviceSize).next_multiple_of(256);
+
+/// The constants buffer: one slot per light a record can hold.
+fn constants_bytes(light_count: u32) -> u64 {
+    light_count.min(MAX_LIGHTS_PER_RECORD as u32) as u64 * CONSTANTS_STRIDE
 }
 
 /// Lowest Vulkan version dnsr runs on (SPIR-V 1.3, samplerless texel fetches).
@@ -238,7 +247,7 @@ impl Context {
         self.sampler = vk_check("vkCreateSampler", unsafe { d.create_sampler(&info, alloc) })?;
         self.vk.name(self.sampler, "dnsr.history_sampler");
         let info = vk::BufferCreateInfo::default()
-            .size(std::mem::size_of::<FrameConstants>() as u64)
+            .size(constants_bytes(self.light_count))
             .usage(vk::BufferUsageFlags::UNIFORM_BUFFER | vk::BufferUsageFlags::TRANSFER_DST);
         self.constants_buffer = vk_check("vkCreateBuffer", unsafe { d.create_buffer(&info, alloc) })?;
         self.vk.name(self.constants_buffer, "dnsr.constants");
@@ -312,8 +321,7 @@ impl Context {
 
     /// Bytes of device memory dnsr allocated (internal images and the constants buffer).
     pub fn memory_bytes(&self) -> u64 {
-        let constants = std::mem::size_of::<FrameConstants>() as u64;
-        self.lights.iter().map(LightState::bytes).sum::<u64>() + constants
+        self.lights.iter().map(LightState::bytes).sum::<u64>() + constants_bytes(self.light_count)
     }
 
     /// Features the context was created with.
@@ -329,11 +337,13 @@ impl Context {
         }
     }
 
-    fn frame_views(&self, d: &ShadowsDispatch, cur: usize) -> FrameViews {
+    /// The bindings of light `d.light_index`, whose constants are in slot `slot` of the constants buffer.
+    fn frame_views(&self, d: &ShadowsDispatch, slot: usize, cur: usize) -> FrameViews {
         let light = &self.lights[d.light_index as usize];
         let host = |h: &crate::dispatch::HostImage| image(h.view, h.layout);
         FrameViews {
             constants: self.constants_buffer,
+            constants_offset: slot as vk::DeviceSize * CONSTANTS_STRIDE,
             hit_mask: host(&d.hit_mask),
             visibility: host(&d.visibility),
             depth: host(&d.depth),
@@ -402,6 +412,25 @@ impl Context {
     /// the GPU; command buffers are submitted in the order they were recorded; and the context outlives them.
     /// On error nothing is recorded and no state changes.
     pub fn record_shadows(&mut self, cmd: vk::CommandBuffer, d: &ShadowsDispatch) -> Result<()> {
+        self.record(cmd, std::slice::from_ref(d), false)
+    }
+
+    /// Records the denoiser for several lights that share one G-buffer and camera (`shared`; its per-light fields
+    /// stay at their defaults) into `cmd`: each light reads its own hit mask (or visibility) and writes its own
+    /// output, with its own history. The lights' dispatches of each pass are recorded together, with one barrier
+    /// between passes for all of them, so the GPU overlaps their work. The result for every light is the result
+    /// of a `record_shadows` call for it alone. Expectations on the host as for `record_shadows`; on error
+    /// (`Error::Light` names the light) nothing is recorded and no state changes.
+    pub fn record_lights(&mut self, cmd: vk::CommandBuffer, shared: &ShadowsDispatch, lights: &[LightDispatch]) -> Result<()> {
+        validate::light_list(shared, lights)?;
+        let dispatches: [ShadowsDispatch; MAX_LIGHTS_PER_RECORD] =
+            std::array::from_fn(|i| lights.get(i).map_or(*shared, |l| l.apply(shared)));
+        self.record(cmd, &dispatches[..lights.len()], true)
+    }
+
+    /// Records the frame of every light in `ds` (1..=MAX_LIGHTS_PER_RECORD, distinct lights and outputs), pass
+    /// by pass. `listed`: errors name the light's position (a `record_lights` call).
+    fn record(&mut self, cmd: vk::CommandBuffer, ds: &[ShadowsDispatch], listed: bool) -> Result<()> {
         if cmd == vk::CommandBuffer::null() {
             return Err(Error::NullHandle("command_buffer"));
         }
@@ -416,21 +445,184 @@ impl Context {
             engine_reads: self.engine_reads,
             shadow_input: self.shadow_input,
         };
-        let rect = validate::dispatch(&self.vk, d, &rules)?;
+        let in_light = |position: usize| {
+            move |error: Error| if listed { Error::Light { position: position as u32, error: Box::new(error) } } else { error }
+        };
+        let mut rect = Default::default();
+        for (i, d) in ds.iter().enumerate() {
+            rect = validate::dispatch(&self.vk, d, &rules).map_err(in_light(i))?;
+        }
         let extent = [rect.width, rect.height];
+        // Shared by every light of the call: the shadow input, the mask convention, the settings, the debug view.
+        let shared = &ds[0];
         // A hit mask of lit bits is read as it is (visibility always goes through prepare).
-        let run_prepare = self.shadow_input == ShadowInput::Visibility || d.hit_mask_convention == HitMaskConvention::OccludedBits;
-
-        let views = self.frame_views(d, self.lights[d.light_index as usize].parity);
-        let passes = crate::passes::frame(&views, self.settings.filter_passes, run_prepare, d.debug_view);
-        self.check_engine_images(d, &passes)?;
+        let run_prepare = self.shadow_input == ShadowInput::Visibility || shared.hit_mask_convention == HitMaskConvention::OccludedBits;
+        let frames: [Option<FramePasses>; MAX_LIGHTS_PER_RECORD] = std::array::from_fn(|i| {
+            ds.get(i).map(|d| {
+                let views = self.frame_views(d, i, self.lights[d.light_index as usize].parity);
+                crate::passes::frame(&views, self.settings.filter_passes, run_prepare, d.debug_view)
+            })
+        });
+        let frames = &frames[..ds.len()];
+        let first = frames[0].as_ref().expect("one per dispatch");
+        // The engine images are the shared dispatch's, and every light runs the same passes.
+        self.check_engine_images(shared, first)?;
         // Everything that can fail was checked above. Nothing below fails.
-        let sets = self.write_descriptors(d.light_index, &passes);
+        let sets: [Option<RecordSets>; MAX_LIGHTS_PER_RECORD] = std::array::from_fn(|i| {
+            frames.get(i).map(|f| self.write_descriptors(ds[i].light_index, f.as_ref().expect("one per dispatch")))
+        });
+        let pass_count = first.iter().count();
+
+        let mut constants = [0u8; CONSTANTS_STRIDE as usize * MAX_LIGHTS_PER_RECORD];
+        for (i, d) in ds.iter().enumerate() {
+            let light = &self.lights[d.light_index as usize];
+            let c = self.frame_constants(d, rect, d.reset || light.pending_reset || !light.initialized);
+            let at = i * CONSTANTS_STRIDE as usize;
+            constants[at..at + std::mem::size_of::<FrameConstants>()].copy_from_slice(bytemuck::bytes_of(&c));
+        }
+
         let pipelines = self.pipelines.as_ref().expect("created");
         let dev = &self.vk.device;
+        self.frames_recorded += 1;
+        let first_query = self.timestamps.as_mut().map(|t| t.begin(dev, cmd, self.frames_recorded, self.settings.filter_passes));
+        let pool = self.timestamps.as_ref().map_or(vk::QueryPool::null(), |t| t.pool);
+        let stamp = |index: u32| {
+            if let Some(first) = first_query {
+                unsafe { dev.cmd_write_timestamp(cmd, vk::PipelineStageFlags::BOTTOM_OF_PIPE, pool, first + index) };
+            }
+        };
 
-        let light = &mut self.lights[d.light_index as usize];
-        let reset = d.reset || light.pending_reset || !light.initialized;
+        let mut images = [vk::ImageMemoryBarrier::default(); MAX_LIGHTS_PER_RECORD * (1 + crate::state::MAX_IMAGES)];
+        let mut count = 0;
+        let mut src_stages = vk::PipelineStageFlags::TOP_OF_PIPE | vk::PipelineStageFlags::COMPUTE_SHADER | vk::PipelineStageFlags::TRANSFER;
+        let mut src_access = vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE;
+        for d in ds {
+            if d.output.layout != vk::ImageLayout::GENERAL {
+                images[count] = barrier::layout_transition(
+                    d.output.image,
+                    vk::ImageAspectFlags::COLOR,
+                    d.output.layout,
+                    vk::ImageLayout::GENERAL,
+                    vk::AccessFlags::empty(),
+                    vk::AccessFlags::SHADER_WRITE,
+                );
+                count += 1;
+            }
+            let light = &self.lights[d.light_index as usize];
+            if !light.initialized {
+                for img in light.images() {
+                    images[count] = barrier::layout_transition(
+                        img.image,
+                        vk::ImageAspectFlags::COLOR,
+                        vk::ImageLayout::UNDEFINED,
+                        vk::ImageLayout::GENERAL,
+                        vk::AccessFlags::empty(),
+                        vk::AccessFlags::TRANSFER_WRITE,
+                    );
+                    count += 1;
+                }
+            }
+            src_stages |= d.sync.input_src_stages | d.sync.output_dst_stages;
+            src_access |= d.sync.input_src_access;
+        }
+        // Earlier frames (dnsr's compute and the constants update), the host's input writes and its earlier use
+        // of the outputs, all before anything this frame reads or writes.
+        barrier::memory(
+            dev,
+            cmd,
+            src_stages,
+            src_access,
+            vk::PipelineStageFlags::COMPUTE_SHADER | vk::PipelineStageFlags::TRANSFER,
+            vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE,
+            &images[..count],
+        );
+        for d in ds {
+            let light = &self.lights[d.light_index as usize];
+            if !light.initialized {
+                // Defined contents from the first frame on: no NaN garbage can be sampled even by a bad reset path.
+                let zero = vk::ClearColorValue { float32: [0.0; 4] };
+                for img in light.images() {
+                    unsafe { dev.cmd_clear_color_image(cmd, img.image, vk::ImageLayout::GENERAL, &zero, &[color_range()]) };
+                }
+            }
+        }
+        let written = ds.len() * CONSTANTS_STRIDE as usize;
+        unsafe { dev.cmd_update_buffer(cmd, self.constants_buffer, 0, &constants[..written]) };
+        barrier::memory(
+            dev,
+            cmd,
+            vk::PipelineStageFlags::TRANSFER,
+            vk::AccessFlags::TRANSFER_WRITE,
+            vk::PipelineStageFlags::COMPUTE_SHADER,
+            vk::AccessFlags::UNIFORM_READ | vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE,
+            &[],
+        );
+
+        // The frame's passes in order, each for every light; a barrier wherever a dispatch touches what an earlier
+        // one wrote, or writes what an earlier one read, since the last barrier (the lights' dispatches of one pass
+        // touch only their own images, so they run together).
+        let binder = binder_ref(&self.binder);
+        let mut hazards = Hazards::default();
+        stamp(0);
+        for index in 0..pass_count {
+            for (light, frame) in frames.iter().enumerate() {
+                let pass = frame.as_ref().expect("one per dispatch").get(index);
+                if !pass.enabled {
+                    continue;
+                }
+                let pipeline = pipelines.for_role(pass.role);
+                if hazards.needs_barrier(pipeline, pass) {
+                    barrier::compute_to_compute(dev, cmd);
+                }
+                let groups = pass.group_count(extent);
+                unsafe {
+                    dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.for_frame(pass.spec));
+                    if let Some(push) = &pass.push {
+                        dev.cmd_push_constants(cmd, pipeline.layout, vk::ShaderStageFlags::COMPUTE, 0, bytemuck::bytes_of(push));
+                    }
+                }
+                let set = sets[light].as_ref().expect("one per dispatch").get(pass.role);
+                binder.bind(dev, cmd, pipeline, &pass.bindings, self.sampler, set);
+                unsafe { dev.cmd_dispatch(cmd, groups[0], groups[1], groups[2]) };
+            }
+            stamp(index as u32 + 1);
+        }
+
+        let mut back = [vk::ImageMemoryBarrier::default(); MAX_LIGHTS_PER_RECORD];
+        let mut count = 0;
+        let mut dst_stages = vk::PipelineStageFlags::empty();
+        let mut dst_access = vk::AccessFlags::empty();
+        for d in ds {
+            dst_stages |= d.sync.output_dst_stages;
+            dst_access |= d.sync.output_dst_access;
+        }
+        for d in ds.iter().filter(|d| d.output.layout != vk::ImageLayout::GENERAL) {
+            back[count] = barrier::layout_transition(
+                d.output.image,
+                vk::ImageAspectFlags::COLOR,
+                vk::ImageLayout::GENERAL,
+                d.output.layout,
+                vk::AccessFlags::SHADER_WRITE,
+                dst_access,
+            );
+            count += 1;
+        }
+        if count > 0 || !dst_stages.is_empty() {
+            let dst = if dst_stages.is_empty() { vk::PipelineStageFlags::COMPUTE_SHADER } else { dst_stages };
+            barrier::memory(dev, cmd, vk::PipelineStageFlags::COMPUTE_SHADER, vk::AccessFlags::SHADER_WRITE, dst, dst_access, &back[..count]);
+        }
+
+        for d in ds {
+            let light = &mut self.lights[d.light_index as usize];
+            light.parity ^= 1;
+            light.initialized = true;
+            light.pending_reset = false;
+        }
+        Ok(())
+    }
+
+    /// The constants of one light's frame.
+    fn frame_constants(&self, d: &ShadowsDispatch, rect: Rect, reset: bool) -> FrameConstants {
         let mut c = FrameConstants {
             projection_inverse: d.projection_inverse.to_cols_array_2d(),
             reprojection: d.reprojection_matrix.to_cols_array_2d(),
@@ -449,131 +641,7 @@ impl Context {
             ..Default::default()
         };
         self.settings.write_to(&mut c);
-
-        self.frames_recorded += 1;
-        let first_query = self.timestamps.as_mut().map(|t| t.begin(dev, cmd, self.frames_recorded, self.settings.filter_passes));
-        let pool = self.timestamps.as_ref().map_or(vk::QueryPool::null(), |t| t.pool);
-        let stamp = |index: u32| {
-            if let Some(first) = first_query {
-                unsafe { dev.cmd_write_timestamp(cmd, vk::PipelineStageFlags::BOTTOM_OF_PIPE, pool, first + index) };
-            }
-        };
-
-        let output_transition = d.output.layout != vk::ImageLayout::GENERAL;
-        let to_general = barrier::layout_transition(
-            d.output.image,
-            vk::ImageAspectFlags::COLOR,
-            d.output.layout,
-            vk::ImageLayout::GENERAL,
-            vk::AccessFlags::empty(),
-            vk::AccessFlags::SHADER_WRITE,
-        );
-        let mut images = [vk::ImageMemoryBarrier::default(); 16];
-        let mut count = 0;
-        if output_transition {
-            images[count] = to_general;
-            count += 1;
-        }
-        if !light.initialized {
-            for img in light.images() {
-                images[count] = barrier::layout_transition(
-                    img.image,
-                    vk::ImageAspectFlags::COLOR,
-                    vk::ImageLayout::UNDEFINED,
-                    vk::ImageLayout::GENERAL,
-                    vk::AccessFlags::empty(),
-                    vk::AccessFlags::TRANSFER_WRITE,
-                );
-                count += 1;
-            }
-        }
-        // Earlier frames (dnsr's compute and the constants update), the host's input writes and its earlier use
-        // of the output, all before anything this frame reads or writes.
-        barrier::memory(
-            dev,
-            cmd,
-            vk::PipelineStageFlags::TOP_OF_PIPE
-                | vk::PipelineStageFlags::COMPUTE_SHADER
-                | vk::PipelineStageFlags::TRANSFER
-                | d.sync.input_src_stages
-                | d.sync.output_dst_stages,
-            vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE | d.sync.input_src_access,
-            vk::PipelineStageFlags::COMPUTE_SHADER | vk::PipelineStageFlags::TRANSFER,
-            vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE,
-            &images[..count],
-        );
-        if !light.initialized {
-            // Defined contents from the first frame on: no NaN garbage can be sampled even by a bad reset path.
-            let zero = vk::ClearColorValue { float32: [0.0; 4] };
-            for img in light.images() {
-                unsafe { dev.cmd_clear_color_image(cmd, img.image, vk::ImageLayout::GENERAL, &zero, &[color_range()]) };
-            }
-        }
-        unsafe { dev.cmd_update_buffer(cmd, self.constants_buffer, 0, bytemuck::bytes_of(&c)) };
-        barrier::memory(
-            dev,
-            cmd,
-            vk::PipelineStageFlags::TRANSFER,
-            vk::AccessFlags::TRANSFER_WRITE,
-            vk::PipelineStageFlags::COMPUTE_SHADER,
-            vk::AccessFlags::UNIFORM_READ | vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE,
-            &[],
-        );
-
-        // The frame's passes in order; a barrier wherever a pass touches what an earlier one wrote, or writes
-        // what an earlier one read, since the last barrier.
-        let binder = binder_ref(&self.binder);
-        let mut hazards = Hazards::default();
-        stamp(0);
-        for (index, pass) in passes.iter().enumerate() {
-            if pass.enabled {
-                let pipeline = pipelines.for_role(pass.role);
-                if hazards.needs_barrier(pipeline, pass) {
-                    barrier::compute_to_compute(dev, cmd);
-                }
-                let groups = pass.group_count(extent);
-                unsafe {
-                    dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.for_frame(pass.spec));
-                    if let Some(push) = &pass.push {
-                        dev.cmd_push_constants(cmd, pipeline.layout, vk::ShaderStageFlags::COMPUTE, 0, bytemuck::bytes_of(push));
-                    }
-                }
-                binder.bind(dev, cmd, pipeline, &pass.bindings, self.sampler, sets.get(pass.role));
-                unsafe { dev.cmd_dispatch(cmd, groups[0], groups[1], groups[2]) };
-            }
-            stamp(index as u32 + 1);
-        }
-
-        if output_transition || !d.sync.output_dst_stages.is_empty() {
-            let back = barrier::layout_transition(
-                d.output.image,
-                vk::ImageAspectFlags::COLOR,
-                vk::ImageLayout::GENERAL,
-                d.output.layout,
-                vk::AccessFlags::SHADER_WRITE,
-                d.sync.output_dst_access,
-            );
-            let dst = if d.sync.output_dst_stages.is_empty() {
-                vk::PipelineStageFlags::COMPUTE_SHADER
-            } else {
-                d.sync.output_dst_stages
-            };
-            let transitions: &[vk::ImageMemoryBarrier] = if output_transition { std::slice::from_ref(&back) } else { &[] };
-            barrier::memory(
-                dev,
-                cmd,
-                vk::PipelineStageFlags::COMPUTE_SHADER,
-                vk::AccessFlags::SHADER_WRITE,
-                dst,
-                d.sync.output_dst_access,
-                transitions,
-            );
-        }
-
-        light.parity ^= 1;
-        light.initialized = true;
-        light.pending_reset = false;
-        Ok(())
+        c
     }
 }
 
@@ -624,15 +692,15 @@ impl Context {
 
 /// Images the passes recorded since the last barrier read and wrote (fixed capacity: no allocation).
 struct Hazards {
-    read: [vk::ImageView; 2 * crate::gpu::descriptors::MAX_BINDINGS],
-    written: [vk::ImageView; 2 * crate::gpu::descriptors::MAX_BINDINGS],
+    read: [vk::ImageView; 2 * crate::gpu::descriptors::MAX_BINDINGS * MAX_LIGHTS_PER_RECORD],
+    written: [vk::ImageView; 2 * crate::gpu::descriptors::MAX_BINDINGS * MAX_LIGHTS_PER_RECORD],
     reads: usize,
     writes: usize,
 }
 
 impl Default for Hazards {
     fn default() -> Self {
-        let none = [vk::ImageView::null(); 2 * crate::gpu::descriptors::MAX_BINDINGS];
+        let none = [vk::ImageView::null(); 2 * crate::gpu::descriptors::MAX_BINDINGS * MAX_LIGHTS_PER_RECORD];
         Hazards { read: none, written: none, reads: 0, writes: 0 }
     }
 }

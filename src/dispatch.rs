@@ -196,3 +196,42 @@ impl Default for ShadowsDispatch {
         }
     }
 }
+
+/// Most lights one `Context::record_lights` call denoises.
+pub const MAX_LIGHTS_PER_RECORD: usize = 8;
+
+/// What differs from light to light in `Context::record_lights`: everything else (the G-buffer, the camera, the
+/// settings of the frame) is the shared `ShadowsDispatch`'s, whose per-light fields stay at their defaults there.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LightDispatch {
+    /// Which light's history to use, below `ContextCreateInfo::light_count`; each light at most once per call.
+    pub light_index: u32,
+    /// This light's hit mask, as `ShadowsDispatch::hit_mask` (required with `ShadowInput::HitMask`).
+    pub hit_mask: HostImage,
+    /// This light's visibility, as `ShadowsDispatch::visibility` (required with `ShadowInput::Visibility`).
+    pub visibility: HostImage,
+    /// This light's denoised shadow, as `ShadowsDispatch::output`; a different image for every light of the call.
+    pub output: HostImage,
+    /// This light's penumbra guidance, as `ShadowsDispatch::hit_distance`. Optional.
+    pub hit_distance: Option<HostImage>,
+    /// This light's angular diameter in radians, as `ShadowsDispatch::light_angular_size`.
+    pub light_angular_size: f32,
+    /// Discard this light's history alone before this frame (the other lights of the call keep theirs).
+    pub reset: bool,
+}
+
+impl LightDispatch {
+    /// The single-light dispatch this light's passes run with: `shared` with this light's fields.
+    pub(crate) fn apply(&self, shared: &ShadowsDispatch) -> ShadowsDispatch {
+        ShadowsDispatch {
+            light_index: self.light_index,
+            hit_mask: self.hit_mask,
+            visibility: self.visibility,
+            output: self.output,
+            hit_distance: self.hit_distance,
+            light_angular_size: self.light_angular_size,
+            reset: self.reset,
+            ..*shared
+        }
+    }
+}

@@ -151,6 +151,13 @@ pub enum Error {
         /// The number of lights the context was created for.
         count: u32,
     },
+    /// One light of a `record_lights` call is refused (nothing of the call was recorded).
+    Light {
+        /// Its position in the call's light list.
+        position: u32,
+        /// Why.
+        error: Box<Error>,
+    },
     /// An earlier `resize` failed to allocate the internal images; record refuses until a resize succeeds.
     NotResized,
     /// Timestamps were requested but the queue family cannot write them.
@@ -221,6 +228,7 @@ impl fmt::Display for Error {
             Error::InvalidLightIndex { index, count } => {
                 write!(f, "light index {index} is out of range: the context has {count} light(s)")
             }
+            Error::Light { position, error } => write!(f, "lights[{position}]: {error}"),
             Error::NotResized => write!(
                 f,
                 "the internal images are missing because the last resize failed; call Context::resize again before recording"

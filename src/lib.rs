@@ -30,7 +30,8 @@ pub use create_info::{
 };
 pub use gpu::shader::{shader_variants, ShaderVariantInfo, SHADER_COMPILE_ARGS};
 pub use dispatch::{
-    DebugView, EngineImage, HitMaskConvention, HostImage, HostSync, Rect, ShadowsDispatch, ENGINE_BINDING_BASE, MAX_ENGINE_IMAGES,
+    DebugView, EngineImage, HitMaskConvention, HostImage, HostSync, LightDispatch, Rect, ShadowsDispatch, ENGINE_BINDING_BASE, MAX_ENGINE_IMAGES,
+    MAX_LIGHTS_PER_RECORD,
 };
 pub use error::{Error, ImageRole, Result};
 pub use glam;

@@ -89,6 +89,9 @@ pub(crate) fn texel_bytes(extent: [u32; 2], precision: Precision, filter_passes:
         .sum()
 }
 
+/// Most internal images one light has (the fixed ones and every optional one).
+pub(crate) const MAX_IMAGES: usize = 12;
+
 pub(crate) struct LightState {
     pub tile_mask: InternalImage,
     /// The exactly shadowed pixels of each tile, written by prepare with a visibility input; 4 bytes per tile, so

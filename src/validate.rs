@@ -208,6 +208,43 @@ pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, rules: &DispatchRules) -> R
     Ok(rect)
 }
 
+/// Checks what `record_lights` adds to the single-light rules: 1..=MAX_LIGHTS_PER_RECORD lights, each light and
+/// each output once, and the shared dispatch's per-light fields left at their defaults (a value there would
+/// otherwise be silently ignored). Each light's own fields are checked as a single dispatch's.
+pub(crate) fn light_list(shared: &ShadowsDispatch, lights: &[crate::LightDispatch]) -> Result<()> {
+    if lights.is_empty() || lights.len() > crate::MAX_LIGHTS_PER_RECORD {
+        return Err(Error::InvalidValue {
+            field: "lights",
+            value: format!("{} lights", lights.len()),
+            allowed: "one record_lights call takes 1 to 8 lights (MAX_LIGHTS_PER_RECORD)",
+        });
+    }
+    let per_light = "leave it at its default in the shared dispatch of record_lights: each LightDispatch gives its own";
+    unused_input(&shared.hit_mask, "hit_mask", per_light)?;
+    unused_input(&shared.visibility, "visibility", per_light)?;
+    unused_input(&shared.output, "output", per_light)?;
+    let scalars = [
+        ("light_index", shared.light_index != 0, shared.light_index.to_string()),
+        ("hit_distance", shared.hit_distance.is_some(), "given".into()),
+        ("light_angular_size", shared.light_angular_size != 0.0, shared.light_angular_size.to_string()),
+        ("reset", shared.reset, "true".into()),
+    ];
+    if let Some((field, _, value)) = scalars.into_iter().find(|s| s.1) {
+        return Err(Error::InvalidValue { field, value, allowed: per_light });
+    }
+    for (i, l) in lights.iter().enumerate() {
+        let earlier = &lights[..i];
+        let refuse = |field, value: String, allowed| Err(Error::Light { position: i as u32, error: Box::new(Error::InvalidValue { field, value, allowed }) });
+        if let Some(j) = earlier.iter().position(|e| e.light_index == l.light_index) {
+            return refuse("light_index", format!("{} (as lights[{j}])", l.light_index), "each light at most once per record_lights call");
+        }
+        if let Some(j) = earlier.iter().position(|e| e.output.image == l.output.image && l.output.image != vk::Image::null()) {
+            return refuse("output", format!("the image of lights[{j}]"), "every light writes its own output image");
+        }
+    }
+    Ok(())
+}
+
 /// Checks one engine image at `binding` that an engine-compiled variant declares as a sampled or (`storage`) a
 /// storage image: given, with a view, in a layout its descriptor type can be used in.
 pub(crate) fn engine_image(binding: u32, storage: bool, image: Option<crate::EngineImage>) -> Result<()> {

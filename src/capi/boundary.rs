@@ -39,6 +39,7 @@ fn code(e: &Error) -> DnsrResult {
         Error::OutOfDeviceMemory { .. } => DNSR_ERROR_OUT_OF_DEVICE_MEMORY,
         Error::InvalidHostSync { .. } => DNSR_ERROR_INVALID_HOST_SYNC,
         Error::InvalidQueueFamily { .. } => DNSR_ERROR_INVALID_QUEUE_FAMILY,
+        Error::Light { error, .. } => code(error),
         Error::NotResized => DNSR_ERROR_VULKAN,
         Error::TimestampsUnsupported => DNSR_ERROR_TIMESTAMPS_UNSUPPORTED,
         Error::ShaderInterface(_) => DNSR_ERROR_SHADER_INTERFACE,

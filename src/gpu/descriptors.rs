@@ -69,7 +69,11 @@ fn with_writes<R>(pipeline: &Pipeline, table: &BindingTable, sampler: vk::Sample
     for (i, b) in bindings.iter().enumerate() {
         let bound = table[b.resource as usize];
         images[i] = vk::DescriptorImageInfo { sampler, image_view: bound.view, image_layout: bound.layout };
-        buffers[i] = vk::DescriptorBufferInfo { buffer: bound.buffer, offset: 0, range: vk::WHOLE_SIZE };
+        buffers[i] = vk::DescriptorBufferInfo {
+            buffer: bound.buffer,
+            offset: bound.offset,
+            range: std::mem::size_of::<crate::constants::FrameConstants>() as vk::DeviceSize,
+        };
     }
     let mut writes = [vk::WriteDescriptorSet::default(); MAX_BINDINGS];
     for (i, b) in bindings.iter().enumerate() {

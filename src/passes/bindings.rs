@@ -103,11 +103,13 @@ pub(crate) struct Binding {
     pub view: vk::ImageView,
     pub layout: vk::ImageLayout,
     pub buffer: vk::Buffer,
+    /// Where the constants of this dispatch's light start in `buffer`.
+    pub offset: vk::DeviceSize,
 }
 
 /// Every resource's binding for one pass of one frame; unset entries stay null.
 pub(crate) type BindingTable = [Binding; RESOURCE_COUNT];
 
 pub(crate) fn image(view: vk::ImageView, layout: vk::ImageLayout) -> Binding {
-    Binding { view, layout, buffer: vk::Buffer::null() }
+    Binding { view, layout, buffer: vk::Buffer::null(), offset: 0 }
 }

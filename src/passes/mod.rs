@@ -106,6 +106,11 @@ impl FramePasses {
     pub(crate) fn iter(&self) -> impl Iterator<Item = &Pass> {
         self.passes[..self.count].iter()
     }
+
+    /// The pass at `index` of the recording order.
+    pub(crate) fn get(&self, index: usize) -> &Pass {
+        &self.passes[..self.count][index]
+    }
 }
 
 /// The frame: prepare (skipped when the host's mask already holds lit bits), tile classification, then
@@ -136,6 +141,8 @@ const GENERAL: vk::ImageLayout = vk::ImageLayout::GENERAL;
 /// Everything the passes of one frame of one light bind.
 pub(crate) struct FrameViews {
     pub constants: vk::Buffer,
+    /// This light's slot of the constants buffer.
+    pub constants_offset: vk::DeviceSize,
     pub hit_mask: Binding,
     /// The host's visibility (a visibility input; null otherwise, and no pass declares it).
     pub visibility: Binding,
@@ -173,7 +180,7 @@ impl FrameViews {
     /// The bindings every pass shares: constants, the G-buffer and the engine's images.
     fn base_table(&self) -> BindingTable {
         let mut t: BindingTable = [Binding::default(); bindings::RESOURCE_COUNT];
-        t[Resource::Constants as usize] = Binding { buffer: self.constants, ..Default::default() };
+        t[Resource::Constants as usize] = Binding { buffer: self.constants, offset: self.constants_offset, ..Default::default() };
         t[Resource::Depth as usize] = self.depth;
         t[Resource::Normals as usize] = self.normals;
         for (slot, &b) in self.engine.iter().enumerate() {

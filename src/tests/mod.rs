@@ -8,6 +8,7 @@ mod diagnostics;
 mod extremes;
 mod parity;
 mod interface;
+mod lights;
 mod resources;
 mod shader_overrides;
 

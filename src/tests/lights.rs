@@ -1,0 +1,175 @@
+//! Several lights in one `record_lights` call: the same result as one `record_shadows` call per light, a light
+//! reset alone, and a bad light refusing the whole call.
+
+use super::gpu;
+use crate::testing::gpu::{Gpu, TestImage};
+use crate::testing::scene::{render_with_blockers, Camera, FrameInputs};
+use crate::testing::Runner;
+use crate::{Error, LightDispatch, ShadowsDispatch};
+use ash::vk;
+
+const W: u32 = 64;
+const H: u32 = 48;
+const LIGHTS: usize = 3;
+/// The frame at which light 1 (only) restarts its history.
+const RESET_FRAME: u32 = 3;
+/// Penumbra guidance for light 2 (angular size in radians); the others have none.
+const GUIDED_ANGLE: f32 = 0.05;
+
+/// Light `light`'s frame `frame`: one camera path for every light (so one G-buffer), a shadow of its own.
+fn light_frame(light: usize, frame: u32) -> FrameInputs {
+    let cam = |k: u32| Camera::above(0.15 * k as f64, 0.05 * k as f64, 10.0);
+    let fields: [&dyn Fn(f64, f64) -> f64; LIGHTS] = [
+        &|x, _| (0.5 + x / 3.0).clamp(0.0, 1.0),
+        &|x, z| if x * x + z * z < 4.0 { 0.1 } else { 1.0 },
+        &|x, z| if ((x + z) * 0.7).rem_euclid(2.0) < 1.0 { 0.0 } else { 0.8 },
+    ];
+    let seed = 1000 * light as u64 + frame as u64;
+    render_with_blockers(W, H, &cam(frame), &cam(frame.saturating_sub(1)), 7.0, fields[light], &|x, _| 0.5 + x.abs(), seed)
+}
+
+fn runner(g: &Gpu) -> Runner<'_> {
+    let mut info = g.create_info(W, H);
+    info.output_format = vk::Format::R32_SFLOAT;
+    info.light_count = LIGHTS as u32;
+    Runner::new(g, &info).unwrap()
+}
+
+fn floats(raw: &[u8]) -> Vec<f32> {
+    bytemuck::cast_slice(raw).to_vec()
+}
+
+/// This light's fields of a dispatch over `mask`, `output` and the runner's hit distances.
+fn light(r: &Runner, index: usize, mask: &TestImage, output: &TestImage, frame: u32) -> LightDispatch {
+    LightDispatch {
+        light_index: index as u32,
+        hit_mask: mask.host(),
+        output: output.host(),
+        hit_distance: (index == 2).then(|| r.hit_distance.host()),
+        light_angular_size: if index == 2 { GUIDED_ANGLE } else { 0.0 },
+        reset: index == 1 && frame == RESET_FRAME,
+        ..Default::default()
+    }
+}
+
+/// The shared part of a dispatch: `d` with its per-light fields at their defaults.
+fn shared(d: &ShadowsDispatch) -> ShadowsDispatch {
+    ShadowsDispatch {
+        light_index: 0,
+        hit_mask: Default::default(),
+        output: Default::default(),
+        hit_distance: None,
+        light_angular_size: 0.0,
+        reset: false,
+        ..*d
+    }
+}
+
+#[test]
+fn several_lights_in_one_record_equal_one_record_per_light() {
+    let g = gpu();
+    let mut single = runner(&g);
+    let mut batched = runner(&g);
+    // Lights 0 and 1 of the batched runner read and write these; light 2 uses the runner's own images (its frame
+    // is the one the runner uploads, hit distances included).
+    let masks: Vec<TestImage> = (0..2).map(|_| g.image(vk::Format::R32_UINT, W / 8, H / 4, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)).collect();
+    let outputs: Vec<TestImage> = (0..2).map(|_| g.image(vk::Format::R32_SFLOAT, W, H, vk::ImageLayout::GENERAL)).collect();
+    let mut reset_changed = false;
+    for frame in 0..6 {
+        let inputs: Vec<FrameInputs> = (0..LIGHTS).map(|l| light_frame(l, frame)).collect();
+        let expected: Vec<Vec<f32>> = (0..LIGHTS)
+            .map(|l| {
+                let d = single.dispatch(&inputs[l]);
+                let ld = light(&single, l, &single.mask, &single.output, frame);
+                single.run(&inputs[l], &ld.apply(&d)).expect("record_shadows")
+            })
+            .collect();
+
+        for (mask, f) in masks.iter().zip(&inputs) {
+            g.upload(mask, bytemuck::cast_slice(&f.mask));
+        }
+        let d = shared(&batched.dispatch(&inputs[2]));
+        let lights = [
+            light(&batched, 0, &masks[0], &outputs[0], frame),
+            light(&batched, 1, &masks[1], &outputs[1], frame),
+            light(&batched, 2, &batched.mask, &batched.output, frame),
+        ];
+        let (result, last) = batched.run_with(&inputs[2], |ctx, cmd| ctx.record_lights(cmd, &d, &lights));
+        result.expect("record_lights");
+        let got = [floats(&g.download(&outputs[0])), floats(&g.download(&outputs[1])), last];
+        for l in 0..LIGHTS {
+            let differing = got[l].iter().zip(&expected[l]).filter(|(a, b)| a.to_bits() != b.to_bits()).count();
+            assert_eq!(differing, 0, "frame {frame} light {l}: {differing} pixels differ from its own record_shadows");
+        }
+        if frame == RESET_FRAME {
+            // The reset must show: light 1 run up to here without one (its own context) ends elsewhere.
+            let mut unreset = runner(&g);
+            let mut out = Vec::new();
+            for k in 0..=frame {
+                let f = light_frame(1, k);
+                let d = ShadowsDispatch { light_index: 1, ..unreset.dispatch(&f) };
+                out = unreset.run(&f, &d).expect("record_shadows");
+            }
+            reset_changed = out.iter().zip(&got[1]).any(|(a, b)| a != b);
+        }
+    }
+    assert!(reset_changed, "resetting light 1 changed nothing: the test cannot tell a reset from none");
+    for img in masks.iter().chain(&outputs) {
+        g.destroy_image(img);
+    }
+    drop((single, batched));
+    g.assert_clean();
+}
+
+#[test]
+fn a_bad_light_refuses_the_whole_record() {
+    let g = gpu();
+    let mut r = runner(&g);
+    let other = g.image(vk::Format::R32_SFLOAT, W, H, vk::ImageLayout::GENERAL);
+    let f = light_frame(0, 0);
+    let d = shared(&r.dispatch(&f));
+    let good = |index: u32, output: &TestImage| LightDispatch { light_index: index, hit_mask: r.mask.host(), output: output.host(), ..Default::default() };
+    let base = [good(0, &r.output), good(1, &other)];
+    type Check = fn(&Error) -> bool;
+    let cases: Vec<(&str, ShadowsDispatch, Vec<LightDispatch>, Check)> = vec![
+        ("no lights", d, vec![], |e| matches!(e, Error::InvalidValue { field: "lights", .. })),
+        ("nine lights", d, vec![base[0]; 9], |e| matches!(e, Error::InvalidValue { field: "lights", .. })),
+        ("a light twice", d, vec![base[0], LightDispatch { output: other.host(), ..base[0] }], |e| {
+            matches!(e, Error::Light { position: 1, error } if matches!(**error, Error::InvalidValue { field: "light_index", .. }))
+        }),
+        ("one output for two lights", d, vec![base[0], LightDispatch { output: r.output.host(), ..base[1] }], |e| {
+            matches!(e, Error::Light { position: 1, error } if matches!(**error, Error::InvalidValue { field: "output", .. }))
+        }),
+        ("light index out of range", d, vec![base[0], LightDispatch { light_index: 3, ..base[1] }], |e| {
+            matches!(e, Error::Light { position: 1, error } if matches!(**error, Error::InvalidLightIndex { index: 3, count: 3 }))
+        }),
+        ("a light without its hit mask", d, vec![base[0], LightDispatch { hit_mask: Default::default(), ..base[1] }], |e| {
+            matches!(e, Error::Light { position: 1, .. })
+        }),
+        ("a light with a NaN angular size", d, vec![base[0], LightDispatch { hit_distance: Some(r.hit_distance.host()), light_angular_size: f32::NAN, ..base[1] }], |e| {
+            matches!(e, Error::Light { position: 1, error } if matches!(**error, Error::NonFinite("light_angular_size")))
+        }),
+        ("output in the shared dispatch", ShadowsDispatch { output: r.output.host(), ..d }, base.to_vec(), |e| {
+            matches!(e, Error::InvalidValue { field: "output", .. })
+        }),
+        ("reset in the shared dispatch", ShadowsDispatch { reset: true, ..d }, base.to_vec(), |e| matches!(e, Error::InvalidValue { field: "reset", .. })),
+        ("light index in the shared dispatch", ShadowsDispatch { light_index: 2, ..d }, base.to_vec(), |e| {
+            matches!(e, Error::InvalidValue { field: "light_index", .. })
+        }),
+    ];
+    for (name, shared, lights, check) in cases {
+        let before: Vec<_> = (0..LIGHTS).map(|l| r.ctx.recording_state(l)).collect();
+        let (result, _) = r.run_with(&f, |ctx, cmd| ctx.record_lights(cmd, &shared, &lights));
+        let e = result.expect_err(name);
+        assert!(check(&e), "{name}: unexpected error {e:?}");
+        assert!(e.to_string().len() > 10, "{name}: message {e}");
+        let after: Vec<_> = (0..LIGHTS).map(|l| r.ctx.recording_state(l)).collect();
+        assert_eq!(before, after, "{name}: a refused call changed the state");
+    }
+    // The same lights, fixed, record.
+    let (result, _) = r.run_with(&f, |ctx, cmd| ctx.record_lights(cmd, &d, &base));
+    result.expect("two good lights");
+    g.destroy_image(&other);
+    drop(r);
+    g.assert_clean();
+}

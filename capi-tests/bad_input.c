@@ -392,6 +392,65 @@ static void good_frame(const char *name, float value)
 
 #define DISPATCH_CASE(name, want, mention, ...) RECORD_CASE(name, ctx, want, mention, __VA_ARGS__)
 
+/* The good dispatch split into what lights share and one light's fields, for dnsr_lights_record. */
+static DnsrShadowsDispatch shared_part(DnsrShadowsDispatch d)
+{
+    d.hitMask = (DnsrHostImage){0};
+    d.output = (DnsrHostImage){0};
+    d.lightIndex = 0;
+    return d;
+}
+
+static DnsrLightDispatch light_part(const DnsrShadowsDispatch *d)
+{
+    DnsrLightDispatch l = {.sType = DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH, .lightIndex = d->lightIndex, .hitMask = d->hitMask,
+                           .output = d->output};
+    return l;
+}
+
+/* Like RECORD_CASE for dnsr_lights_record: the edit statements may change the shared dispatch `d`, the light
+ * list `lights` (one good light, then a copy of it), `count` or point `pl` elsewhere. */
+#define LIGHTS_CASE(name, want, mention, ...)                                                                     \
+    do {                                                                                                          \
+        DnsrShadowsDispatch d = shared_part(good);                                                                \
+        DnsrLightDispatch lights[DNSR_MAX_LIGHTS_PER_RECORD + 1];                                                  \
+        for (uint32_t i = 0; i <= DNSR_MAX_LIGHTS_PER_RECORD; i++) lights[i] = light_part(&good);                \
+        const DnsrLightDispatch *pl = lights;                                                                     \
+        uint32_t count = 1;                                                                                       \
+        VkCommandBuffer probe = probe_begin();                                                                    \
+        d.commandBuffer = probe;                                                                                  \
+        __VA_ARGS__;                                                                                              \
+        expect(name, dnsr_lights_record(ctx, &d, count, pl), want, mention);                                      \
+        probe_end(probe, name, false, 0.0f);                                                                      \
+    } while (0)
+
+static void lights_calls(void)
+{
+    LIGHTS_CASE("lights: lightCount 0", DNSR_ERROR_INVALID_ARGUMENT, "lightCount is 0", count = 0);
+    LIGHTS_CASE("lights: lightCount 9", DNSR_ERROR_INVALID_ARGUMENT, "lightCount is 9", count = 9);
+    LIGHTS_CASE("lights: NULL pLights", DNSR_ERROR_INVALID_ARGUMENT, "pLights is NULL", pl = NULL);
+    LIGHTS_CASE("lights: wrong sType", DNSR_ERROR_INVALID_STRUCTURE, "pLights[0]",
+                lights[0].sType = DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH);
+    LIGHTS_CASE("lights: unknown light flags", DNSR_ERROR_INVALID_ARGUMENT, "pLights[0].flags has unknown bits 0x8",
+                lights[0].flags = 1u << 3);
+    LIGHTS_CASE("lights: light 0 twice", DNSR_ERROR_INVALID_ARGUMENT, "pLights[1]: lightIndex is 0 (as pLights[0])",
+                count = 2);
+    LIGHTS_CASE("lights: lightIndex 1", DNSR_ERROR_INVALID_LIGHT_INDEX, "pLights[0]: light index 1",
+                lights[0].lightIndex = 1);
+    LIGHTS_CASE("lights: null output view", DNSR_ERROR_NULL_HANDLE, "pLights[0]: output.view",
+                lights[0].output.view = VK_NULL_HANDLE);
+    LIGHTS_CASE("lights: output in the shared dispatch", DNSR_ERROR_INVALID_ARGUMENT, "shared dispatch of dnsr_lights_record",
+                d.output = good.output);
+    LIGHTS_CASE("lights: reset in the shared dispatch", DNSR_ERROR_INVALID_ARGUMENT, "reset is true",
+                d.flags |= DNSR_DISPATCH_RESET);
+    /* The same light, as it should be, records. */
+    DnsrShadowsDispatch d = shared_part(good);
+    DnsrLightDispatch light = light_part(&good);
+    d.commandBuffer = probe_begin();
+    DNSR_CHECK(dnsr_lights_record(ctx, &d, 1, &light));
+    probe_end(d.commandBuffer, "good one-light dnsr_lights_record", true, 0.0f);
+}
+
 static void dispatch_calls(void)
 {
     RECORD_CASE("record: NULL pDispatch", ctx, DNSR_ERROR_INVALID_ARGUMENT, "pDispatch is NULL", pd = NULL);
@@ -654,6 +713,7 @@ int main(void)
     /* From here on the inputs say "all shadow": any pass that runs writes 0 and breaks the sentinel 1.0. */
     upload_inputs(0xffffffffu);
     dispatch_calls();
+    lights_calls();
     live_context_calls();
     handle_calls();
     /* After all that, the same context still works. */

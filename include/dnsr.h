@@ -79,6 +79,11 @@
 #define DNSR_MAX_DIAGNOSES 8
 
 /**
+ * Most lights one `dnsr_lights_record` call denoises.
+ */
+#define DNSR_MAX_LIGHTS_PER_RECORD 8
+
+/**
  * First binding number of an engine's own images in dnsr's set 0 (see DnsrShadowsDispatch::pEngineImages).
  */
 #define DNSR_ENGINE_BINDING_BASE 32
@@ -840,6 +845,55 @@ typedef struct DnsrShadowsDispatch {
 } DnsrShadowsDispatch;
 
 /**
+ * Per-light flags of `DnsrLightDispatch`.
+ */
+typedef uint32_t DnsrLightDispatchFlags;
+
+/**
+ * What differs from light to light in `dnsr_lights_record`; each field as its namesake in
+ * `DnsrShadowsDispatch`, which there holds what the lights share.
+ */
+typedef struct DnsrLightDispatch {
+  /**
+   * Must be DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH.
+   */
+  DnsrStructureType sType;
+  /**
+   * Must be NULL (reserved for extensions).
+   */
+  const void *pNext;
+  /**
+   * Which light's history, below the context's light count; each light at most once per call.
+   */
+  uint32_t lightIndex;
+  /**
+   * DNSR_LIGHT_DISPATCH_* bits.
+   */
+  DnsrLightDispatchFlags flags;
+  /**
+   * This light's hit mask (required with DNSR_SHADOW_INPUT_HIT_MASK, all zero otherwise). Its bit convention
+   * is the shared dispatch's hitMaskConvention.
+   */
+  struct DnsrHostImage hitMask;
+  /**
+   * This light's visibility (required with DNSR_SHADOW_INPUT_VISIBILITY, all zero otherwise).
+   */
+  struct DnsrHostImage visibility;
+  /**
+   * Required. This light's output; every light of the call writes its own image.
+   */
+  struct DnsrHostImage output;
+  /**
+   * Read with DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE: this light's hit distances.
+   */
+  struct DnsrHostImage hitDistance;
+  /**
+   * Read with DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE: this light's angular diameter in radians, in [0, pi).
+   */
+  float lightAngularSize;
+} DnsrLightDispatch;
+
+/**
  * Named settings (`dnsr_settings_init_preset`), chosen from the accuracy measurements in docs/accuracy.md.
  */
 typedef uint32_t DnsrPreset;
@@ -1180,6 +1234,11 @@ typedef struct DnsrDiagnosis {
 #define DNSR_STRUCTURE_TYPE_DEVICE_REQUIREMENTS 5
 
 /**
+ * `DnsrLightDispatch`.
+ */
+#define DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH 6
+
+/**
  * Forces 32 bits.
  */
 #define DNSR_STRUCTURE_TYPE_MAX_ENUM 2147483647
@@ -1363,6 +1422,21 @@ typedef struct DnsrDiagnosis {
  */
 #define DNSR_LOG_LEVEL_MAX_ENUM 2147483647
 
+/**
+ * Discard this light's history before this frame (the other lights of the call keep theirs).
+ */
+#define DNSR_LIGHT_DISPATCH_RESET (1 << 0)
+
+/**
+ * Penumbra guidance for this light: `hitDistance` and `lightAngularSize` are read.
+ */
+#define DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE (1 << 1)
+
+/**
+ * Forces 32 bits.
+ */
+#define DNSR_LIGHT_DISPATCH_MAX_ENUM 2147483647
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -1401,6 +1475,19 @@ DnsrResult dnsr_context_destroy(DnsrContext context);
  */
 DnsrResult dnsr_shadows_record(DnsrContext context,
                                const struct DnsrShadowsDispatch *pDispatch);
+
+/**
+ * Records the denoiser for `lightCount` lights (1..DNSR_MAX_LIGHTS_PER_RECORD) that share one G-buffer and
+ * camera into `pDispatch->commandBuffer`: `pDispatch` holds what they share and leaves its per-light fields
+ * (lightIndex, hitMask, visibility, output, hitDistance, lightAngularSize, DNSR_DISPATCH_RESET and
+ * DNSR_DISPATCH_USE_HIT_DISTANCE) zero; `pLights` gives each light's. Each light's output equals what
+ * `dnsr_shadows_record` gives for it alone; the lights' work of each pass runs together on the GPU. On error
+ * (the message names the refused entry of pLights) nothing is recorded and no light's state changes.
+ */
+DnsrResult dnsr_lights_record(DnsrContext context,
+                              const struct DnsrShadowsDispatch *pDispatch,
+                              uint32_t lightCount,
+                              const struct DnsrLightDispatch *pLights);
 
 /**
  * Reallocates the internal state for a new render size; histories restart. The GPU must have finished every

@@ -160,6 +160,18 @@ DNSR_STATIC_ASSERT(offsetof(DnsrEngineImage, binding) == 0, "offsetof(DnsrEngine
 DNSR_STATIC_ASSERT(offsetof(DnsrEngineImage, view) == 8, "offsetof(DnsrEngineImage, view)");
 DNSR_STATIC_ASSERT(offsetof(DnsrEngineImage, layout) == 16, "offsetof(DnsrEngineImage, layout)");
 
+DNSR_STATIC_ASSERT(sizeof(DnsrLightDispatch) == 160, "sizeof(DnsrLightDispatch)");
+DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrLightDispatch) == 8, "alignof(DnsrLightDispatch)");
+DNSR_STATIC_ASSERT(offsetof(DnsrLightDispatch, sType) == 0, "offsetof(DnsrLightDispatch, sType)");
+DNSR_STATIC_ASSERT(offsetof(DnsrLightDispatch, pNext) == 8, "offsetof(DnsrLightDispatch, pNext)");
+DNSR_STATIC_ASSERT(offsetof(DnsrLightDispatch, lightIndex) == 16, "offsetof(DnsrLightDispatch, lightIndex)");
+DNSR_STATIC_ASSERT(offsetof(DnsrLightDispatch, flags) == 20, "offsetof(DnsrLightDispatch, flags)");
+DNSR_STATIC_ASSERT(offsetof(DnsrLightDispatch, hitMask) == 24, "offsetof(DnsrLightDispatch, hitMask)");
+DNSR_STATIC_ASSERT(offsetof(DnsrLightDispatch, visibility) == 56, "offsetof(DnsrLightDispatch, visibility)");
+DNSR_STATIC_ASSERT(offsetof(DnsrLightDispatch, output) == 88, "offsetof(DnsrLightDispatch, output)");
+DNSR_STATIC_ASSERT(offsetof(DnsrLightDispatch, hitDistance) == 120, "offsetof(DnsrLightDispatch, hitDistance)");
+DNSR_STATIC_ASSERT(offsetof(DnsrLightDispatch, lightAngularSize) == 152, "offsetof(DnsrLightDispatch, lightAngularSize)");
+
 DNSR_STATIC_ASSERT(sizeof(DnsrPassTimings) == 88, "sizeof(DnsrPassTimings)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrPassTimings) == 8, "alignof(DnsrPassTimings)");
 DNSR_STATIC_ASSERT(offsetof(DnsrPassTimings, sType) == 0, "offsetof(DnsrPassTimings, sType)");

@@ -131,6 +131,10 @@ pub(crate) fn c_names(message: &str) -> String {
         ("precision Fp16", "DNSR_PRECISION_FP16"),
         ("Context::resize", "dnsr_context_resize"),
         ("(MAX_LIGHT_COUNT)", "(DNSR_MAX_LIGHT_COUNT)"),
+        ("(MAX_LIGHTS_PER_RECORD)", "(DNSR_MAX_LIGHTS_PER_RECORD)"),
+        ("record_lights", "dnsr_lights_record"),
+        ("each LightDispatch", "each DnsrLightDispatch"),
+        ("lights[", "pLights["),
         ("(MAX_FRAMES_IN_FLIGHT)", "(DNSR_MAX_FRAMES_IN_FLIGHT)"),
         ("(shader_variants lists them)", "(dnsr_get_shader_variants lists them)"),
     ];

@@ -3,7 +3,7 @@
 use super::boundary::{check_no_next, check_type, CallError, LogSink};
 use super::types::*;
 use crate::create_info::{ContextCreateInfo, DepthFlags, EnabledFeatures, Precision};
-use crate::dispatch::{DebugView, HitMaskConvention, HostImage, HostSync, Rect, ShadowsDispatch};
+use crate::dispatch::{DebugView, HitMaskConvention, HostImage, HostSync, LightDispatch, Rect, ShadowsDispatch};
 use crate::host::{GpuAllocation, GpuMemoryAllocator, HostHooks, ResourceKind};
 use crate::settings::Settings;
 use ash::vk;
@@ -261,6 +261,40 @@ pub(crate) fn dispatch_from_c(c: &DnsrShadowsDispatch) -> Result<(vk::CommandBuf
         engine_images: engine_images_from_c(c)?,
     };
     Ok((c.command_buffer, d))
+}
+
+/// Converts the light list of `dnsr_lights_record`.
+pub(crate) fn lights_from_c(
+    count: u32,
+    p_lights: *const DnsrLightDispatch,
+) -> Result<([LightDispatch; crate::MAX_LIGHTS_PER_RECORD], usize), CallError> {
+    let mut out = [LightDispatch::default(); crate::MAX_LIGHTS_PER_RECORD];
+    if count == 0 || count as usize > crate::MAX_LIGHTS_PER_RECORD {
+        return Err(CallError::InvalidArgument(format!("lightCount is {count}; one call takes 1 to 8 lights (DNSR_MAX_LIGHTS_PER_RECORD)")));
+    }
+    if p_lights.is_null() {
+        return Err(CallError::InvalidArgument("pLights is NULL".into()));
+    }
+    // SAFETY: the caller's array holds lightCount entries.
+    for (i, c) in unsafe { std::slice::from_raw_parts(p_lights, count as usize) }.iter().enumerate() {
+        let what = format!("pLights[{i}]");
+        check_type(c.s_type, DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH, "DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH", &what)?;
+        check_no_next(c.p_next, &what)?;
+        let unknown = c.flags & !(DNSR_LIGHT_DISPATCH_RESET | DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE);
+        if unknown != 0 {
+            return Err(CallError::InvalidArgument(format!("{what}.flags has unknown bits {unknown:#x}")));
+        }
+        out[i] = LightDispatch {
+            light_index: c.light_index,
+            hit_mask: image(&c.hit_mask),
+            visibility: image(&c.visibility),
+            output: image(&c.output),
+            hit_distance: (c.flags & DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE != 0).then(|| image(&c.hit_distance)),
+            light_angular_size: c.light_angular_size,
+            reset: c.flags & DNSR_LIGHT_DISPATCH_RESET != 0,
+        };
+    }
+    Ok((out, count as usize))
 }
 
 fn engine_images_from_c(c: &DnsrShadowsDispatch) -> Result<[Option<crate::EngineImage>; crate::MAX_ENGINE_IMAGES], CallError> {

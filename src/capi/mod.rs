@@ -12,7 +12,7 @@ pub mod reference;
 pub mod types;
 
 use boundary::{check_no_next, check_type, guard, last_error_ptr, required, CallError};
-use convert::{create_info_from_c, dispatch_from_c, precision_from_c, preset_from_c, settings_from_c, settings_to_c};
+use convert::{create_info_from_c, dispatch_from_c, lights_from_c, precision_from_c, preset_from_c, settings_from_c, settings_to_c};
 use std::ffi::c_char;
 use types::*;
 
@@ -110,6 +110,29 @@ pub extern "C" fn dnsr_shadows_record(context: DnsrContext, p_dispatch: *const D
         *sink = entry.log;
         let (cmd, dispatch) = dispatch_from_c(required(p_dispatch, "pDispatch")?)?;
         entry.lock()?.record_shadows(cmd, &dispatch)?;
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// Records the denoiser for `lightCount` lights (1..DNSR_MAX_LIGHTS_PER_RECORD) that share one G-buffer and
+/// camera into `pDispatch->commandBuffer`: `pDispatch` holds what they share and leaves its per-light fields
+/// (lightIndex, hitMask, visibility, output, hitDistance, lightAngularSize, DNSR_DISPATCH_RESET and
+/// DNSR_DISPATCH_USE_HIT_DISTANCE) zero; `pLights` gives each light's. Each light's output equals what
+/// `dnsr_shadows_record` gives for it alone; the lights' work of each pass runs together on the GPU. On error
+/// (the message names the refused entry of pLights) nothing is recorded and no light's state changes.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_lights_record(
+    context: DnsrContext,
+    p_dispatch: *const DnsrShadowsDispatch,
+    light_count: u32,
+    p_lights: *const DnsrLightDispatch,
+) -> DnsrResult {
+    guard(|sink| {
+        let entry = handles::get(context)?;
+        *sink = entry.log;
+        let (cmd, shared) = dispatch_from_c(required(p_dispatch, "pDispatch")?)?;
+        let (lights, count) = lights_from_c(light_count, p_lights)?;
+        entry.lock()?.record_lights(cmd, &shared, &lights[..count])?;
         Ok(DnsrResult::DNSR_SUCCESS)
     })
 }

@@ -114,6 +114,8 @@ pub const DNSR_STRUCTURE_TYPE_SETTINGS: DnsrStructureType = 3;
 pub const DNSR_STRUCTURE_TYPE_PASS_TIMINGS: DnsrStructureType = 4;
 /// `DnsrDeviceRequirements`.
 pub const DNSR_STRUCTURE_TYPE_DEVICE_REQUIREMENTS: DnsrStructureType = 5;
+/// `DnsrLightDispatch`.
+pub const DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH: DnsrStructureType = 6;
 /// Forces 32 bits.
 pub const DNSR_STRUCTURE_TYPE_MAX_ENUM: DnsrStructureType = 0x7FFF_FFFF;
 
@@ -582,6 +584,45 @@ pub struct DnsrShadowsDispatch {
     /// NaN reads as 0. With k rays per pixel store hits / k (R8_UNORM stores 1/2, 1/4 ... only approximately,
     /// which is harmless: only exact 0 and 1 are treated specially). hitMaskConvention is ignored.
     pub visibility: DnsrHostImage,
+}
+
+/// Per-light flags of `DnsrLightDispatch`.
+pub type DnsrLightDispatchFlags = u32;
+/// Discard this light's history before this frame (the other lights of the call keep theirs).
+pub const DNSR_LIGHT_DISPATCH_RESET: DnsrLightDispatchFlags = 1 << 0;
+/// Penumbra guidance for this light: `hitDistance` and `lightAngularSize` are read.
+pub const DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE: DnsrLightDispatchFlags = 1 << 1;
+/// Forces 32 bits.
+pub const DNSR_LIGHT_DISPATCH_MAX_ENUM: DnsrLightDispatchFlags = 0x7FFF_FFFF;
+
+/// Most lights one `dnsr_lights_record` call denoises.
+pub const DNSR_MAX_LIGHTS_PER_RECORD: u32 = 8;
+const _: () = assert!(DNSR_MAX_LIGHTS_PER_RECORD as usize == crate::MAX_LIGHTS_PER_RECORD);
+
+/// What differs from light to light in `dnsr_lights_record`; each field as its namesake in
+/// `DnsrShadowsDispatch`, which there holds what the lights share.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct DnsrLightDispatch {
+    /// Must be DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH.
+    pub s_type: DnsrStructureType,
+    /// Must be NULL (reserved for extensions).
+    pub p_next: *const c_void,
+    /// Which light's history, below the context's light count; each light at most once per call.
+    pub light_index: u32,
+    /// DNSR_LIGHT_DISPATCH_* bits.
+    pub flags: DnsrLightDispatchFlags,
+    /// This light's hit mask (required with DNSR_SHADOW_INPUT_HIT_MASK, all zero otherwise). Its bit convention
+    /// is the shared dispatch's hitMaskConvention.
+    pub hit_mask: DnsrHostImage,
+    /// This light's visibility (required with DNSR_SHADOW_INPUT_VISIBILITY, all zero otherwise).
+    pub visibility: DnsrHostImage,
+    /// Required. This light's output; every light of the call writes its own image.
+    pub output: DnsrHostImage,
+    /// Read with DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE: this light's hit distances.
+    pub hit_distance: DnsrHostImage,
+    /// Read with DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE: this light's angular diameter in radians, in [0, pi).
+    pub light_angular_size: f32,
 }
 
 /// First binding number of an engine's own images in dnsr's set 0 (see DnsrShadowsDispatch::pEngineImages).

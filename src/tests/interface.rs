@@ -233,6 +233,7 @@ fn generated_layout_header() -> String {
         light_angular_size, engine_image_count, p_engine_images, visibility,
     });
     check!(DnsrEngineImage { binding, view, layout });
+    check!(DnsrLightDispatch { s_type, p_next, light_index, flags, hit_mask, visibility, output, hit_distance, light_angular_size });
     check!(DnsrPassTimings { s_type, p_next, frame, prepare_ms, tile_classification_ms, filter_ms, filter_passes, total_ms });
     check!(DnsrDeviceRequirements {
         s_type, p_next, min_api_version, required_extension_count, pp_required_extension_names,

@@ -26,6 +26,8 @@ const USAGE: &str = "usage: dnsr-bench [options]
                               rays per pixel instead of the hit mask (the byte model still counts the hit mask's)
   --light-angle RAD           penumbra guidance on: a hit-distance image (1.0 everywhere, R16_SFLOAT) and this
                               light angular size in radians (default: no guidance)
+  --lights N[,N...]           lights denoised per frame (default 1): N > 1 records them in one
+                              Context::record_lights call, each light with its own hit mask and output (N <= 8)
   --frames N                  timed frames per configuration (default 200)
   --warmup N                  at least this many warm-up frames before timing (default 20)
   --warmup-ms T               and at least T ms of back-to-back warm-up frames, then until the GPU time is stable
@@ -95,6 +97,7 @@ struct Options {
     validation: bool,
     light_angle: Option<f32>,
     rays: Option<u32>,
+    lights: Vec<usize>,
     push_descriptors: bool,
 }
 
@@ -113,6 +116,7 @@ fn parse_args() -> Options {
         validation: false,
         light_angle: None,
         rays: None,
+        lights: vec![1],
         push_descriptors: true,
     };
     let mut args = std::env::args().skip(1);
@@ -131,6 +135,10 @@ fn parse_args() -> Options {
             "--out" => o.out = PathBuf::from(args.next().unwrap_or_else(|| usage("--out needs a directory"))),
             "--validation" => o.validation = true,
             "--no-push-descriptors" => o.push_descriptors = false,
+            "--lights" => {
+                let max = dnsr::MAX_LIGHTS_PER_RECORD;
+                o.lights = list(args.next(), "--lights", |s| s.parse().ok().filter(|n| (1..=max).contains(n)));
+            }
             "--rays" => o.rays = Some(number(args.next(), "--rays", 1) as u32),
             "--light-angle" => {
                 let v = args.next().and_then(|v| v.parse::<f32>().ok());
@@ -180,14 +188,15 @@ fn main() {
             let gpu_scene = build(&gpu, scene, size.0, size.1, opts.rays);
             eprintln!("dnsr-bench: {}x{} {}: {} frames generated in {:.1} s", size.0, size.1, scene.id(), gpu_scene.frames.len(), t.elapsed().as_secs_f64());
             for &precision in &precisions {
-                for &preset in &opts.presets {
+                for (&preset, &lights) in opts.presets.iter().flat_map(|p| opts.lights.iter().map(move |l| (p, l))) {
                     let warmup = Warmup { frames: opts.warmup, min_ms: opts.warmup_ms as f64 };
-                    let run = bench::run::run(&gpu, &gpu_scene, size, preset, precision, warmup, opts.frames, opts.light_angle).unwrap_or_else(|e| {
-                        fail(format!("{}x{} {} {} {}: {e}", size.0, size.1, scene.id(), preset_name(preset), precision_name(precision)))
-                    });
-                    let s = Summary::new(size, scene, preset, precision, run, gpu_scene.coverage);
+                    let run = bench::run::run(&gpu, &gpu_scene, size, preset, precision, warmup, opts.frames, opts.light_angle, lights)
+                        .unwrap_or_else(|e| {
+                            fail(format!("{}x{} {} {} {} {lights} light(s): {e}", size.0, size.1, scene.id(), preset_name(preset), precision_name(precision)))
+                        });
+                    let s = Summary::new(size, scene, preset, precision, run, gpu_scene.coverage, lights);
                     eprintln!(
-                        "dnsr-bench: {}x{} {} {} {}: total {:.3} ms median, {:.3} ms p95 (warm-up {} frames, {:.0} ms{})",
+                        "dnsr-bench: {}x{} {} {} {} {lights} light(s): total {:.3} ms median, {:.3} ms p95 (warm-up {} frames, {:.0} ms{})",
                         size.0,
                         size.1,
                         scene.id(),

@@ -38,6 +38,8 @@ pub struct Summary {
     pub counts: PixelCounts,
     pub coverage: [f64; 4],
     pub warmup: WarmupDone,
+    /// Lights denoised per frame (one record_lights call when more than one).
+    pub lights: usize,
 }
 
 pub fn preset_name(p: Preset) -> &'static str {
@@ -63,6 +65,7 @@ impl Summary {
         precision: Precision,
         run: ConfigRun,
         coverage: [f64; 4],
+        lights: usize,
     ) -> Summary {
         let n = run.filter_passes;
         let ids = [PassId::Prepare, PassId::TileClassification].into_iter().chain((0..n).map(PassId::Filter));
@@ -77,7 +80,9 @@ impl Summary {
                         PassId::Filter(k) => t.filter_ms[k as usize],
                     })
                     .collect();
+                // Every light moves light 0's bytes (its pixel classes stand for all of them).
                 let (read_bytes, write_bytes) = pass_bytes(id, n, precision, &run.counts);
+                let (read_bytes, write_bytes) = (read_bytes * lights as f64, write_bytes * lights as f64);
                 PassSummary { id, median_ms: median(&ms), p95_ms: percentile(&ms, 95.0), read_bytes, write_bytes }
             })
             .collect();
@@ -104,6 +109,15 @@ impl Summary {
             counts: run.counts,
             coverage,
             warmup: run.warmup,
+            lights,
+        }
+    }
+
+    /// The preset, and the light count where more than one light is denoised per frame.
+    fn preset_cell(&self) -> String {
+        match self.lights {
+            1 => preset_name(self.preset).to_string(),
+            n => format!("{}, {n} lights", preset_name(self.preset)),
         }
     }
 
@@ -165,6 +179,7 @@ impl Report<'_> {
                     ("height", s.size.1.into()),
                     ("scene", s.scene.id().into()),
                     ("preset", preset_name(s.preset).into()),
+                    ("lights", (s.lights as f64).into()),
                     ("precision", precision_name(s.precision).into()),
                     ("filter_passes", s.filter_passes.into()),
                     ("frames", s.frames.into()),
@@ -316,7 +331,7 @@ impl Report<'_> {
             s += "---|---|---|---|---|---|\n";
             for r in &rows {
                 let (gbps, ratio) = rates(r.total.bytes(), r.total.median_ms, c);
-                s += &format!("| {}x{} | {} | {} |", r.size.0, r.size.1, r.scene.name(), preset_name(r.preset));
+                s += &format!("| {}x{} | {} | {} |", r.size.0, r.size.1, r.scene.name(), r.preset_cell());
                 for k in 0..2 + filters as usize {
                     match r.passes.get(k) {
                         Some(p) => s += &format!(" {:.3} |", p.median_ms),
@@ -342,7 +357,7 @@ impl Report<'_> {
             s += &"---|".repeat(filters as usize);
             s += "---|\n";
             for r in &rows {
-                s += &format!("| {}x{} | {} | {} |", r.size.0, r.size.1, r.scene.name(), preset_name(r.preset));
+                s += &format!("| {}x{} | {} | {} |", r.size.0, r.size.1, r.scene.name(), r.preset_cell());
                 for k in 0..2 + filters as usize {
                     match r.passes.get(k) {
                         Some(p) => s += &format!(" {} |", cell(p, c)),

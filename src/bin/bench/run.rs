@@ -7,7 +7,7 @@ use super::stats::median;
 use dnsr::ash::vk;
 use dnsr::testing::f16_to_f32;
 use dnsr::testing::gpu::{Gpu, TestImage};
-use dnsr::{Context, DebugView, HostSync, PassTimings, Precision, Preset, Settings, ShadowsDispatch};
+use dnsr::{Context, DebugView, HostSync, LightDispatch, PassTimings, Precision, Preset, Settings, ShadowsDispatch};
 use std::time::Instant;
 
 /// How the bench submits frames, as the report states it.
@@ -15,7 +15,7 @@ pub const SUBMISSION: &str = "One primary command buffer per frame, reset and re
 only Context::record_shadows (dnsr's barriers, constants update, passes and timestamps); vkQueueSubmit to one \
 queue, then vkQueueWaitIdle before the next frame is recorded, so frames never overlap. GPU times come from dnsr's \
 own timestamps (Context::timings, read after each wait): per pass, and total from before the first pass to after \
-the last. Record CPU time is the wall time around Context::record_shadows. Inputs are a cycle of precomputed \
+the last. With --lights N > 1 the command buffer holds one Context::record_lights call for N lights instead (light k reads the hit mask of cycle frame i + k mod N, so the lights' shadows differ; one output per light), and the times are of all N. Record CPU time is the wall time around the record call. Inputs are a cycle of precomputed \
 frames resident in GPU memory (uploaded once); frame i binds cycle frame i mod N, so no upload or copy runs in the \
 timed command buffers. Each configuration gets a fresh Context; its first 2N frames (untimed, history reset at frame \
 0) measure the byte model's pixel classes through dnsr's debug views; then the warm-up (at least --warmup frames and \
@@ -43,14 +43,35 @@ pub struct Guidance<'a> {
     pub light_angular_size: f32,
 }
 
+/// The shadow input of cycle frame `index` (a hit mask, or visibility).
+fn shadow_input(scene: &GpuScene, index: usize) -> (dnsr::HostImage, dnsr::HostImage) {
+    let f = &scene.frames[index % scene.frames.len()];
+    let img = scene.masks[f.mask].host();
+    if scene.visibility_input { (Default::default(), img) } else { (img, Default::default()) }
+}
+
+/// Light k of frame `index` of a several-light run: the shadow input of cycle frame index + k.
+fn light(scene: &GpuScene, index: usize, k: usize, output: &TestImage, guidance: Option<Guidance>) -> LightDispatch {
+    let (hit_mask, visibility) = shadow_input(scene, index + k);
+    LightDispatch {
+        light_index: k as u32,
+        hit_mask,
+        visibility,
+        output: output.host(),
+        hit_distance: guidance.map(|g| g.hit_distance.host()),
+        light_angular_size: guidance.map_or(0.0, |g| g.light_angular_size),
+        reset: index == 0,
+    }
+}
+
 fn dispatch(scene: &GpuScene, index: usize, output: &TestImage, guidance: Option<Guidance>) -> ShadowsDispatch {
     let f = &scene.frames[index % scene.frames.len()];
     let g = &scene.gbuffers[f.gbuffer];
     ShadowsDispatch {
         hit_distance: guidance.map(|g| g.hit_distance.host()),
         light_angular_size: guidance.map_or(0.0, |g| g.light_angular_size),
-        hit_mask: if scene.visibility_input { Default::default() } else { scene.masks[f.mask].host() },
-        visibility: if scene.visibility_input { scene.masks[f.mask].host() } else { Default::default() },
+        hit_mask: shadow_input(scene, index).0,
+        visibility: shadow_input(scene, index).1,
         depth: g.depth.host(),
         velocity: g.velocity.host(),
         normals: g.normals.host(),
@@ -80,6 +101,7 @@ pub fn run(
     warmup: Warmup,
     frames: usize,
     light_angle: Option<f32>,
+    lights: usize,
 ) -> Result<ConfigRun, String> {
     let mut info = gpu.create_info(w, h);
     info.enable_timestamps = true;
@@ -89,8 +111,9 @@ pub fn run(
     if scene.visibility_input {
         info.shadow_input = dnsr::ShadowInput::Visibility;
     }
+    info.light_count = lights as u32;
     let mut ctx = Context::new(&info).map_err(|e| format!("Context::new: {e}"))?;
-    let output = gpu.image(vk::Format::R16_SFLOAT, w, h, READ);
+    let outputs: Vec<TestImage> = (0..lights).map(|_| gpu.image(vk::Format::R16_SFLOAT, w, h, READ)).collect();
     let cmd = gpu.command_buffer();
     let hit_distance = light_angle.map(|_| {
         let img = gpu.image(vk::Format::R16_SFLOAT, w, h, READ);
@@ -98,7 +121,7 @@ pub fn run(
         img
     });
     let guidance = hit_distance.as_ref().map(|img| Guidance { hit_distance: img, light_angular_size: light_angle.unwrap_or(0.0) });
-    let result = measure(gpu, &mut ctx, scene, &output, cmd, warmup, frames, guidance);
+    let result = measure(gpu, &mut ctx, scene, &outputs, cmd, warmup, frames, guidance);
     unsafe { gpu.device.device_wait_idle().ok() };
     gpu.free_command_buffer(cmd);
     if let Some(img) = &hit_distance {
@@ -106,7 +129,7 @@ pub fn run(
     }
     let memory_bytes = ctx.memory_bytes();
     drop(ctx);
-    gpu.destroy_image(&output);
+    outputs.iter().for_each(|o| gpu.destroy_image(o));
     let (timings, record_us, counts, warmup) = result?;
     Ok(ConfigRun { timings, record_us, counts, memory_bytes, filter_passes: Settings::preset(preset).filter_passes, warmup })
 }
@@ -137,20 +160,28 @@ fn measure(
     gpu: &Gpu,
     ctx: &mut Context,
     scene: &GpuScene,
-    output: &TestImage,
+    outputs: &[TestImage],
     cmd: vk::CommandBuffer,
     warmup: Warmup,
     frames: usize,
     guidance: Option<Guidance>,
 ) -> Result<Measured, String> {
     let mut recorded = 0u64;
-    let mut frame = |ctx: &mut Context, d: &ShadowsDispatch| -> Result<(PassTimings, f64), String> {
+    let mut frame = |ctx: &mut Context, d: &ShadowsDispatch, index: usize| -> Result<(PassTimings, f64), String> {
+        // One light: record_shadows, as an engine with one light calls it; several: record_lights, with the
+        // dispatch's per-light fields moved into the light list.
+        let mut lights = [LightDispatch::default(); dnsr::MAX_LIGHTS_PER_RECORD];
+        for (k, (l, out)) in lights.iter_mut().zip(outputs).enumerate() {
+            *l = light(scene, index, k, out, guidance);
+        }
+        let shared = ShadowsDispatch { hit_mask: Default::default(), visibility: Default::default(), output: Default::default(),
+            hit_distance: None, light_angular_size: 0.0, reset: false, ..*d };
         let elapsed = gpu.submit_with(cmd, |cmd| {
             let t0 = Instant::now();
-            let r = ctx.record_shadows(cmd, d);
+            let r = if outputs.len() == 1 { ctx.record_shadows(cmd, d) } else { ctx.record_lights(cmd, &shared, &lights[..outputs.len()]) };
             (r, t0.elapsed())
         });
-        elapsed.0.map_err(|e| format!("record_shadows: {e}"))?;
+        elapsed.0.map_err(|e| format!("record: {e}"))?;
         recorded += 1;
         let t = ctx.timings().map_err(|e| format!("timings: {e}"))?.ok_or("no timings after the frame completed")?;
         if t.frame != recorded {
@@ -161,6 +192,8 @@ fn measure(
 
     // Pixel classes first (they need read-backs, which leave the GPU idle): one cycle of the sequence with the
     // tile-classification view, one with the disocclusion view. Frame 0 resets the history.
+    // The pixel classes are light 0's.
+    let output = &outputs[0];
     let (w, h) = (output.width as usize, output.height as usize);
     let n = scene.frames.len();
     let mut counts = PixelCounts::default();
@@ -168,8 +201,8 @@ fn measure(
     for view in [DebugView::TileClassification, DebugView::Disocclusion] {
         for _ in 0..n {
             let d = ShadowsDispatch { debug_view: view, ..dispatch(scene, index, output, guidance) };
+            frame(ctx, &d, index)?;
             index += 1;
-            frame(ctx, &d)?;
             let raw = gpu.download(output);
             let px: Vec<f32> = raw.chunks_exact(2).map(|c| f16_to_f32(u16::from_le_bytes([c[0], c[1]]))).collect();
             if view == DebugView::Disocclusion {
@@ -223,7 +256,7 @@ fn measure(
         if enough_frames && ms >= 5.0 * warmup.min_ms {
             break;
         }
-        let (t, _) = frame(ctx, &dispatch(scene, index, output, guidance))?;
+        let (t, _) = frame(ctx, &dispatch(scene, index, output, guidance), index)?;
         index += 1;
         totals.push(t.total_ms);
     }
@@ -232,7 +265,7 @@ fn measure(
 
     let (mut timings, mut record_us) = (Vec::with_capacity(frames), Vec::with_capacity(frames));
     for _ in 0..frames {
-        let (t, us) = frame(ctx, &dispatch(scene, index, output, guidance))?;
+        let (t, us) = frame(ctx, &dispatch(scene, index, output, guidance), index)?;
         index += 1;
         timings.push(t);
         record_us.push(us);

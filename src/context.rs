@@ -27,7 +27,7 @@ pub fn memory_requirements(width: u32, height: u32, precision: Precision, filter
     check_filter_passes(filter_passes)?;
     validate::light_count(light_count)?;
     let per_light = crate::state::texel_bytes([width, height], precision, filter_passes);
-    Ok(per_light * light_count as u64 + constants_bytes(light_count))
+    Ok(per_light * light_count as u64 + crate::state::guide_bytes([width, height], filter_passes) + constants_bytes(light_count))
 }
 
 /// Bytes between the constants of consecutive lights of one record: the block rounded up to 256, the largest
@@ -95,6 +95,10 @@ pub struct Context {
     constants_memory: Memory,
     lights: Vec<LightState>,
     light_count: u32,
+    /// The filter's guide, shared by the lights (see state::guide_needed); None with one filter pass.
+    guide: Option<crate::gpu::image::InternalImage>,
+    /// False until a recorded frame has moved the guide out of its initial layout and cleared it.
+    guide_initialized: bool,
     timestamps: Option<Timestamps>,
     frames_recorded: u64,
     /// Stages `HostSync` may name on this device and queue family.
@@ -182,6 +186,8 @@ impl Context {
             constants_memory: Memory::default(),
             lights: Vec::new(),
             light_count: info.light_count,
+            guide: None,
+            guide_initialized: false,
             timestamps: None,
             frames_recorded: 0,
             supported_stages,
@@ -262,6 +268,15 @@ impl Context {
             let light = LightState::new(&self.vk, index, self.size, self.precision, self.settings.filter_passes)?;
             self.lights.push(light);
         }
+        self.allocate_guide(self.settings.filter_passes)
+    }
+
+    /// Allocates the shared guide if `filter_passes` need it and there is none; its first frame initialises it.
+    fn allocate_guide(&mut self, filter_passes: u32) -> Result<()> {
+        if crate::state::guide_needed(filter_passes) && self.guide.is_none() {
+            self.guide = Some(crate::gpu::image::InternalImage::new(&self.vk, crate::state::GUIDE_FORMAT, self.size, "dnsr.guide")?);
+            self.guide_initialized = false;
+        }
         Ok(())
     }
 
@@ -269,6 +284,9 @@ impl Context {
         let vk = &self.vk;
         self.lights.iter_mut().for_each(|l| l.destroy(vk));
         self.lights.clear();
+        if let Some(mut g) = self.guide.take() {
+            g.destroy(vk);
+        }
     }
 
     /// Reallocates internal state for a new render size; histories restart. The GPU must have finished every
@@ -302,6 +320,7 @@ impl Context {
     /// intermediate image per light; in that case the GPU must have finished earlier frames.
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
         settings.validate()?;
+        self.allocate_guide(settings.filter_passes)?;
         for (index, light) in self.lights.iter_mut().enumerate() {
             if light.allocate_optional(&self.vk, index as u32, self.size, self.precision, settings.filter_passes)? {
                 light.initialized = false;
@@ -321,7 +340,8 @@ impl Context {
 
     /// Bytes of device memory dnsr allocated (internal images and the constants buffer).
     pub fn memory_bytes(&self) -> u64 {
-        self.lights.iter().map(LightState::bytes).sum::<u64>() + constants_bytes(self.light_count)
+        let guide = self.guide.as_ref().map_or(0, |g| g.bytes);
+        self.lights.iter().map(LightState::bytes).sum::<u64>() + guide + constants_bytes(self.light_count)
     }
 
     /// Features the context was created with.
@@ -369,7 +389,7 @@ impl Context {
             previous_moments: light.moments[cur ^ 1].view,
             moments: light.moments[cur].view,
             // Without a guide (one filter pass: the pass never touches it) the bindings take an image of its format.
-            guide: light.guide.as_ref().map_or(light.moments[cur].view, |g| g.view),
+            guide: self.guide.as_ref().map_or(light.moments[cur].view, |g| g.view),
             engine: d.engine_images.map(|e| e.map_or(Binding::default(), |e| image(e.view, e.layout))),
         }
     }
@@ -492,36 +512,24 @@ impl Context {
             }
         };
 
-        let mut images = [vk::ImageMemoryBarrier::default(); MAX_LIGHTS_PER_RECORD * (1 + crate::state::MAX_IMAGES)];
+        // Internal images this frame uses for the first time: moved out of UNDEFINED and cleared.
+        let new_guide = self.guide.as_ref().filter(|_| !self.guide_initialized);
+        let new_images = || {
+            let lights = ds.iter().map(|d| &self.lights[d.light_index as usize]).filter(|l| !l.initialized);
+            lights.flat_map(LightState::images).chain(new_guide)
+        };
+        let mut images = [vk::ImageMemoryBarrier::default(); MAX_LIGHTS_PER_RECORD * (1 + crate::state::MAX_IMAGES) + 1];
         let mut count = 0;
         let mut src_stages = vk::PipelineStageFlags::TOP_OF_PIPE | vk::PipelineStageFlags::COMPUTE_SHADER | vk::PipelineStageFlags::TRANSFER;
         let mut src_access = vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE;
+        let outputs = ds.iter().filter(|d| d.output.layout != vk::ImageLayout::GENERAL).map(|d| (d.output.image, d.output.layout, vk::AccessFlags::SHADER_WRITE));
+        let internal = new_images().map(|img| (img.image, vk::ImageLayout::UNDEFINED, vk::AccessFlags::TRANSFER_WRITE));
+        for (image, layout, access) in outputs.chain(internal) {
+            images[count] =
+                barrier::layout_transition(image, vk::ImageAspectFlags::COLOR, layout, vk::ImageLayout::GENERAL, vk::AccessFlags::empty(), access);
+            count += 1;
+        }
         for d in ds {
-            if d.output.layout != vk::ImageLayout::GENERAL {
-                images[count] = barrier::layout_transition(
-                    d.output.image,
-                    vk::ImageAspectFlags::COLOR,
-                    d.output.layout,
-                    vk::ImageLayout::GENERAL,
-                    vk::AccessFlags::empty(),
-                    vk::AccessFlags::SHADER_WRITE,
-                );
-                count += 1;
-            }
-            let light = &self.lights[d.light_index as usize];
-            if !light.initialized {
-                for img in light.images() {
-                    images[count] = barrier::layout_transition(
-                        img.image,
-                        vk::ImageAspectFlags::COLOR,
-                        vk::ImageLayout::UNDEFINED,
-                        vk::ImageLayout::GENERAL,
-                        vk::AccessFlags::empty(),
-                        vk::AccessFlags::TRANSFER_WRITE,
-                    );
-                    count += 1;
-                }
-            }
             src_stages |= d.sync.input_src_stages | d.sync.output_dst_stages;
             src_access |= d.sync.input_src_access;
         }
@@ -536,15 +544,10 @@ impl Context {
             vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE,
             &images[..count],
         );
-        for d in ds {
-            let light = &self.lights[d.light_index as usize];
-            if !light.initialized {
-                // Defined contents from the first frame on: no NaN garbage can be sampled even by a bad reset path.
-                let zero = vk::ClearColorValue { float32: [0.0; 4] };
-                for img in light.images() {
-                    unsafe { dev.cmd_clear_color_image(cmd, img.image, vk::ImageLayout::GENERAL, &zero, &[color_range()]) };
-                }
-            }
+        // Defined contents from the first frame on: no NaN garbage can be sampled even by a bad reset path.
+        let zero = vk::ClearColorValue { float32: [0.0; 4] };
+        for img in new_images() {
+            unsafe { dev.cmd_clear_color_image(cmd, img.image, vk::ImageLayout::GENERAL, &zero, &[color_range()]) };
         }
         let written = ds.len() * CONSTANTS_STRIDE as usize;
         unsafe { dev.cmd_update_buffer(cmd, self.constants_buffer, 0, &constants[..written]) };
@@ -559,8 +562,9 @@ impl Context {
         );
 
         // The frame's passes in order, each for every light; a barrier wherever a dispatch touches what an earlier
-        // one wrote, or writes what an earlier one read, since the last barrier (the lights' dispatches of one pass
-        // touch only their own images, so they run together).
+        // one wrote, or writes what an earlier one read, since the last barrier. The lights' dispatches of one pass
+        // touch only their own images and run together, except the first filter passes, which write the shared
+        // guide one after the other.
         let binder = binder_ref(&self.binder);
         let mut hazards = Hazards::default();
         stamp(0);
@@ -612,6 +616,7 @@ impl Context {
             barrier::memory(dev, cmd, vk::PipelineStageFlags::COMPUTE_SHADER, vk::AccessFlags::SHADER_WRITE, dst, dst_access, &back[..count]);
         }
 
+        self.guide_initialized = self.guide.is_some();
         for d in ds {
             let light = &mut self.lights[d.light_index as usize];
             light.parity ^= 1;

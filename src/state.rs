@@ -27,8 +27,6 @@ pub(crate) fn intermediate_format(precision: Precision) -> vk::Format {
 /// when they no longer do).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Optional {
-    /// Written by the first filter pass for the later ones: two or more passes.
-    Guide,
     /// Fourth-pass intermediate: four passes.
     Tmp,
 }
@@ -36,20 +34,29 @@ enum Optional {
 impl Optional {
     fn needed(self, filter_passes: u32) -> bool {
         match self {
-            Optional::Guide => filter_passes > 1,
             Optional::Tmp => filter_passes == MAX_FILTER_PASSES,
         }
     }
 
     fn spec(self, precision: Precision) -> (vk::Format, &'static str) {
         match self {
-            Optional::Guide => (GUIDE_FORMAT, "guide"),
             Optional::Tmp => (intermediate_format(precision), "filter_tmp"),
         }
     }
 }
 
-const OPTIONAL: [Optional; 2] = [Optional::Guide, Optional::Tmp];
+const OPTIONAL: [Optional; 1] = [Optional::Tmp];
+
+/// The filter's guide is the same for every light (the G-buffer's linear depth and normal), so a context holds one,
+/// written by each light's first filter pass where its later passes read it: two or more passes need it.
+pub(crate) fn guide_needed(filter_passes: u32) -> bool {
+    filter_passes > 1
+}
+
+/// Texel bytes of the context's guide (none with one filter pass).
+pub(crate) fn guide_bytes(extent: [u32; 2], filter_passes: u32) -> u64 {
+    if guide_needed(filter_passes) { 16 * extent[0] as u64 * extent[1] as u64 } else { 0 }
+}
 
 /// Every internal image of one light that `filter_passes` passes use, in the order `LightState::new` consumes
 /// them (the optional ones last).
@@ -90,7 +97,7 @@ pub(crate) fn texel_bytes(extent: [u32; 2], precision: Precision, filter_passes:
 }
 
 /// Most internal images one light has (the fixed ones and every optional one).
-pub(crate) const MAX_IMAGES: usize = 12;
+pub(crate) const MAX_IMAGES: usize = 11;
 
 pub(crate) struct LightState {
     pub tile_mask: InternalImage,
@@ -102,9 +109,6 @@ pub(crate) struct LightState {
     pub tile_blocker: InternalImage,
     pub reprojection: InternalImage,
     pub history: InternalImage,
-    /// Written by the first filter pass, read by the later ones (within one frame); None until two or more
-    /// passes are configured.
-    pub guide: Option<InternalImage>,
     /// None until four passes are configured.
     pub tmp: Option<InternalImage>,
     /// Ping-pong pairs indexed by `parity` (current) and `parity ^ 1` (previous frame).
@@ -141,7 +145,6 @@ impl LightState {
             history: next(),
             depth: [next(), next()],
             moments: [next(), next()],
-            guide: None,
             tmp: None,
             parity: 0,
             initialized: false,
@@ -162,7 +165,6 @@ impl LightState {
         let mut made = false;
         for o in OPTIONAL.into_iter().filter(|o| o.needed(filter_passes)) {
             let slot = match o {
-                Optional::Guide => &mut self.guide,
                 Optional::Tmp => &mut self.tmp,
             };
             if slot.is_none() {
@@ -179,7 +181,6 @@ impl LightState {
             .into_iter()
             .chain(self.depth.iter())
             .chain(self.moments.iter())
-            .chain(self.guide.iter())
             .chain(self.tmp.iter())
     }
 
@@ -192,7 +193,6 @@ impl LightState {
             .into_iter()
             .chain(self.depth.iter_mut())
             .chain(self.moments.iter_mut())
-            .chain(self.guide.iter_mut())
             .chain(self.tmp.iter_mut())
         {
             img.destroy(vk);

@@ -114,6 +114,11 @@ fn several_lights_in_one_record_equal_one_record_per_light() {
         }
     }
     assert!(reset_changed, "resetting light 1 changed nothing: the test cannot tell a reset from none");
+    // The lights share the filter's guide: every light after the first adds its own state only.
+    let bytes = |lights| crate::memory_requirements(W, H, crate::Precision::Fp32, 3, lights).unwrap();
+    let (one, added) = (bytes(1), bytes(2) - bytes(1));
+    assert_eq!(bytes(3) - bytes(1), 2 * added, "memory grows linearly with the light count");
+    assert!(one >= added + 16 * (W * H) as u64, "the first light carries the guide ({one} B), the next {added} B each");
     for img in masks.iter().chain(&outputs) {
         g.destroy_image(img);
     }

@@ -47,6 +47,7 @@ struct Options {
     bool pointLight = false;
     bool packedGbuffer = false;
     uint32_t rays = 1;  // shadow rays per pixel (more than 1: DNSR_SHADOW_INPUT_VISIBILITY)
+    uint32_t lights = 1;  // more than 1: the others derived from the first, all denoised by one dnsr_lights_record
     float lightAngleDeg = 3.0f;
     bool hitDistance = true;  // penumbra guidance (DNSR_DISPATCH_USE_HIT_DISTANCE)
     bool lightMotion = false;
@@ -68,6 +69,11 @@ const char *kUsage =
     "  --point-light           a spherical point light instead of the directional light\n"
     "  --light-angle DEG       angular radius of the light, 0..30 (default 3; sets the penumbra width)\n"
     "  --light-motion          start with the light moving (key L toggles it)\n"
+    "  --lights N              1 or 2 lights (default 1). The second (light 1) is the first (light 0) turned 100\n"
+    "                          degrees about the up axis: same elevation, size and kind (a point light the same\n"
+    "                          distance from the scene's centre). Each has its own shadow rays, dnsr history and\n"
+    "                          output; both are denoised in one dnsr_lights_record call and light the composite.\n"
+    "                          Headless: also {noisy,denoised,reference}_light1.png and report.json's per_light\n"
     "  --gbuffer default|packed  packed: keep linear depth and octahedral RG16 normals, and run dnsr's passes\n"
     "                          compiled against examples-c/custom_gbuffer's callbacks (default: default)\n"
     "  --rays N                shadow rays per pixel, 1..64 (default 1: the hit mask; more: their lit fraction as\n"
@@ -75,9 +81,10 @@ const char *kUsage =
     "  --hit-distance on|off   penumbra guidance: give dnsr each shadow ray's distance to its nearest occluder and\n"
     "                          the light's angular diameter (DNSR_DISPATCH_USE_HIT_DISTANCE; default on; key H)\n"
     "  --reference-samples N   shadow rays per pixel of the reference, 1..65536 (default 256)\n"
-    "  --save-reference FILE   headless: also write the last frame's reference (and depth) to FILE\n"
+    "  --save-reference FILE   headless: also write the last frame's reference (and depth) to FILE (--lights 1)\n"
     "  --load-reference FILE   headless: measure against FILE's reference instead of rendering one (same scene,\n"
-    "                          size, frames, light and camera: the run fails if the last frame's depth differs)\n"
+    "                          size, frames, light and camera: the run fails if the last frame's depth differs;\n"
+    "                          --lights 1)\n"
     "  --view NAME             window mode: first view (noisy, denoised, reference, composite, tiles, or dnsr's\n"
     "                          debug views classification, samples, variance, disocclusion; keys 1-9)\n"
     "  --orbit-speed DEG       headless: camera orbit per frame in degrees, -45..45 (default 0.25; 0 = static)\n"
@@ -90,7 +97,7 @@ const char *kUsage =
     "             1 noisy, 2 denoised, 3 reference (accumulates while nothing moves), 4 composite,\n"
     "             5 hit-mask density per tile, 6 dnsr tile classification, 7 dnsr sample count,\n"
     "             8 dnsr variance, 9 dnsr disocclusion, L toggle light motion, H toggle penumbra guidance\n"
-    "             (hit distances), Esc/Q quit\n"
+    "             (hit distances), N the other light in views 1-3, 5-9 (--lights 2), Esc/Q quit\n"
     "exit status: 0 success, 1 a Vulkan/dnsr failure or (with --validate) a validation message,\n"
     "             2 a bad command line, or a scene or reference file the viewer cannot load\n";
 
@@ -173,6 +180,8 @@ Options parseOptions(int argc, char **argv)
             o.packedGbuffer = v == "packed";
         } else if (a == "--rays") {
             o.rays = parseCount("--rays", value(), 1, 64);
+        } else if (a == "--lights") {
+            o.lights = parseCount("--lights", value(), 1, kMaxLights);
         } else if (a == "--hit-distance") {
             std::string v = value();
             if (v != "on" && v != "off") throw UsageError("--hit-distance wants on or off, got '" + v + "'");
@@ -207,6 +216,9 @@ Options parseOptions(int argc, char **argv)
         throw UsageError("--save-reference and --load-reference are for --headless");
     if (!o.saveReference.empty() && !o.loadReference.empty())
         throw UsageError("--save-reference and --load-reference exclude each other");
+    // A reference file holds one light's reference (its format predates --lights).
+    if (o.lights > 1 && !(o.saveReference.empty() && o.loadReference.empty()))
+        throw UsageError("--save-reference and --load-reference take one light (--lights 1)");
     return o;
 }
 
@@ -254,16 +266,19 @@ Orbit initialOrbit(const Scene &scene)
     return o;
 }
 
+// The lights: light 0 as the options place it, light i the same turned i x 100 degrees about the up axis (same
+// elevation, angle and kind), so that every light's shadows fall elsewhere, in any scene, with any options.
 struct LightState {
     bool point = false;
-    float azimuth = 0, elevation = radians(50.0f);
+    float azimuth = 0, elevation = radians(50.0f);  // light 0's
     float angle = radians(3.0f);  // angular radius
     bool moving = false;
     bool hitDistance = true;  // penumbra guidance for dnsr
 
-    Vec3 direction() const
+    Vec3 direction(uint32_t light) const
     {
-        return {std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth)};
+        float a = azimuth + radians(100.0f) * float(light);
+        return {std::cos(elevation) * std::sin(a), std::sin(elevation), std::cos(elevation) * std::cos(a)};
     }
 };
 
@@ -292,12 +307,12 @@ FrameInput makeFrame(const SceneFrame &sf, const Orbit &orbit, const LightState 
         // penumbra guidance takes one angular diameter for all receivers: the one seen from the centre, 2 asin(r / D)
         // (receivers farther from the light see it smaller, nearer ones larger).
         float dist = 0.5f * sf.radius;
-        in.light = sf.center + light.direction() * dist;
+        for (uint32_t i = 0; i < kMaxLights; i++) in.lights[i] = sf.center + light.direction(i) * dist;
         in.lightSize = dist * std::tan(light.angle);
         in.lightAngularSize = 2.0f * std::asin(std::min(in.lightSize / dist, 1.0f));
     } else {
         // Rays leave within a cone of half-angle light.angle (tan of it scales the disk): diameter 2 * angle.
-        in.light = light.direction();
+        for (uint32_t i = 0; i < kMaxLights; i++) in.lights[i] = light.direction(i);
         in.lightSize = std::tan(light.angle);
         in.lightAngularSize = 2.0f * light.angle;
     }
@@ -322,31 +337,44 @@ struct ErrorStats {
 
 double psnr(double rmse) { return rmse > 0 ? std::min(100.0, -20.0 * std::log10(rmse)) : 100.0; }
 
-// Per-pixel shadow values (1 = lit) of the last frame, from the readback.
+// FNV-1a, 64 bits.
+uint64_t fnv1a(const void *data, size_t bytes)
+{
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (size_t i = 0; i < bytes; i++) h = (h ^ static_cast<const uint8_t *>(data)[i]) * 0x100000001b3ull;
+    return h;
+}
+
+// Per-pixel shadow values (1 = lit) of one light in the last frame, from the readback.
 struct ShadowImages {
     uint32_t width = 0, height = 0;
     std::vector<float> noisy, denoised, reference, depth;
     std::vector<bool> receiver;  // depth < 1: the pixels the error is measured on
+    // Fingerprints of the hit mask and of dnsr's output as read back (float bits, before any clamping or rounding),
+    // so that runs can be compared bit for bit.
+    uint64_t hitMaskHash = 0, denoisedHash = 0;
 };
 
-ShadowImages readShadows(const Renderer &r, uint32_t w, uint32_t h)
+ShadowImages readShadows(const Renderer &r, uint32_t light, uint32_t w, uint32_t h)
 {
     ShadowImages s;
     s.width = w, s.height = h;
     size_t n = size_t(w) * h;
     s.noisy.resize(n), s.denoised.resize(n), s.reference.resize(n), s.receiver.resize(n);
     s.depth.assign(r.readDepth(), r.readDepth() + n);
-    const uint32_t *mask = r.readHitMask();
+    const uint32_t *mask = r.readHitMask(light);
     float count = float(std::max(r.referenceCount(), 1u));
     for (uint32_t y = 0; y < h; y++)
         for (uint32_t x = 0; x < w; x++) {
             size_t i = size_t(y) * w + x;
             uint32_t word = mask[(y / 4) * r.tilesX() + x / 8];
             s.noisy[i] = (word >> ((y % 4) * 8 + x % 8)) & 1u ? 0.0f : 1.0f;
-            s.denoised[i] = std::clamp(r.readDenoised()[i], 0.0f, 1.0f);
-            s.reference[i] = r.readReferenceSum()[i] / count;
+            s.denoised[i] = std::clamp(r.readDenoised(light)[i], 0.0f, 1.0f);
+            s.reference[i] = r.readReferenceSum(light)[i] / count;
             s.receiver[i] = r.readDepth()[i] < 1.0f;
         }
+    s.hitMaskHash = fnv1a(mask, size_t(r.tilesX()) * r.tilesY() * 4);
+    s.denoisedHash = fnv1a(r.readDenoised(light), n * 4);
     return s;
 }
 
@@ -529,6 +557,7 @@ private:
         rs.preset = opt_.preset;
         rs.packedGbuffer = opt_.packedGbuffer;
         rs.rays = opt_.rays;
+        rs.lights = opt_.lights;
         renderer_.create(ctx_, *scene_.scene, rs);
         std::printf("viewer: %s on %s, %ux%u, %u triangles, BVH %u nodes (depth %u), push descriptors %s\n",
                     opt_.scene.c_str(), ctx_.properties.deviceName, opt_.width, opt_.height, renderer_.triangles,
@@ -571,9 +600,13 @@ private:
     {
         const uint32_t w = opt_.width, h = opt_.height;
         std::filesystem::create_directories(opt_.outDir);
-        ShadowImages s = readShadows(renderer_, w, h);
+        // Light 0's images and measurements give the single-light outputs; every light's are in per_light and, for
+        // the lights after the first, in *_light<i>.png.
+        std::vector<ShadowImages> shadows;
+        for (uint32_t l = 0; l < renderer_.lightCount(); l++) shadows.push_back(readShadows(renderer_, l, w, h));
+        ShadowImages &s = shadows[0];
         uint32_t referenceSamples = renderer_.referenceCount();
-        if (loadedReference_) {
+        if (loadedReference_) {  // one light (parseOptions)
             // main() checked the size; the depth shows whether this run's last frame is the reference's.
             size_t differ = 0;
             for (size_t i = 0; i < s.depth.size(); i++)
@@ -586,13 +619,18 @@ private:
         } else if (!opt_.saveReference.empty()) {
             saveReference(opt_.saveReference, s, referenceSamples);
         }
-        ErrorStats e = measure(s);
+        std::vector<ErrorStats> errors;
+        for (const ShadowImages &light : shadows) errors.push_back(measure(light));
+        const ErrorStats &e = errors[0];
+        const std::string dir = opt_.outDir + "/";
+        for (uint32_t l = 0; l < shadows.size(); l++) {
+            std::string suffix = l ? "_light" + std::to_string(l) : "";
+            savePng(dir + "noisy" + suffix + ".png", w, h, 1, toGray8(shadows[l].noisy));
+            savePng(dir + "denoised" + suffix + ".png", w, h, 1, toGray8(shadows[l].denoised));
+            savePng(dir + "reference" + suffix + ".png", w, h, 1, toGray8(shadows[l].reference));
+        }
         std::vector<uint8_t> noisy = toGray8(s.noisy), denoised = toGray8(s.denoised), reference = toGray8(s.reference);
         std::vector<uint8_t> composite = rgbaToRgb(renderer_.readDisplay(), size_t(w) * h);
-        const std::string dir = opt_.outDir + "/";
-        savePng(dir + "noisy.png", w, h, 1, noisy);
-        savePng(dir + "denoised.png", w, h, 1, denoised);
-        savePng(dir + "reference.png", w, h, 1, reference);
         savePng(dir + "composite.png", w, h, 3, composite);
 
         // noisy | denoised | reference | composite, with a 2-pixel dark gap between panels.
@@ -615,7 +653,7 @@ private:
         for (uint32_t y = 0; y < h; y++)
             for (uint32_t x = 0; x < w; x++) {
                 size_t i = size_t(y) * w + x;
-                uint32_t word = renderer_.readHitMask()[(y / 4) * renderer_.tilesX() + x / 8];
+                uint32_t word = renderer_.readHitMask(0)[(y / 4) * renderer_.tilesX() + x / 8];
                 int occluded = __builtin_popcount(word);
                 float t = occluded / 32.0f;
                 float rgb[3] = {1.0f - 0.2f * t, 0.8f - 0.5f * t, 0.3f - 0.2f * t};
@@ -660,6 +698,25 @@ private:
         json += "  \"crease\": {\"radius_px\": " + std::to_string(kCreaseRadius) + ", \"pixels\": " +
                 std::to_string(e.creasePixels) + ", \"max_darkening_255\": " + fmt(e.creaseMax, 3) +
                 ", \"mean_darkening_255\": " + fmt(e.creaseMean, 3) + "},\n";
+        // Every light (light 0's numbers repeat the ones above): where it is, its mean denoised shadow over the
+        // receivers, its error, and fingerprints (FNV-1a of the raw readback) of its hit mask and denoised shadow.
+        json += "  \"lights\": " + std::to_string(shadows.size()) + ",\n  \"per_light\": [\n";
+        for (uint32_t l = 0; l < shadows.size(); l++) {
+            const ShadowImages &sl = shadows[l];
+            double mean = 0;
+            for (size_t i = 0; i < sl.receiver.size(); i++) mean += sl.receiver[i] ? sl.denoised[i] : 0.0;
+            char hashes[128];
+            std::snprintf(hashes, sizeof hashes, "\"hit_mask_fnv1a\": \"%016llx\", \"denoised_fnv1a\": \"%016llx\"",
+                          static_cast<unsigned long long>(sl.hitMaskHash),
+                          static_cast<unsigned long long>(sl.denoisedHash));
+            const Vec3 &v = last.lights[l];
+            json += "    {\"light\": " + std::to_string(l) + ", \"" + (light_.point ? "position" : "direction") +
+                    "\": [" + fmt(v.x, 6) + ", " + fmt(v.y, 6) + ", " + fmt(v.z, 6) + "], \"denoised_mean\": " +
+                    fmt(errors[l].pixels ? mean / double(errors[l].pixels) : 0.0, 6) + ", \"rmse\": {\"noisy\": " +
+                    fmt(errors[l].rmseNoisy, 6) + ", \"denoised\": " + fmt(errors[l].rmseDenoised, 6) + "}, " +
+                    hashes + "}" + (l + 1 < shadows.size() ? "," : "") + "\n";
+        }
+        json += "  ],\n";
         json += "  \"dnsr_gpu_ms\": {\"frame\": " + std::to_string(renderer_.haveDnsrTimings ? t.frame : 0) +
                 ", \"prepare\": " + fmt(t.prepareMs) + ", \"tile_classification\": " + fmt(t.tileClassificationMs) +
                 ", \"filter\": [" + filters + "], \"total\": " + fmt(t.totalMs) + "},\n";
@@ -678,11 +735,15 @@ private:
         std::printf("viewer: lit pixels within %d px of a shadowed one (%zu): darkening vs the reference, worst "
                     "%.2f, mean %.2f (1/255)\n",
                     kCreaseRadius, e.creasePixels, e.creaseMax, e.creaseMean);
+        for (uint32_t l = 1; l < shadows.size(); l++)
+            std::printf("viewer: light %u: RMSE noisy %.4f (%.1f dB), denoised %.4f (%.1f dB)\n", l,
+                        errors[l].rmseNoisy, psnr(errors[l].rmseNoisy), errors[l].rmseDenoised,
+                        psnr(errors[l].rmseDenoised));
         std::printf("viewer: dnsr GPU ms (frame %llu): prepare %.3f, tiles %.3f, filter [%s], total %.3f\n",
                     static_cast<unsigned long long>(t.frame), t.prepareMs, t.tileClassificationMs, filters.c_str(),
                     t.totalMs);
-        std::printf("viewer: wrote %s{noisy,denoised,reference,composite,strip,tiles}.png and report.json\n",
-                    dir.c_str());
+        std::printf("viewer: wrote %s{noisy,denoised,reference,composite,strip,tiles}.png%s and report.json\n",
+                    dir.c_str(), shadows.size() > 1 ? ", {noisy,denoised,reference}_light1.png" : "");
     }
 
     // ---------------- Window ----------------
@@ -710,6 +771,7 @@ private:
         case GLFW_KEY_9: view_ = View::DnsrDisocclusion; break;
         case GLFW_KEY_L: light_.moving = !light_.moving; break;
         case GLFW_KEY_H: light_.hitDistance = !light_.hitDistance; break;
+        case GLFW_KEY_N: shownLight_ = (shownLight_ + 1) % opt_.lights; break;
         default: break;
         }
     }
@@ -803,11 +865,13 @@ private:
         char view[64];
         std::snprintf(view, sizeof view, view_ == View::Reference ? "%s (%u rays/px)" : "%s", names[uint32_t(view_)],
                       renderer_.referenceCount());
+        char shown[32] = "";  // the light the view shows (key N), where there is a choice
+        if (opt_.lights > 1 && view_ != View::Composite) std::snprintf(shown, sizeof shown, ", light %u", shownLight_);
         std::snprintf(title, sizeof title,
-                      "dnsr viewer | %s%s | guidance %s | dnsr GPU ms: prepare %.2f, tiles %.2f, filter %.2f (%u "
+                      "dnsr viewer | %s%s%s | guidance %s | dnsr GPU ms: prepare %.2f, tiles %.2f, filter %.2f (%u "
                       "passes), total %.2f | rays ms: primary %.2f, shadow %.2f | %.1f fps",
-                      view, light_.moving ? " | light moving" : "", light_.hitDistance ? "on" : "off", t.prepareMs,
-                      t.tileClassificationMs, filter, t.filterPasses, t.totalMs, v.primary, v.shadow, fps);
+                      view, shown, light_.moving ? " | light moving" : "", light_.hitDistance ? "on" : "off",
+                      t.prepareMs, t.tileClassificationMs, filter, t.filterPasses, t.totalMs, v.primary, v.shadow, fps);
         glfwSetWindowTitle(window_, title);
     }
 
@@ -875,6 +939,7 @@ private:
             FrameInput in = makeFrame(scene_, orbit_, light_, opt_.width, opt_.height);
             in.cameraCut = cameraCut_;
             in.display = view_;
+            in.shownLight = shownLight_;
             // The reference accumulates while nothing moves (view 3 shows it converging); any change restarts it.
             bool changed = std::memcmp(&lastOrbit, &orbit_, sizeof orbit_) != 0 || lastAzimuth != light_.azimuth;
             in.resetReference = changed || cameraCut_;
@@ -954,6 +1019,7 @@ private:
     Orbit orbit_, orbit0_;
     LightState light_;
     View view_ = View::Composite;
+    uint32_t shownLight_ = 0;  // window mode: the light the views other than the composite show (key N)
     bool cameraCut_ = true;
     VulkanContext ctx_;
     Renderer renderer_;

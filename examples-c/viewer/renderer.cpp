@@ -53,7 +53,7 @@ const DnsrShaderOverride kPackedOverrides[] = {
 struct FrameConstants {
     Mat4 viewProj, invViewProj, prevViewProj;
     float eye[4];
-    float light[4];
+    float lights[kMaxLights][4];
     float lightParams[4];
     uint32_t size[4];
     uint32_t info[4];
@@ -79,7 +79,21 @@ enum Binding : uint32_t {
     kLinearDepth,  // these two in primary.comp's packed variant only
     kOctNormals,
     kVisibility,   // shadow.comp, with --rays k > 1
+    kHitMask1,     // light 1's images, as light 0's above
+    kDenoised1,
+    kReference1,
+    kHitDistance1,
+    kVisibility1,
     kBindingCount
+};
+
+// Each light's bindings (common.glsl, shadow.comp).
+struct LightBindings {
+    Binding hitMask, hitDistance, visibility, denoised, reference;
+};
+constexpr LightBindings kLightBindings[kMaxLights] = {
+    {kHitMask, kHitDistance, kVisibility, kDenoised, kReference},
+    {kHitMask1, kHitDistance1, kVisibility1, kDenoised1, kReference1},
 };
 
 enum Timestamp : uint32_t { kStart, kAfterPrimary, kAfterShadow, kAfterReference, kAfterDnsr, kAfterComposite, kCount };
@@ -152,21 +166,24 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
     normals_ = ctx.createImage(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, usage);  // unpack: mul 1, add 0
     velocity_ = ctx.createImage(VK_FORMAT_R16G16B16A16_SFLOAT, w, h, usage);
     albedo_ = ctx.createImage(VK_FORMAT_R8G8B8A8_UNORM, w, h, usage);
-    hitMask_ = ctx.createImage(VK_FORMAT_R32_UINT, tilesX(), tilesY(), usage);
-    denoised_ = ctx.createImage(VK_FORMAT_R32_SFLOAT, w, h, usage);
-    reference_ = ctx.createImage(VK_FORMAT_R32_SFLOAT, w, h, usage);
     display_ = ctx.createImage(VK_FORMAT_R8G8B8A8_UNORM, w, h, usage);
-    // Penumbra guidance: distance to the nearest occluder. Half floats are plenty (dnsr averages them per tile),
-    // but writing R16F from a shader needs shaderStorageImageExtendedFormats; R32F otherwise.
-    hitDistance_ = ctx.createImage(ctx.storageImageExtendedFormats ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT, w,
-                                   h, usage);
+    for (uint32_t i = 0; i < settings.lights; i++) {
+        LightResources &l = lights_[i];
+        l.hitMask = ctx.createImage(VK_FORMAT_R32_UINT, tilesX(), tilesY(), usage);
+        l.denoised = ctx.createImage(VK_FORMAT_R32_SFLOAT, w, h, usage);
+        l.reference = ctx.createImage(VK_FORMAT_R32_SFLOAT, w, h, usage);
+        // Penumbra guidance: distance to the nearest occluder. Half floats are plenty (dnsr averages them per
+        // tile), but writing R16F from a shader needs shaderStorageImageExtendedFormats; R32F otherwise.
+        l.hitDistance = ctx.createImage(ctx.storageImageExtendedFormats ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT,
+                                        w, h, usage);
+        // --rays k: each pixel's lit fraction, R16F like the hit distance (dnsr accepts R8/R16 UNORM, R16F, R32F).
+        l.visibility = ctx.createImage(ctx.storageImageExtendedFormats ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT,
+                                       w, h, usage);
+    }
     if (settings.packedGbuffer && !ctx.storageImageExtendedFormats)
         throw VulkanError("--gbuffer packed writes RG16_SNORM normals, which needs shaderStorageImageExtendedFormats");
     linearDepth_ = ctx.createImage(VK_FORMAT_R32_SFLOAT, w, h, usage);
     octNormals_ = ctx.createImage(ctx.storageImageExtendedFormats ? VK_FORMAT_R16G16_SNORM : VK_FORMAT_R32G32_SFLOAT, w,
-                                  h, usage);
-    // --rays k: each pixel's lit fraction, R16F like the hit distance (dnsr accepts R8/R16 UNORM, R16F, R32F).
-    visibility_ = ctx.createImage(ctx.storageImageExtendedFormats ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT, w,
                                   h, usage);
 
     // Readback buffer: one section per image, each starting at a multiple of 16 bytes (a buffer-image copy's
@@ -178,9 +195,11 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
         return start;
     };
     depthOffset_ = section(pixels * 4);
-    maskOffset_ = section(VkDeviceSize(tilesX()) * tilesY() * 4);
-    denoisedOffset_ = section(pixels * 4);
-    referenceOffset_ = section(pixels * 4);
+    for (uint32_t i = 0; i < settings.lights; i++) {
+        lights_[i].maskOffset = section(VkDeviceSize(tilesX()) * tilesY() * 4);
+        lights_[i].denoisedOffset = section(pixels * 4);
+        lights_[i].referenceOffset = section(pixels * 4);
+    }
     displayOffset_ = section(pixels * 4);
     normalsOffset_ = section(pixels * 8);
     velocityOffset_ = section(pixels * 8);
@@ -189,8 +208,7 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
     // Every image to GENERAL once, cleared so that nothing undefined is ever read.
     VkCommandBuffer cmd = ctx.beginOneTimeCommands();
     std::vector<VkImageMemoryBarrier> toGeneral;
-    for (const GpuImage *img : {&rayOrigin_, &depth_, &normals_, &velocity_, &albedo_, &hitMask_, &denoised_,
-                                &reference_, &display_, &hitDistance_, &linearDepth_, &octNormals_, &visibility_}) {
+    for (const GpuImage *img : images()) {
         auto b = vkStruct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
         b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
         b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
@@ -272,9 +290,18 @@ void Renderer::createDescriptors()
                                          {nodes_.buffer, 0, VK_WHOLE_SIZE},
                                          {triGeometry_.buffer, 0, VK_WHOLE_SIZE},
                                          {triShading_.buffer, 0, VK_WHOLE_SIZE}};
-    const GpuImage *images[] = {&rayOrigin_, &depth_,    &normals_,   &velocity_, &albedo_,       &hitMask_,
-                                &denoised_,  &reference_, &display_, &hitDistance_, &linearDepth_, &octNormals_,
-                                &visibility_};
+    const GpuImage *images[kBindingCount] = {};
+    images[kRayOrigin] = &rayOrigin_, images[kDepth] = &depth_, images[kNormals] = &normals_;
+    images[kVelocity] = &velocity_, images[kAlbedo] = &albedo_, images[kDisplay] = &display_;
+    images[kLinearDepth] = &linearDepth_, images[kOctNormals] = &octNormals_;
+    // With one light, light 1's bindings get light 0's images: the shaders declare them (so they must be valid)
+    // but use them only when there is a second light.
+    for (uint32_t i = 0; i < kMaxLights; i++) {
+        const LightResources &l = lights_[std::min(i, settings_.lights - 1)];
+        const LightBindings &b = kLightBindings[i];
+        images[b.hitMask] = &l.hitMask, images[b.hitDistance] = &l.hitDistance, images[b.visibility] = &l.visibility;
+        images[b.denoised] = &l.denoised, images[b.reference] = &l.reference;
+    }
     VkDescriptorImageInfo imageInfos[kBindingCount - 4];
     std::vector<VkWriteDescriptorSet> writes(kBindingCount,
                                              vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET));
@@ -286,11 +313,22 @@ void Renderer::createDescriptors()
         if (i < 4) {
             writes[i].pBufferInfo = &buffers[i];
         } else {
-            imageInfos[i - 4] = {VK_NULL_HANDLE, images[i - 4]->view, VK_IMAGE_LAYOUT_GENERAL};
+            imageInfos[i - 4] = {VK_NULL_HANDLE, images[i]->view, VK_IMAGE_LAYOUT_GENERAL};
             writes[i].pImageInfo = &imageInfos[i - 4];
         }
     }
     vkUpdateDescriptorSets(dev, kBindingCount, writes.data(), 0, nullptr);
+}
+
+std::vector<GpuImage *> Renderer::images()
+{
+    std::vector<GpuImage *> all = {&rayOrigin_, &depth_,   &normals_,      &velocity_,
+                                   &albedo_,    &display_, &linearDepth_, &octNormals_};
+    for (uint32_t i = 0; i < settings_.lights; i++) {
+        LightResources &l = lights_[i];
+        all.insert(all.end(), {&l.hitMask, &l.hitDistance, &l.visibility, &l.denoised, &l.reference});
+    }
+    return all;
 }
 
 // The denoiser, created exactly as an engine would through include/dnsr.h.
@@ -314,7 +352,7 @@ void Renderer::createDenoiser()
     info.flags = DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS;  // standard depth (sky = 1), finite far plane
     info.precision = DNSR_PRECISION_FP32;
     info.outputFormat = VK_FORMAT_R32_SFLOAT;
-    info.lightCount = 1;
+    info.lightCount = settings_.lights;  // each light its own history
     // --rays k > 1: several rays per pixel, handed over as per-pixel visibility instead of the hit mask.
     info.shadowInput = settings_.rays > 1 ? DNSR_SHADOW_INPUT_VISIBILITY : DNSR_SHADOW_INPUT_HIT_MASK;
     if (settings_.packedGbuffer) {
@@ -338,9 +376,9 @@ uint64_t Renderer::dnsrMemoryBytes() const
 }
 
 void Renderer::dispatch(VkCommandBuffer cmd, VkPipeline pipeline, uint32_t groupsX, uint32_t groupsY, uint32_t mode,
-                        uint32_t sampleBase, uint32_t sampleCount)
+                        uint32_t sampleBase, uint32_t sampleCount, uint32_t light)
 {
-    const uint32_t push[4] = {mode, sampleBase, sampleCount, 0};
+    const uint32_t push[4] = {mode, sampleBase, sampleCount, light};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_, 0, nullptr);
     vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, push);
@@ -366,13 +404,16 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
     c.invViewProj = invViewProj;
     c.prevViewProj = prevViewProj_;
     c.eye[0] = in.eye.x, c.eye[1] = in.eye.y, c.eye[2] = in.eye.z;
-    c.light[0] = in.light.x, c.light[1] = in.light.y, c.light[2] = in.light.z, c.light[3] = in.pointLight ? 1.f : 0.f;
+    for (uint32_t i = 0; i < kMaxLights; i++) {
+        const Vec3 &l = in.lights[i];
+        c.lights[i][0] = l.x, c.lights[i][1] = l.y, c.lights[i][2] = l.z, c.lights[i][3] = in.pointLight ? 1.f : 0.f;
+    }
     c.lightParams[0] = in.lightSize;
     c.lightParams[1] = settings_.ambient;
     c.lightParams[2] = 2e-4f * settings_.sceneRadius;
     c.lightParams[3] = settings_.sceneRadius;
     c.size[0] = w, c.size[1] = h, c.size[2] = tilesX(), c.size[3] = tilesY();
-    c.info[0] = frameIndex_, c.info[1] = referenceAfter;
+    c.info[0] = frameIndex_, c.info[1] = referenceAfter, c.info[2] = settings_.lights;
     c.skyColor[0] = 0.55f, c.skyColor[1] = 0.70f, c.skyColor[2] = 0.90f, c.skyColor[3] = 1.0f;
     std::memcpy(frameConstants_.mapped, &c, sizeof c);
 
@@ -392,8 +433,10 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
 
     // Mode 1: the rays find their nearest occluder and write its distance (penumbra guidance); mode 0: any
-    // occluder ends a ray, and the hit-distance image is left alone. The hit mask is the same either way.
-    dispatch(cmd, shadow_, divUp(tilesX(), 8), divUp(tilesY(), 8), in.hitDistance ? 1u : 0u, 0, settings_.rays);
+    // occluder ends a ray, and the hit-distance image is left alone. The hit mask is the same either way. The
+    // lights' dispatches write different images: no barrier between them.
+    for (uint32_t i = 0; i < settings_.lights; i++)
+        dispatch(cmd, shadow_, divUp(tilesX(), 8), divUp(tilesY(), 8), in.hitDistance ? 1u : 0u, 0, settings_.rays, i);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterShadow);
 
     // Reference samples, in chunks; each chunk adds to the sum the previous one wrote.
@@ -402,31 +445,40 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
             memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
         uint32_t n = std::min(kReferenceChunk, in.referenceSamples - done);
-        dispatch(cmd, reference_pipeline_, divUp(w, 8), divUp(h, 8), 0, referenceCount_ + done, n);
+        for (uint32_t i = 0; i < settings_.lights; i++)
+            dispatch(cmd, reference_pipeline_, divUp(w, 8), divUp(h, 8), 0, referenceCount_ + done, n, i);
     }
     referenceCount_ = referenceAfter;
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterReference);
 
     // ---- dnsr ----
+    // What differs from light to light: its inputs from the shadow pass, its output, and its flags.
+    DnsrLightDispatch lights[kMaxLights]{};
+    for (uint32_t i = 0; i < settings_.lights; i++) {
+        DnsrLightDispatch &l = lights[i];
+        l.sType = DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH;
+        l.lightIndex = i;
+        l.flags = (in.cameraCut ? DNSR_LIGHT_DISPATCH_RESET : 0) |
+                  (in.hitDistance ? DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE : 0);
+        if (settings_.rays > 1)
+            l.visibility = hostImage(lights_[i].visibility);  // the hit mask stays empty: the context takes visibility
+        else
+            l.hitMask = hostImage(lights_[i].hitMask);
+        l.output = hostImage(lights_[i].denoised);
+        if (in.hitDistance) {
+            // Written by the shadow pass above, like the hit mask: the same input barrier (sync below) covers it.
+            l.hitDistance = hostImage(lights_[i].hitDistance);
+            l.lightAngularSize = in.lightAngularSize;
+        }
+    }
+    // What the lights share: the G-buffer, camera, settings of the call and sync.
     DnsrShadowsDispatch d{};
     d.sType = DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH;
     d.commandBuffer = cmd;
-    d.lightIndex = 0;
-    d.flags = (in.cameraCut ? DNSR_DISPATCH_RESET : 0) | (in.hitDistance ? DNSR_DISPATCH_USE_HIT_DISTANCE : 0);
     d.hitMaskConvention = DNSR_HIT_MASK_OCCLUDED_BITS;  // bit = 1: the ray hit an occluder
-    if (settings_.rays > 1)
-        d.visibility = hostImage(visibility_);  // the hit mask stays empty: the context takes visibility
-    else
-        d.hitMask = hostImage(hitMask_);
     d.depth = hostImage(settings_.packedGbuffer ? linearDepth_ : depth_);
     d.velocity = hostImage(velocity_);
     d.normals = hostImage(settings_.packedGbuffer ? octNormals_ : normals_);
-    d.output = hostImage(denoised_);
-    if (in.hitDistance) {
-        // Written by the shadow pass above, like the hit mask: the same input barrier (sync below) covers it.
-        d.hitDistance = hostImage(hitDistance_);
-        d.lightAngularSize = in.lightAngularSize;
-    }
     d.motionVectorScale[0] = d.motionVectorScale[1] = 1.0f;  // velocity = prev_uv - uv, in uv units
     d.normalsUnpackMul = 1.0f;  // float normals, stored as is
     d.normalsUnpackAdd = 0.0f;
@@ -442,17 +494,32 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
     d.sync.inputSrcAccess = VK_ACCESS_SHADER_WRITE_BIT;
     d.sync.outputDstStages = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
     d.sync.outputDstAccess = VK_ACCESS_SHADER_READ_BIT;
-    // Views 5..8 map in order onto DNSR_DEBUG_VIEW_TILE_CLASSIFICATION .. DNSR_DEBUG_VIEW_DISOCCLUSION.
+    // Views 5..8 map in order onto DNSR_DEBUG_VIEW_TILE_CLASSIFICATION .. DNSR_DEBUG_VIEW_DISOCCLUSION (one
+    // setting for the whole call: every light's output gets the debug view).
     bool dnsrView = in.display >= View::DnsrTiles;
     d.debugView = dnsrView ? DNSR_DEBUG_VIEW_TILE_CLASSIFICATION + (uint32_t(in.display) - uint32_t(View::DnsrTiles))
                            : DNSR_DEBUG_VIEW_NONE;
-    DnsrResult r = dnsr_shadows_record(denoiser_, &d);
-    if (r != DNSR_SUCCESS) dnsrFail("dnsr_shadows_record", r);
+    if (settings_.lights == 1) {
+        // One light: the single-light call, with the light's own fields in the dispatch itself.
+        const DnsrLightDispatch &l = lights[0];
+        d.lightIndex = l.lightIndex;
+        d.flags = (l.flags & DNSR_LIGHT_DISPATCH_RESET ? DNSR_DISPATCH_RESET : 0) |
+                  (l.flags & DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE ? DNSR_DISPATCH_USE_HIT_DISTANCE : 0);
+        d.hitMask = l.hitMask, d.visibility = l.visibility, d.output = l.output;
+        d.hitDistance = l.hitDistance, d.lightAngularSize = l.lightAngularSize;
+        DnsrResult r = dnsr_shadows_record(denoiser_, &d);
+        if (r != DNSR_SUCCESS) dnsrFail("dnsr_shadows_record", r);
+    } else {
+        // Several lights: all in one call (each pass recorded for every light behind one barrier); the dispatch
+        // keeps its per-light fields zero.
+        DnsrResult r = dnsr_lights_record(denoiser_, &d, settings_.lights, lights);
+        if (r != DNSR_SUCCESS) dnsrFail("dnsr_lights_record", r);
+    }
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterDnsr);
 
-    // dnsr's debug views land in its output image: shown like the denoised shadow (composite mode 1).
+    // dnsr's debug views land in its output images: shown like the denoised shadow (composite mode 1).
     uint32_t mode = dnsrView ? uint32_t(View::Denoised) : static_cast<uint32_t>(in.display);
-    dispatch(cmd, composite_, divUp(w, 8), divUp(h, 8), mode);
+    dispatch(cmd, composite_, divUp(w, 8), divUp(h, 8), mode, 0, 0, in.shownLight);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterComposite);
     // The display image is read next by a blit (window) or a copy (readback).
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
@@ -497,9 +564,11 @@ void Renderer::recordReadback(VkCommandBuffer cmd)
         vkCmdCopyImageToBuffer(cmd, img.image, VK_IMAGE_LAYOUT_GENERAL, readback_.buffer, 1, &region);
     };
     copy(depth_, depthOffset_);
-    copy(hitMask_, maskOffset_);
-    copy(denoised_, denoisedOffset_);
-    copy(reference_, referenceOffset_);
+    for (uint32_t i = 0; i < settings_.lights; i++) {
+        copy(lights_[i].hitMask, lights_[i].maskOffset);
+        copy(lights_[i].denoised, lights_[i].denoisedOffset);
+        copy(lights_[i].reference, lights_[i].referenceOffset);
+    }
     copy(display_, displayOffset_);
     copy(normals_, normalsOffset_);
     copy(velocity_, velocityOffset_);
@@ -521,9 +590,7 @@ void Renderer::destroy()
     if (descriptorPool_) vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);
     if (setLayout_) vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
     if (timestamps_) vkDestroyQueryPool(dev, timestamps_, nullptr);
-    for (GpuImage *img : {&rayOrigin_, &depth_, &normals_, &velocity_, &albedo_, &hitMask_, &denoised_, &reference_,
-                          &display_, &hitDistance_, &linearDepth_, &octNormals_, &visibility_})
-        ctx_->destroyImage(*img);
+    for (GpuImage *img : images()) ctx_->destroyImage(*img);
     for (GpuBuffer *b : {&frameConstants_, &nodes_, &triGeometry_, &triShading_, &readback_}) ctx_->destroyBuffer(*b);
     ctx_ = nullptr;
 }

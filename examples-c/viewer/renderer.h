@@ -1,11 +1,13 @@
 // renderer.h: the viewer's frame, recorded into one command buffer the way an engine would:
 //
 //   primary.comp    camera rays -> G-buffer (depth, normal, motion vectors, albedo, shadow-ray origin)
-//   shadow.comp     one jittered shadow ray per pixel -> the 8x4-tile hit mask (and, for dnsr's penumbra
-//                   guidance, the distance to the nearest occluder per pixel)
-//   reference.comp  (when asked) many shadow rays per pixel -> the ground truth, for error measurements
-//   dnsr            dnsr_shadows_record: hit mask + G-buffer -> denoised shadow
-//   composite.comp  albedo * (ambient + N.L * shadow), or a debug view -> the display image
+//   shadow.comp     per light, one jittered shadow ray per pixel -> the light's 8x4-tile hit mask (and, for dnsr's
+//                   penumbra guidance, the distance to the nearest occluder per pixel)
+//   reference.comp  (when asked) per light, many shadow rays per pixel -> the ground truth, for error measurements
+//   dnsr            dnsr_shadows_record (one light) or dnsr_lights_record (all lights in one call): hit masks +
+//                   G-buffer -> one denoised shadow per light
+//   composite.comp  albedo * (ambient + sum over the lights of N.L * shadow), or a debug view of one light -> the
+//                   display image
 //
 // Every image stays in layout GENERAL. The renderer never submits: the caller submits the command buffer and
 // waits for it before calling afterFrame() and recording the next frame (one frame in flight keeps the sample
@@ -14,9 +16,14 @@
 
 #include <dnsr.h>
 
+#include <vector>
+
 #include "bvh.h"
 #include "scene_gltf.h"
 #include "vk_context.h"
+
+// At most this many lights (shaders/common.glsl's kMaxLights, with their own bindings for each light's images).
+constexpr uint32_t kMaxLights = 2;
 
 // Views 5..8 ask dnsr itself for a debug view of its internal state (DnsrShadowsDispatch::debugView), shown
 // like the denoised shadow.
@@ -41,15 +48,18 @@ struct RendererSettings {
     bool packedGbuffer = false;
     // Shadow rays per pixel: 1 packs them into the hit mask; more go to dnsr as per-pixel visibility.
     uint32_t rays = 1;
+    // 1..kMaxLights lights, each with its own shadow rays, dnsr history (DnsrContextCreateInfo::lightCount) and output.
+    uint32_t lights = 1;
 };
 
 struct FrameInput {
     Mat4 viewMatrix, projection;
     Vec3 eye;
-    // The light: a direction towards it (directional) or its position (point), and its size: tan of the angular
-    // radius (directional) or the sphere radius (point).
+    // The lights (RendererSettings::lights of them, all of one kind and size): a direction towards each
+    // (directional) or its position (point), and their size: tan of the angular radius (directional) or the sphere
+    // radius (point).
     bool pointLight = false;
-    Vec3 light;
+    Vec3 lights[kMaxLights];
     float lightSize = 0.05f;
     // Penumbra guidance (DNSR_DISPATCH_USE_HIT_DISTANCE): the shadow pass also writes the distance to the nearest
     // occluder, and dnsr narrows its filter to the penumbra that distance and the light's angular diameter
@@ -58,6 +68,7 @@ struct FrameInput {
     float lightAngularSize = 0.0f;
     bool cameraCut = false;          // discard dnsr's history (first frame, view reset)
     View display = View::Composite;  // what composite.comp writes to the display image
+    uint32_t shownLight = 0;         // the light the views other than the composite show (dnsr's included)
     bool resetReference = false;     // restart the reference accumulation (camera or light changed)
     uint32_t referenceSamples = 0;   // reference samples per pixel to add this frame
 };
@@ -76,14 +87,15 @@ public:
     void recordFrame(VkCommandBuffer cmd, const FrameInput &input);
     // After the GPU finished the frame: fetch the timings (the viewer's timestamps and dnsr's).
     void afterFrame();
-    // Copies the G-buffer, hit mask, denoised shadow, reference sum and display image to host memory (after a
-    // recordFrame in the same command buffer); read them with the accessors below once the GPU is done.
+    // Copies the G-buffer, each light's hit mask, denoised shadow and reference sum, and the display image to host
+    // memory (after a recordFrame in the same command buffer); read them with the accessors below once the GPU is
+    // done.
     void recordReadback(VkCommandBuffer cmd);
 
     const float *readDepth() const { return at<float>(depthOffset_); }
-    const uint32_t *readHitMask() const { return at<uint32_t>(maskOffset_); }
-    const float *readDenoised() const { return at<float>(denoisedOffset_); }
-    const float *readReferenceSum() const { return at<float>(referenceOffset_); }
+    const uint32_t *readHitMask(uint32_t light) const { return at<uint32_t>(lights_[light].maskOffset); }
+    const float *readDenoised(uint32_t light) const { return at<float>(lights_[light].denoisedOffset); }
+    const float *readReferenceSum(uint32_t light) const { return at<float>(lights_[light].referenceOffset); }
     const uint8_t *readDisplay() const { return at<uint8_t>(displayOffset_); }
     // RGBA16F texels (raw half floats), for checking the G-buffer against dnsr's CPU reference.
     const uint16_t *readNormals() const { return at<uint16_t>(normalsOffset_); }
@@ -93,6 +105,7 @@ public:
     uint32_t referenceCount() const { return referenceCount_; }
     uint32_t tilesX() const { return (settings_.width + 7) / 8; }
     uint32_t tilesY() const { return (settings_.height + 3) / 4; }
+    uint32_t lightCount() const { return settings_.lights; }
     uint64_t dnsrMemoryBytes() const;
 
     DnsrPassTimings dnsrTimings{};  // dnsr's per-pass GPU times (valid when haveDnsrTimings)
@@ -101,14 +114,22 @@ public:
     uint32_t bvhNodes = 0, bvhDepth = 0, triangles = 0;
 
 private:
+    // What each light has of its own: the shadow pass's outputs, dnsr's output and the reference, and where the
+    // readback puts them.
+    struct LightResources {
+        GpuImage hitMask, hitDistance, visibility, denoised, reference;
+        VkDeviceSize maskOffset = 0, denoisedOffset = 0, referenceOffset = 0;
+    };
+
     template <typename T> const T *at(VkDeviceSize offset) const
     {
         return reinterpret_cast<const T *>(static_cast<const uint8_t *>(readback_.mapped) + offset);
     }
     void createDescriptors();
     void createDenoiser();
+    std::vector<GpuImage *> images();  // every image, for the initial clear and destroy()
     void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, uint32_t groupsX, uint32_t groupsY, uint32_t mode = 0,
-                  uint32_t sampleBase = 0, uint32_t sampleCount = 0);
+                  uint32_t sampleBase = 0, uint32_t sampleCount = 0, uint32_t light = 0);
 
     VulkanContext *ctx_ = nullptr;
     RendererSettings settings_;
@@ -118,11 +139,10 @@ private:
     Mat4 prevViewProj_;
 
     GpuBuffer frameConstants_, nodes_, triGeometry_, triShading_, readback_;
-    GpuImage rayOrigin_, depth_, normals_, velocity_, albedo_, hitMask_, denoised_, reference_, display_, hitDistance_;
+    GpuImage rayOrigin_, depth_, normals_, velocity_, albedo_, display_;
     GpuImage linearDepth_, octNormals_;  // --gbuffer packed
-    GpuImage visibility_;                // --rays k > 1
-    VkDeviceSize depthOffset_ = 0, maskOffset_ = 0, denoisedOffset_ = 0, referenceOffset_ = 0, displayOffset_ = 0,
-                 normalsOffset_ = 0, velocityOffset_ = 0;
+    LightResources lights_[kMaxLights];  // the first settings_.lights are created
+    VkDeviceSize depthOffset_ = 0, displayOffset_ = 0, normalsOffset_ = 0, velocityOffset_ = 0;
 
     VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
     VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;

@@ -2,10 +2,11 @@
 # Tests of the dnsr viewer: builds it against target/release/libdnsr.so, renders the default scene headless on
 # lavapipe with the validation layer (any message fails), checks the images and that dnsr beats the 1-spp input
 # against the many-ray reference, runs with and without penumbra guidance (--hit-distance) and against a saved
-# reference, checks that --validate counts validation messages only (not the Vulkan loader's notices) and that
-# --help describes every option and key, takes a window-mode screenshot under Xvfb, and feeds it broken or
-# unsupported scene files, also through an AddressSanitizer + UBSan build (each must give exit
-# status 2 and a one-line message, never a crash or a hang; unsupported kinds of file must be named as such).
+# reference, with a second light (--lights 2: light 0 unchanged bit for bit, light 1 its own), checks that
+# --validate counts validation messages only (not the Vulkan loader's notices) and that --help describes every
+# option and key, takes a window-mode screenshot under Xvfb, and feeds it broken or unsupported scene files, also
+# through an AddressSanitizer + UBSan build (each must give exit status 2 and a one-line message, never a crash or
+# a hang; unsupported kinds of file must be named as such).
 #
 #   examples-c/viewer/test.sh            (VIEWER_DEVICE=<substring of a device name> picks another device)
 set -euo pipefail
@@ -55,28 +56,34 @@ for view in noisy denoised reference composite tiles classification samples vari
 done
 echo "help: lists $(wc -w <<<"$options") options and $(wc -w <<<"$keys") keys"
 
-# Prints "min max" of a PNG's samples (8-bit, as png_write.cpp writes them: filter 0, stored deflate).
-png_range() {
-  python3 - "$1" <<'PY'
-import struct, sys, zlib
-data = open(sys.argv[1], "rb").read()
-assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
-pos, idat = 8, b""
-while pos < len(data):
-    n = struct.unpack(">I", data[pos:pos + 4])[0]
-    kind, payload = data[pos + 4:pos + 8], data[pos + 8:pos + 8 + n]
-    if kind == b"IHDR":
-        w, h, depth, color = struct.unpack(">IIBB", payload[:10])
-    elif kind == b"IDAT":
-        idat += payload
-    pos += 12 + n
-channels = {0: 1, 2: 3, 6: 4}[color]
-raw = zlib.decompress(idat)
-row = w * channels + 1
-assert len(raw) == row * h, "truncated image data"
-pixels = b"".join(raw[y * row + 1:(y + 1) * row] for y in range(h))
-print(min(pixels), max(pixels))
+# read_png(path): the samples of a PNG as png_write.cpp writes them (8-bit, filter 0, stored deflate), row after
+# row. A module for the checks below (python3 with PYTHONPATH="$tmp").
+cat > "$tmp/viewer_png.py" <<'PY'
+import struct, zlib
+
+def read_png(path):
+    data = open(path, "rb").read()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
+    pos, idat = 8, b""
+    while pos < len(data):
+        n = struct.unpack(">I", data[pos:pos + 4])[0]
+        kind, payload = data[pos + 4:pos + 8], data[pos + 8:pos + 8 + n]
+        if kind == b"IHDR":
+            w, h, depth, color = struct.unpack(">IIBB", payload[:10])
+        elif kind == b"IDAT":
+            idat += payload
+        pos += 12 + n
+    channels = {0: 1, 2: 3, 6: 4}[color]
+    raw = zlib.decompress(idat)
+    row = w * channels + 1
+    assert len(raw) == row * h, "truncated image data"
+    return b"".join(raw[y * row + 1:(y + 1) * row] for y in range(h))
 PY
+
+# Prints "min max" of a PNG's samples.
+png_range() {
+  PYTHONPATH="$tmp" python3 -c 'import sys, viewer_png; p = viewer_png.read_png(sys.argv[1]); print(min(p), max(p))' \
+    "$1"
 }
 
 check_not_blank() {
@@ -145,6 +152,48 @@ status=0
   status=$?
 (( status == 2 )) && grep -qF -- "--gbuffer packed takes one ray per pixel" "$tmp/rays.err" ||
   fail "--rays 2 --gbuffer packed: status $status, message: $(cat "$tmp/rays.err")"
+
+# ---- --lights 2: a second light (the first turned 100 degrees about the up axis), both denoised by one
+# dnsr_lights_record call. For the default inputs, --rays 2 (a visibility image per light) and --gbuffer packed,
+# each against the same run with one light (dnsr_shadows_record): validation clean; light 0's hit mask and
+# denoised shadow bit for bit the same (report.json's fingerprints of the float readback: dnsr_lights_record gives
+# each light what dnsr_shadows_record gives it alone, and light 0's rays keep their seeds); light 1 traced towards
+# another light (its reference shadows elsewhere) and denoised. Bad light counts are usage errors ----
+for extra in "" "--rays 2" "--gbuffer packed"; do
+  for n in 1 2; do
+    status=0
+    # $extra unquoted: none or two words.
+    "$viewer" --headless --validate --lights $n $extra --frames 4 --size 64x48 --out "$tmp/lights$n" \
+      > "$tmp/lights.log" 2>&1 || status=$?
+    (( status == 0 )) || { cat "$tmp/lights.log"; fail "--lights $n $extra exited with status $status"; }
+  done
+  for f in noisy denoised reference; do check_not_blank "$tmp/lights2/${f}_light1.png"; done
+  PYTHONPATH="$tmp" python3 - "$tmp" "${extra:-default inputs}" <<'PY' || fail "--lights 2 $extra check failed"
+import json, sys, viewer_png
+tmp, inputs = sys.argv[1:]
+one, two = (json.load(open(f"{tmp}/lights{n}/report.json")) for n in (1, 2))
+assert one["lights"] == 1 and two["lights"] == 2 and len(two["per_light"]) == 2, "light count not recorded"
+alone, light0, light1 = one["per_light"][0], two["per_light"][0], two["per_light"][1]
+assert light0 == alone, f"light 0 changed when a second light came: {alone} alone, {light0} with light 1"
+assert light1["hit_mask_fnv1a"] != light0["hit_mask_fnv1a"], "light 1's hit mask is light 0's"
+assert light1["denoised_fnv1a"] != light0["denoised_fnv1a"], "light 1's denoised shadow is light 0's"
+# Another light, not light 0 with other random numbers: the references (sky is lit in both) disagree somewhere.
+ref0, ref1 = (viewer_png.read_png(f"{tmp}/lights2/{f}.png") for f in ("reference", "reference_light1"))
+apart = sum(abs(a - b) > 128 for a, b in zip(ref0, ref1)) / len(ref0)
+assert apart > 0.02, f"light 1 shadows the same pixels as light 0 (they disagree on {apart:.1%})"
+noisy, denoised = light1["rmse"]["noisy"], light1["rmse"]["denoised"]
+assert denoised < noisy, f"light 1 not denoised: RMSE noisy {noisy:.4f}, denoised {denoised:.4f}"
+print(f"lights ({inputs}): light 0 the same bit for bit with a second light; light 1 shadows "
+      f"{apart:.0%} of the pixels otherwise, RMSE noisy {noisy:.4f} -> denoised {denoised:.4f}")
+PY
+done
+for n in 0 3 two; do
+  status=0
+  "$viewer" --headless --lights $n --frames 1 --size 16x16 --out "$tmp/bad-lights" > /dev/null 2> "$tmp/lights.err" ||
+    status=$?
+  (( status == 2 )) && grep -qF -- "--lights wants a number in 1..2, got '$n'" "$tmp/lights.err" ||
+    fail "--lights $n: status $status, message: $(cat "$tmp/lights.err")"
+done
 
 # ---- dnsr presets: Quality through dnsr_settings_init_preset, validation clean; a bad name is a usage error ----
 # Also the unguided path (--hit-distance off), and a reference saved by one run and measured against by another
@@ -225,7 +274,12 @@ if command -v xvfb-run >/dev/null; then
   done
   check_not_blank "$tmp/classification.png"
   check_not_blank "$tmp/samples.png"
-  window="window screenshots ok (composite, reference, 4 dnsr debug views)"
+  # Two lights (one dnsr_lights_record call) lighting the composite together.
+  xvfb-run -a -s "-screen 0 1024x768x24" "$viewer" --validate --size 160x96 --frames 3 --lights 2 \
+    --screenshot "$tmp/lights.png" > "$tmp/window.log" 2>&1 || status=$?
+  (( status == 0 )) || { cat "$tmp/window.log"; fail "window run (--lights 2) exited with status $status"; }
+  check_not_blank "$tmp/lights.png"
+  window="window screenshots ok (composite, reference, 4 dnsr debug views, two lights)"
   echo "window: $window"
 fi
 
@@ -379,5 +433,6 @@ for v in "$viewer" "$asan_viewer"; do
   done
 done
 
-echo "viewer tests: ok (headless 160x96, 8 frames, validation clean: ${quality#ok }; ${window}; ${bad} bad inputs" \
+echo "viewer tests: ok (headless 160x96, 8 frames, validation clean: ${quality#ok }; --lights 2: light 0 bit for bit" \
+  "the same, light 1 its own (default inputs, --rays 2, --gbuffer packed); ${window}; ${bad} bad inputs" \
   "rejected with status 2, half of them by the ASan+UBSan build; $((SECONDS - start)) s)"

@@ -1,17 +1,19 @@
 // common.glsl: the resources every viewer pass shares (one descriptor set layout for all of them), the BVH
 // traversal and the shadow-ray sampling. Included by every .comp file.
 
+const uint kMaxLights = 2u;  // = kMaxLights in renderer.h
+
 // ---- Per-frame constants (host struct FrameConstants in renderer.cpp; std140) ----
 layout(set = 0, binding = 0, std140) uniform FrameConstants {
     mat4 viewProj;      // world -> clip (Vulkan: uv (0,0) top-left = NDC (-1,-1), depth 0..1)
     mat4 invViewProj;   // clip -> world
     mat4 prevViewProj;  // last frame's world -> clip, for the motion vectors
     vec4 eye;           // xyz: camera position
-    vec4 light;         // xyz: direction towards the light (directional) or its position (point); w: 1 = point
-    vec4 lightParams;   // x: tan(angular radius) (directional) or light radius (point); y: ambient;
+    vec4 lights[kMaxLights];  // xyz: direction towards light i (directional) or its position (point); w: 1 = point
+    vec4 lightParams;   // x: tan(angular radius) (directional) or light radius (point), every light's; y: ambient;
                         // z: shadow-ray offset at the camera; w: scene radius (the offset grows with distance)
     uvec4 size;         // x, y: render size; z, w: hit-mask size in tiles
-    uvec4 info;         // x: frame index; y: reference samples accumulated so far
+    uvec4 info;         // x: frame index; y: reference samples accumulated so far; z: number of lights
     vec4 skyColor;
 } frame;
 
@@ -26,16 +28,46 @@ layout(set = 0, binding = 5, r32f) uniform image2D depthImage;         // NDC de
 layout(set = 0, binding = 6, rgba16f) uniform image2D normalImage;     // world normal (xyz), 0 for sky
 layout(set = 0, binding = 7, rgba16f) uniform image2D velocityImage;   // prev_uv - uv (xy)
 layout(set = 0, binding = 8, rgba8) uniform image2D albedoImage;       // base colour
+layout(set = 0, binding = 12, rgba8) uniform image2D displayImage;     // what the window or a PNG shows
+
+// Each light's own images: light 0's at bindings 9..11, light 1's at 17..19 (bound to light 0's images when there
+// is one light). Separate bindings rather than arrays of images: indexing those by a light number that is not a
+// compile-time constant needs the device feature shaderStorageImageArrayDynamicIndexing.
 layout(set = 0, binding = 9, r32ui) uniform uimage2D hitMaskImage;     // one bit per pixel, 1 = occluded
 layout(set = 0, binding = 10, r32f) uniform image2D denoisedImage;     // dnsr's output, 1 = lit
 layout(set = 0, binding = 11, r32f) uniform image2D referenceImage;    // sum of reference visibility samples
-layout(set = 0, binding = 12, rgba8) uniform image2D displayImage;     // what the window or a PNG shows
+layout(set = 0, binding = 17, r32ui) uniform uimage2D hitMaskImage1;
+layout(set = 0, binding = 18, r32f) uniform image2D denoisedImage1;
+layout(set = 0, binding = 19, r32f) uniform image2D referenceImage1;
+
+uint loadHitMask(uint light, ivec2 tile)
+{
+    return light == 0u ? imageLoad(hitMaskImage, tile).r : imageLoad(hitMaskImage1, tile).r;
+}
+void storeHitMask(uint light, ivec2 tile, uint mask)
+{
+    if (light == 0u) imageStore(hitMaskImage, tile, uvec4(mask));
+    else imageStore(hitMaskImage1, tile, uvec4(mask));
+}
+float loadDenoised(uint light, ivec2 pixel)
+{
+    return light == 0u ? imageLoad(denoisedImage, pixel).r : imageLoad(denoisedImage1, pixel).r;
+}
+float loadReference(uint light, ivec2 pixel)
+{
+    return light == 0u ? imageLoad(referenceImage, pixel).r : imageLoad(referenceImage1, pixel).r;
+}
+void storeReference(uint light, ivec2 pixel, float sum)
+{
+    if (light == 0u) imageStore(referenceImage, pixel, vec4(sum));
+    else imageStore(referenceImage1, pixel, vec4(sum));
+}
 
 layout(push_constant) uniform PushConstants {
     uint mode;         // composite.comp: what to display; shadow.comp: 1 = also write the hit distance
     uint sampleBase;   // reference.comp: first sample index of this dispatch
     uint sampleCount;  // reference.comp: samples per pixel in this dispatch
-    uint pad;
+    uint light;        // shadow.comp, reference.comp: the light traced; composite.comp: the light the views show
 } pc;
 
 const float kInfinity = 1e30;
@@ -170,41 +202,48 @@ vec2 concentricDisk(vec2 u)
     return r * vec2(cos(phi), sin(phi));
 }
 
+// The seeds of a light's per-pixel sequences (sample2D) for its shadow rays and its reference: each light's own,
+// so that light 1's noise is independent of light 0's, and the reference independent of the noisy input. Light 0
+// keeps the seeds of the single-light viewer, so its rays do not depend on how many lights there are.
+uint shadowSeed(uint light) { return 0x9e3779b9u + light * 0x6a09e667u; }
+uint referenceSeed(uint light) { return 0x85ebca6bu + light * 0x6a09e667u; }
+
 // Direction towards the light's centre from p, and the distance to it (kInfinity for a directional light).
-vec3 lightDirection(vec3 p, out float dist)
+vec3 lightDirection(uint light, vec3 p, out float dist)
 {
-    if (frame.light.w == 0.0) {
+    vec4 l = frame.lights[light];
+    if (l.w == 0.0) {
         dist = kInfinity;
-        return frame.light.xyz;
+        return l.xyz;
     }
-    vec3 d = frame.light.xyz - p;
+    vec3 d = l.xyz - p;
     dist = length(d);
     return d / dist;
 }
 
 // One shadow ray from `origin` (a surface point already nudged off its surface) with shading normal n, towards
-// a point of the light chosen by u: within a cone of the light's angular radius for a directional light, on the
+// a point of light `light` chosen by u: within a cone of the light's angular radius for a directional light, on the
 // disk of the light sphere facing the point for a point light. Returns true when occluded. A surface facing away
 // from the light counts as occluded, as a ray through the object would find. With `closest`, the traversal finds
 // the nearest occluder and hitDistance is its distance along the ray (the penumbra guidance dnsr reads); without
 // it the first occluder found ends the traversal (cheaper) and hitDistance is only some occluder's distance. It
 // is 0 when the ray is not occluded, and for a surface facing away from the light (no ray: distance unknown).
-bool shadowRay(vec3 origin, vec3 n, vec2 u, bool closest, out float hitDistance)
+bool shadowRay(uint light, vec3 origin, vec3 n, vec2 u, bool closest, out float hitDistance)
 {
     hitDistance = 0.0;
     float dist;
-    vec3 l = lightDirection(origin, dist);
+    vec3 l = lightDirection(light, origin, dist);
     if (dot(n, l) <= 0.0) return true;
     vec3 t = normalize(abs(l.x) > 0.9 ? cross(l, vec3(0, 1, 0)) : cross(l, vec3(1, 0, 0)));
     vec3 b = cross(l, t);
     vec2 d = concentricDisk(u);
     vec3 dir;
     float tMax;
-    if (frame.light.w == 0.0) {
+    if (frame.lights[light].w == 0.0) {
         dir = normalize(l + (d.x * t + d.y * b) * frame.lightParams.x);
         tMax = kInfinity;
     } else {
-        vec3 target = frame.light.xyz + (d.x * t + d.y * b) * frame.lightParams.x;
+        vec3 target = frame.lights[light].xyz + (d.x * t + d.y * b) * frame.lightParams.x;
         dir = target - origin;
         tMax = length(dir);
         dir /= tMax;
@@ -218,8 +257,8 @@ bool shadowRay(vec3 origin, vec3 n, vec2 u, bool closest, out float hitDistance)
 }
 
 // shadowRay as visibility: 1 when lit, 0 when occluded.
-float shadowSample(vec3 origin, vec3 n, vec2 u)
+float shadowSample(uint light, vec3 origin, vec3 n, vec2 u)
 {
     float unused;
-    return shadowRay(origin, n, u, false, unused) ? 0.0 : 1.0;
+    return shadowRay(light, origin, n, u, false, unused) ? 0.0 : 1.0;
 }

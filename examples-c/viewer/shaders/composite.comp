@@ -1,15 +1,15 @@
 #version 450
-// composite.comp: the final image, color = albedo * (ambient + N.L * shadow), or one of the debug views, into
-// displayImage (RGBA8, gamma-encoded for the composite). pc.mode: 0 noisy 1-spp shadow, 1 denoised shadow,
-// 2 reference shadow, 3 composite, 4 hit-mask density per tile.
+// composite.comp: the final image, color = albedo * (ambient + sum over the lights of N.L * shadow), or one of the
+// debug views of light pc.light, into displayImage (RGBA8, gamma-encoded for the composite). pc.mode: 0 noisy 1-spp
+// shadow, 1 denoised shadow, 2 reference shadow, 3 composite, 4 hit-mask density per tile.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-float noisyShadow(ivec2 pixel)
+float noisyShadow(uint light, ivec2 pixel)
 {
-    uint word = imageLoad(hitMaskImage, pixel / ivec2(8, 4)).r;
+    uint word = loadHitMask(light, pixel / ivec2(8, 4));
     uint bit = uint(pixel.y % 4) * 8u + uint(pixel.x % 8);
     return ((word >> bit) & 1u) != 0u ? 0.0 : 1.0;
 }
@@ -22,26 +22,32 @@ void main()
     vec3 n = imageLoad(normalImage, pixel).xyz;
     vec3 albedo = imageLoad(albedoImage, pixel).rgb;
     vec3 origin = imageLoad(rayOriginImage, pixel).xyz;
+    uint light = pc.light;
     float dist;
-    float nDotL = max(dot(n, lightDirection(origin, dist)), 0.0);
+    float nDotL = max(dot(n, lightDirection(light, origin, dist)), 0.0);
     float ambient = frame.lightParams.y;
 
     vec3 color;
     if (pc.mode == 0u) {
-        color = vec3(noisyShadow(pixel));
+        color = vec3(noisyShadow(light, pixel));
     } else if (pc.mode == 1u) {
-        color = vec3(imageLoad(denoisedImage, pixel).r);
+        color = vec3(loadDenoised(light, pixel));
     } else if (pc.mode == 2u) {
         float count = float(max(frame.info.y, 1u));
-        color = vec3(frame.info.y == 0u ? noisyShadow(pixel) : imageLoad(referenceImage, pixel).r / count);
+        color = vec3(frame.info.y == 0u ? noisyShadow(light, pixel) : loadReference(light, pixel) / count);
     } else if (pc.mode == 3u) {
-        float shadow = clamp(imageLoad(denoisedImage, pixel).r, 0.0, 1.0);
-        color = depth >= 1.0 ? frame.skyColor.rgb : albedo * (ambient + (1.0 - ambient) * nDotL * shadow);
+        // Each light brings at most (1 - ambient) / lights, so that no surface is lit beyond its albedo however
+        // many lights there are.
+        float direct = 0.0;
+        for (uint i = 0u; i < frame.info.z; i++)
+            direct += max(dot(n, lightDirection(i, origin, dist)), 0.0) * clamp(loadDenoised(i, pixel), 0.0, 1.0);
+        color = depth >= 1.0 ? frame.skyColor.rgb
+                             : albedo * (ambient + (1.0 - ambient) * direct / float(frame.info.z));
         color = pow(color, vec3(1.0 / 2.2));
     } else {
         // Occluded rays per tile: all lit (green) and all occluded (blue) tiles are the ones dnsr's tile
         // classification can skip; the mixed ones (orange, brighter = more occluded) go through the filter.
-        uint word = imageLoad(hitMaskImage, pixel / ivec2(8, 4)).r;
+        uint word = loadHitMask(light, pixel / ivec2(8, 4));
         uint occluded = bitCount(word);
         vec3 tint = occluded == 0u ? vec3(0.2, 0.7, 0.3)
                   : occluded == 32u ? vec3(0.2, 0.3, 0.8)

@@ -1,7 +1,8 @@
 #version 450
 // reference.comp: the ground truth the viewer measures against. Adds pc.sampleCount shadow samples per pixel
-// (sample indices pc.sampleBase...) to the running sum in referenceImage; the display divides by the total.
-// Its sequence uses a different per-pixel seed than shadow.comp, so it is independent of the noisy input.
+// (sample indices pc.sampleBase...) towards light pc.light to the running sum in that light's reference image; the
+// display divides by the total. Its sequence uses a different per-pixel seed than shadow.comp, so it is
+// independent of the noisy input.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
@@ -18,8 +19,9 @@ void main()
     } else {
         vec3 n = imageLoad(normalImage, pixel).xyz;
         for (uint i = 0u; i < pc.sampleCount; i++)
-            sum += shadowSample(origin.xyz, n, sample2D(uvec2(pixel), pc.sampleBase + i, 0x85ebca6bu));
+            sum += shadowSample(pc.light, origin.xyz, n, sample2D(uvec2(pixel), pc.sampleBase + i,
+                                                                 referenceSeed(pc.light)));
     }
-    if (pc.sampleBase != 0u) sum += imageLoad(referenceImage, pixel).r;
-    imageStore(referenceImage, pixel, vec4(sum));
+    if (pc.sampleBase != 0u) sum += loadReference(pc.light, pixel);
+    storeReference(pc.light, pixel, sum);
 }

@@ -1,10 +1,11 @@
 #version 450
-// shadow.comp: one jittered shadow ray per pixel, packed into dnsr's hit mask (or, with --rays k, k rays per
-// pixel whose lit fraction goes to the visibility image dnsr reads with DNSR_SHADOW_INPUT_VISIBILITY; the mask
-// then holds each pixel's first ray, for the noisy view). One invocation per 8x4 tile
-// traces the tile's 32 rays and writes the tile's word once: no atomics and no subgroup operations, so the
-// result does not depend on the device's subgroup size. Bit (y % 4) * 8 + (x % 8) is set when the ray hit an
-// occluder (the FidelityFX convention, DNSR_HIT_MASK_OCCLUDED_BITS); sky pixels stay 0 (not occluded).
+// shadow.comp: one jittered shadow ray per pixel towards light pc.light (one dispatch per light), packed into that
+// light's hit mask (or, with --rays k, k rays per pixel whose lit fraction goes to the visibility image dnsr reads
+// with DNSR_SHADOW_INPUT_VISIBILITY; the mask then holds each pixel's first ray, for the noisy view). One
+// invocation per 8x4 tile traces the tile's 32 rays and writes the tile's word once: no atomics and no subgroup
+// operations, so the result does not depend on the device's subgroup size. Bit (y % 4) * 8 + (x % 8) is set when
+// the ray hit an occluder (the FidelityFX convention, DNSR_HIT_MASK_OCCLUDED_BITS); sky pixels stay 0 (not
+// occluded).
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
@@ -12,14 +13,27 @@
 // ray to the nearest occluder (0 where the ray was not occluded: dnsr reads it only where the mask says it was).
 // Written only when pc.mode is 1. Binding 13 is not in common.glsl: R16F storage needs the device feature
 // shaderStorageImageExtendedFormats, so this shader is also built with HIT_DISTANCE_R32F for devices without it.
-// The visibility image (binding 16) likewise.
+// The visibility image (binding 16) likewise. Light 1's are at bindings 20 and 21.
 #ifdef HIT_DISTANCE_R32F
-layout(set = 0, binding = 13, r32f) uniform writeonly image2D hitDistanceImage;
-layout(set = 0, binding = 16, r32f) uniform writeonly image2D visibilityImage;
+#define LIGHT_IMAGE_FORMAT r32f
 #else
-layout(set = 0, binding = 13, r16f) uniform writeonly image2D hitDistanceImage;
-layout(set = 0, binding = 16, r16f) uniform writeonly image2D visibilityImage;
+#define LIGHT_IMAGE_FORMAT r16f
 #endif
+layout(set = 0, binding = 13, LIGHT_IMAGE_FORMAT) uniform writeonly image2D hitDistanceImage;
+layout(set = 0, binding = 16, LIGHT_IMAGE_FORMAT) uniform writeonly image2D visibilityImage;
+layout(set = 0, binding = 20, LIGHT_IMAGE_FORMAT) uniform writeonly image2D hitDistanceImage1;
+layout(set = 0, binding = 21, LIGHT_IMAGE_FORMAT) uniform writeonly image2D visibilityImage1;
+
+void storeHitDistance(uint light, ivec2 pixel, float d)
+{
+    if (light == 0u) imageStore(hitDistanceImage, pixel, vec4(d));
+    else imageStore(hitDistanceImage1, pixel, vec4(d));
+}
+void storeVisibility(uint light, ivec2 pixel, float v)
+{
+    if (light == 0u) imageStore(visibilityImage, pixel, vec4(v));
+    else imageStore(visibilityImage1, pixel, vec4(v));
+}
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -27,6 +41,7 @@ void main()
 {
     uvec2 tile = gl_GlobalInvocationID.xy;
     if (any(greaterThanEqual(tile, frame.size.zw))) return;
+    uint light = pc.light;
     bool writeDistance = pc.mode == 1u;
     uint rays = max(pc.sampleCount, 1u);  // rays per pixel: more than 1 writes the visibility image
     uint mask = 0u;
@@ -41,17 +56,17 @@ void main()
             // denoiser's temporal accumulation sees well-spread samples rather than white noise. The first ray's
             // distance is the guidance (dnsr reads it where the pixel is not fully lit).
             for (uint r = 0u; r < rays; r++) {
-                vec2 u = sample2D(pixel, frame.info.x * rays + r, 0x9e3779b9u);
+                vec2 u = sample2D(pixel, frame.info.x * rays + r, shadowSeed(light));
                 float d = 0.0;
-                if (shadowRay(origin.xyz, n, u, writeDistance, d)) {
+                if (shadowRay(light, origin.xyz, n, u, writeDistance, d)) {
                     lit -= 1.0;
                     if (r == 0u) mask |= 1u << bit;
                     if (hitDistance == 0.0) hitDistance = d;
                 }
             }
         }
-        if (writeDistance) imageStore(hitDistanceImage, ivec2(pixel), vec4(hitDistance));
-        if (rays > 1u) imageStore(visibilityImage, ivec2(pixel), vec4(lit / float(rays)));
+        if (writeDistance) storeHitDistance(light, ivec2(pixel), hitDistance);
+        if (rays > 1u) storeVisibility(light, ivec2(pixel), lit / float(rays));
     }
-    imageStore(hitMaskImage, ivec2(tile), uvec4(mask));
+    storeHitMask(light, ivec2(tile), mask);
 }

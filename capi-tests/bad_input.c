@@ -479,6 +479,18 @@ static void dispatch_calls(void)
                     d.visibility = d.depth; d.visibility.format = VK_FORMAT_R32_UINT; d.hitMask = (DnsrHostImage){0});
         dnsr_context_destroy(vctx);
     }
+    /* A checkerboard phase is 0 or 1, and only a checkerboard context takes a nonzero one. */
+    DISPATCH_CASE("record: checkerboardPhase for a hit-mask context", DNSR_ERROR_INVALID_ARGUMENT,
+                  "checkerboardPhase is 1", d.checkerboardPhase = 1);
+    {
+        DnsrContextCreateInfo cinfo = good_info;
+        cinfo.shadowInput = DNSR_SHADOW_INPUT_CHECKERBOARD;
+        DnsrContext cctx = NULL;
+        DNSR_CHECK(dnsr_context_create(&cinfo, &cctx));
+        RECORD_CASE("record: checkerboardPhase 2", cctx, DNSR_ERROR_INVALID_ARGUMENT, "checkerboardPhase is 2",
+                    d.checkerboardPhase = 2);
+        dnsr_context_destroy(cctx);
+    }
 
     DISPATCH_CASE("record: null hitMask view", DNSR_ERROR_NULL_HANDLE, "hitMask.view", d.hitMask.view = VK_NULL_HANDLE);
     DISPATCH_CASE("record: null depth view", DNSR_ERROR_NULL_HANDLE, "depth.view", d.depth.view = VK_NULL_HANDLE);

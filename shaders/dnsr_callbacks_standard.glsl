@@ -30,6 +30,9 @@ vec3 dnsr_get_eye() { return dnsr_constants.eye_depth_sigma.xyz; }
 float dnsr_get_depth_similarity_sigma() { return dnsr_constants.eye_depth_sigma.w; }
 bool dnsr_get_is_reset() { return (dnsr_constants.flags.x & DNSR_FLAG_RESET) != 0u; }
 bool dnsr_get_is_depth_inverted() { return (dnsr_constants.flags.x & DNSR_FLAG_DEPTH_INVERTED) != 0u; }
+bool dnsr_get_is_lit_bit_mask() { return (dnsr_constants.flags.x & DNSR_FLAG_LIT_BIT_MASK) != 0u; }
+// Checkerboard input: this frame's rays were traced for the pixels with (x + y) % 2 == phase.
+int dnsr_get_checkerboard_phase() { return int(dnsr_constants.flags.y); }
 vec4 dnsr_get_disocclusion_settings() { return dnsr_constants.disocclusion; }
 vec4 dnsr_get_rejection_settings() { return dnsr_constants.rejection; }
 vec4 dnsr_get_temporal_settings() { return dnsr_constants.temporal; }
@@ -70,9 +73,17 @@ void dnsr_write_tile_mask(ivec2 tile, uint lit_bits) { imageStore(dnsr_tile_mask
 // reached the light, in [0, 1] (the core clamps, and reads NaN as 0); prepare writes the tile words of exactly
 // lit pixels (the tile mask) and of exactly shadowed ones (the dark mask) from it.
 layout(set = 0, binding = 24) uniform texture2D dnsr_visibility;
-layout(set = 0, binding = 25, r32ui) uniform writeonly uimage2D dnsr_tile_dark_out;
 float dnsr_read_visibility(ivec2 p) { return texelFetch(dnsr_visibility, p + dnsr_get_offset(), 0).r; }
+#endif
+#if defined(DNSR_VISIBILITY_INPUT) || defined(DNSR_CHECKERBOARD_INPUT)
+layout(set = 0, binding = 25, r32ui) uniform writeonly uimage2D dnsr_tile_dark_out;
 void dnsr_write_tile_dark(ivec2 tile, uint dark_bits) { imageStore(dnsr_tile_dark_out, tile + dnsr_get_tile_offset(), uvec4(dark_bits)); }
+#endif
+#ifdef DNSR_CHECKERBOARD_INPUT
+// Checkerboard input: prepare reconstructs every pixel's visibility from the half of the pixels traced this frame,
+// into an internal image that classification reads as a visibility input.
+layout(set = 0, binding = 27, r32f) uniform writeonly image2D dnsr_visibility_out;
+void dnsr_write_visibility(ivec2 p, float v) { imageStore(dnsr_visibility_out, p + dnsr_get_offset(), vec4(v)); }
 #endif
 #endif
 

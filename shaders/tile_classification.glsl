@@ -435,11 +435,15 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         }
     }
     if (m.z > max_samples - 1.0) dnsr_scale_moments(m, (max_samples - 1.0) / m.z);
-    float m_old = m.x;
+    // Welford's update in a form that stays exact when the history's count is tiny (rejected history is scaled
+    // towards 0): (x - old mean)(x - new mean) = delta^2 * previous / n, and the sample variance divides by the
+    // previous count instead of forming n - 1 (1 + 6e-6 - 1 keeps two digits in fp32).
+    float previous = m.z;
+    float delta = x - m.x;
     m.z += 1.0;
-    m.x += (x - m_old) / m.z;
-    m.y += (x - m_old) * (x - m.x);
-    float variance = m.z > 1.0 ? m.y / (m.z - 1.0) : 1.0;
+    m.x += delta / m.z;
+    m.y += delta * delta * (previous / m.z);
+    float variance = previous > 0.0 ? m.y / previous : 1.0;
     float flip_after = floor(dnsr_get_run_settings().y);
 #ifdef DNSR_VISIBILITY_INPUT
     bool exact = dnsr_is_exact(x);

@@ -59,7 +59,8 @@ gpu_block! {
         motion_normals: [f32; 4],
         /// xy: render rectangle offset in pixels; zw: render rectangle extent in pixels.
         rect: [u32; 4],
-        /// x: DNSR_FLAG_* bits; yzw: unused (nothing depends on the host's frame index).
+        /// x: DNSR_FLAG_* bits; y: checkerboard phase (a checkerboard input traced the pixels with (x + y) % 2 ==
+        /// phase); zw: unused (nothing depends on the host's frame index).
         flags: [u32; 4],
         /// xy: 1 / rect extent; zw: 1 / size of the internal images (the context's size).
         inv_extent: [f32; 4],
@@ -92,6 +93,8 @@ gpu_block! {
 pub(crate) const FLAG_RESET: u32 = 1 << 0;
 /// Frame flag: depth 0 is far, closest-depth means largest depth.
 pub(crate) const FLAG_DEPTH_INVERTED: u32 = 1 << 1;
+/// Frame flag: the host's hit mask holds lit bits (read by the checkerboard input's prepare, which always runs).
+pub(crate) const FLAG_LIT_BIT_MASK: u32 = 1 << 2;
 /// Filter pass flag: write mean and variance to the internal intermediate image.
 pub(crate) const PASS_WRITE_INTERNAL: u32 = 1 << 0;
 /// Filter pass flag: groups whose two tiles are cleared write nothing (what the pass would write there is
@@ -105,6 +108,7 @@ pub(crate) const PASS_WRITE_GUIDE: u32 = 1 << 2;
 pub(crate) const GLSL_FLAGS: &[(&str, u32)] = &[
     ("DNSR_FLAG_RESET", FLAG_RESET),
     ("DNSR_FLAG_DEPTH_INVERTED", FLAG_DEPTH_INVERTED),
+    ("DNSR_FLAG_LIT_BIT_MASK", FLAG_LIT_BIT_MASK),
     ("DNSR_PASS_WRITE_INTERNAL", PASS_WRITE_INTERNAL),
     ("DNSR_PASS_SKIP_CLEARED", PASS_SKIP_CLEARED),
     ("DNSR_PASS_WRITE_GUIDE", PASS_WRITE_GUIDE),

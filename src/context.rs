@@ -1,6 +1,6 @@
 //! The denoiser context: pipelines, internal state per light, and recording into the host's command buffer.
 
-use crate::constants::{FrameConstants, FLAG_DEPTH_INVERTED, FLAG_RESET};
+use crate::constants::{FrameConstants, FLAG_DEPTH_INVERTED, FLAG_LIT_BIT_MASK, FLAG_RESET};
 use crate::create_info::{ContextCreateInfo, EnabledFeatures, Precision, ShadowInput};
 use crate::dispatch::{HitMaskConvention, LightDispatch, Rect, ShadowsDispatch, MAX_LIGHTS_PER_RECORD};
 use crate::error::{vk_check, Error, Result};
@@ -20,13 +20,25 @@ use crate::timestamps::{PassTimings, Timestamps};
 use crate::validate;
 use ash::vk;
 
-/// Bytes of device memory a context with these parameters allocates, before driver padding and alignment
-/// (which `Context::memory_bytes` includes). Needs no device.
+/// Bytes of device memory a context with these parameters and a hit-mask or visibility input allocates, before
+/// driver padding and alignment (which `Context::memory_bytes` includes). Needs no device.
 pub fn memory_requirements(width: u32, height: u32, precision: Precision, filter_passes: u32, light_count: u32) -> Result<u64> {
+    memory_requirements_for_input(width, height, precision, filter_passes, light_count, ShadowInput::HitMask)
+}
+
+/// `memory_requirements` for a context with shadow input `input` (a checkerboard input adds 4 B/px per light).
+pub fn memory_requirements_for_input(
+    width: u32,
+    height: u32,
+    precision: Precision,
+    filter_passes: u32,
+    light_count: u32,
+    input: ShadowInput,
+) -> Result<u64> {
     validate::extent("render size", width, height, u32::MAX)?;
     check_filter_passes(filter_passes)?;
     validate::light_count(light_count)?;
-    let per_light = crate::state::texel_bytes([width, height], precision, filter_passes);
+    let per_light = crate::state::texel_bytes([width, height], precision, filter_passes) + crate::state::input_bytes([width, height], input);
     Ok(per_light * light_count as u64 + crate::state::guide_bytes([width, height], filter_passes) + constants_bytes(light_count))
 }
 
@@ -166,7 +178,14 @@ impl Context {
         check_features(&vk, info)?;
         let family = validate::queue_family(&vk, info.queue_family_index)?;
         let supported_stages = validate::supported_stages(&vk, &family);
-        let needed = memory_requirements(info.width, info.height, info.precision, info.settings.filter_passes, info.light_count)?;
+        let needed = memory_requirements_for_input(
+            info.width,
+            info.height,
+            info.precision,
+            info.settings.filter_passes,
+            info.light_count,
+            info.shadow_input,
+        )?;
         memory::check_available(&vk, needed)?;
 
         let push = vk.push_descriptor.clone();
@@ -265,7 +284,8 @@ impl Context {
 
     fn allocate_lights(&mut self) -> Result<()> {
         for index in 0..self.light_count {
-            let light = LightState::new(&self.vk, index, self.size, self.precision, self.settings.filter_passes)?;
+            let checkerboard = self.shadow_input == ShadowInput::Checkerboard;
+            let light = LightState::new(&self.vk, index, self.size, self.precision, self.settings.filter_passes, checkerboard)?;
             self.lights.push(light);
         }
         self.allocate_guide(self.settings.filter_passes)
@@ -294,7 +314,7 @@ impl Context {
     pub fn resize(&mut self, width: u32, height: u32) -> Result<()> {
         let props = unsafe { self.vk.instance.get_physical_device_properties(self.vk.physical_device) };
         validate::extent("render size", width, height, props.limits.max_image_dimension2_d)?;
-        let needed = memory_requirements(width, height, self.precision, self.settings.filter_passes, self.light_count)?;
+        let needed = memory_requirements_for_input(width, height, self.precision, self.settings.filter_passes, self.light_count, self.shadow_input)?;
         memory::check_available(&self.vk, needed.saturating_sub(self.memory_bytes()))?;
         self.destroy_lights();
         self.size = [width, height];
@@ -365,7 +385,8 @@ impl Context {
             constants: self.constants_buffer,
             constants_offset: slot as vk::DeviceSize * CONSTANTS_STRIDE,
             hit_mask: host(&d.hit_mask),
-            visibility: host(&d.visibility),
+            visibility: light.reconstructed.as_ref().map_or(host(&d.visibility), |r| image(r.view, vk::ImageLayout::GENERAL)),
+            visibility_out: light.reconstructed.as_ref().map_or(vk::ImageView::null(), |r| r.view),
             depth: host(&d.depth),
             velocity: host(&d.velocity),
             normals: host(&d.normals),
@@ -375,10 +396,7 @@ impl Context {
             spec: (if d.hit_distance.is_some() { 1 << SPEC_PENUMBRA_GUIDED } else { 0 })
                 | (if self.settings.stable_history_samples > 0.0 { 1 << SPEC_STABLE_HISTORY } else { 0 }),
             output: d.output.view,
-            tile_mask: match d.hit_mask_convention {
-                HitMaskConvention::OccludedBits => image(light.tile_mask.view, vk::ImageLayout::GENERAL),
-                HitMaskConvention::LitBits => host(&d.hit_mask),
-            },
+            tile_mask: if self.reads_mask_directly(d) { host(&d.hit_mask) } else { image(light.tile_mask.view, vk::ImageLayout::GENERAL) },
             tile_dark: light.tile_dark.view,
             tile_meta: light.tile_meta.view,
             reprojection: light.reprojection.view,
@@ -475,8 +493,7 @@ impl Context {
         let extent = [rect.width, rect.height];
         // Shared by every light of the call: the shadow input, the mask convention, the settings, the debug view.
         let shared = &ds[0];
-        // A hit mask of lit bits is read as it is (visibility always goes through prepare).
-        let run_prepare = self.shadow_input == ShadowInput::Visibility || shared.hit_mask_convention == HitMaskConvention::OccludedBits;
+        let run_prepare = !self.reads_mask_directly(shared);
         let frames: [Option<FramePasses>; MAX_LIGHTS_PER_RECORD] = std::array::from_fn(|i| {
             ds.get(i).map(|d| {
                 let views = self.frame_views(d, i, self.lights[d.light_index as usize].parity);
@@ -626,6 +643,12 @@ impl Context {
         Ok(())
     }
 
+    /// Classification reads the host's hit mask as it is, without prepare: a hit mask of lit bits (visibility and
+    /// checkerboard inputs always go through prepare).
+    fn reads_mask_directly(&self, d: &ShadowsDispatch) -> bool {
+        self.shadow_input == ShadowInput::HitMask && d.hit_mask_convention == HitMaskConvention::LitBits
+    }
+
     /// The constants of one light's frame.
     fn frame_constants(&self, d: &ShadowsDispatch, rect: Rect, reset: bool) -> FrameConstants {
         let mut c = FrameConstants {
@@ -636,8 +659,10 @@ impl Context {
             motion_normals: [d.motion_vector_scale.x, d.motion_vector_scale.y, d.normals_unpack_mul, d.normals_unpack_add],
             rect: [rect.x, rect.y, rect.width, rect.height],
             flags: [
-                (if reset { FLAG_RESET } else { 0 }) | (if self.depth_inverted { FLAG_DEPTH_INVERTED } else { 0 }),
-                0,
+                (if reset { FLAG_RESET } else { 0 })
+                    | (if self.depth_inverted { FLAG_DEPTH_INVERTED } else { 0 })
+                    | (if d.hit_mask_convention == HitMaskConvention::LitBits { FLAG_LIT_BIT_MASK } else { 0 }),
+                d.checkerboard_phase,
                 0,
                 0,
             ],

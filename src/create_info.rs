@@ -45,6 +45,12 @@ pub enum ShadowInput {
     /// exact 0 and 1 count as uniform (cleared tiles) or extend runs of identical samples; the temporal moments
     /// are those of the per-frame values, so k rays per pixel give the variance of a mean of k samples.
     Visibility,
+    /// Half a ray per pixel: the hit mask (`ShadowsDispatch::hit_mask`, in its `hit_mask_convention`) holds this
+    /// frame's rays for the pixels with (x + y) % 2 == `ShadowsDispatch::checkerboard_phase` only (x, y in image
+    /// pixels); the host alternates the phase every frame. dnsr keeps each traced pixel's sample and gives every
+    /// other pixel the mean of its four traced neighbours, then denoises that as a visibility input. Costs 4 B/px
+    /// more per light (the reconstructed visibility).
+    Checkerboard,
 }
 
 /// Most lights one context denoises (`ContextCreateInfo::light_count`).

@@ -145,6 +145,9 @@ pub struct ShadowsDispatch {
     pub sync: HostSync,
     /// What the output shows (the shadow unless a debug view is chosen).
     pub debug_view: DebugView,
+    /// Checkerboard input (`ShadowInput::Checkerboard`): this frame's rays were traced for the pixels with
+    /// (x + y) % 2 == phase (x, y in image pixels), 0 or 1; alternate it every frame. Must be 0 for other inputs.
+    pub checkerboard_phase: u32,
     /// Images the engine's own shader variants read or write (`ContextCreateInfo::shader_overrides`): slot i is
     /// binding `ENGINE_BINDING_BASE + i` of set 0. Every binding an override of this frame's passes declares
     /// must be given; dnsr binds them without knowing what they hold. Empty without overrides.
@@ -192,6 +195,7 @@ impl Default for ShadowsDispatch {
             render_rect: None,
             sync: HostSync::default(),
             debug_view: DebugView::None,
+            checkerboard_phase: 0,
             engine_images: [None; MAX_ENGINE_IMAGES],
         }
     }

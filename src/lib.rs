@@ -23,7 +23,7 @@ mod timestamps;
 mod validate;
 
 pub use ash;
-pub use context::{memory_requirements, Context, MIN_API_VERSION};
+pub use context::{memory_requirements, memory_requirements_for_input, Context, MIN_API_VERSION};
 pub use create_info::{
     ContextCreateInfo, DepthFlags, EnabledFeatures, Precision, ShaderOverride, ShadowInput, DEFAULT_MAX_FRAMES_IN_FLIGHT, MAX_FRAMES_IN_FLIGHT,
     MAX_LIGHT_COUNT,

@@ -53,6 +53,14 @@ pub(crate) fn guide_needed(filter_passes: u32) -> bool {
     filter_passes > 1
 }
 
+/// The visibility prepare reconstructs from a checkerboard input.
+pub(crate) const RECONSTRUCTED_FORMAT: vk::Format = vk::Format::R32_SFLOAT;
+
+/// Texel bytes a light's shadow input adds: the reconstructed visibility of a checkerboard input.
+pub(crate) fn input_bytes(extent: [u32; 2], input: crate::ShadowInput) -> u64 {
+    if input == crate::ShadowInput::Checkerboard { 4 * extent[0] as u64 * extent[1] as u64 } else { 0 }
+}
+
 /// Texel bytes of the context's guide (none with one filter pass).
 pub(crate) fn guide_bytes(extent: [u32; 2], filter_passes: u32) -> u64 {
     if guide_needed(filter_passes) { 16 * extent[0] as u64 * extent[1] as u64 } else { 0 }
@@ -97,7 +105,7 @@ pub(crate) fn texel_bytes(extent: [u32; 2], precision: Precision, filter_passes:
 }
 
 /// Most internal images one light has (the fixed ones and every optional one).
-pub(crate) const MAX_IMAGES: usize = 11;
+pub(crate) const MAX_IMAGES: usize = 12;
 
 pub(crate) struct LightState {
     pub tile_mask: InternalImage,
@@ -111,6 +119,8 @@ pub(crate) struct LightState {
     pub history: InternalImage,
     /// None until four passes are configured.
     pub tmp: Option<InternalImage>,
+    /// The visibility prepare reconstructs from a checkerboard input (None for other inputs).
+    pub reconstructed: Option<InternalImage>,
     /// Ping-pong pairs indexed by `parity` (current) and `parity ^ 1` (previous frame).
     pub depth: [InternalImage; 2],
     pub moments: [InternalImage; 2],
@@ -123,7 +133,8 @@ pub(crate) struct LightState {
 }
 
 impl LightState {
-    pub(crate) fn new(vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32) -> Result<LightState> {
+    /// A light's images; `checkerboard` adds the reconstructed visibility of a checkerboard input.
+    pub(crate) fn new(vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32, checkerboard: bool) -> Result<LightState> {
         let mut made: Vec<InternalImage> = Vec::new();
         for (format, size, name) in image_specs(extent, precision, 1) {
             match InternalImage::new(vk, format, size, &format!("dnsr.light{light}.{name}")) {
@@ -146,12 +157,18 @@ impl LightState {
             depth: [next(), next()],
             moments: [next(), next()],
             tmp: None,
+            reconstructed: None,
             parity: 0,
             initialized: false,
             pending_reset: true,
         };
-        match state.allocate_optional(vk, light, extent, precision, filter_passes) {
-            Ok(_) => Ok(state),
+        let reconstructed = || InternalImage::new(vk, RECONSTRUCTED_FORMAT, extent, &format!("dnsr.light{light}.reconstructed_visibility"));
+        let made = state.allocate_optional(vk, light, extent, precision, filter_passes).and_then(|_| {
+            state.reconstructed = if checkerboard { Some(reconstructed()?) } else { None };
+            Ok(())
+        });
+        match made {
+            Ok(()) => Ok(state),
             Err(e) => {
                 state.destroy(vk);
                 Err(e)
@@ -182,6 +199,7 @@ impl LightState {
             .chain(self.depth.iter())
             .chain(self.moments.iter())
             .chain(self.tmp.iter())
+            .chain(self.reconstructed.iter())
     }
 
     pub(crate) fn bytes(&self) -> u64 {
@@ -194,6 +212,7 @@ impl LightState {
             .chain(self.depth.iter_mut())
             .chain(self.moments.iter_mut())
             .chain(self.tmp.iter_mut())
+            .chain(self.reconstructed.iter_mut())
         {
             img.destroy(vk);
         }

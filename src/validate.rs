@@ -151,14 +151,26 @@ pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, rules: &DispatchRules) -> R
     let sampled = vk::FormatFeatureFlags::SAMPLED_IMAGE;
     let tiles = [size[0].div_ceil(8), size[1].div_ceil(4)];
     match shadow_input {
-        ShadowInput::HitMask => {
+        ShadowInput::HitMask | ShadowInput::Checkerboard => {
             host_image(vk, ImageRole::HitMask, &d.hit_mask, &[F::R32_UINT], SAMPLED_LAYOUTS, tiles, sampled)?;
-            unused_input(&d.visibility, "visibility", "leave it null: the context takes a hit mask (ShadowInput::HitMask)")?;
+            unused_input(&d.visibility, "visibility", "leave it null: the context takes a hit mask (ShadowInput::HitMask or Checkerboard)")?;
         }
         ShadowInput::Visibility => {
             host_image(vk, ImageRole::Visibility, &d.visibility, decoded(VISIBILITY_FORMATS), SAMPLED_LAYOUTS, size, sampled)?;
             unused_input(&d.hit_mask, "hit_mask", "leave it null: the context takes per-pixel visibility (ShadowInput::Visibility)")?;
         }
+    }
+    let phases = if shadow_input == ShadowInput::Checkerboard { 0..=1 } else { 0..=0 };
+    if !phases.contains(&d.checkerboard_phase) {
+        return Err(Error::InvalidValue {
+            field: "checkerboard_phase",
+            value: d.checkerboard_phase.to_string(),
+            allowed: if shadow_input == ShadowInput::Checkerboard {
+                "it must be 0 or 1: the pixels with (x + y) % 2 == phase were traced this frame"
+            } else {
+                "leave it 0: the context does not take a checkerboard input (ShadowInput::Checkerboard)"
+            },
+        });
     }
     host_image(vk, ImageRole::Depth, &d.depth, decoded(DEPTH_FORMATS), DEPTH_LAYOUTS, size, sampled)?;
     host_image(vk, ImageRole::Velocity, &d.velocity, decoded(VELOCITY_FORMATS), SAMPLED_LAYOUTS, size, sampled)?;

@@ -25,6 +25,7 @@ struct DnsrFilterPush {
 
 #define DNSR_FLAG_RESET 1u
 #define DNSR_FLAG_DEPTH_INVERTED 2u
+#define DNSR_FLAG_LIT_BIT_MASK 4u
 #define DNSR_PASS_WRITE_INTERNAL 1u
 #define DNSR_PASS_SKIP_CLEARED 2u
 #define DNSR_PASS_WRITE_GUIDE 4u

@@ -156,6 +156,7 @@ pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo, sink: &mut Option<Lo
         shadow_input: match c.shadow_input {
             DNSR_SHADOW_INPUT_HIT_MASK => crate::ShadowInput::HitMask,
             DNSR_SHADOW_INPUT_VISIBILITY => crate::ShadowInput::Visibility,
+            DNSR_SHADOW_INPUT_CHECKERBOARD => crate::ShadowInput::Checkerboard,
             other => return Err(CallError::InvalidArgument(format!("pCreateInfo->shadowInput {other} is not a DnsrShadowInput"))),
         },
         output_format: c.output_format,
@@ -259,6 +260,7 @@ pub(crate) fn dispatch_from_c(c: &DnsrShadowsDispatch) -> Result<(vk::CommandBuf
             output_dst_access: c.sync.output_dst_access,
         },
         engine_images: engine_images_from_c(c)?,
+        checkerboard_phase: c.checkerboard_phase,
     };
     Ok((c.command_buffer, d))
 }

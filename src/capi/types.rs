@@ -157,6 +157,11 @@ pub const DNSR_SHADOW_INPUT_HIT_MASK: DnsrShadowInput = 0;
 /// 0 and 1 count as uniform or extend runs of identical samples; the temporal moments are those of the per-frame
 /// values, so k rays per pixel give the variance of a mean of k samples.
 pub const DNSR_SHADOW_INPUT_VISIBILITY: DnsrShadowInput = 1;
+/// Half a ray per pixel: hitMask (in its hitMaskConvention) holds this frame's rays for the pixels with
+/// (x + y) % 2 == DnsrShadowsDispatch::checkerboardPhase only (x, y in image pixels); alternate the phase every
+/// frame. dnsr keeps each traced pixel's sample, gives every other pixel the mean of its four traced neighbours and
+/// denoises that as a visibility input. 4 B/px more device memory per light than dnsr_get_memory_requirements says.
+pub const DNSR_SHADOW_INPUT_CHECKERBOARD: DnsrShadowInput = 2;
 /// Forces 32 bits.
 pub const DNSR_SHADOW_INPUT_MAX_ENUM: DnsrShadowInput = 0x7FFF_FFFF;
 
@@ -417,8 +422,8 @@ pub struct DnsrContextCreateInfo {
     /// of a classification or filter variant, the dispatch's depth, velocity, normals and hit distances may have
     /// any format the device can sample (the engine's callbacks decode them).
     pub p_shader_overrides: *const DnsrShaderOverride,
-    /// DNSR_SHADOW_INPUT_HIT_MASK (0, default) or DNSR_SHADOW_INPUT_VISIBILITY: which of hitMask / visibility every
-    /// dispatch of this context passes.
+    /// DNSR_SHADOW_INPUT_HIT_MASK (0, default), DNSR_SHADOW_INPUT_VISIBILITY or DNSR_SHADOW_INPUT_CHECKERBOARD:
+    /// which of hitMask / visibility every dispatch of this context passes, and how many of the pixels it traced.
     pub shadow_input: DnsrShadowInput,
 }
 
@@ -584,6 +589,9 @@ pub struct DnsrShadowsDispatch {
     /// NaN reads as 0. With k rays per pixel store hits / k (R8_UNORM stores 1/2, 1/4 ... only approximately,
     /// which is harmless: only exact 0 and 1 are treated specially). hitMaskConvention is ignored.
     pub visibility: DnsrHostImage,
+    /// DNSR_SHADOW_INPUT_CHECKERBOARD: this frame's rays were traced for the pixels with (x + y) % 2 ==
+    /// checkerboardPhase (x, y in image pixels), 0 or 1; alternate it every frame. 0 for the other inputs.
+    pub checkerboard_phase: u32,
 }
 
 /// Per-light flags of `DnsrLightDispatch`.

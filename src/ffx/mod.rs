@@ -446,6 +446,7 @@ impl Denoiser {
             engine_image_count: 0,
             p_engine_images: std::ptr::null(),
             visibility: DnsrHostImage::default(),
+            checkerboard_phase: 0,
         };
         check(dnsr_shadows_record(self.context, &dispatch))?;
         self.output_format = Some(output_format);

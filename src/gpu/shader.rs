@@ -32,6 +32,7 @@ macro_rules! variant {
 pub(crate) const VARIANTS: &[ShaderVariant] = &[
     variant!("prepare", "prepare.comp", []),
     variant!("prepare_visibility", "prepare.comp", ["DNSR_VISIBILITY_INPUT"]),
+    variant!("prepare_checkerboard", "prepare.comp", ["DNSR_CHECKERBOARD_INPUT"]),
     variant!("tile_classification_r8", "tile_classification.comp", ["DNSR_OUTPUT_FORMAT=r8"]),
     variant!("tile_classification_r16f", "tile_classification.comp", ["DNSR_OUTPUT_FORMAT=r16f"]),
     variant!("tile_classification_r32f", "tile_classification.comp", ["DNSR_OUTPUT_FORMAT=r32f"]),

@@ -33,6 +33,7 @@ pub(crate) enum Resource {
     Visibility,
     TileDarkOut,
     TileDark,
+    VisibilityOut,
     /// An engine's own images (bindings ENGINE_BINDING_BASE.., any name), declared by engine-compiled variants.
     Engine0,
     Engine1,
@@ -45,7 +46,7 @@ pub(crate) enum Resource {
 }
 
 pub(crate) const RESOURCE_COUNT: usize = Resource::Engine7 as usize + 1;
-const NAMED_COUNT: usize = Resource::TileDark as usize + 1;
+const NAMED_COUNT: usize = Resource::VisibilityOut as usize + 1;
 
 impl Resource {
     /// The engine image at slot `slot` (binding ENGINE_BINDING_BASE + slot).
@@ -89,6 +90,7 @@ const TABLE: [(&str, Resource, vk::DescriptorType); NAMED_COUNT] = [
     ("dnsr_visibility", Resource::Visibility, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_tile_dark_out", Resource::TileDarkOut, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_tile_dark", Resource::TileDark, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_visibility_out", Resource::VisibilityOut, vk::DescriptorType::STORAGE_IMAGE),
 ];
 
 impl Resource {

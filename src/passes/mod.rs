@@ -144,8 +144,11 @@ pub(crate) struct FrameViews {
     /// This light's slot of the constants buffer.
     pub constants_offset: vk::DeviceSize,
     pub hit_mask: Binding,
-    /// The host's visibility (a visibility input; null otherwise, and no pass declares it).
+    /// The host's visibility (a visibility input), the reconstructed one (a checkerboard input), or null (no
+    /// pass declares it).
     pub visibility: Binding,
+    /// Where prepare reconstructs the visibility of a checkerboard input (null otherwise).
+    pub visibility_out: vk::ImageView,
     pub depth: Binding,
     pub velocity: Binding,
     pub normals: Binding,

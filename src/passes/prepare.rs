@@ -1,5 +1,5 @@
 //! prepare: FidelityFX hit mask (1 = occluded) -> internal lit-bit tile mask, or with a visibility input the tile
-//! words of exactly lit and exactly shadowed pixels. Shader: shaders/prepare.comp. Skipped when the host's mask
+//! words of exactly lit and exactly shadowed pixels (a checkerboard input: the reconstructed visibility too). Shader: shaders/prepare.comp. Skipped when the host's mask
 //! already holds lit bits.
 
 use super::bindings::Resource;
@@ -11,6 +11,7 @@ pub(crate) fn shader(input: ShadowInput) -> &'static str {
     match input {
         ShadowInput::HitMask => "prepare",
         ShadowInput::Visibility => "prepare_visibility",
+        ShadowInput::Checkerboard => "prepare_checkerboard",
     }
 }
 
@@ -22,5 +23,6 @@ pub(crate) fn pass(v: &FrameViews, enabled: bool) -> Pass {
     t[Resource::Visibility as usize] = v.visibility;
     t[Resource::TileDarkOut as usize] = internal(v.tile_dark);
     t[Resource::TileMaskOut as usize] = internal(v.tile_mask.view);
+    t[Resource::VisibilityOut as usize] = internal(v.visibility_out);
     Pass { role: Role::Prepare, bindings: t, grid: Grid::Tiles, group: super::GROUP, push: None, spec: 0, enabled }
 }

@@ -11,7 +11,8 @@ use ash::vk;
 pub(crate) fn shader(precision: Precision, output: vk::Format, input: ShadowInput) -> Option<&'static str> {
     let stem = match input {
         ShadowInput::HitMask => "tile_classification",
-        ShadowInput::Visibility => "tile_classification_visibility",
+        // A checkerboard input reaches classification as the visibility prepare reconstructed.
+        ShadowInput::Visibility | ShadowInput::Checkerboard => "tile_classification_visibility",
     };
     crate::gpu::shader::variant_name(stem, Some(output), precision)
 }

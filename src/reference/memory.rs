@@ -32,8 +32,11 @@ pub struct Frame {
     pub hit_distance: Vec<f64>,
     /// Host hit mask (FidelityFX convention), one word per tile.
     pub hit_mask: Vec<u32>,
-    /// Host visibility per pixel, as stored; `Some` makes it the shadow input instead of the hit mask.
+    /// Host visibility per pixel, as stored; `Some` makes it the shadow input instead of the hit mask. With a
+    /// checkerboard input, prepare writes the reconstructed visibility here.
     pub visibility: Option<Vec<f64>>,
+    /// Checkerboard input: the hit mask holds the rays of the pixels with (x + y) % 2 == phase.
+    pub checkerboard_phase: Option<u32>,
     /// Depth per pixel.
     pub depth: Vec<f64>,
     /// Scaled motion vectors per pixel.
@@ -89,6 +92,7 @@ impl Frame {
             hit_distance: vec![0.0; n],
             hit_mask: vec![0; tiles],
             visibility: None,
+            checkerboard_phase: None,
             depth: vec![1.0; n],
             velocity: vec![DVec2::ZERO; n],
             normals: vec![DVec3::ZERO; n],
@@ -173,8 +177,11 @@ impl Get for Frame {
     fn penumbra(&self) -> Option<Penumbra> {
         self.penumbra
     }
+    fn checkerboard_phase(&self) -> Option<u32> {
+        self.checkerboard_phase
+    }
     fn visibility_input(&self) -> bool {
-        self.visibility.is_some()
+        self.visibility.is_some() || self.checkerboard_phase.is_some()
     }
 }
 
@@ -243,6 +250,10 @@ impl Write for Frame {
     fn write_tile_mask(&mut self, tile: Coord, lit_bits: u32) {
         let i = self.tile(tile);
         self.tile_mask[i] = lit_bits;
+    }
+    fn write_visibility(&mut self, p: Coord, v: f64) {
+        let (i, n) = (self.px(p), (self.extent[0] * self.extent[1]) as usize);
+        self.visibility.get_or_insert_with(|| vec![0.0; n])[i] = v;
     }
     fn write_tile_dark(&mut self, tile: Coord, dark_bits: u32) {
         let i = self.tile(tile);

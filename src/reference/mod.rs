@@ -44,8 +44,11 @@ pub trait Get {
     fn is_final_pass(&self) -> bool;
     /// Penumbra guidance of this frame (None without a hit-distance input).
     fn penumbra(&self) -> Option<Penumbra>;
-    /// The shadow input is per-pixel visibility (`read_visibility`) instead of the hit mask.
+    /// The shadow input is per-pixel visibility (`read_visibility`) instead of the hit mask; a checkerboard input
+    /// is one too, from prepare on (prepare writes the visibility classification reads).
     fn visibility_input(&self) -> bool;
+    /// A checkerboard input: this frame traced the pixels with (x + y) % 2 == phase (None: every pixel).
+    fn checkerboard_phase(&self) -> Option<u32>;
 }
 
 /// The inputs passes read (`dnsr_read_*`). Each pass reads only what it needs.
@@ -88,6 +91,8 @@ pub trait Write {
     fn write_tile_mask(&mut self, tile: Coord, lit_bits: u32);
     /// Internal dark mask word (visibility input).
     fn write_tile_dark(&mut self, tile: Coord, dark_bits: u32);
+    /// A pixel's visibility reconstructed from a checkerboard input (what `read_visibility` returns after it).
+    fn write_visibility(&mut self, p: Coord, v: f64);
     /// This frame's depth copy.
     fn write_depth_copy(&mut self, p: Coord, depth: f64);
     /// This frame's moments.

@@ -261,11 +261,13 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
         let f = (max_samples - 1.0) / m.z;
         scale_moments(&mut m, f);
     }
-    let m_old = m.x;
+    // Welford's update without cancellation when the previous count is tiny (shaders/tile_classification.glsl).
+    let previous = m.z;
+    let delta = x - m.x;
     m.z += 1.0;
-    m.x += (x - m_old) / m.z;
-    m.y += (x - m_old) * (x - m.x);
-    let mut variance = if m.z > 1.0 { m.y / (m.z - 1.0) } else { 1.0 };
+    m.x += delta / m.z;
+    m.y += delta * delta * (previous / m.z);
+    let mut variance = if previous > 0.0 { m.y / previous } else { 1.0 };
     let flip_after = (s.history_flip_samples as f64).floor();
     let exact = is_exact(x);
     m.w = if exact { sample_run(m.w, x, stable_after) } else { fractional_run(m.w, stable_after) };

@@ -166,6 +166,33 @@ fn bad_visibility_dispatches_record_nothing() {
 }
 
 #[test]
+fn bad_checkerboard_dispatches_record_nothing() {
+    let g = gpu();
+    let (w, h) = (32, 16);
+    let mut info = g.create_info(w, h);
+    info.output_format = vk::Format::R32_SFLOAT;
+    info.shadow_input = crate::ShadowInput::Checkerboard;
+    let mut r = Runner::new(&g, &info).unwrap();
+    assert!(r.frame(&static_frame(w, h, &|_, _| 1.0, 1), false).iter().all(|&o| o == 1.0));
+    let shadow = static_frame(w, h, &|_, _| 0.0, 2);
+    let good = ShadowsDispatch { checkerboard_phase: 1, ..r.dispatch(&shadow) };
+    let cases: &[DispatchCase] = &[
+        ("phase 2", |d| d.checkerboard_phase = 2, |e| matches!(e, Error::InvalidValue { field: "checkerboard_phase", .. })),
+        ("no hit mask", |d| d.hit_mask = HostImage::default(), |e| *e == Error::NullHandle("hit_mask.image")),
+        ("visibility given", |d| d.visibility = d.depth, |e| matches!(e, Error::InvalidValue { field: "visibility", .. })),
+    ];
+    refused_record_nothing(&mut r, &shadow, &good, cases);
+    assert!(r.run(&shadow, &good).unwrap().iter().all(|&o| o == 0.0));
+    // A phase given to a context that traces every pixel is refused, not ignored.
+    info.shadow_input = crate::ShadowInput::HitMask;
+    let mut r = Runner::new(&g, &info).unwrap();
+    let e = r.run(&shadow, &good).expect_err("phase 1 for a hit-mask context");
+    assert!(matches!(e, Error::InvalidValue { field: "checkerboard_phase", .. }), "{e:?}");
+    drop(r);
+    g.assert_clean();
+}
+
+#[test]
 fn bad_dispatches_record_nothing() {
     let g = gpu();
     let (w, h) = (32, 16);

@@ -79,6 +79,7 @@ fn c_dispatch(d: &crate::ShadowsDispatch, cmd: vk::CommandBuffer) -> DnsrShadows
         engine_image_count: 0,
         p_engine_images: std::ptr::null(),
         visibility: host(&d.visibility),
+        checkerboard_phase: d.checkerboard_phase,
     }
 }
 

@@ -230,7 +230,7 @@ fn generated_layout_header() -> String {
         s_type, p_next, command_buffer, light_index, flags, hit_mask_convention, hit_mask, depth, velocity, normals,
         output, motion_vector_scale, normals_unpack_mul, normals_unpack_add, eye, frame_index, projection_inverse,
         reprojection_matrix, view_projection_inverse, depth_similarity_sigma, render_rect, sync, debug_view, hit_distance,
-        light_angular_size, engine_image_count, p_engine_images, visibility,
+        light_angular_size, engine_image_count, p_engine_images, visibility, checkerboard_phase,
     });
     check!(DnsrEngineImage { binding, view, layout });
     check!(DnsrLightDispatch { s_type, p_next, light_index, flags, hit_mask, visibility, output, hit_distance, light_angular_size });

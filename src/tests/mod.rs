@@ -3,6 +3,7 @@
 
 mod bad_input;
 mod capi;
+mod checkerboard;
 pub(crate) mod correctness;
 mod diagnostics;
 mod extremes;

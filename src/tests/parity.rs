@@ -115,22 +115,27 @@ fn worst(name: &'static str, gpu: impl Iterator<Item = f64>, cpu: impl Iterator<
     w
 }
 
-/// Seeds from 8 take per-pixel visibility instead of the hit mask.
+/// Seeds 8 and 9 take per-pixel visibility instead of the hit mask, seeds from 10 a checkerboard input (half of the
+/// mask's pixels traced per frame, alternating).
 fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64) -> Vec<Worst> {
-    let visibility_input = seed >= 8;
+    let visibility_input = (8..10).contains(&seed);
+    let checkerboard = seed >= 10;
     let mut info = g.create_info(w, h);
     info.precision = precision;
     if visibility_input {
         info.shadow_input = crate::ShadowInput::Visibility;
     }
+    if checkerboard {
+        info.shadow_input = crate::ShadowInput::Checkerboard;
+    }
     info.output_format = vk::Format::R32_SFLOAT;
     info.settings.filter_passes = passes;
     // Some cases clamp the history of pixels with two identical samples in a row to their run ...
-    info.settings.stable_history_samples = if [1, 5, 6, 8].contains(&seed) { 2.0 } else { 0.0 };
+    info.settings.stable_history_samples = if [1, 5, 6, 8, 10].contains(&seed) { 2.0 } else { 0.0 };
     // ... and of those, two restart it after one sample of the other value, or two unless the neighbourhood agrees
     // (both possible by the compared frame 3).
     info.settings.history_flip_samples = match seed {
-        1 | 8 => 1.0,
+        1 | 8 | 10 => 1.0,
         5 => 2.0,
         _ => 0.0,
     };
@@ -139,7 +144,7 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     r.guidance = match seed {
         2 | 6 => Some(0.5),
         4 => Some(0.3),
-        7 | 9 => Some(1.0),
+        7 | 9 | 11 => Some(1.0),
         _ => None,
     };
     // One visibility case reads 16-bit floats (random_frame rounds its values to them).
@@ -147,8 +152,10 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
         r.set_visibility_format(vk::Format::R16_SFLOAT);
     }
     for frame in 1..3 {
+        r.checkerboard_phase = if checkerboard { frame as u32 % 2 } else { 0 };
         r.frame(&random_frame(w, h, seed, frame), frame == 1);
     }
+    r.checkerboard_phase = checkerboard as u32;
     let before = r.ctx.internals(0);
     let fmt = before.intermediate_format;
     let prev_moments: Vec<[f32; 4]> = download(g, before.moments, vk::Format::R32G32B32A32_SFLOAT, w, h);
@@ -178,6 +185,7 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     if visibility_input {
         cpu.visibility = Some(f.visibility.iter().map(|&v| v as f64).collect());
     }
+    cpu.checkerboard_phase = checkerboard.then_some(1);
     cpu.hit_distance = f.hit_distance.iter().map(|&v| v as f64).collect();
     cpu.penumbra = d.hit_distance.map(|_| reference::Penumbra::new(d.light_angular_size as f64, cpu.projection_inverse, h as i32));
     cpu.depth = f.depth.iter().map(|&v| v as f64).collect();
@@ -191,7 +199,7 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
 
     // Exact integer state, and every tile state present.
     assert_eq!(tile_mask, cpu.tile_mask, "tile mask");
-    if visibility_input {
+    if visibility_input || checkerboard {
         assert_eq!(tile_dark, cpu.tile_dark, "dark mask");
     }
     assert_eq!(tile_meta, cpu.tile_meta, "tile metadata");
@@ -239,7 +247,7 @@ fn gpu_matches_the_cpu_reference() {
     }
     for (precision, tolerance) in precisions {
         let mut overall: Option<(f64, String)> = None;
-        for (passes, w, h, seed) in [(2, 37, 23, 1), (3, 37, 23, 2), (4, 45, 29, 3), (1, 33, 17, 4), (3, 64, 40, 5), (3, 96, 72, 6), (4, 97, 70, 7), (2, 61, 37, 8), (4, 97, 70, 9)] {
+        for (passes, w, h, seed) in [(2, 37, 23, 1), (3, 37, 23, 2), (4, 45, 29, 3), (1, 33, 17, 4), (3, 64, 40, 5), (3, 96, 72, 6), (4, 97, 70, 7), (2, 61, 37, 8), (4, 97, 70, 9), (2, 97, 70, 10), (3, 101, 74, 11)] {
             for r in parity(&g, precision, passes, w, h, seed) {
                 let line = format!("{precision:?} {w}x{h} {passes} passes: {} max |gpu - cpu| = {:.2e} (pixel {})", r.name, r.err, r.at);
                 eprintln!("{line}");

@@ -24,6 +24,8 @@ const USAGE: &str = "usage: dnsr-bench [options]
   --fp16                      same as --precisions fp16
   --rays K                    the shadow input is per-pixel visibility (ShadowInput::Visibility, R8_UNORM) of K
                               rays per pixel instead of the hit mask (the byte model still counts the hit mask's)
+  --checkerboard              the shadow input is a checkerboard (ShadowInput::Checkerboard): half of each
+                              frame's hit mask is read, the phase alternating (the byte model is the hit mask's)
   --light-angle RAD           penumbra guidance on: a hit-distance image (1.0 everywhere, R16_SFLOAT) and this
                               light angular size in radians (default: no guidance)
   --lights N[,N...]           lights denoised per frame (default 1): N > 1 records them in one
@@ -98,6 +100,7 @@ struct Options {
     light_angle: Option<f32>,
     rays: Option<u32>,
     lights: Vec<usize>,
+    checkerboard: bool,
     push_descriptors: bool,
 }
 
@@ -117,6 +120,7 @@ fn parse_args() -> Options {
         light_angle: None,
         rays: None,
         lights: vec![1],
+        checkerboard: false,
         push_descriptors: true,
     };
     let mut args = std::env::args().skip(1);
@@ -134,6 +138,7 @@ fn parse_args() -> Options {
             "--copy-runs" => o.copy_runs = number(args.next(), "--copy-runs", 1),
             "--out" => o.out = PathBuf::from(args.next().unwrap_or_else(|| usage("--out needs a directory"))),
             "--validation" => o.validation = true,
+            "--checkerboard" => o.checkerboard = true,
             "--no-push-descriptors" => o.push_descriptors = false,
             "--lights" => {
                 let max = dnsr::MAX_LIGHTS_PER_RECORD;
@@ -150,6 +155,9 @@ fn parse_args() -> Options {
             }
             other => usage(&format!("unknown argument {other:?}")),
         }
+    }
+    if o.checkerboard && o.rays.is_some() {
+        usage("--checkerboard reads the hit mask: it does not go with --rays");
     }
     o
 }
@@ -185,7 +193,8 @@ fn main() {
     for &size in &opts.sizes {
         for &scene in &opts.scenes {
             let t = Instant::now();
-            let gpu_scene = build(&gpu, scene, size.0, size.1, opts.rays);
+            let mut gpu_scene = build(&gpu, scene, size.0, size.1, opts.rays);
+            gpu_scene.checkerboard = opts.checkerboard;
             eprintln!("dnsr-bench: {}x{} {}: {} frames generated in {:.1} s", size.0, size.1, scene.id(), gpu_scene.frames.len(), t.elapsed().as_secs_f64());
             for &precision in &precisions {
                 for (&preset, &lights) in opts.presets.iter().flat_map(|p| opts.lights.iter().map(move |l| (p, l))) {

@@ -87,6 +87,7 @@ fn dispatch(scene: &GpuScene, index: usize, output: &TestImage, guidance: Option
             output_dst_access: vk::AccessFlags::SHADER_READ,
         },
         reset: index == 0,
+        checkerboard_phase: if scene.checkerboard { index as u32 % 2 } else { 0 },
         ..Default::default()
     }
 }
@@ -110,6 +111,9 @@ pub fn run(
     info.settings = Settings::preset(preset);
     if scene.visibility_input {
         info.shadow_input = dnsr::ShadowInput::Visibility;
+    }
+    if scene.checkerboard {
+        info.shadow_input = dnsr::ShadowInput::Checkerboard;
     }
     info.light_count = lights as u32;
     let mut ctx = Context::new(&info).map_err(|e| format!("Context::new: {e}"))?;

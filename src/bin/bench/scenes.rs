@@ -87,6 +87,9 @@ pub struct GpuScene {
     pub masks: Vec<TestImage>,
     /// The scene was built with `--rays k`: per-pixel visibility of k rays instead of the hit mask.
     pub visibility_input: bool,
+    /// `--checkerboard`: the context takes the masks as a checkerboard input (half of each mask read per frame,
+    /// alternating).
+    pub checkerboard: bool,
     pub gbuffers: Vec<GBuffer>,
     pub frames: Vec<Frame>,
     /// Fractions of the pixels (mean over the frames): sky, lit, shadowed, penumbra (visibility within 0.02 of
@@ -169,7 +172,7 @@ pub fn build(gpu: &Gpu, scene: SceneId, w: u32, h: u32, rays: Option<u32>) -> Gp
             })
             .collect();
         let frames = (0..STATIC_CYCLE).map(|k| frame_of(&f, k, 0)).collect();
-        GpuScene { masks, visibility_input: rays.is_some(), gbuffers: vec![upload_gbuffer(gpu, &f)], frames, coverage: coverage(&f) }
+        GpuScene { masks, visibility_input: rays.is_some(), checkerboard: false, gbuffers: vec![upload_gbuffer(gpu, &f)], frames, coverage: coverage(&f) }
     };
     match scene {
         SceneId::PenumbraHeavy => static_scene(1e9, &penumbra),
@@ -179,6 +182,7 @@ pub fn build(gpu: &Gpu, scene: SceneId, w: u32, h: u32, rays: Option<u32>) -> Gp
             let mut s = GpuScene {
                 masks: Vec::new(),
                 visibility_input: rays.is_some(),
+                checkerboard: false,
                 gbuffers: Vec::new(),
                 frames: Vec::new(),
                 coverage: [0.0; 4],

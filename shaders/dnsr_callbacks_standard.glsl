@@ -32,6 +32,7 @@ bool dnsr_get_is_reset() { return (dnsr_constants.flags.x & DNSR_FLAG_RESET) != 
 bool dnsr_get_is_depth_inverted() { return (dnsr_constants.flags.x & DNSR_FLAG_DEPTH_INVERTED) != 0u; }
 bool dnsr_get_is_lit_bit_mask() { return (dnsr_constants.flags.x & DNSR_FLAG_LIT_BIT_MASK) != 0u; }
 // Checkerboard input: this frame's rays were traced for the pixels with (x + y) % 2 == phase.
+bool dnsr_get_is_checkerboard() { return (dnsr_constants.flags.x & DNSR_FLAG_CHECKERBOARD) != 0u; }
 int dnsr_get_checkerboard_phase() { return int(dnsr_constants.flags.y); }
 vec4 dnsr_get_disocclusion_settings() { return dnsr_constants.disocclusion; }
 vec4 dnsr_get_rejection_settings() { return dnsr_constants.rejection; }

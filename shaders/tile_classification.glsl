@@ -362,6 +362,8 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
 #ifdef DNSR_VISIBILITY_INPUT
     vec2 local = dnsr_local_moments(p, lid);
     float x = dnsr_window_sample(lid);
+    // Checkerboard input: a pixel not traced this frame holds its neighbours' mean, not a sample of its own.
+    bool untraced = dnsr_get_is_checkerboard() && ((p.x + p.y) & 1) != dnsr_get_checkerboard_phase();
 #else
     vec2 local = dnsr_local_moments(lid);
     float x = dnsr_window_lit(p, g_window_base);
@@ -407,6 +409,16 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     if (!disoccluded) {
         ivec2 hp = clamp(ivec2(history_uv * vec2(dnsr_get_extent())), ivec2(0), dnsr_get_extent() - 1);
         m = dnsr_read_previous_moments(hp);
+#ifdef DNSR_VISIBILITY_INPUT
+        // The neighbours' mean says nothing about the edge a stable pixel resolves: an untraced stable pixel takes
+        // its run's value as this frame's sample (and keeps its run, below), unless all four neighbours hold the
+        // other value (the shadow moved over it). Without this Quality's error on hard edges rose twentyfold at
+        // half a ray per pixel.
+        bool contradicted = abs(x - (m.w > 0.0 ? 1.0 : 0.0)) > 0.5;
+        if (untraced && !contradicted && stable_after > 0.0 && abs(m.w) >= stable_after && abs(m.w) <= float(DNSR_MAX_SAMPLE_RUN)) {
+            x = m.w > 0.0 ? 1.0 : 0.0;
+        }
+#endif
         // A moving camera puts history_uv between texels, and next to a hard edge the bilinear footprint lies
         // across it. The texels whose stable run holds this sample's value are where this surface point was: blend
         // the history from them alone. (A texel weighed at under 1/16 does not count; the bound also keeps float
@@ -447,7 +459,8 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     float flip_after = floor(dnsr_get_run_settings().y);
 #ifdef DNSR_VISIBILITY_INPUT
     bool exact = dnsr_is_exact(x);
-    m.w = exact ? dnsr_sample_run(m.w, x, stable_after) : dnsr_fractional_run(m.w, stable_after);
+    // An untraced pixel's run neither grows nor breaks: it had no sample of its own.
+    if (!untraced) m.w = exact ? dnsr_sample_run(m.w, x, stable_after) : dnsr_fractional_run(m.w, stable_after);
 #else
     m.w = dnsr_sample_run(m.w, x, stable_after);
 #endif
@@ -461,7 +474,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     bool breaking = flip_after > 0.0 && fract(abs(m.w)) == 0.5;
 #ifdef DNSR_VISIBILITY_INPUT
     // Not on a sample that is not exact: it broke the run, but which way the shadow went is not known yet.
-    breaking = breaking && exact;
+    breaking = breaking && exact && !untraced;
 #endif
     bool flipped = breaking && (abs(m.w) == flip_after + 0.5 || abs(x - local.x) < 0.5);
     if (flipped) {

@@ -95,6 +95,8 @@ pub(crate) const FLAG_RESET: u32 = 1 << 0;
 pub(crate) const FLAG_DEPTH_INVERTED: u32 = 1 << 1;
 /// Frame flag: the host's hit mask holds lit bits (read by the checkerboard input's prepare, which always runs).
 pub(crate) const FLAG_LIT_BIT_MASK: u32 = 1 << 2;
+/// Frame flag: a checkerboard input (flags.y holds the phase): classification knows which pixels were traced.
+pub(crate) const FLAG_CHECKERBOARD: u32 = 1 << 3;
 /// Filter pass flag: write mean and variance to the internal intermediate image.
 pub(crate) const PASS_WRITE_INTERNAL: u32 = 1 << 0;
 /// Filter pass flag: groups whose two tiles are cleared write nothing (what the pass would write there is
@@ -109,6 +111,7 @@ pub(crate) const GLSL_FLAGS: &[(&str, u32)] = &[
     ("DNSR_FLAG_RESET", FLAG_RESET),
     ("DNSR_FLAG_DEPTH_INVERTED", FLAG_DEPTH_INVERTED),
     ("DNSR_FLAG_LIT_BIT_MASK", FLAG_LIT_BIT_MASK),
+    ("DNSR_FLAG_CHECKERBOARD", FLAG_CHECKERBOARD),
     ("DNSR_PASS_WRITE_INTERNAL", PASS_WRITE_INTERNAL),
     ("DNSR_PASS_SKIP_CLEARED", PASS_SKIP_CLEARED),
     ("DNSR_PASS_WRITE_GUIDE", PASS_WRITE_GUIDE),

@@ -235,13 +235,15 @@ fn frame_inputs(seq: &Sequence, t: u32) -> FrameInputs {
 }
 
 /// What a run varies: the settings, the filter precision, penumbra guidance (the light's angular size) or none,
-/// and the shadow input: the 1-spp hit mask (None) or the visibility of k rays per pixel.
+/// and the shadow input: the 1-spp hit mask (None) or the visibility of k rays per pixel, and whether the mask is
+/// read as a checkerboard input (half of it per frame).
 #[derive(Clone, Copy)]
 struct Mode {
     settings: Settings,
     precision: Precision,
     guidance: Option<f32>,
     rays: Option<u32>,
+    checkerboard: bool,
 }
 
 /// The frame's visibility traced with `rays` rays per pixel (the first is the hit mask's).
@@ -260,6 +262,9 @@ fn run(gpu: &Gpu, seq: &Sequence, mode: Mode) -> Run {
     if mode.rays.is_some() {
         info.shadow_input = dnsr::ShadowInput::Visibility;
     }
+    if mode.checkerboard {
+        info.shadow_input = dnsr::ShadowInput::Checkerboard;
+    }
     let mut r = Runner::new(gpu, &info).expect("context");
     r.guidance = mode.guidance;
     let (mut prev_out, mut prev_truth): (Vec<f32>, Vec<f32>) = (Vec::new(), Vec::new());
@@ -270,6 +275,9 @@ fn run(gpu: &Gpu, seq: &Sequence, mode: Mode) -> Run {
     let mut last = (Vec::new(), Vec::new(), Vec::new());
     for t in 0..FRAMES {
         let f = with_rays(frame_inputs(seq, t), mode.rays, t);
+        if mode.checkerboard {
+            r.checkerboard_phase = t % 2;
+        }
         let out = r.frame(&f, t == 0);
         let err = dnsr::testing::images::rmse(&out, &f.truth, &f.receiver);
         per_frame.push(err);
@@ -381,7 +389,7 @@ fn rays_section(gpu: &Gpu, md: &mut String) {
     let _ = writeln!(*md, "Input RMSE (mean over the sequences, last frame): {}.\n\n{}", input.join(", "), header(&SEQUENCES));
     let mut curve = Vec::new();
     for preset in [Preset::Fast, Preset::Balanced, Preset::Quality] {
-        let mask = |rays| Mode { settings: Settings::preset(preset), precision: Precision::Fp32, guidance: None, rays };
+        let mask = |rays| Mode { settings: Settings::preset(preset), precision: Precision::Fp32, guidance: None, rays, checkerboard: false };
         let hit_mask: Vec<Run> = SEQUENCES.iter().map(|q| run(gpu, q, mask(None))).collect();
         let _ = writeln!(*md, "{}", row(&format!("{preset:?}, hit mask"), &hit_mask));
         let mut scores = Vec::new();
@@ -414,6 +422,34 @@ fn rays_section(gpu: &Gpu, md: &mut String) {
     );
 }
 
+/// Half a ray per pixel: each preset on the hit mask and on the same masks read as a checkerboard input.
+fn checkerboard_section(gpu: &Gpu, md: &mut String) {
+    let _ = writeln!(*md, "\n## Checkerboard (half a ray per pixel)\n\n{}", header(&SEQUENCES));
+    let mut summary = Vec::new();
+    for preset in [Preset::Fast, Preset::Balanced, Preset::Quality] {
+        let mode = |checkerboard| Mode { settings: Settings::preset(preset), precision: Precision::Fp32, guidance: None, rays: None, checkerboard };
+        let scores: Vec<f64> = [false, true]
+            .into_iter()
+            .map(|checkerboard| {
+                let runs: Vec<Run> = SEQUENCES.iter().map(|q| run(gpu, q, mode(checkerboard))).collect();
+                let label = format!("{preset:?}, {}", if checkerboard { "checkerboard (0.5 ray)" } else { "hit mask (1 ray)" });
+                let _ = writeln!(*md, "{}", row(&label, &runs));
+                eprintln!("{label}: mean RMSE {:.4}", score(&runs));
+                score(&runs)
+            })
+            .collect();
+        summary.push(format!("{preset:?} {:.4} -> {:.4} ({:+.0}%)", scores[0], scores[1], 100.0 * (scores[1] / scores[0] - 1.0)));
+    }
+    let _ = writeln!(
+        *md,
+        "\nMean RMSE, one ray per pixel -> half a ray: {}.\n\nThe checkerboard rows read the same masks as the hit-mask \
+         rows, but only the pixels with (x + y) % 2 == t % 2 in frame t (`ShadowInput::Checkerboard`): dnsr keeps \
+         each traced pixel's sample and gives the others the mean of their four traced neighbours, then denoises \
+         that as a visibility input.",
+        summary.join("; ")
+    );
+}
+
 fn guided_section(gpu: &Gpu, md: &mut String, img_dir: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
     // Penumbra guidance: the same presets with and without the hit-distance input, on sequences that have one.
     let _ = writeln!(
@@ -434,7 +470,7 @@ fn guided_section(gpu: &Gpu, md: &mut String, img_dir: &std::path::Path) -> Resu
     let mut guided_runs = Vec::new();
     for preset in [Preset::Fast, Preset::Balanced, Preset::Quality] {
         for guidance in [None, Some(LIGHT_ANGLE as f32)] {
-            let mode = Mode { settings: Settings::preset(preset), precision: Precision::Fp32, guidance, rays: None };
+            let mode = Mode { settings: Settings::preset(preset), precision: Precision::Fp32, guidance, rays: None, checkerboard: false };
             let runs: Vec<Run> = GUIDED_SEQUENCES.iter().map(|q| run(gpu, q, mode)).collect();
             let label = format!("{preset:?}{}", if guidance.is_some() { ", guided" } else { "" });
             let _ = writeln!(*md, "{}", row(&label, &runs));
@@ -469,20 +505,25 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut out_dir = PathBuf::from("docs");
     let mut guided_only = false;
     let mut rays_only = false;
+    let mut checkerboard_only = false;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
             "--out" => out_dir = PathBuf::from(args.next().ok_or("--out needs a folder")?),
             "--guided-only" => guided_only = true,
             "--rays-only" => rays_only = true,
-            _ => return Err(format!("unknown argument {a}; usage: dnsr-accuracy [--out DIR] [--guided-only] [--rays-only]").into()),
+            "--checkerboard-only" => checkerboard_only = true,
+            _ => {
+                let usage = "usage: dnsr-accuracy [--out DIR] [--guided-only] [--rays-only] [--checkerboard-only]";
+                return Err(format!("unknown argument {a}; {usage}").into());
+            }
         }
     }
     let img_dir = out_dir.join("accuracy");
     std::fs::create_dir_all(&img_dir)?;
     let gpu = Gpu::new(GpuOptions { validation: false, ..Default::default() });
     let all = |settings: Settings, precision: Precision| -> Vec<Run> {
-        SEQUENCES.iter().map(|q| run(&gpu, q, Mode { settings, precision, guidance: None, rays: None })).collect()
+        SEQUENCES.iter().map(|q| run(&gpu, q, Mode { settings, precision, guidance: None, rays: None, checkerboard: false })).collect()
     };
 
     let mut md = String::new();
@@ -511,12 +552,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .collect();
     let _ = writeln!(md, "\n1-spp input RMSE: {}\n", noisy.iter().map(|e| format!("{e:.3}")).collect::<Vec<_>>().join(", "));
 
-    if guided_only || rays_only {
+    if guided_only || rays_only || checkerboard_only {
         if guided_only {
             guided_section(&gpu, &mut md, &img_dir)?;
         }
         if rays_only {
             rays_section(&gpu, &mut md);
+        }
+        if checkerboard_only {
+            checkerboard_section(&gpu, &mut md);
         }
         std::fs::write(out_dir.join("accuracy.md"), md)?;
         return Ok(());
@@ -550,6 +594,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     guided_section(&gpu, &mut md, &img_dir)?;
     rays_section(&gpu, &mut md);
+    checkerboard_section(&gpu, &mut md);
 
     // The two knobs Quality adds to the FidelityFX set, each swept on top of the other Quality knobs
     // (stable_history_samples 0 turns both off: Quality before they existed).

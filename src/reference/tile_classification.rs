@@ -188,7 +188,9 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     let e = io.extent();
 
     let local = local_moments(io, p);
-    let x = sample(io, p);
+    let mut x = sample(io, p);
+    // Checkerboard input: a pixel not traced this frame holds its neighbours' mean, not a sample of its own.
+    let untraced = io.checkerboard_phase().is_some_and(|phase| (p[0] + p[1]) as u32 % 2 != phase);
     let uv = pixel_uv(io, p);
     let ndc = uv_to_ndc(uv);
     let history_uv = uv + quad_velocity(io, p);
@@ -217,6 +219,12 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     if !disoccluded {
         let hp = clamp_px(history_uv);
         m = io.read_previous_moments(hp);
+        // An untraced stable pixel takes its run's value as this frame's sample (and keeps its run, below), unless
+        // all four neighbours hold the other value.
+        let contradicted = (x - if m.w > 0.0 { 1.0 } else { 0.0 }).abs() > 0.5;
+        if untraced && !contradicted && stable_after > 0.0 && m.w.abs() >= stable_after && m.w.abs() <= crate::passes::MAX_SAMPLE_RUN as f64 {
+            x = if m.w > 0.0 { 1.0 } else { 0.0 };
+        }
         // A moving camera puts history_uv between texels, and next to a hard edge the bilinear footprint lies
         // across it. The texels whose stable run holds this sample's value are where this surface point was: blend
         // the history from them alone. (A texel weighed at under 1/16 does not count; the bound also keeps float
@@ -270,7 +278,9 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     let mut variance = if previous > 0.0 { m.y / previous } else { 1.0 };
     let flip_after = (s.history_flip_samples as f64).floor();
     let exact = is_exact(x);
-    m.w = if exact { sample_run(m.w, x, stable_after) } else { fractional_run(m.w, stable_after) };
+    if !untraced {
+        m.w = if exact { sample_run(m.w, x, stable_after) } else { fractional_run(m.w, stable_after) };
+    }
     // Enough identical samples in a row: the input resolves this pixel (a hard edge, say), and the local
     // distribution, which straddles the edge, must not pull its history (nor reject it). Its history is clamped
     // to what the run allows instead: within RUN_CLAMP_SAMPLES / n of the run's value (the rule of three).
@@ -279,7 +289,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     // distribution already leans to it: the shadow moved over this pixel. Restart from the new samples, the
     // history from the local mean.
     let breaking = flip_after > 0.0 && m.w.abs().fract() == 0.5;
-    let flipped = breaking && exact && (m.w.abs() == flip_after + 0.5 || (x - local.x).abs() < 0.5);
+    let flipped = breaking && exact && !untraced && (m.w.abs() == flip_after + 0.5 || (x - local.x).abs() < 0.5);
     if flipped {
         let n = m.w.abs().floor();
         m = DVec4::new(x, 0.0, n, if x >= 0.5 { n } else { -n });

@@ -5,4 +5,8 @@
 #include "prepare.glsl"
 
 layout(local_size_x = DNSR_GROUP_WIDTH, local_size_y = DNSR_GROUP_HEIGHT) in;
+#ifdef DNSR_CHECKERBOARD_INPUT
+void main() { dnsr_prepare_checkerboard(ivec2(gl_GlobalInvocationID.xy), ivec2(gl_LocalInvocationID.xy)); }
+#else
 void main() { dnsr_prepare(ivec2(gl_GlobalInvocationID.xy)); }
+#endif

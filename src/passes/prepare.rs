@@ -15,8 +15,8 @@ pub(crate) fn shader(input: ShadowInput) -> &'static str {
     }
 }
 
-/// One invocation per tile of the render rectangle. Reads the host mask (or visibility), writes the internal
-/// tile words.
+/// One invocation per tile of the render rectangle (per pixel for a checkerboard input, which writes the
+/// reconstructed visibility too). Reads the host mask (or visibility), writes the internal tile words.
 pub(crate) fn pass(v: &FrameViews, enabled: bool) -> Pass {
     let mut t = v.base_table();
     t[Resource::HitMask as usize] = v.hit_mask;
@@ -24,5 +24,6 @@ pub(crate) fn pass(v: &FrameViews, enabled: bool) -> Pass {
     t[Resource::TileDarkOut as usize] = internal(v.tile_dark);
     t[Resource::TileMaskOut as usize] = internal(v.tile_mask.view);
     t[Resource::VisibilityOut as usize] = internal(v.visibility_out);
-    Pass { role: Role::Prepare, bindings: t, grid: Grid::Tiles, group: super::GROUP, push: None, spec: 0, enabled }
+    let grid = if v.visibility_out == ash::vk::ImageView::null() { Grid::Tiles } else { Grid::Pixels };
+    Pass { role: Role::Prepare, bindings: t, grid, group: super::GROUP, push: None, spec: 0, enabled }
 }

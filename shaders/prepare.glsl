@@ -10,54 +10,58 @@
 #define DNSR_PREPARE_GLSL
 
 #ifdef DNSR_CHECKERBOARD_INPUT
-// The checkerboard input runs one invocation per pixel; each tile's first invocation gathers the tile's words from
-// the pixels' flags in shared memory (one invocation per tile reconstructing and writing 32 pixels in turn took
-// 0.18 ms at 4K on an H100, shared-memory atomics into the two words 0.097 ms).
-const int DNSR_PREPARE_PIXELS = DNSR_GROUP_WIDTH * DNSR_GROUP_HEIGHT;
-// Per pixel of the group: bit 0 exactly lit, bit 1 exactly shadowed (0 outside the rectangle).
-shared uint s_exact[DNSR_PREPARE_PIXELS];
-
-// Lit bit of pixel q (inside the rectangle) in the host's mask.
-uint dnsr_lit_at(ivec2 q) {
-    uint word = dnsr_read_hit_mask(q / DNSR_TILE_SIZE);
-    return ((dnsr_get_is_lit_bit_mask() ? word : ~word) >> dnsr_tile_bit(q)) & 1u;
-}
+// The checkerboard input runs one invocation per pixel. The lit words of the group's two tiles and of the tiles
+// around them (every pixel's four neighbours lie within) are loaded once into shared memory, the tile words are
+// built with shared-memory atomics. (At 4K on an H100: one invocation per tile reconstructing 32 pixels in turn
+// took 0.18 ms; per pixel with texture fetches of the neighbours' words 0.097 ms; gathering the tile words from
+// per-pixel flags instead of atomics was slower.)
+shared uint s_words[DNSR_GROUP_HEIGHT / DNSR_TILE_HEIGHT + 2][3];
+shared uint s_lit[DNSR_GROUP_HEIGHT / DNSR_TILE_HEIGHT];
+shared uint s_dark[DNSR_GROUP_HEIGHT / DNSR_TILE_HEIGHT];
 
 void dnsr_prepare_checkerboard(ivec2 p, ivec2 lid) {
-    uint exact = 0u;
+    ivec2 first_tile = (p - lid) / DNSR_TILE_SIZE - 1;
+    ivec2 tiles = (dnsr_get_extent() + DNSR_TILE_SIZE - 1) / DNSR_TILE_SIZE;
+    int i = lid.y * DNSR_GROUP_WIDTH + lid.x;
+    const int words = 3 * (DNSR_GROUP_HEIGHT / DNSR_TILE_HEIGHT + 2);
+    if (i < words) {
+        ivec2 w = ivec2(i % 3, i / 3);
+        ivec2 t = first_tile + w;
+        uint word = all(greaterThanEqual(t, ivec2(0))) && all(lessThan(t, tiles)) ? dnsr_read_hit_mask(t) : 0u;
+        s_words[w.y][w.x] = dnsr_get_is_lit_bit_mask() ? word : ~word;
+    }
+    int t = lid.y / DNSR_TILE_HEIGHT;
+    bool tile_writer = lid.x == 0 && lid.y % DNSR_TILE_HEIGHT == 0;
+    if (tile_writer) {
+        s_lit[t] = 0u;
+        s_dark[t] = 0u;
+    }
+    barrier();
     if (dnsr_inside(p)) {
         // A traced pixel keeps its sample; the others (all four neighbours traced) take their neighbours' mean.
-        bool traced = ((p.x + p.y) & 1) == dnsr_get_checkerboard_phase();
-        float v;
-        if (traced) {
-            v = float(dnsr_lit_at(p));
-        } else {
-            const ivec2 offsets[4] = ivec2[4](ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1));
-            float sum = 0.0, count = 0.0;
-            for (int k = 0; k < 4; ++k) {
-                ivec2 q = p + offsets[k];
-                if (!dnsr_inside(q)) continue;
-                sum += float(dnsr_lit_at(q));
-                count += 1.0;
-            }
-            // No neighbour inside a one-pixel rectangle: nothing is known.
-            v = count > 0.0 ? sum / count : 0.5;
+        // Every neighbour is read on both paths: half the invocations of every subgroup take each.
+        const ivec2 offsets[5] = ivec2[5](ivec2(0, 0), ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1));
+        float bits[5];
+        float inside[5];
+        for (int k = 0; k < 5; ++k) {
+            ivec2 q = p + offsets[k];
+            ivec2 w = q / DNSR_TILE_SIZE - first_tile;
+            inside[k] = float(dnsr_inside(q));
+            bits[k] = dnsr_inside(q) ? float((s_words[w.y][w.x] >> dnsr_tile_bit(q)) & 1u) : 0.0;
         }
+        float count = inside[1] + inside[2] + inside[3] + inside[4];
+        // No neighbour inside a one-pixel rectangle: nothing is known.
+        float mean = count > 0.0 ? (bits[1] + bits[2] + bits[3] + bits[4]) / count : 0.5;
+        float v = ((p.x + p.y) & 1) == dnsr_get_checkerboard_phase() ? bits[0] : mean;
         dnsr_write_visibility(p, v);
-        exact = uint(v == 1.0) | (uint(v == 0.0) << 1u);
+        uint bit = 1u << dnsr_tile_bit(p);
+        if (v == 1.0) atomicOr(s_lit[t], bit);
+        if (v == 0.0) atomicOr(s_dark[t], bit);
     }
-    // The group's pixels row by row: a tile's 32 pixels are 32 consecutive entries, in tile-bit order.
-    s_exact[lid.y * DNSR_GROUP_WIDTH + lid.x] = exact;
     barrier();
-    if (lid.x == 0 && lid.y % DNSR_TILE_HEIGHT == 0 && dnsr_inside(p)) {
-        uint lit = 0u, dark = 0u;
-        for (int bit = 0; bit < DNSR_TILE_WIDTH * DNSR_TILE_HEIGHT; ++bit) {
-            uint e = s_exact[lid.y * DNSR_GROUP_WIDTH + bit];
-            lit |= (e & 1u) << uint(bit);
-            dark |= (e >> 1u) << uint(bit);
-        }
-        dnsr_write_tile_mask(p / DNSR_TILE_SIZE, lit);
-        dnsr_write_tile_dark(p / DNSR_TILE_SIZE, dark);
+    if (tile_writer && dnsr_inside(p)) {
+        dnsr_write_tile_mask(p / DNSR_TILE_SIZE, s_lit[t]);
+        dnsr_write_tile_dark(p / DNSR_TILE_SIZE, s_dark[t]);
     }
 }
 #endif

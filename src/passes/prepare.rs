@@ -24,6 +24,6 @@ pub(crate) fn pass(v: &FrameViews, enabled: bool) -> Pass {
     t[Resource::TileDarkOut as usize] = internal(v.tile_dark);
     t[Resource::TileMaskOut as usize] = internal(v.tile_mask.view);
     t[Resource::VisibilityOut as usize] = internal(v.visibility_out);
-    let grid = if v.visibility_out == ash::vk::ImageView::null() { Grid::Tiles } else { Grid::Pixels };
-    Pass { role: Role::Prepare, bindings: t, grid, group: super::GROUP, push: None, spec: 0, enabled }
+    let (grid, group) = if v.visibility_out == ash::vk::ImageView::null() { (Grid::Tiles, super::GROUP) } else { (Grid::Pixels, super::WIDE_GROUP) };
+    Pass { role: Role::Prepare, bindings: t, grid, group, push: None, spec: 0, enabled }
 }

@@ -1178,6 +1178,17 @@ typedef struct DnsrDiagnosis {
 #define DNSR_REFERENCE_VISIBILITY_INPUT (1 << 4)
 
 /**
+ * A checkerboard input, as DNSR_SHADOW_INPUT_CHECKERBOARD: the hit mask holds the rays of the pixels with
+ * (x + y) % 2 == phase (0, or 1 with DNSR_REFERENCE_CHECKERBOARD_PHASE_1).
+ */
+#define DNSR_REFERENCE_CHECKERBOARD_INPUT (1 << 5)
+
+/**
+ * With DNSR_REFERENCE_CHECKERBOARD_INPUT: this frame traced the pixels with (x + y) % 2 == 1.
+ */
+#define DNSR_REFERENCE_CHECKERBOARD_PHASE_1 (1 << 6)
+
+/**
  * Forces 32 bits.
  */
 #define DNSR_REFERENCE_MAX_ENUM 2147483647

@@ -23,6 +23,11 @@ pub const DNSR_REFERENCE_HIT_MASK_LIT_BITS: DnsrReferenceFlags = 1 << 2;
 pub const DNSR_REFERENCE_USE_HIT_DISTANCE: DnsrReferenceFlags = 1 << 3;
 /// A visibility input, as DNSR_SHADOW_INPUT_VISIBILITY: `readVisibility` is called instead of `readHitMask`.
 pub const DNSR_REFERENCE_VISIBILITY_INPUT: DnsrReferenceFlags = 1 << 4;
+/// A checkerboard input, as DNSR_SHADOW_INPUT_CHECKERBOARD: the hit mask holds the rays of the pixels with
+/// (x + y) % 2 == phase (0, or 1 with DNSR_REFERENCE_CHECKERBOARD_PHASE_1).
+pub const DNSR_REFERENCE_CHECKERBOARD_INPUT: DnsrReferenceFlags = 1 << 5;
+/// With DNSR_REFERENCE_CHECKERBOARD_INPUT: this frame traced the pixels with (x + y) % 2 == 1.
+pub const DNSR_REFERENCE_CHECKERBOARD_PHASE_1: DnsrReferenceFlags = 1 << 6;
 /// Forces 32 bits.
 pub const DNSR_REFERENCE_MAX_ENUM: DnsrReferenceFlags = 0x7FFF_FFFF;
 
@@ -185,6 +190,13 @@ pub extern "C" fn dnsr_reference_run_frame(
             None
         };
         let visibility_input = info.flags & DNSR_REFERENCE_VISIBILITY_INPUT != 0;
+        let checkerboard = info.flags & DNSR_REFERENCE_CHECKERBOARD_INPUT != 0;
+        if checkerboard && visibility_input {
+            return Err(CallError::InvalidArgument("pInfo->flags: a checkerboard input reads the hit mask, not visibility".into()));
+        }
+        if !checkerboard && info.flags & DNSR_REFERENCE_CHECKERBOARD_PHASE_1 != 0 {
+            return Err(CallError::InvalidArgument("pInfo->flags: CHECKERBOARD_PHASE_1 needs CHECKERBOARD_INPUT".into()));
+        }
         let read_visibility = if visibility_input { Some(cb.read_visibility.ok_or_else(|| missing("readVisibility"))?) } else { None };
         let read_hit_mask = if visibility_input { None } else { Some(cb.read_hit_mask.ok_or_else(|| missing("readHitMask"))?) };
         let raw = RawInputs::read(info, cb)?;
@@ -247,10 +259,17 @@ pub extern "C" fn dnsr_reference_run_frame(
             }
         }
 
-        if info.flags & DNSR_REFERENCE_HIT_MASK_LIT_BITS != 0 {
+        let lit_bits = info.flags & DNSR_REFERENCE_HIT_MASK_LIT_BITS != 0;
+        if checkerboard {
+            // Prepare always reconstructs a checkerboard input, from the FidelityFX convention.
+            f.checkerboard_phase = Some((info.flags & DNSR_REFERENCE_CHECKERBOARD_PHASE_1 != 0) as u32);
+            if lit_bits {
+                f.hit_mask.iter_mut().for_each(|w| *w = !*w);
+            }
+        } else if lit_bits {
             f.tile_mask = f.hit_mask.clone();
         }
-        run_frame(&mut f, info.flags & DNSR_REFERENCE_HIT_MASK_LIT_BITS == 0);
+        run_frame(&mut f, !lit_bits || checkerboard);
 
         if let Some(write) = cb.write_tile_meta {
             for ty in 0..th {

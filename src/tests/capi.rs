@@ -185,6 +185,7 @@ mod reference_table {
     use crate::capi::reference::*;
     use crate::capi::types::DnsrResult;
     use crate::testing::scene::FrameInputs;
+    use crate::ShadowInput;
     use crate::testing::Runner;
     use ash::vk;
     use std::ffi::c_void;
@@ -233,16 +234,18 @@ mod reference_table {
     }
 
     /// An engine's first frame (reset) through the C reference table equals dnsr's GPU output on the same data,
-    /// without and with penumbra guidance, and with a visibility input.
+    /// without and with penumbra guidance, and with a visibility or a checkerboard input.
     #[test]
     fn the_c_reference_table_reproduces_the_gpu_frame() {
         let g = gpu();
-        let one_ray = reference_frame(&g, None, false);
-        let four_rays = reference_frame(&g, None, true);
+        let one_ray = reference_frame(&g, None, ShadowInput::HitMask);
+        let four_rays = reference_frame(&g, None, ShadowInput::Visibility);
         assert!(one_ray.iter().zip(&four_rays).any(|(a, b)| (a - b).abs() > 1e-3), "the visibility input changed nothing");
+        let half_ray = reference_frame(&g, None, ShadowInput::Checkerboard);
+        assert!(one_ray.iter().zip(&half_ray).any(|(a, b)| (a - b).abs() > 1e-3), "the checkerboard input changed nothing");
         let mut unguided = Vec::new();
         for guidance in [None, Some(0.3f32)] {
-            let out = reference_frame(&g, guidance, false);
+            let out = reference_frame(&g, guidance, ShadowInput::HitMask);
             if guidance.is_some() {
                 let changed = out.iter().zip(&unguided).map(|(a, b): (&f32, &f32)| (a - b).abs()).fold(0.0, f32::max);
                 assert!(changed > 1e-3, "guidance changed nothing: the guided path is not exercised");
@@ -253,15 +256,16 @@ mod reference_table {
     }
 
     /// Runs the frame on the GPU and through the C reference; checks they agree and returns the GPU output.
-    fn reference_frame(g: &crate::testing::gpu::Gpu, guidance: Option<f32>, visibility: bool) -> Vec<f32> {
+    fn reference_frame(g: &crate::testing::gpu::Gpu, guidance: Option<f32>, input: ShadowInput) -> Vec<f32> {
         let (w, h) = (37, 23);
+        let visibility = input == ShadowInput::Visibility;
         let mut info = g.create_info(w, h);
         info.output_format = vk::Format::R32_SFLOAT;
-        if visibility {
-            info.shadow_input = crate::ShadowInput::Visibility;
-        }
+        info.shadow_input = input;
         let mut r = Runner::new(g, &info).unwrap();
         r.guidance = guidance;
+        // A checkerboard frame of phase 1.
+        r.checkerboard_phase = (input == ShadowInput::Checkerboard) as u32;
         let mut f = static_frame(w, h, &smooth, 7);
         f.trace_rays(4, 7);
         f.hit_distance = (0..w * h).map(|i| 0.2 + (i % 5) as f32 * 0.1).collect();
@@ -276,7 +280,8 @@ mod reference_table {
             height: h,
             flags: DNSR_REFERENCE_RESET
                 | if guidance.is_some() { DNSR_REFERENCE_USE_HIT_DISTANCE } else { 0 }
-                | if visibility { DNSR_REFERENCE_VISIBILITY_INPUT } else { 0 },
+                | if visibility { DNSR_REFERENCE_VISIBILITY_INPUT } else { 0 }
+                | if input == ShadowInput::Checkerboard { DNSR_REFERENCE_CHECKERBOARD_INPUT | DNSR_REFERENCE_CHECKERBOARD_PHASE_1 } else { 0 },
             p_settings: std::ptr::null(),
             motion_vector_scale: d.motion_vector_scale.to_array(),
             normals_unpack_mul: d.normals_unpack_mul,

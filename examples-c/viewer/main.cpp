@@ -47,6 +47,7 @@ struct Options {
     bool pointLight = false;
     bool packedGbuffer = false;
     uint32_t rays = 1;  // shadow rays per pixel (more than 1: DNSR_SHADOW_INPUT_VISIBILITY)
+    bool checkerboard = false;  // half a ray per pixel (DNSR_SHADOW_INPUT_CHECKERBOARD)
     uint32_t lights = 1;  // more than 1: the others derived from the first, all denoised by one dnsr_lights_record
     float lightAngleDeg = 3.0f;
     bool hitDistance = true;  // penumbra guidance (DNSR_DISPATCH_USE_HIT_DISTANCE)
@@ -78,6 +79,9 @@ const char *kUsage =
     "                          compiled against examples-c/custom_gbuffer's callbacks (default: default)\n"
     "  --rays N                shadow rays per pixel, 1..64 (default 1: the hit mask; more: their lit fraction as\n"
     "                          per-pixel visibility, DNSR_SHADOW_INPUT_VISIBILITY)\n"
+    "  --checkerboard          half a ray per pixel: each frame traces only the pixels with (x + y) % 2 == frame % 2\n"
+    "                          (DNSR_SHADOW_INPUT_CHECKERBOARD); dnsr gives the others their traced neighbours' mean,\n"
+    "                          and so does the noisy view. Takes --rays 1 and --gbuffer default\n"
     "  --hit-distance on|off   penumbra guidance: give dnsr each shadow ray's distance to its nearest occluder and\n"
     "                          the light's angular diameter (DNSR_DISPATCH_USE_HIT_DISTANCE; default on; key H)\n"
     "  --reference-samples N   shadow rays per pixel of the reference, 1..65536 (default 256)\n"
@@ -180,6 +184,8 @@ Options parseOptions(int argc, char **argv)
             o.packedGbuffer = v == "packed";
         } else if (a == "--rays") {
             o.rays = parseCount("--rays", value(), 1, 64);
+        } else if (a == "--checkerboard") {
+            o.checkerboard = true;
         } else if (a == "--lights") {
             o.lights = parseCount("--lights", value(), 1, kMaxLights);
         } else if (a == "--hit-distance") {
@@ -210,6 +216,14 @@ Options parseOptions(int argc, char **argv)
     if (o.headless && !o.frames) o.frames = 16;
     // The packed build's classification variants read the hit mask (examples-c/custom_gbuffer overrides those only).
     if (o.packedGbuffer && o.rays > 1) throw UsageError("--gbuffer packed takes one ray per pixel (--rays 1)");
+    if (o.checkerboard && o.rays > 1)
+        throw UsageError("--checkerboard takes --rays 1 (it traces half a ray per pixel into the hit mask; several "
+                         "rays per pixel go to dnsr as visibility, another input)");
+    // A checkerboard input is classified by the visibility variants too: dnsr takes the combination, but runs its
+    // own variant on the packed depth and normals (every pixel came out lit).
+    if (o.checkerboard && o.packedGbuffer)
+        throw UsageError("--checkerboard takes --gbuffer default (dnsr then classifies tiles with its visibility "
+                         "variants, which examples-c/custom_gbuffer does not compile against the packed G-buffer)");
     if (o.headless && !o.screenshot.empty()) throw UsageError("--screenshot is for window mode (headless writes PNGs)");
     if (!o.screenshot.empty() && !o.frames) throw UsageError("--screenshot needs --frames N");
     if (!o.headless && !(o.saveReference.empty() && o.loadReference.empty()))
@@ -363,12 +377,26 @@ ShadowImages readShadows(const Renderer &r, uint32_t light, uint32_t w, uint32_t
     s.noisy.resize(n), s.denoised.resize(n), s.reference.resize(n), s.receiver.resize(n);
     s.depth.assign(r.readDepth(), r.readDepth() + n);
     const uint32_t *mask = r.readHitMask(light);
+    auto bit = [](uint32_t x, uint32_t y) { return (y % 4) * 8 + x % 8; };  // in the 8x4 tile's word
+    auto ray = [&](uint32_t x, uint32_t y) {
+        return (mask[(y / 4) * r.tilesX() + x / 8] >> bit(x, y)) & 1u ? 0.0f : 1.0f;
+    };
     float count = float(std::max(r.referenceCount(), 1u));
     for (uint32_t y = 0; y < h; y++)
         for (uint32_t x = 0; x < w; x++) {
             size_t i = size_t(y) * w + x;
-            uint32_t word = mask[(y / 4) * r.tilesX() + x / 8];
-            s.noisy[i] = (word >> ((y % 4) * 8 + x % 8)) & 1u ? 0.0f : 1.0f;
+            // A pixel --checkerboard did not trace gets its traced neighbours' mean, as dnsr reconstructs it (and
+            // composite.comp's noisy view): the noisy error is that of what dnsr starts from.
+            if ((r.tracedBits() >> bit(x, y)) & 1u) {
+                s.noisy[i] = ray(x, y);
+            } else {
+                float sum = 0, traced = 0;
+                if (x > 0) sum += ray(x - 1, y), traced++;
+                if (x + 1 < w) sum += ray(x + 1, y), traced++;
+                if (y > 0) sum += ray(x, y - 1), traced++;
+                if (y + 1 < h) sum += ray(x, y + 1), traced++;
+                s.noisy[i] = sum / traced;  // at least 2: the image is at least 8x8
+            }
             s.denoised[i] = std::clamp(r.readDenoised(light)[i], 0.0f, 1.0f);
             s.reference[i] = r.readReferenceSum(light)[i] / count;
             s.receiver[i] = r.readDepth()[i] < 1.0f;
@@ -557,6 +585,7 @@ private:
         rs.preset = opt_.preset;
         rs.packedGbuffer = opt_.packedGbuffer;
         rs.rays = opt_.rays;
+        rs.checkerboard = opt_.checkerboard;
         rs.lights = opt_.lights;
         renderer_.create(ctx_, *scene_.scene, rs);
         std::printf("viewer: %s on %s, %ux%u, %u triangles, BVH %u nodes (depth %u), push descriptors %s\n",
@@ -648,17 +677,19 @@ private:
         savePng(dir + "strip.png", stripW, h, 3, strip);
 
         // Occluded rays per 8x4 tile, as view 5 of the window shows it: green = all lit, blue = all occluded (the
-        // tiles dnsr's classification can skip), orange = mixed (darker = more occluded), sky grey.
+        // tiles dnsr's classification can skip), orange = mixed (darker = more occluded), sky grey. Out of the rays
+        // traced: with --checkerboard, half the tile's pixels.
+        const int traced = __builtin_popcount(renderer_.tracedBits());
         std::vector<uint8_t> tiles(size_t(w) * h * 3);
         for (uint32_t y = 0; y < h; y++)
             for (uint32_t x = 0; x < w; x++) {
                 size_t i = size_t(y) * w + x;
                 uint32_t word = renderer_.readHitMask(0)[(y / 4) * renderer_.tilesX() + x / 8];
                 int occluded = __builtin_popcount(word);
-                float t = occluded / 32.0f;
+                float t = float(occluded) / float(traced);
                 float rgb[3] = {1.0f - 0.2f * t, 0.8f - 0.5f * t, 0.3f - 0.2f * t};
                 if (occluded == 0) rgb[0] = 0.2f, rgb[1] = 0.7f, rgb[2] = 0.3f;
-                if (occluded == 32) rgb[0] = 0.2f, rgb[1] = 0.3f, rgb[2] = 0.8f;
+                if (occluded == traced) rgb[0] = 0.2f, rgb[1] = 0.3f, rgb[2] = 0.8f;
                 float shade = s.receiver[i] ? 1.0f : 0.6f;
                 if (x % 8 == 0 || y % 4 == 0) shade *= 0.75f;  // tile grid
                 for (int c = 0; c < 3; c++) tiles[3 * i + c] = uint8_t(rgb[c] * shade * 255.0f + 0.5f);
@@ -689,6 +720,7 @@ private:
         json += std::string("  \"preset\": \"") + presets[opt_.preset] + "\",\n";
         json += std::string("  \"gbuffer\": \"") + (opt_.packedGbuffer ? "packed" : "default") + "\",\n";
         json += "  \"rays_per_pixel\": " + std::to_string(opt_.rays) + ",\n";
+        json += "  \"checkerboard\": " + std::string(opt_.checkerboard ? "true" : "false") + ",\n";
         json += "  \"reference_samples\": " + std::to_string(referenceSamples) + ",\n";
         json += "  \"reference_file\": " + (loadedReference_ ? jsonString(opt_.loadReference) : "null") + ",\n";
         json += "  \"pixels_compared\": " + std::to_string(e.pixels) + ",\n";

@@ -353,8 +353,11 @@ void Renderer::createDenoiser()
     info.precision = DNSR_PRECISION_FP32;
     info.outputFormat = VK_FORMAT_R32_SFLOAT;
     info.lightCount = settings_.lights;  // each light its own history
-    // --rays k > 1: several rays per pixel, handed over as per-pixel visibility instead of the hit mask.
-    info.shadowInput = settings_.rays > 1 ? DNSR_SHADOW_INPUT_VISIBILITY : DNSR_SHADOW_INPUT_HIT_MASK;
+    // --rays k > 1: several rays per pixel, handed over as per-pixel visibility instead of the hit mask;
+    // --checkerboard: half a ray per pixel in the hit mask.
+    info.shadowInput = settings_.rays > 1        ? DNSR_SHADOW_INPUT_VISIBILITY
+                       : settings_.checkerboard ? DNSR_SHADOW_INPUT_CHECKERBOARD
+                                                : DNSR_SHADOW_INPUT_HIT_MASK;
     if (settings_.packedGbuffer) {
         // The engine's own G-buffer encoding: dnsr runs passes compiled against its callbacks.
         info.shaderOverrideCount = sizeof kPackedOverrides / sizeof kPackedOverrides[0];
@@ -396,6 +399,10 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
         throw VulkanError("the camera matrices are singular");
     if (in.resetReference) referenceCount_ = 0;
     uint32_t referenceAfter = referenceCount_ + in.referenceSamples;
+    // --checkerboard: the phases alternate, so every pixel is traced every other frame. Bit (y % 4) * 8 + x % 8
+    // of 0xAA55AA55 is set where x + y is even.
+    const uint32_t phase = settings_.checkerboard ? frameIndex_ % 2 : 0;
+    tracedBits_ = !settings_.checkerboard ? ~0u : phase == 0 ? 0xAA55AA55u : 0x55AA55AAu;
 
     // Per-frame constants. The buffer is host-coherent and the previous frame has completed (one frame in
     // flight), so writing it now is safe.
@@ -413,7 +420,7 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
     c.lightParams[2] = 2e-4f * settings_.sceneRadius;
     c.lightParams[3] = settings_.sceneRadius;
     c.size[0] = w, c.size[1] = h, c.size[2] = tilesX(), c.size[3] = tilesY();
-    c.info[0] = frameIndex_, c.info[1] = referenceAfter, c.info[2] = settings_.lights;
+    c.info[0] = frameIndex_, c.info[1] = referenceAfter, c.info[2] = settings_.lights, c.info[3] = tracedBits_;
     c.skyColor[0] = 0.55f, c.skyColor[1] = 0.70f, c.skyColor[2] = 0.90f, c.skyColor[3] = 1.0f;
     std::memcpy(frameConstants_.mapped, &c, sizeof c);
 
@@ -484,6 +491,7 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
     d.normalsUnpackAdd = 0.0f;
     d.eye[0] = in.eye.x, d.eye[1] = in.eye.y, d.eye[2] = in.eye.z;
     d.frameIndex = frameIndex_;
+    d.checkerboardPhase = phase;  // shared by every light of dnsr_lights_record: their masks are traced alike
     std::memcpy(d.projectionInverse, invProjection.m, sizeof d.projectionInverse);
     std::memcpy(d.reprojectionMatrix, reprojection.m, sizeof d.reprojectionMatrix);  // current clip -> previous
     std::memcpy(d.viewProjectionInverse, invViewProj.m, sizeof d.viewProjectionInverse);

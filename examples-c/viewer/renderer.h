@@ -1,8 +1,9 @@
 // renderer.h: the viewer's frame, recorded into one command buffer the way an engine would:
 //
 //   primary.comp    camera rays -> G-buffer (depth, normal, motion vectors, albedo, shadow-ray origin)
-//   shadow.comp     per light, one jittered shadow ray per pixel -> the light's 8x4-tile hit mask (and, for dnsr's
-//                   penumbra guidance, the distance to the nearest occluder per pixel)
+//   shadow.comp     per light, one jittered shadow ray per pixel (with --checkerboard, for half the pixels) -> the
+//                   light's 8x4-tile hit mask (and, for dnsr's penumbra guidance, the distance to the nearest
+//                   occluder per pixel)
 //   reference.comp  (when asked) per light, many shadow rays per pixel -> the ground truth, for error measurements
 //   dnsr            dnsr_shadows_record (one light) or dnsr_lights_record (all lights in one call): hit masks +
 //                   G-buffer -> one denoised shadow per light
@@ -48,6 +49,9 @@ struct RendererSettings {
     bool packedGbuffer = false;
     // Shadow rays per pixel: 1 packs them into the hit mask; more go to dnsr as per-pixel visibility.
     uint32_t rays = 1;
+    // Half a ray per pixel (DNSR_SHADOW_INPUT_CHECKERBOARD, with rays 1): each frame only the pixels with
+    // (x + y) % 2 == frame index % 2 are traced.
+    bool checkerboard = false;
     // 1..kMaxLights lights, each with its own shadow rays, dnsr history (DnsrContextCreateInfo::lightCount) and output.
     uint32_t lights = 1;
 };
@@ -106,6 +110,9 @@ public:
     uint32_t tilesX() const { return (settings_.width + 7) / 8; }
     uint32_t tilesY() const { return (settings_.height + 3) / 4; }
     uint32_t lightCount() const { return settings_.lights; }
+    // The hit-mask bits the last recorded frame traced, the same word for every tile (tiles start at even x and
+    // y): all of them, or with --checkerboard those of the pixels with (x + y) % 2 == the frame's phase.
+    uint32_t tracedBits() const { return tracedBits_; }
     uint64_t dnsrMemoryBytes() const;
 
     DnsrPassTimings dnsrTimings{};  // dnsr's per-pass GPU times (valid when haveDnsrTimings)
@@ -136,6 +143,7 @@ private:
     DnsrContext denoiser_ = nullptr;
     uint32_t frameIndex_ = 0;
     uint32_t referenceCount_ = 0;
+    uint32_t tracedBits_ = ~0u;
     Mat4 prevViewProj_;
 
     GpuBuffer frameConstants_, nodes_, triGeometry_, triShading_, readback_;

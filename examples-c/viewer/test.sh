@@ -2,7 +2,8 @@
 # Tests of the dnsr viewer: builds it against target/release/libdnsr.so, renders the default scene headless on
 # lavapipe with the validation layer (any message fails), checks the images and that dnsr beats the 1-spp input
 # against the many-ray reference, runs with and without penumbra guidance (--hit-distance) and against a saved
-# reference, with a second light (--lights 2: light 0 unchanged bit for bit, light 1 its own), checks that
+# reference, with half a ray per pixel (--checkerboard: the 1-ray run's rays for half the pixels, none for the
+# others), with a second light (--lights 2: light 0 unchanged bit for bit, light 1 its own), checks that
 # --validate counts validation messages only (not the Vulkan loader's notices) and that --help describes every
 # option and key, takes a window-mode screenshot under Xvfb, and feeds it broken or unsupported scene files, also
 # through an AddressSanitizer + UBSan build (each must give exit status 2 and a one-line message, never a crash or
@@ -153,16 +154,70 @@ status=0
 (( status == 2 )) && grep -qF -- "--gbuffer packed takes one ray per pixel" "$tmp/rays.err" ||
   fail "--rays 2 --gbuffer packed: status $status, message: $(cat "$tmp/rays.err")"
 
+# ---- --checkerboard: half a ray per pixel (DNSR_SHADOW_INPUT_CHECKERBOARD), against the 1-ray headless run above
+# (same size, frames and camera): validation clean; the last frame traced exactly the 1-ray run's rays for the
+# pixels of its phase and no others (its hit mask, report.json's fingerprint, is the 1-ray run's with the other
+# pixels' bits cleared: shadow.comp skipped their rays), and noisy.png gives the others their traced neighbours'
+# mean; the denoised RMSE is below the noisy one and at most 2x the 1-ray run's. 2x: after 8 frames each pixel has
+# 4 rays of its own instead of 8 (sqrt(2) = 1.41x on the noise alone) and the neighbours' mean smears edges on top
+# (1.6x measured on lavapipe); a phase dnsr and the shader disagree on gives about 10x. With --rays 2 or --gbuffer
+# packed it is refused ----
+status=0
+"$viewer" --headless --validate --checkerboard --frames 8 --size 160x96 --out "$tmp/checkerboard" \
+  > "$tmp/checkerboard.log" 2>&1 || status=$?
+(( status == 0 )) || { cat "$tmp/checkerboard.log"; fail "--checkerboard exited with status $status"; }
+checkerboard=$(PYTHONPATH="$tmp" python3 - "$out" "$tmp/checkerboard" <<'PY'
+import json, struct, sys, viewer_png
+one_dir, cb_dir = sys.argv[1:]
+one, cb = (json.load(open(f"{d}/report.json")) for d in (one_dir, cb_dir))
+assert one["checkerboard"] is False and cb["checkerboard"] is True, "checkerboard not recorded"
+w, h = cb["width"], cb["height"]
+phase = (cb["frames"] - 1) % 2  # the last frame's: the phase alternates from 0
+rays, noisy = (viewer_png.read_png(f"{d}/noisy.png") for d in (one_dir, cb_dir))  # 0 occluded, 255 lit
+tiles_x = (w + 7) // 8
+words = [0] * (tiles_x * ((h + 3) // 4))
+for y in range(h):
+    for x in range(w):
+        i = y * w + x
+        if (x + y) % 2 == phase:
+            assert noisy[i] == rays[i], f"pixel ({x}, {y}) traced another ray than the 1-ray run's"
+            words[y // 4 * tiles_x + x // 8] |= (rays[i] == 0) << (y % 4 * 8 + x % 8)
+        else:
+            near = [rays[(y + dy) * w + x + dx] / 255 for dx, dy in ((-1, 0), (1, 0), (0, -1), (0, 1))
+                    if 0 <= x + dx < w and 0 <= y + dy < h]
+            assert noisy[i] == int(sum(near) / len(near) * 255 + 0.5), f"pixel ({x}, {y}): not its neighbours' mean"
+fnv = 0xcbf29ce484222325
+for byte in struct.pack(f"<{len(words)}I", *words):
+    fnv = (fnv ^ byte) * 0x100000001b3 % 2**64
+assert cb["per_light"][0]["hit_mask_fnv1a"] == f"{fnv:016x}", "the hit mask holds rays of the untraced pixels"
+d1, noisy_rmse, dc = one["rmse"]["denoised"], cb["rmse"]["noisy"], cb["rmse"]["denoised"]
+assert dc < noisy_rmse, f"checkerboard not denoised: RMSE noisy {noisy_rmse:.5f}, denoised {dc:.5f}"
+assert dc <= 2 * d1, f"checkerboard denoised RMSE {dc:.5f} is over 2x the 1-ray run's ({d1:.5f})"
+print(f"denoised RMSE 1 ray {d1:.5f}, checkerboard {dc:.5f} (x{dc / d1:.2f}, at most 2x; its noisy "
+      f"{noisy_rmse:.5f}); shadow pass {one['viewer_gpu_ms']['shadow']:.2f} -> {cb['viewer_gpu_ms']['shadow']:.2f} ms")
+PY
+) || fail "--checkerboard check failed"
+echo "checkerboard: $checkerboard"
+for bad in "--rays 2:--checkerboard takes --rays 1" "--gbuffer packed:--checkerboard takes --gbuffer default"; do
+  status=0
+  # ${bad%%:*} unquoted: two words.
+  "$viewer" --headless --checkerboard ${bad%%:*} --frames 1 --size 16x16 --out "$tmp/bad-cb" > /dev/null \
+    2> "$tmp/cb.err" || status=$?
+  (( status == 2 )) && grep -qF -- "${bad#*:}" "$tmp/cb.err" ||
+    fail "--checkerboard ${bad%%:*}: status $status, message: $(cat "$tmp/cb.err")"
+done
+
 # ---- --lights 2: a second light (the first turned 100 degrees about the up axis), both denoised by one
-# dnsr_lights_record call. For the default inputs, --rays 2 (a visibility image per light) and --gbuffer packed,
+# dnsr_lights_record call. For the default inputs, --rays 2 (a visibility image per light), --gbuffer packed and
+# --checkerboard (both lights' masks traced for the same half of the pixels, one phase in the shared dispatch),
 # each against the same run with one light (dnsr_shadows_record): validation clean; light 0's hit mask and
 # denoised shadow bit for bit the same (report.json's fingerprints of the float readback: dnsr_lights_record gives
 # each light what dnsr_shadows_record gives it alone, and light 0's rays keep their seeds); light 1 traced towards
 # another light (its reference shadows elsewhere) and denoised. Bad light counts are usage errors ----
-for extra in "" "--rays 2" "--gbuffer packed"; do
+for extra in "" "--rays 2" "--gbuffer packed" "--checkerboard"; do
   for n in 1 2; do
     status=0
-    # $extra unquoted: none or two words.
+    # $extra unquoted: none, one or two words.
     "$viewer" --headless --validate --lights $n $extra --frames 4 --size 64x48 --out "$tmp/lights$n" \
       > "$tmp/lights.log" 2>&1 || status=$?
     (( status == 0 )) || { cat "$tmp/lights.log"; fail "--lights $n $extra exited with status $status"; }
@@ -433,6 +488,7 @@ for v in "$viewer" "$asan_viewer"; do
   done
 done
 
-echo "viewer tests: ok (headless 160x96, 8 frames, validation clean: ${quality#ok }; --lights 2: light 0 bit for bit" \
-  "the same, light 1 its own (default inputs, --rays 2, --gbuffer packed); ${window}; ${bad} bad inputs" \
+echo "viewer tests: ok (headless 160x96, 8 frames, validation clean: ${quality#ok }; --checkerboard: $checkerboard;" \
+  "--lights 2: light 0 bit for bit the same, light 1 its own (default inputs, --rays 2, --gbuffer packed," \
+  "--checkerboard); ${window}; ${bad} bad inputs" \
   "rejected with status 2, half of them by the ASan+UBSan build; $((SECONDS - start)) s)"

@@ -13,7 +13,8 @@ layout(set = 0, binding = 0, std140) uniform FrameConstants {
     vec4 lightParams;   // x: tan(angular radius) (directional) or light radius (point), every light's; y: ambient;
                         // z: shadow-ray offset at the camera; w: scene radius (the offset grows with distance)
     uvec4 size;         // x, y: render size; z, w: hit-mask size in tiles
-    uvec4 info;         // x: frame index; y: reference samples accumulated so far; z: number of lights
+    uvec4 info;         // x: frame index; y: reference samples accumulated so far; z: number of lights;
+                        // w: the hit-mask bits this frame traces (see tracedThisFrame)
     vec4 skyColor;
 } frame;
 
@@ -62,6 +63,14 @@ void storeReference(uint light, ivec2 pixel, float sum)
     if (light == 0u) imageStore(referenceImage, pixel, vec4(sum));
     else imageStore(referenceImage1, pixel, vec4(sum));
 }
+
+// Bit (y % 4) * 8 + (x % 8) of an 8x4 tile's hit-mask word holds pixel (x, y).
+uint tileBit(uvec2 pixel) { return (pixel.y % 4u) * 8u + pixel.x % 8u; }
+
+// Whether this frame traces the pixel's shadow rays: every pixel, or with --checkerboard the pixels with
+// (x + y) % 2 == this frame's phase. Tiles start at even x and y, so the traced bits form the same word in every
+// tile, frame.info.w (Renderer::tracedBits()).
+bool tracedThisFrame(uvec2 pixel) { return ((frame.info.w >> tileBit(pixel)) & 1u) != 0u; }
 
 layout(push_constant) uniform PushConstants {
     uint mode;         // composite.comp: what to display; shadow.comp: 1 = also write the hit distance

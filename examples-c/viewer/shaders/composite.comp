@@ -1,17 +1,31 @@
 #version 450
 // composite.comp: the final image, color = albedo * (ambient + sum over the lights of N.L * shadow), or one of the
 // debug views of light pc.light, into displayImage (RGBA8, gamma-encoded for the composite). pc.mode: 0 noisy 1-spp
-// shadow, 1 denoised shadow, 2 reference shadow, 3 composite, 4 hit-mask density per tile.
+// shadow, 1 denoised shadow, 2 reference shadow, 3 composite, 4 hit-mask density per tile (of the traced pixels).
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
+float maskShadow(uint light, ivec2 pixel)
+{
+    return ((loadHitMask(light, pixel / ivec2(8, 4)) >> tileBit(uvec2(pixel))) & 1u) != 0u ? 0.0 : 1.0;
+}
+
+// The pixel's ray, or for a pixel --checkerboard did not trace this frame the mean of its traced neighbours in the
+// image (all four are traced), as dnsr reconstructs it: the shadow dnsr starts from.
 float noisyShadow(uint light, ivec2 pixel)
 {
-    uint word = loadHitMask(light, pixel / ivec2(8, 4));
-    uint bit = uint(pixel.y % 4) * 8u + uint(pixel.x % 8);
-    return ((word >> bit) & 1u) != 0u ? 0.0 : 1.0;
+    if (tracedThisFrame(uvec2(pixel))) return maskShadow(light, pixel);
+    const ivec2 neighbours[4] = ivec2[4](ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1));
+    float sum = 0.0, count = 0.0;
+    for (int k = 0; k < 4; k++) {
+        ivec2 q = pixel + neighbours[k];
+        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(uvec2(q), frame.size.xy))) continue;
+        sum += maskShadow(light, q);
+        count += 1.0;
+    }
+    return sum / count;  // count >= 2: the image is at least 8x8
 }
 
 void main()
@@ -46,12 +60,13 @@ void main()
         color = pow(color, vec3(1.0 / 2.2));
     } else {
         // Occluded rays per tile: all lit (green) and all occluded (blue) tiles are the ones dnsr's tile
-        // classification can skip; the mixed ones (orange, brighter = more occluded) go through the filter.
+        // classification can skip; the mixed ones (orange, brighter = more occluded) go through the filter. Out of
+        // the rays traced: with --checkerboard, half the tile's pixels.
         uint word = loadHitMask(light, pixel / ivec2(8, 4));
-        uint occluded = bitCount(word);
+        uint occluded = bitCount(word), traced = bitCount(frame.info.w);
         vec3 tint = occluded == 0u ? vec3(0.2, 0.7, 0.3)
-                  : occluded == 32u ? vec3(0.2, 0.3, 0.8)
-                  : mix(vec3(1.0, 0.8, 0.3), vec3(0.8, 0.3, 0.1), float(occluded) / 32.0);
+                  : occluded == traced ? vec3(0.2, 0.3, 0.8)
+                  : mix(vec3(1.0, 0.8, 0.3), vec3(0.8, 0.3, 0.1), float(occluded) / float(traced));
         float shade = depth >= 1.0 ? 0.6 : 0.5 + 0.5 * nDotL;
         bool edge = pixel.x % 8 == 0 || pixel.y % 4 == 0;
         color = tint * shade * (edge ? 0.75 : 1.0);

@@ -5,7 +5,8 @@
 // invocation per 8x4 tile traces the tile's 32 rays and writes the tile's word once: no atomics and no subgroup
 // operations, so the result does not depend on the device's subgroup size. Bit (y % 4) * 8 + (x % 8) is set when
 // the ray hit an occluder (the FidelityFX convention, DNSR_HIT_MASK_OCCLUDED_BITS); sky pixels stay 0 (not
-// occluded).
+// occluded). With --checkerboard only the pixels of this frame's phase get a ray (DNSR_SHADOW_INPUT_CHECKERBOARD:
+// dnsr ignores the others' bits); the others keep bit 0 and hit distance 0 (unknown).
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
@@ -50,7 +51,7 @@ void main()
         if (any(greaterThanEqual(pixel, frame.size.xy))) continue;  // partial tile at the right/bottom edge
         vec4 origin = imageLoad(rayOriginImage, ivec2(pixel));
         float hitDistance = 0.0, lit = float(rays);
-        if (origin.w != 0.0) {  // not sky
+        if (origin.w != 0.0 && tracedThisFrame(pixel)) {  // not sky, and not left to the other checkerboard phase
             vec3 n = imageLoad(normalImage, ivec2(pixel)).xyz;
             // This frame's samples of the pixel's sequence: successive frames walk the R2 sequence, so the
             // denoiser's temporal accumulation sees well-spread samples rather than white noise. The first ray's

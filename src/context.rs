@@ -210,9 +210,10 @@ impl Context {
             timestamps: None,
             frames_recorded: 0,
             supported_stages,
-            engine_reads: info.shader_overrides.iter().any(|o| o.variant != crate::passes::prepare::shader(ShadowInput::HitMask)),
+            engine_reads: false,
             engine_images_declared: false,
         };
+        ctx.engine_reads = ctx.engine_decodes(&info.shader_overrides);
         // On any error below, dropping `ctx` releases what was created so far.
         let pipelines = ctx.pipelines.insert(ctx.create_pipelines(push.is_some(), &info.shader_overrides)?);
         let layouts = roles().map(|r| pipelines.for_role(r));
@@ -226,15 +227,28 @@ impl Context {
         Ok(ctx)
     }
 
-    fn create_pipelines(&self, push: bool, overrides: &[crate::ShaderOverride]) -> Result<Pipelines> {
-        let names = [
+    /// The variants of the context's pipelines, in `Pipelines` order (prepare first).
+    fn pipeline_names(&self) -> [&'static str; 6] {
+        [
             prepare::shader(self.shadow_input),
             tile_classification::shader(self.precision, self.output_format, self.shadow_input).expect("output format checked"),
             filter::shader(self.precision, None, false).expect("non-final variant exists"),
             filter::shader(self.precision, None, true).expect("non-final variant exists"),
             filter::shader(self.precision, Some(self.output_format), true).expect("output format checked"),
             filter::shader(self.precision, Some(self.output_format), false).expect("output format checked"),
-        ];
+        ]
+    }
+
+    /// Whether only engine-compiled variants decode the G-buffer, so that its formats are the engine's to choose:
+    /// every pipeline of this context that reads it (all but prepare) is overridden. Where one is not, dnsr's own
+    /// decode runs there and the G-buffer must be in dnsr's formats (an override set compiled for a hit-mask
+    /// context leaves a checkerboard context's classification variant, say, to dnsr).
+    fn engine_decodes(&self, overrides: &[crate::ShaderOverride]) -> bool {
+        self.pipeline_names()[1..].iter().all(|name| overrides.iter().any(|o| o.variant == *name))
+    }
+
+    fn create_pipelines(&self, push: bool, overrides: &[crate::ShaderOverride]) -> Result<Pipelines> {
+        let names = self.pipeline_names();
         let mut made: Vec<Pipeline> = Vec::with_capacity(names.len());
         for name in names {
             let spirv = overrides.iter().find(|o| o.variant == name).map_or(variant(name).spirv, |o| &o.spirv[..]);

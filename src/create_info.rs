@@ -109,8 +109,9 @@ pub struct ContextCreateInfo {
     /// Pass variants the engine compiled itself, against its own callbacks file (docs/callbacks.md); the
     /// embedded SPIR-V is used for every variant not named here. Each is checked against the interface dnsr
     /// relies on (entry point, workgroup size, bindings, push constants, specialization constants) before
-    /// anything is created. With an override of a classification or filter variant, dispatches may pass depth,
-    /// velocity, normals and hit distances in any format the device can sample (the callbacks decode them).
+    /// anything is created. With overrides of every classification and filter variant the context runs
+    /// (docs/callbacks.md), dispatches may pass depth, velocity, normals and hit distances in any format the
+    /// device can sample (the callbacks decode them); otherwise only in dnsr's formats, which its own decode reads.
     pub shader_overrides: Vec<ShaderOverride>,
 }
 

@@ -418,9 +418,10 @@ pub struct DnsrContextCreateInfo {
     /// Optional (with shaderOverrideCount 0). Pass variants the engine compiled against its own callbacks file
     /// (docs/callbacks.md; dnsr_get_shader_variants lists the variants, their entry files and definitions). Read
     /// during dnsr_context_create only. Each is checked against the interface dnsr relies on; a mismatch is
-    /// DNSR_ERROR_SHADER_INTERFACE naming the variant and what differs, and nothing is created. With an override
-    /// of a classification or filter variant, the dispatch's depth, velocity, normals and hit distances may have
-    /// any format the device can sample (the engine's callbacks decode them).
+    /// DNSR_ERROR_SHADER_INTERFACE naming the variant and what differs, and nothing is created. With overrides of
+    /// every classification and filter variant the context runs (docs/callbacks.md), the dispatch's depth,
+    /// velocity, normals and hit distances may have any format the device can sample (the engine's callbacks
+    /// decode them); otherwise they must be in dnsr's formats, which its own decode reads.
     pub p_shader_overrides: *const DnsrShaderOverride,
     /// DNSR_SHADOW_INPUT_HIT_MASK (0, default), DNSR_SHADOW_INPUT_VISIBILITY or DNSR_SHADOW_INPUT_CHECKERBOARD:
     /// which of hitMask / visibility every dispatch of this context passes, and how many of the pixels it traced.

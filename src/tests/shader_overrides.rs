@@ -149,10 +149,24 @@ fn engine_images_are_bound_where_the_overrides_declare_them() {
     let mut info = g.create_info(w, h);
     info.output_format = vk::Format::R32_SFLOAT;
     let mut plain = Runner::new(&g, &info).unwrap();
-    info.shader_overrides = ["tile_classification_r32f", "filter", "filter_later", "filter_later_final_r32f"]
-        .iter()
-        .map(|name| compile(&dir, name, &[]))
-        .collect();
+    // Every variant of the context that reads the G-buffer: then its formats are the engine's to choose.
+    let readers = ["tile_classification_r32f", "filter", "filter_later", "filter_later_final_r32f", "filter_final_r32f"];
+    info.shader_overrides = readers.iter().map(|name| compile(&dir, name, &[])).collect();
+    // Where dnsr's own decode still runs (a reader left out; a checkerboard context, which classifies with other
+    // variants), the G-buffer must be in dnsr's formats: two-channel normals are refused, nothing recorded.
+    let f = static_frame(w, h, &|_, _| 0.5, 3);
+    for (what, input, partial) in [("one reader left out", crate::ShadowInput::HitMask, true), ("checkerboard", crate::ShadowInput::Checkerboard, false)] {
+        let mut other = info.clone();
+        other.shadow_input = input;
+        if partial {
+            other.shader_overrides.pop();
+        }
+        let mut r = Runner::new(&g, &other).unwrap();
+        let mut d = r.dispatch(&f);
+        d.normals.format = vk::Format::R16G16_SFLOAT;
+        let e = r.run(&f, &d).expect_err(what);
+        assert!(matches!(e, Error::UnsupportedFormat { role: Some(crate::ImageRole::Normals), .. }), "{what}: {e:?}");
+    }
     let mut engine = Runner::new(&g, &info).unwrap();
     let field = |x: f64, z: f64| (0.5 + 0.4 * (x * 0.9).sin() * (z * 0.7).cos()).clamp(0.0, 1.0);
     let f = static_frame(w, h, &field, 3);

@@ -2,10 +2,10 @@
 //! reset alone, and a bad light refusing the whole call.
 
 use super::gpu;
-use crate::testing::gpu::{Gpu, TestImage};
+use crate::testing::gpu::{Gpu, GpuOptions, TestImage};
 use crate::testing::scene::{render_with_blockers, Camera, FrameInputs};
 use crate::testing::Runner;
-use crate::{Error, LightDispatch, ShadowsDispatch};
+use crate::{Error, LightDispatch, ShadowInput, ShadowsDispatch};
 use ash::vk;
 
 const W: u32 = 64;
@@ -28,10 +28,11 @@ fn light_frame(light: usize, frame: u32) -> FrameInputs {
     render_with_blockers(W, H, &cam(frame), &cam(frame.saturating_sub(1)), 7.0, fields[light], &|x, _| 0.5 + x.abs(), seed)
 }
 
-fn runner(g: &Gpu) -> Runner<'_> {
+fn runner(g: &Gpu, input: ShadowInput) -> Runner<'_> {
     let mut info = g.create_info(W, H);
     info.output_format = vk::Format::R32_SFLOAT;
     info.light_count = LIGHTS as u32;
+    info.shadow_input = input;
     Runner::new(g, &info).unwrap()
 }
 
@@ -65,17 +66,33 @@ fn shared(d: &ShadowsDispatch) -> ShadowsDispatch {
     }
 }
 
+/// With push descriptors and with the descriptor-set ring (one ring per light), for a hit mask and for a
+/// checkerboard input (prepare always runs, each light reconstructs into its own image).
 #[test]
 fn several_lights_in_one_record_equal_one_record_per_light() {
-    let g = gpu();
-    let mut single = runner(&g);
-    let mut batched = runner(&g);
+    for push_descriptor in [true, false] {
+        for input in [ShadowInput::HitMask, ShadowInput::Checkerboard] {
+            let g = Gpu::new(GpuOptions { push_descriptor, ..Default::default() });
+            assert_eq!(g.features.push_descriptor, push_descriptor, "device lacks VK_KHR_push_descriptor");
+            eprintln!("push descriptors {push_descriptor}, {input:?}");
+            equal_to_one_record_per_light(&g, input);
+            g.assert_clean();
+        }
+    }
+}
+
+fn equal_to_one_record_per_light(g: &Gpu, input: ShadowInput) {
+    let phase = |frame: u32| if input == ShadowInput::Checkerboard { frame % 2 } else { 0 };
+    let mut single = runner(g, input);
+    let mut batched = runner(g, input);
     // Lights 0 and 1 of the batched runner read and write these; light 2 uses the runner's own images (its frame
     // is the one the runner uploads, hit distances included).
     let masks: Vec<TestImage> = (0..2).map(|_| g.image(vk::Format::R32_UINT, W / 8, H / 4, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)).collect();
     let outputs: Vec<TestImage> = (0..2).map(|_| g.image(vk::Format::R32_SFLOAT, W, H, vk::ImageLayout::GENERAL)).collect();
     let mut reset_changed = false;
     for frame in 0..6 {
+        single.checkerboard_phase = phase(frame);
+        batched.checkerboard_phase = phase(frame);
         let inputs: Vec<FrameInputs> = (0..LIGHTS).map(|l| light_frame(l, frame)).collect();
         let expected: Vec<Vec<f32>> = (0..LIGHTS)
             .map(|l| {
@@ -103,9 +120,10 @@ fn several_lights_in_one_record_equal_one_record_per_light() {
         }
         if frame == RESET_FRAME {
             // The reset must show: light 1 run up to here without one (its own context) ends elsewhere.
-            let mut unreset = runner(&g);
+            let mut unreset = runner(g, input);
             let mut out = Vec::new();
             for k in 0..=frame {
+                unreset.checkerboard_phase = phase(k);
                 let f = light_frame(1, k);
                 let d = ShadowsDispatch { light_index: 1, ..unreset.dispatch(&f) };
                 out = unreset.run(&f, &d).expect("record_shadows");
@@ -122,14 +140,12 @@ fn several_lights_in_one_record_equal_one_record_per_light() {
     for img in masks.iter().chain(&outputs) {
         g.destroy_image(img);
     }
-    drop((single, batched));
-    g.assert_clean();
 }
 
 #[test]
 fn a_bad_light_refuses_the_whole_record() {
     let g = gpu();
-    let mut r = runner(&g);
+    let mut r = runner(&g, ShadowInput::HitMask);
     let other = g.image(vk::Format::R32_SFLOAT, W, H, vk::ImageLayout::GENERAL);
     let f = light_frame(0, 0);
     let d = shared(&r.dispatch(&f));

@@ -540,6 +540,8 @@ static void dispatch_calls(void)
                   d.flags |= DNSR_DISPATCH_USE_HIT_DISTANCE);
     DISPATCH_CASE("record: integer hit distance", DNSR_ERROR_UNSUPPORTED_FORMAT, "hitDistance image format",
                   d.flags |= DNSR_DISPATCH_USE_HIT_DISTANCE, d.hitDistance = d.hitMask);
+    DISPATCH_CASE("record: output is the depth image", DNSR_ERROR_INVALID_ARGUMENT, "output is the depth image",
+                  d.output.image = d.depth.image);
     DISPATCH_CASE("record: NaN lightAngularSize", DNSR_ERROR_NON_FINITE, "lightAngularSize",
                   d.flags |= DNSR_DISPATCH_USE_HIT_DISTANCE, d.hitDistance = d.output, d.hitDistance.layout = VK_IMAGE_LAYOUT_GENERAL, d.lightAngularSize = NAN);
     DISPATCH_CASE("record: negative lightAngularSize", DNSR_ERROR_INVALID_ARGUMENT, "lightAngularSize",

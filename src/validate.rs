@@ -217,7 +217,28 @@ pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, rules: &DispatchRules) -> R
     if rect.x as u64 + rect.width as u64 > size[0] as u64 || rect.y as u64 + rect.height as u64 > size[1] as u64 {
         return Err(Error::InvalidRenderRect { reason: "reaches outside the render size" });
     }
+    // Relations between fields, once each field is known to be usable.
+    if let Some(role) = input_images(d).find(|(_, img)| *img == d.output.image).map(|(role, _)| role) {
+        return Err(Error::InvalidValue {
+            field: "output",
+            value: format!("the {} image", role.field()),
+            allowed: "an image of its own: dnsr writes the output while its passes read the inputs",
+        });
+    }
     Ok(rect)
+}
+
+/// The host images a dispatch reads, by role (null ones included).
+fn input_images(d: &ShadowsDispatch) -> impl Iterator<Item = (ImageRole, vk::Image)> + '_ {
+    [
+        (ImageRole::HitMask, d.hit_mask.image),
+        (ImageRole::Visibility, d.visibility.image),
+        (ImageRole::Depth, d.depth.image),
+        (ImageRole::Velocity, d.velocity.image),
+        (ImageRole::Normals, d.normals.image),
+    ]
+    .into_iter()
+    .chain(d.hit_distance.map(|h| (ImageRole::HitDistance, h.image)))
 }
 
 /// Checks what `record_lights` adds to the single-light rules: 1..=MAX_LIGHTS_PER_RECORD lights, each light and
@@ -252,6 +273,14 @@ pub(crate) fn light_list(shared: &ShadowsDispatch, lights: &[crate::LightDispatc
         }
         if let Some(j) = earlier.iter().position(|e| e.output.image == l.output.image && l.output.image != vk::Image::null()) {
             return refuse("output", format!("the image of lights[{j}]"), "every light writes its own output image");
+        }
+        // Another light's input (its own are checked with the rest of its dispatch).
+        let read_by = |o: &crate::LightDispatch| {
+            [o.hit_mask.image, o.visibility.image].into_iter().chain(o.hit_distance.map(|h| h.image)).any(|img| img == l.output.image)
+        };
+        let own = l.output.image != vk::Image::null();
+        if let Some(j) = (0..lights.len()).find(|&j| own && j != i && read_by(&lights[j])) {
+            return refuse("output", format!("an input image of lights[{j}]"), "every light writes an image no light reads");
         }
     }
     Ok(())

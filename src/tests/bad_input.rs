@@ -221,6 +221,7 @@ fn bad_dispatches_record_nothing() {
         ("null velocity view", |d| null_view(&mut d.velocity), |e| *e == Error::NullHandle("velocity.view")),
         ("null normals view", |d| null_view(&mut d.normals), |e| *e == Error::NullHandle("normals.view")),
         ("null output view", |d| null_view(&mut d.output), |e| *e == Error::NullHandle("output.view")),
+        ("output is the depth image", |d| d.output.image = d.depth.image, |e| matches!(e, Error::InvalidValue { field: "output", .. })),
         ("null output image", |d| d.output.image = vk::Image::null(), |e| *e == Error::NullHandle("output.image")),
         ("null depth image", |d| d.depth.image = vk::Image::null(), |e| *e == Error::NullHandle("depth.image")),
         (

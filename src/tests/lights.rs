@@ -5,7 +5,7 @@ use super::gpu;
 use crate::testing::gpu::{Gpu, GpuOptions, TestImage};
 use crate::testing::scene::{render_with_blockers, Camera, FrameInputs};
 use crate::testing::Runner;
-use crate::{Error, LightDispatch, ShadowInput, ShadowsDispatch};
+use crate::{Error, HostImage, LightDispatch, ShadowInput, ShadowsDispatch};
 use ash::vk;
 
 const W: u32 = 64;
@@ -160,6 +160,9 @@ fn a_bad_light_refuses_the_whole_record() {
         }),
         ("one output for two lights", d, vec![base[0], LightDispatch { output: r.output.host(), ..base[1] }], |e| {
             matches!(e, Error::Light { position: 1, error } if matches!(**error, Error::InvalidValue { field: "output", .. }))
+        }),
+        ("an output another light reads", d, vec![base[0], LightDispatch { hit_mask: HostImage { image: r.output.image, ..r.mask.host() }, ..base[1] }], |e| {
+            matches!(e, Error::Light { position: 0, error } if matches!(**error, Error::InvalidValue { field: "output", .. }))
         }),
         ("light index out of range", d, vec![base[0], LightDispatch { light_index: 3, ..base[1] }], |e| {
             matches!(e, Error::Light { position: 1, error } if matches!(**error, Error::InvalidLightIndex { index: 3, count: 3 }))

@@ -34,6 +34,9 @@ bool dnsr_get_is_lit_bit_mask() { return (dnsr_constants.flags.x & DNSR_FLAG_LIT
 // Checkerboard input: this frame's rays were traced for the pixels with (x + y) % 2 == phase.
 bool dnsr_get_is_checkerboard() { return (dnsr_constants.flags.x & DNSR_FLAG_CHECKERBOARD) != 0u; }
 int dnsr_get_checkerboard_phase() { return int(dnsr_constants.flags.y); }
+// Whether pixel p (render-rectangle coordinates: its offset is a whole number of tiles, so the parity is the
+// image's) was traced this frame by a checkerboard input.
+bool dnsr_is_traced(ivec2 p) { return ((p.x + p.y) & 1) == dnsr_get_checkerboard_phase(); }
 vec4 dnsr_get_disocclusion_settings() { return dnsr_constants.disocclusion; }
 vec4 dnsr_get_rejection_settings() { return dnsr_constants.rejection; }
 vec4 dnsr_get_temporal_settings() { return dnsr_constants.temporal; }

@@ -52,7 +52,7 @@ void dnsr_prepare_checkerboard(ivec2 p, ivec2 lid) {
         }
         // No neighbour inside a one-pixel rectangle: nothing is known.
         float mean = count > 0.0 ? (bits[1] + bits[2] + bits[3] + bits[4]) / count : 0.5;
-        float v = ((p.x + p.y) & 1) == dnsr_get_checkerboard_phase() ? bits[0] : mean;
+        float v = dnsr_is_traced(p) ? bits[0] : mean;
         dnsr_write_visibility(p, v);
         uint bit = 1u << dnsr_tile_bit(p);
         if (v == 1.0) atomicOr(s_lit[own.y][own.x], bit);

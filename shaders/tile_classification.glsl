@@ -363,7 +363,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     vec2 local = dnsr_local_moments(p, lid);
     float x = dnsr_window_sample(lid);
     // Checkerboard input: a pixel not traced this frame holds its neighbours' mean, not a sample of its own.
-    bool untraced = dnsr_get_is_checkerboard() && ((p.x + p.y) & 1) != dnsr_get_checkerboard_phase();
+    bool untraced = dnsr_get_is_checkerboard() && !dnsr_is_traced(p);
 #else
     vec2 local = dnsr_local_moments(lid);
     float x = dnsr_window_lit(p, g_window_base);
@@ -411,8 +411,8 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         m = dnsr_read_previous_moments(hp);
 #ifdef DNSR_VISIBILITY_INPUT
         // The neighbours' mean says nothing about the edge a stable pixel resolves: an untraced stable pixel takes
-        // its run's value as this frame's sample (and keeps its run, below), unless all four neighbours hold the
-        // other value (the shadow moved over it). Without this Quality's error on hard edges rose twentyfold at
+        // its run's value as this frame's sample (and keeps its run, below), unless its neighbours' mean lies more
+        // than 0.5 from that value (most of them hold the other one: the shadow moved over it). Without this Quality's error on hard edges rose twentyfold at
         // half a ray per pixel.
         bool contradicted = abs(x - (m.w > 0.0 ? 1.0 : 0.0)) > 0.5;
         if (untraced && !contradicted && stable_after > 0.0 && abs(m.w) >= stable_after && abs(m.w) <= float(DNSR_MAX_SAMPLE_RUN)) {

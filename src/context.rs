@@ -12,8 +12,8 @@ use crate::host::ResourceKind;
 use crate::gpu::loader::Vk;
 use crate::gpu::shader::{variant, Pipeline, SPEC_PENUMBRA_GUIDED, SPEC_STABLE_HISTORY};
 use crate::passes::bindings::{image, Binding};
-use crate::passes::{FramePasses, Pass, Role};
-use crate::passes::{filter, prepare, tile_classification, FrameViews};
+use crate::passes::{FramePasses, FrameViews, Pass, Role};
+use crate::passes::{filter, prepare, tile_classification};
 use crate::settings::{check_filter_passes, Settings};
 use crate::state::{intermediate_format, LightState, DEPTH_FORMAT, MOMENTS_FORMAT, TILE_FORMAT};
 use crate::timestamps::{PassTimings, Timestamps};
@@ -508,21 +508,20 @@ impl Context {
         // Shared by every light of the call: the shadow input, the mask convention, the settings, the debug view.
         let shared = &ds[0];
         let run_prepare = !self.reads_mask_directly(shared);
-        let frames: [Option<FramePasses>; MAX_LIGHTS_PER_RECORD] = std::array::from_fn(|i| {
-            ds.get(i).map(|d| {
-                let views = self.frame_views(d, i, self.lights[d.light_index as usize].parity);
-                crate::passes::frame(&views, self.settings.filter_passes, run_prepare, d.debug_view)
-            })
-        });
-        let frames = &frames[..ds.len()];
-        let first = frames[0].as_ref().expect("one per dispatch");
+        // Each light's views; its passes are built from them one at a time (a frame of passes is several KB, and
+        // a record must not need eight of them on the host's stack).
+        let views: [Option<FrameViews>; MAX_LIGHTS_PER_RECORD] =
+            std::array::from_fn(|i| ds.get(i).map(|d| self.frame_views(d, i, self.lights[d.light_index as usize].parity)));
+        let views = &views[..ds.len()];
+        let (filter_passes, debug_view) = (self.settings.filter_passes, shared.debug_view);
+        let light_views = |light: usize| views[light].as_ref().expect("one per dispatch");
+        let frame = |light: usize| crate::passes::frame(light_views(light), filter_passes, run_prepare, debug_view);
         // The engine images are the shared dispatch's, and every light runs the same passes.
-        self.check_engine_images(shared, first)?;
+        self.check_engine_images(shared, &frame(0))?;
         // Everything that can fail was checked above. Nothing below fails.
-        let sets: [Option<RecordSets>; MAX_LIGHTS_PER_RECORD] = std::array::from_fn(|i| {
-            frames.get(i).map(|f| self.write_descriptors(ds[i].light_index, f.as_ref().expect("one per dispatch")))
-        });
-        let pass_count = first.iter().count();
+        let sets: [Option<RecordSets>; MAX_LIGHTS_PER_RECORD] =
+            std::array::from_fn(|i| ds.get(i).map(|d| self.write_descriptors(d.light_index, &frame(i))));
+        let pass_count = crate::passes::pass_count(filter_passes);
 
         let mut constants = [0u8; CONSTANTS_STRIDE as usize * MAX_LIGHTS_PER_RECORD];
         for (i, d) in ds.iter().enumerate() {
@@ -600,8 +599,8 @@ impl Context {
         let mut hazards = Hazards::default();
         stamp(0);
         for index in 0..pass_count {
-            for (light, frame) in frames.iter().enumerate() {
-                let pass = frame.as_ref().expect("one per dispatch").get(index);
+            for light in 0..ds.len() {
+                let pass = &crate::passes::pass(light_views(light), index, filter_passes, run_prepare, debug_view);
                 if !pass.enabled {
                     continue;
                 }

@@ -56,14 +56,24 @@ pub(crate) fn guide_needed(filter_passes: u32) -> bool {
 /// The visibility prepare reconstructs from a checkerboard input.
 pub(crate) const RECONSTRUCTED_FORMAT: vk::Format = vk::Format::R32_SFLOAT;
 
+/// Bytes of one texel of the internal formats.
+fn format_bytes(format: vk::Format) -> u64 {
+    match format {
+        vk::Format::R32G32B32A32_SFLOAT => 16,
+        vk::Format::R32G32_SFLOAT => 8,
+        _ => 4, // R32_UINT, R32_SFLOAT, R16G16_SFLOAT
+    }
+}
+
 /// Texel bytes a light's shadow input adds: the reconstructed visibility of a checkerboard input.
 pub(crate) fn input_bytes(extent: [u32; 2], input: crate::ShadowInput) -> u64 {
-    if input == crate::ShadowInput::Checkerboard { 4 * extent[0] as u64 * extent[1] as u64 } else { 0 }
+    let texels = extent[0] as u64 * extent[1] as u64;
+    if input == crate::ShadowInput::Checkerboard { format_bytes(RECONSTRUCTED_FORMAT) * texels } else { 0 }
 }
 
 /// Texel bytes of the context's guide (none with one filter pass).
 pub(crate) fn guide_bytes(extent: [u32; 2], filter_passes: u32) -> u64 {
-    if guide_needed(filter_passes) { 16 * extent[0] as u64 * extent[1] as u64 } else { 0 }
+    if guide_needed(filter_passes) { format_bytes(GUIDE_FORMAT) * extent[0] as u64 * extent[1] as u64 } else { 0 }
 }
 
 /// Every internal image of one light that `filter_passes` passes use, in the order `LightState::new` consumes
@@ -71,7 +81,7 @@ pub(crate) fn guide_bytes(extent: [u32; 2], filter_passes: u32) -> u64 {
 fn image_specs(extent: [u32; 2], precision: Precision, filter_passes: u32) -> impl Iterator<Item = (vk::Format, [u32; 2], &'static str)> {
     let tiles = [extent[0].div_ceil(8), extent[1].div_ceil(4)];
     let rg = intermediate_format(precision);
-    [
+    let fixed: [_; FIXED_IMAGES] = [
         (TILE_FORMAT, tiles, "tile_mask"),
         (TILE_FORMAT, tiles, "tile_dark"),
         (TILE_FORMAT, tiles, "tile_meta"),
@@ -82,9 +92,8 @@ fn image_specs(extent: [u32; 2], precision: Precision, filter_passes: u32) -> im
         (DEPTH_FORMAT, extent, "depth_copy_1"),
         (MOMENTS_FORMAT, extent, "moments_0"),
         (MOMENTS_FORMAT, extent, "moments_1"),
-    ]
-    .into_iter()
-    .chain(OPTIONAL.into_iter().filter(move |o| o.needed(filter_passes)).map(move |o| {
+    ];
+    fixed.into_iter().chain(OPTIONAL.into_iter().filter(move |o| o.needed(filter_passes)).map(move |o| {
         let (format, name) = o.spec(precision);
         (format, extent, name)
     }))
@@ -93,19 +102,14 @@ fn image_specs(extent: [u32; 2], precision: Precision, filter_passes: u32) -> im
 /// Texel bytes of the internal images of one light, before any driver padding or alignment.
 pub(crate) fn texel_bytes(extent: [u32; 2], precision: Precision, filter_passes: u32) -> u64 {
     image_specs(extent, precision, filter_passes)
-        .map(|(format, [w, h], _)| {
-            let texel = match format {
-                vk::Format::R32G32B32A32_SFLOAT => 16,
-                vk::Format::R32G32_SFLOAT => 8,
-                _ => 4, // R32_UINT, R32_SFLOAT, R16G16_SFLOAT
-            };
-            texel * w as u64 * h as u64
-        })
+        .map(|(format, [w, h], _)| format_bytes(format) * w as u64 * h as u64)
         .sum()
 }
 
-/// Most internal images one light has (the fixed ones and every optional one).
-pub(crate) const MAX_IMAGES: usize = 12;
+/// Images every light has (`image_specs`).
+const FIXED_IMAGES: usize = 10;
+/// Most internal images one light has: the fixed ones, every optional one and the checkerboard's reconstruction.
+pub(crate) const MAX_IMAGES: usize = FIXED_IMAGES + OPTIONAL.len() + 1;
 
 pub(crate) struct LightState {
     pub tile_mask: InternalImage,

@@ -275,9 +275,7 @@ pub(crate) fn light_list(shared: &ShadowsDispatch, lights: &[crate::LightDispatc
             return refuse("output", format!("the image of lights[{j}]"), "every light writes its own output image");
         }
         // Another light's input (its own are checked with the rest of its dispatch).
-        let read_by = |o: &crate::LightDispatch| {
-            [o.hit_mask.image, o.visibility.image].into_iter().chain(o.hit_distance.map(|h| h.image)).any(|img| img == l.output.image)
-        };
+        let read_by = |o: &crate::LightDispatch| input_images(&o.apply(shared)).any(|(_, img)| img == l.output.image);
         let own = l.output.image != vk::Image::null();
         if let Some(j) = (0..lights.len()).find(|&j| own && j != i && read_by(&lights[j])) {
             return refuse("output", format!("an input image of lights[{j}]"), "every light writes an image no light reads");

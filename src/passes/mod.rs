@@ -107,9 +107,20 @@ impl FramePasses {
         self.passes[..self.count].iter()
     }
 
-    /// The pass at `index` of the recording order.
-    pub(crate) fn get(&self, index: usize) -> &Pass {
-        &self.passes[..self.count][index]
+}
+
+/// How many passes a frame of `filter_passes` filter passes records.
+pub(crate) fn pass_count(filter_passes: u32) -> usize {
+    2 + filter_passes as usize
+}
+
+/// Pass `index` of the frame (see `frame`) on its own: a record of several lights builds one pass of one light
+/// at a time instead of every light's whole frame.
+pub(crate) fn pass(v: &FrameViews, index: usize, filter_passes: u32, run_prepare: bool, debug_view: DebugView) -> Pass {
+    match index {
+        0 => prepare::pass(v, run_prepare),
+        1 => tile_classification::pass(v),
+        _ => filter::pass(v, index as u32 - 2, filter_passes, debug_view),
     }
 }
 
@@ -117,11 +128,11 @@ impl FramePasses {
 /// `filter_passes` a-trous passes, the last one writing the host's output (or a debug view).
 pub(crate) fn frame(v: &FrameViews, filter_passes: u32, run_prepare: bool, debug_view: DebugView) -> FramePasses {
     let mut passes = [prepare::pass(v, run_prepare); MAX_PASSES];
-    passes[1] = tile_classification::pass(v);
-    for p in 0..filter_passes {
-        passes[2 + p as usize] = filter::pass(v, p, filter_passes, debug_view);
+    let count = pass_count(filter_passes);
+    for (index, p) in passes.iter_mut().enumerate().take(count).skip(1) {
+        *p = pass(v, index, filter_passes, run_prepare, debug_view);
     }
-    FramePasses { passes, count: 2 + filter_passes as usize }
+    FramePasses { passes, count }
 }
 
 /// Longest run of identical samples a pixel's moments record (moments.w: +n lit, -n shadowed); a cleared tile

@@ -1,6 +1,6 @@
 //! prepare: FidelityFX hit mask (1 = occluded) -> internal lit-bit tile mask, or with a visibility input the tile
-//! words of exactly lit and exactly shadowed pixels (a checkerboard input: the reconstructed visibility too). Shader: shaders/prepare.comp. Skipped when the host's mask
-//! already holds lit bits.
+//! words of exactly lit and exactly shadowed pixels (a checkerboard input: the reconstructed visibility too).
+//! Shader: shaders/prepare.comp. Skipped when the host's mask already holds lit bits.
 
 use super::bindings::Resource;
 use super::{internal, FrameViews, Grid, Pass, Role};

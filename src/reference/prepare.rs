@@ -16,10 +16,10 @@ fn visibility_word<Io: Read + ?Sized>(io: &Io, tile: Coord, value: f64) -> u32 {
 
 /// Checkerboard input: a traced pixel keeps its lit bit; the others take the mean of the lit bits of their four
 /// neighbours (all traced) inside the rectangle, 0.5 when there is none.
-fn reconstruct<Io: Read + ?Sized>(io: &Io, p: Coord, phase: u32) -> f64 {
+fn reconstruct<Io: Read + ?Sized>(io: &Io, p: Coord) -> f64 {
     let e = io.extent();
     let lit = |q: Coord| (!io.read_hit_mask([q[0] / TILE[0], q[1] / TILE[1]]) >> super::tile_bit(q)) & 1;
-    if (p[0] + p[1]) as u32 % 2 == phase {
+    if io.is_traced(p) {
         return lit(p) as f64;
     }
     let neighbours = [[-1, 0], [1, 0], [0, -1], [0, 1]].map(|d| [p[0] + d[0], p[1] + d[1]]);
@@ -33,10 +33,10 @@ fn reconstruct<Io: Read + ?Sized>(io: &Io, p: Coord, phase: u32) -> f64 {
 /// Runs prepare over every tile of the render rectangle.
 pub fn run<Io: Read + Write>(io: &mut Io) {
     let e = io.extent();
-    if let Some(phase) = io.checkerboard_phase() {
+    if io.checkerboard_phase().is_some() {
         for y in 0..e[1] {
             for x in 0..e[0] {
-                let v = reconstruct(io, [x, y], phase);
+                let v = reconstruct(io, [x, y]);
                 io.write_visibility([x, y], v);
             }
         }

@@ -190,7 +190,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     let local = local_moments(io, p);
     let mut x = sample(io, p);
     // Checkerboard input: a pixel not traced this frame holds its neighbours' mean, not a sample of its own.
-    let untraced = io.checkerboard_phase().is_some_and(|phase| (p[0] + p[1]) as u32 % 2 != phase);
+    let untraced = !io.is_traced(p);
     let uv = pixel_uv(io, p);
     let ndc = uv_to_ndc(uv);
     let history_uv = uv + quad_velocity(io, p);
@@ -220,7 +220,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
         let hp = clamp_px(history_uv);
         m = io.read_previous_moments(hp);
         // An untraced stable pixel takes its run's value as this frame's sample (and keeps its run, below), unless
-        // all four neighbours hold the other value.
+        // its neighbours' mean lies more than 0.5 from that value.
         let contradicted = (x - if m.w > 0.0 { 1.0 } else { 0.0 }).abs() > 0.5;
         if untraced && !contradicted && stable_after > 0.0 && m.w.abs() >= stable_after && m.w.abs() <= crate::passes::MAX_SAMPLE_RUN as f64 {
             x = if m.w > 0.0 { 1.0 } else { 0.0 };

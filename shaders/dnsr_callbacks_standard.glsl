@@ -176,6 +176,84 @@ void dnsr_write_output(ivec2 p, float shadow) { imageStore(dnsr_output, p + dnsr
 uint dnsr_get_debug_view() { return dnsr_push.pass.w; }
 vec3 dnsr_read_debug_moments(ivec2 p) { return texelFetch(dnsr_debug_moments, p + dnsr_get_offset(), 0).xyz; }
 #endif
+
+#ifdef DNSR_LIGHT_SLOTS_VARIANT
+#extension GL_EXT_control_flow_attributes : require
+// Several lights per dispatch (the filter_later_lights variants, which a record of several lights runs for its
+// later filter passes): DNSR_LIGHT_SLOTS slots, each one light's per-light images. Slot 0 is the bindings above;
+// slot s > 0 has six bindings from 40 + 6 (s - 1), named with the suffix _s. A dispatch fills the first
+// dnsr_get_light_count() slots; the others are bound to slot 0's images and never touched.
+#define DNSR_LIGHT_SLOT(S, B) \
+    layout(set = 0, binding = B) uniform utexture2D dnsr_tile_meta_##S; \
+    layout(set = 0, binding = B + 1) uniform texture2D dnsr_tile_blocker_##S; \
+    layout(set = 0, binding = B + 2) uniform sampler2D dnsr_filter_input_##S; \
+    layout(set = 0, binding = B + 3, DNSR_INTERMEDIATE_FORMAT) uniform writeonly image2D dnsr_filter_output_##S;
+#ifdef DNSR_FINAL_PASS
+#define DNSR_LIGHT_SLOT_FINAL(S, B) \
+    layout(set = 0, binding = B + 4, DNSR_OUTPUT_FORMAT) uniform writeonly image2D dnsr_output_##S; \
+    layout(set = 0, binding = B + 5) uniform texture2D dnsr_debug_moments_##S;
+#else
+#define DNSR_LIGHT_SLOT_FINAL(S, B)
+#endif
+DNSR_LIGHT_SLOT(1, 40) DNSR_LIGHT_SLOT_FINAL(1, 40)
+DNSR_LIGHT_SLOT(2, 46) DNSR_LIGHT_SLOT_FINAL(2, 46)
+DNSR_LIGHT_SLOT(3, 52) DNSR_LIGHT_SLOT_FINAL(3, 52)
+
+#if DNSR_LIGHT_SLOTS != 4
+#error "the slot bindings above are written out for four slots"
+#endif
+
+// Slot l's expression e0..e3. Each loop over the slots unrolls, so l is a constant and the choice folds away.
+#define DNSR_BY_SLOT(l, e0, e1, e2, e3) ((l) == 0 ? (e0) : (l) == 1 ? (e1) : (l) == 2 ? (e2) : (e3))
+
+int dnsr_get_light_count() { return int(dnsr_push.lights.x); }
+bool dnsr_get_light_guided(int l) { return ((dnsr_push.lights.y >> uint(l)) & 1u) != 0u; }
+vec4 dnsr_get_light_penumbra_settings(int l) {
+    return vec4(dnsr_push.light_tan_half_angle[l], dnsr_constants.penumbra.yzw);
+}
+uint dnsr_read_light_tile_meta(int l, ivec2 tile) {
+    ivec2 t = tile + dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT);
+    return DNSR_BY_SLOT(l, texelFetch(dnsr_tile_meta, t, 0).r, texelFetch(dnsr_tile_meta_1, t, 0).r,
+                        texelFetch(dnsr_tile_meta_2, t, 0).r, texelFetch(dnsr_tile_meta_3, t, 0).r);
+}
+float dnsr_read_light_tile_blocker(int l, ivec2 tile) {
+    ivec2 t = tile + dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT);
+    return DNSR_BY_SLOT(l, texelFetch(dnsr_tile_blocker, t, 0).r, texelFetch(dnsr_tile_blocker_1, t, 0).r,
+                        texelFetch(dnsr_tile_blocker_2, t, 0).r, texelFetch(dnsr_tile_blocker_3, t, 0).r);
+}
+vec2 dnsr_read_light_filter_input(int l, ivec2 p) {
+    ivec2 q = p + dnsr_get_offset();
+    return DNSR_BY_SLOT(l, texelFetch(dnsr_filter_input, q, 0), texelFetch(dnsr_filter_input_1, q, 0),
+                        texelFetch(dnsr_filter_input_2, q, 0), texelFetch(dnsr_filter_input_3, q, 0)).xy;
+}
+vec4 dnsr_gather_light_filter_variance(int l, ivec2 corner) {
+    vec2 uv = vec2(corner + dnsr_get_offset()) * dnsr_constants.inv_extent.zw;
+    return DNSR_BY_SLOT(l, textureGather(dnsr_filter_input, uv, 1), textureGather(dnsr_filter_input_1, uv, 1),
+                        textureGather(dnsr_filter_input_2, uv, 1), textureGather(dnsr_filter_input_3, uv, 1));
+}
+void dnsr_write_light_filter_output(int l, ivec2 p, vec2 mean_var) {
+    ivec2 q = p + dnsr_get_offset();
+    vec4 v = vec4(mean_var, 0.0, 0.0);
+    if (l == 0) imageStore(dnsr_filter_output, q, v);
+    else if (l == 1) imageStore(dnsr_filter_output_1, q, v);
+    else if (l == 2) imageStore(dnsr_filter_output_2, q, v);
+    else imageStore(dnsr_filter_output_3, q, v);
+}
+#ifdef DNSR_FINAL_PASS
+void dnsr_write_light_output(int l, ivec2 p, float shadow) {
+    ivec2 q = p + dnsr_get_offset();
+    if (l == 0) imageStore(dnsr_output, q, vec4(shadow));
+    else if (l == 1) imageStore(dnsr_output_1, q, vec4(shadow));
+    else if (l == 2) imageStore(dnsr_output_2, q, vec4(shadow));
+    else imageStore(dnsr_output_3, q, vec4(shadow));
+}
+vec3 dnsr_read_light_debug_moments(int l, ivec2 p) {
+    ivec2 q = p + dnsr_get_offset();
+    return DNSR_BY_SLOT(l, texelFetch(dnsr_debug_moments, q, 0), texelFetch(dnsr_debug_moments_1, q, 0),
+                        texelFetch(dnsr_debug_moments_2, q, 0), texelFetch(dnsr_debug_moments_3, q, 0)).xyz;
+}
+#endif
+#endif
 #endif
 
 #endif

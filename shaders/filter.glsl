@@ -101,16 +101,17 @@ bool dnsr_block_is_tapped(ivec2 m) {
 vec2 dnsr_center_signal(ivec2 p, ivec2 lid) { return dnsr_read_filter_input(p); }
 // Variances of the 3x3 neighbourhood, row by row (the sky's -1 outside the rectangle): four gathers of 2x2
 // texels instead of eight fetches.
-void dnsr_variance_neighbourhood(ivec2 p, ivec2 lid, vec2 c, out float v[9]) {
-    // A gather at corner q returns (q + (-1, 0), q, q + (0, -1), q + (-1, -1)) as (x, y, z, w).
-    vec4 a = dnsr_gather_filter_variance(p);
-    vec4 b = dnsr_gather_filter_variance(p + ivec2(1, 0));
-    vec4 d = dnsr_gather_filter_variance(p + ivec2(0, 1));
-    vec4 e = dnsr_gather_filter_variance(p + ivec2(1, 1));
+// From the gathers at the corners p, p + (1, 0), p + (0, 1), p + (1, 1) (a gather at corner q returns
+// (q + (-1, 0), q, q + (0, -1), q + (-1, -1)) as (x, y, z, w)) and the centre's signal c.
+void dnsr_gathered_neighbourhood(ivec2 p, vec4 a, vec4 b, vec4 d, vec4 e, vec2 c, out float v[9]) {
     v = float[9](a.w, a.z, b.z, a.x, c.y, b.y, d.x, d.y, e.y);
     for (int k = 0; k < 9; ++k) {
         if (!dnsr_inside(p + ivec2(k % 3 - 1, k / 3 - 1))) v[k] = DNSR_SKY_SIGNAL.y;
     }
+}
+void dnsr_variance_neighbourhood(ivec2 p, ivec2 lid, vec2 c, out float v[9]) {
+    dnsr_gathered_neighbourhood(p, dnsr_gather_filter_variance(p), dnsr_gather_filter_variance(p + ivec2(1, 0)),
+                                dnsr_gather_filter_variance(p + ivec2(0, 1)), dnsr_gather_filter_variance(p + ivec2(1, 1)), c, v);
 }
 void dnsr_tap(ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal, out vec4 guide) {
     ivec2 q = p + ivec2(i, j) * step;
@@ -122,26 +123,21 @@ void dnsr_tap(ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal, out v
 
 // Penumbra guidance: 1 / (2 sigma^2) of the Gaussian over tap distance that keeps the kernel within the penumbra
 // the tile's blockers cast on a receiver at linear depth zc; 0 (no narrowing) without guidance or blocker.
-float dnsr_penumbra_falloff(ivec2 p, float zc) {
-    if (!DNSR_SPEC_PENUMBRA_GUIDED) return 0.0;
-    float blocker = dnsr_read_tile_blocker(p / DNSR_TILE_SIZE);
+float dnsr_penumbra_falloff_of(float blocker, vec4 pen, float zc) {
     if (blocker < 0.0) return 0.0;
-    vec4 pen = dnsr_get_penumbra_settings();
     float footprint = pen.y + pen.z * zc;
     if (!(footprint > 0.0)) return 0.0;
     float sigma = blocker * pen.x / footprint * pen.w;
     return 0.5 / max(sigma * sigma, 1e-20);
 }
+float dnsr_penumbra_falloff(ivec2 p, float zc) {
+    if (!DNSR_SPEC_PENUMBRA_GUIDED) return 0.0;
+    return dnsr_penumbra_falloff_of(dnsr_read_tile_blocker(p / DNSR_TILE_SIZE), dnsr_get_penumbra_settings(), zc);
+}
 
-// The filtered (mean, variance) of receiver p (linear depth zc, normal nc) in a tile that is not cleared.
-vec2 dnsr_filter_receiver(ivec2 p, ivec2 lid, int step, float zc, vec3 nc) {
-    vec4 settings = dnsr_get_filter_settings();
-    float kernel[2] = float[2](1.0, settings.x);
-    float normal_power = settings.y;
-    vec2 c = dnsr_center_signal(p, lid);
-    // Variance blur over the 3x3 receivers (told apart by their signal, see DNSR_SKY_SIGNAL).
-    float v[9];
-    dnsr_variance_neighbourhood(p, lid, c, v);
+// 1 / sigma of the shadow edge stop: the variances of the 3x3 receivers (told apart by their signal, see
+// DNSR_SKY_SIGNAL) blurred, at least the floor `sigma_floor`.
+float dnsr_inv_shadow_sigma(float v[9], float sigma_floor) {
     float vsum = 0.0, vweight = 0.0;
     for (int j = -1; j <= 1; ++j) {
         for (int i = -1; i <= 1; ++i) {
@@ -152,7 +148,18 @@ vec2 dnsr_filter_receiver(ivec2 p, ivec2 lid, int step, float zc, vec3 nc) {
             vweight += w;
         }
     }
-    float inv_sigma = 1.0 / max(sqrt(max(vsum / vweight, 0.0)), settings.w);
+    return 1.0 / max(sqrt(max(vsum / vweight, 0.0)), sigma_floor);
+}
+
+// The filtered (mean, variance) of receiver p (linear depth zc, normal nc) in a tile that is not cleared.
+vec2 dnsr_filter_receiver(ivec2 p, ivec2 lid, int step, float zc, vec3 nc) {
+    vec4 settings = dnsr_get_filter_settings();
+    float kernel[2] = float[2](1.0, settings.x);
+    float normal_power = settings.y;
+    vec2 c = dnsr_center_signal(p, lid);
+    float v[9];
+    dnsr_variance_neighbourhood(p, lid, c, v);
+    float inv_sigma = dnsr_inv_shadow_sigma(v, settings.w);
     float inv_depth_sigma = 1.0 / dnsr_get_depth_similarity_sigma();
     float falloff = dnsr_penumbra_falloff(p, zc);
     float weight_sum = 1.0;
@@ -262,6 +269,137 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     }
     dnsr_filter_active(p, lid, dnsr_get_filter_step(), meta, dnsr_read_guide(p));
 }
+
+#ifdef DNSR_LIGHT_SLOTS_VARIANT
+// A later pass for several lights at once (one per slot): per tap the guide is fetched and the depth, normal and
+// kernel factors are computed once for every light; each light fetches only its signal. Each light's arithmetic is
+// dnsr_filter_receiver's, term for term.
+
+#ifdef DNSR_FINAL_PASS
+float dnsr_light_debug_value(int l, uint view, ivec2 p, bool receiver, uint meta, vec2 result) {
+    bool cleared = (meta & DNSR_TILE_CLEARED) != 0u;
+    if (view == DNSR_DEBUG_VIEW_TILE_CLASSIFICATION) {
+        return !receiver ? 0.75 : (!cleared ? 0.5 : ((meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0));
+    }
+    if (view == DNSR_DEBUG_VIEW_VARIANCE) return clamp(sqrt(max(result.y, 0.0)), 0.0, 1.0);
+    float n = receiver ? dnsr_read_light_debug_moments(l, p).z : 0.0;
+    if (view == DNSR_DEBUG_VIEW_SAMPLE_COUNT) return clamp(n / dnsr_get_temporal_settings().z, 0.0, 1.0);
+    return receiver && !cleared && n <= 1.0 ? 1.0 : 0.0; // DNSR_DEBUG_VIEW_DISOCCLUSION
+}
+#endif
+
+void dnsr_light_filter_write(int l, ivec2 p, vec2 result, bool receiver, uint meta) {
+    if (dnsr_get_write_internal()) dnsr_write_light_filter_output(l, p, result);
+#ifdef DNSR_FINAL_PASS
+    uint view = dnsr_get_debug_view();
+    float contrast = dnsr_get_filter_settings().z;
+    dnsr_write_light_output(l, p, view == DNSR_DEBUG_VIEW_NONE ? pow(result.x, max(contrast - result.y, 1.0))
+                                                               : dnsr_light_debug_value(l, view, p, receiver, meta, result));
+#endif
+}
+
+void dnsr_filter_lights(ivec2 gid, ivec2 lid) {
+    ivec2 origin = gid * DNSR_WIDE_GROUP_SIZE + (lid / DNSR_GROUP_SIZE) * DNSR_GROUP_SIZE;
+    ivec2 p = gid * DNSR_WIDE_GROUP_SIZE + lid;
+    if (!dnsr_inside(p)) return;
+    int count = dnsr_get_light_count();
+
+    // Each light's tile metadata, and whether both tiles of its block are cleared.
+    ivec2 tile = origin / DNSR_TILE_SIZE;
+    bool has_bottom = origin.y + DNSR_TILE_SIZE.y < dnsr_get_extent().y;
+    bool top_half = p.y - origin.y < DNSR_TILE_SIZE.y;
+    uint meta[DNSR_LIGHT_SLOTS];
+    bool block_cleared[DNSR_LIGHT_SLOTS];
+    bool any_active = false, any_cleared = false;
+    [[unroll]] for (int l = 0; l < DNSR_LIGHT_SLOTS; ++l) {
+        meta[l] = DNSR_TILE_CLEARED;
+        block_cleared[l] = true;
+        if (l >= count) continue;
+        uint top = dnsr_read_light_tile_meta(l, tile);
+        uint bottom = has_bottom ? dnsr_read_light_tile_meta(l, tile + ivec2(0, 1)) : top;
+        meta[l] = top_half ? top : bottom;
+        block_cleared[l] = (top & bottom & DNSR_TILE_CLEARED) != 0u;
+        any_active = any_active || !block_cleared[l];
+        any_cleared = any_cleared || block_cleared[l];
+    }
+
+    // Lights whose block is cleared: as dnsr_filter's (nothing to do when the values are in place).
+    if (any_cleared && !dnsr_get_skip_cleared()) {
+        bool receiver = dnsr_is_receiver(dnsr_read_depth(p));
+        [[unroll]] for (int l = 0; l < DNSR_LIGHT_SLOTS; ++l) {
+            if (l < count && block_cleared[l]) dnsr_light_filter_write(l, p, dnsr_cleared_value(receiver, meta[l]), receiver, meta[l]);
+        }
+    }
+    if (!any_active) return;
+
+    vec4 guide = dnsr_read_guide(p);
+    float zc = guide.x;
+    vec3 nc = guide.yzw;
+    int step = dnsr_get_filter_step();
+    vec4 settings = dnsr_get_filter_settings();
+    float kernel[2] = float[2](1.0, settings.x);
+    float normal_power = settings.y;
+    float inv_depth_sigma = 1.0 / dnsr_get_depth_similarity_sigma();
+
+    // The lights this pixel filters, and each one's centre, edge-stop sigma and penumbra falloff.
+    bool filtering[DNSR_LIGHT_SLOTS];
+    vec2 c[DNSR_LIGHT_SLOTS];
+    float inv_sigma[DNSR_LIGHT_SLOTS], falloff[DNSR_LIGHT_SLOTS];
+    float weight_sum[DNSR_LIGHT_SLOTS], mean_sum[DNSR_LIGHT_SLOTS], var_sum[DNSR_LIGHT_SLOTS];
+    [[unroll]] for (int l = 0; l < DNSR_LIGHT_SLOTS; ++l) {
+        filtering[l] = l < count && !block_cleared[l] && zc >= 0.0 && (meta[l] & DNSR_TILE_CLEARED) == 0u;
+        c[l] = vec2(0.0);
+        inv_sigma[l] = falloff[l] = 0.0;
+        if (!filtering[l]) continue;
+        c[l] = dnsr_read_light_filter_input(l, p);
+        float v[9];
+        dnsr_gathered_neighbourhood(p, dnsr_gather_light_filter_variance(l, p), dnsr_gather_light_filter_variance(l, p + ivec2(1, 0)),
+                                    dnsr_gather_light_filter_variance(l, p + ivec2(0, 1)),
+                                    dnsr_gather_light_filter_variance(l, p + ivec2(1, 1)), c[l], v);
+        inv_sigma[l] = dnsr_inv_shadow_sigma(v, settings.w);
+        if (DNSR_SPEC_PENUMBRA_GUIDED && dnsr_get_light_guided(l)) {
+            falloff[l] = dnsr_penumbra_falloff_of(dnsr_read_light_tile_blocker(l, p / DNSR_TILE_SIZE),
+                                                  dnsr_get_light_penumbra_settings(l), zc);
+        }
+    }
+    [[unroll]] for (int l = 0; l < DNSR_LIGHT_SLOTS; ++l) {
+        weight_sum[l] = 1.0;
+        mean_sum[l] = c[l].x;
+        var_sum[l] = c[l].y;
+    }
+    for (int j = -1; j <= 1; ++j) {
+        for (int i = -1; i <= 1; ++i) {
+            if (i == 0 && j == 0) continue;
+            ivec2 q = p + ivec2(i, j) * step;
+            if (!dnsr_inside(q)) continue;
+            vec4 g = dnsr_read_guide(q);
+            float zq = g.x;
+            if (zq < 0.0) continue;
+            float kernel_weight = kernel[abs(i)] * kernel[abs(j)];
+            float depth_term = abs(zc - zq) * inv_depth_sigma;
+            float distance2 = float((i * i + j * j) * step * step);
+            float normal_weight = pow(max(dot(nc, g.yzw), 0.0), normal_power);
+            [[unroll]] for (int l = 0; l < DNSR_LIGHT_SLOTS; ++l) {
+                if (!filtering[l]) continue;
+                vec2 n = dnsr_read_light_filter_input(l, q);
+                float w = kernel_weight * exp(-(abs(c[l].x - n.x) * inv_sigma[l] + depth_term + distance2 * falloff[l]))
+                        * normal_weight;
+                weight_sum[l] += w;
+                mean_sum[l] += w * n.x;
+                var_sum[l] += w * w * n.y;
+            }
+        }
+    }
+    [[unroll]] for (int l = 0; l < DNSR_LIGHT_SLOTS; ++l) {
+        if (l >= count || block_cleared[l]) continue;
+        vec2 result = zc < 0.0 ? DNSR_SKY_SIGNAL
+                    : (!filtering[l] ? dnsr_cleared_value(true, meta[l])
+                                     : vec2(clamp(mean_sum[l] / weight_sum[l], 0.0, 1.0),
+                                            max(var_sum[l] / (weight_sum[l] * weight_sum[l]), 0.0)));
+        dnsr_light_filter_write(l, p, result, zc >= 0.0, meta[l]);
+    }
+}
+#endif
 #endif
 
 #endif

@@ -86,6 +86,12 @@ gpu_block! {
     pub(crate) struct FilterPush as "DnsrFilterPush" {
         /// x: tap step in pixels; y: DNSR_PASS_* bits; z: pass index; w: DNSR_DEBUG_VIEW_* (final pass).
         pass: [u32; 4],
+        /// The light-slot variants (several lights per dispatch; zero otherwise): x: lights in this dispatch
+        /// (1..=DNSR_LIGHT_SLOTS); y: bit s set when slot s has penumbra guidance; zw: unused.
+        lights: [u32; 4],
+        /// The light-slot variants: slot s's tan(light angular diameter / 2) (penumbra.x of its constants; the
+        /// other penumbra constants depend on the camera only and are read from slot 0's).
+        light_tan_half_angle: [f32; 4],
     }
 }
 
@@ -138,6 +144,7 @@ pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
     ("DNSR_RUN_CLAMP_SAMPLES", crate::passes::RUN_CLAMP_SAMPLES),
     ("DNSR_SPEC_ID_PENUMBRA_GUIDED", crate::gpu::shader::SPEC_PENUMBRA_GUIDED),
     ("DNSR_SPEC_ID_STABLE_HISTORY", crate::gpu::shader::SPEC_STABLE_HISTORY),
+    ("DNSR_LIGHT_SLOTS", crate::passes::LIGHT_SLOTS as u32),
 ];
 
 /// The complete text of `shaders/generated/dnsr_constants.glsl`.

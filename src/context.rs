@@ -12,7 +12,7 @@ use crate::host::ResourceKind;
 use crate::gpu::loader::Vk;
 use crate::gpu::shader::{variant, Pipeline, SPEC_PENUMBRA_GUIDED, SPEC_STABLE_HISTORY};
 use crate::passes::bindings::{image, Binding};
-use crate::passes::{FramePasses, FrameViews, Pass, Role};
+use crate::passes::{FrameViews, Pass, Role, LIGHT_SLOTS};
 use crate::passes::{filter, prepare, tile_classification};
 use crate::settings::{check_filter_passes, Settings};
 use crate::state::{intermediate_format, LightState, DEPTH_FORMAT, MOMENTS_FORMAT, TILE_FORMAT};
@@ -61,10 +61,13 @@ struct Pipelines {
     filter_later: Pipeline,
     filter_final: Pipeline,
     filter_only: Pipeline,
+    /// The light-slot variants of the later filter passes (intermediate, final), which filter up to LIGHT_SLOTS
+    /// lights per dispatch: a context of several lights without shader overrides has them.
+    filter_lights: Option<[Pipeline; 2]>,
 }
 
 impl Pipelines {
-    fn all_mut(&mut self) -> [&mut Pipeline; 6] {
+    fn all_mut(&mut self) -> impl Iterator<Item = &mut Pipeline> {
         [
             &mut self.prepare,
             &mut self.classification,
@@ -73,6 +76,8 @@ impl Pipelines {
             &mut self.filter_final,
             &mut self.filter_only,
         ]
+        .into_iter()
+        .chain(self.filter_lights.iter_mut().flatten())
     }
 
     fn for_role(&self, role: Role) -> &Pipeline {
@@ -83,6 +88,10 @@ impl Pipelines {
             Role::Filter(_) => &self.filter_later,
             Role::FilterFinal => &self.filter_final,
             Role::FilterOnly => &self.filter_only,
+            // A context without them never records these roles; its descriptor ring's sets for them take the
+            // later passes' layouts.
+            Role::FilterLights(_) => self.filter_lights.as_ref().map_or(&self.filter_later, |l| &l[0]),
+            Role::FilterLightsFinal => self.filter_lights.as_ref().map_or(&self.filter_final, |l| &l[1]),
         }
     }
 }
@@ -260,16 +269,42 @@ impl Context {
                 }
             }
         }
+        // Several lights per dispatch only with dnsr's own variants: an engine's override of the later pass would
+        // not be the one that runs for several lights.
+        if self.light_count > 1 && overrides.is_empty() {
+            for name in self.light_slot_names() {
+                match Pipeline::new(&self.vk, name, variant(name).spirv, push) {
+                    Ok(p) => made.push(p),
+                    Err(e) => {
+                        made.iter_mut().for_each(|p| p.destroy(&self.vk));
+                        return Err(e);
+                    }
+                }
+            }
+        }
         let mut it = made.into_iter();
         let mut next = || it.next().expect("one pipeline per name");
-        Ok(Pipelines {
+        let mut pipelines = Pipelines {
             prepare: next(),
             classification: next(),
             filter_first: next(),
             filter_later: next(),
             filter_final: next(),
             filter_only: next(),
-        })
+            filter_lights: None,
+        };
+        if let (Some(a), Some(b)) = (it.next(), it.next()) {
+            pipelines.filter_lights = Some([a, b]);
+        }
+        Ok(pipelines)
+    }
+
+    /// The light-slot variants of the later filter passes (intermediate, final).
+    fn light_slot_names(&self) -> [&'static str; 2] {
+        [
+            filter::lights_shader(self.precision, None).expect("non-final variant exists"),
+            filter::lights_shader(self.precision, Some(self.output_format)).expect("output format checked"),
+        ]
     }
 
     fn create_sampler_and_constants(&mut self) -> Result<()> {
@@ -423,6 +458,7 @@ impl Context {
             // Without a guide (one filter pass: the pass never touches it) the bindings take an image of its format.
             guide: self.guide.as_ref().map_or(light.moments[cur].view, |g| g.view),
             engine: d.engine_images.map(|e| e.map_or(Binding::default(), |e| image(e.view, e.layout))),
+            penumbra_tan_half_angle: penumbra_tan_half_angle(d),
         }
     }
 
@@ -442,19 +478,6 @@ impl Context {
             }
         }
         Ok(())
-    }
-
-    /// Writes the bindings of the frame's enabled passes into the light's next descriptor ring slot (nothing to
-    /// write with push descriptors). Called only once the dispatch is validated: it cannot fail, and it
-    /// advances the ring.
-    fn write_descriptors(&mut self, light: u32, passes: &FramePasses) -> RecordSets {
-        let pipelines = self.pipelines.as_ref().expect("created");
-        let binder = self.binder.as_mut().expect("created");
-        let sets = binder.next_record(light);
-        for pass in passes.iter().filter(|p| p.enabled) {
-            binder.write(&self.vk.device, sets.get(pass.role), pipelines.for_role(pass.role), &pass.bindings, self.sampler);
-        }
-        sets
     }
 
     /// Records the denoiser for one light into `cmd`, which the host is recording (outside a render pass).
@@ -515,13 +538,39 @@ impl Context {
         let views = &views[..ds.len()];
         let (filter_passes, debug_view) = (self.settings.filter_passes, shared.debug_view);
         let light_views = |light: usize| views[light].as_ref().expect("one per dispatch");
-        let frame = |light: usize| crate::passes::frame(light_views(light), filter_passes, run_prepare, debug_view);
         // The engine images are the shared dispatch's, and every light runs the same passes.
-        self.check_engine_images(shared, &frame(0))?;
-        // Everything that can fail was checked above. Nothing below fails.
-        let sets: [Option<RecordSets>; MAX_LIGHTS_PER_RECORD] =
-            std::array::from_fn(|i| ds.get(i).map(|d| self.write_descriptors(d.light_index, &frame(i))));
+        self.check_engine_images(shared, &crate::passes::frame(light_views(0), filter_passes, run_prepare, debug_view))?;
+        // The later filter passes of several lights run LIGHT_SLOTS lights per dispatch where the context has the
+        // light-slot variants; every other pass runs a dispatch per light.
+        let pipelines = self.pipelines.as_ref().expect("created");
+        let grouped = |index: usize| index >= 3 && ds.len() > 1 && pipelines.filter_lights.is_some();
+        let dispatch_count = |index: usize| if grouped(index) { ds.len().div_ceil(LIGHT_SLOTS) } else { ds.len() };
+        // The light whose descriptor ring slot holds dispatch k's sets: its first.
+        let first_light = |index: usize, k: usize| if grouped(index) { k * LIGHT_SLOTS } else { k };
+        let build = |index: usize, k: usize| -> Pass {
+            if !grouped(index) {
+                return crate::passes::pass(light_views(k), index, filter_passes, run_prepare, debug_view);
+            }
+            let lights = first_light(index, k)..(first_light(index, k) + LIGHT_SLOTS).min(ds.len());
+            let members: [&FrameViews; LIGHT_SLOTS] = std::array::from_fn(|s| light_views((lights.start + s).min(lights.end - 1)));
+            filter::lights_pass(&members[..lights.len()], index as u32 - 2, filter_passes, debug_view)
+        };
         let pass_count = crate::passes::pass_count(filter_passes);
+        // Everything that can fail was checked above. Nothing below fails. Each light takes its next ring slot, and
+        // every dispatch's bindings are written into its first light's (nothing to write with push descriptors).
+        let binder = self.binder.as_mut().expect("created");
+        let sets: [Option<RecordSets>; MAX_LIGHTS_PER_RECORD] = std::array::from_fn(|i| ds.get(i).map(|d| binder.next_record(d.light_index)));
+        if binder.writes_sets() {
+            for index in 0..pass_count {
+                for k in 0..dispatch_count(index) {
+                    let pass = build(index, k);
+                    let set = sets[first_light(index, k)].as_ref().expect("one per dispatch").get(pass.role);
+                    if pass.enabled {
+                        binder.write(&self.vk.device, set, pipelines.for_role(pass.role), &pass.bindings, self.sampler);
+                    }
+                }
+            }
+        }
 
         let mut constants = [0u8; CONSTANTS_STRIDE as usize * MAX_LIGHTS_PER_RECORD];
         for (i, d) in ds.iter().enumerate() {
@@ -531,7 +580,6 @@ impl Context {
             constants[at..at + std::mem::size_of::<FrameConstants>()].copy_from_slice(bytemuck::bytes_of(&c));
         }
 
-        let pipelines = self.pipelines.as_ref().expect("created");
         let dev = &self.vk.device;
         self.frames_recorded += 1;
         let first_query = self.timestamps.as_mut().map(|t| t.begin(dev, cmd, self.frames_recorded, self.settings.filter_passes));
@@ -599,8 +647,8 @@ impl Context {
         let mut hazards = Hazards::default();
         stamp(0);
         for index in 0..pass_count {
-            for light in 0..ds.len() {
-                let pass = &crate::passes::pass(light_views(light), index, filter_passes, run_prepare, debug_view);
+            for k in 0..dispatch_count(index) {
+                let pass = &build(index, k);
                 if !pass.enabled {
                     continue;
                 }
@@ -615,7 +663,7 @@ impl Context {
                         dev.cmd_push_constants(cmd, pipeline.layout, vk::ShaderStageFlags::COMPUTE, 0, bytemuck::bytes_of(push));
                     }
                 }
-                let set = sets[light].as_ref().expect("one per dispatch").get(pass.role);
+                let set = sets[first_light(index, k)].as_ref().expect("one per dispatch").get(pass.role);
                 binder.bind(dev, cmd, pipeline, &pass.bindings, self.sampler, set);
                 unsafe { dev.cmd_dispatch(cmd, groups[0], groups[1], groups[2]) };
             }
@@ -686,6 +734,14 @@ impl Context {
         };
         self.settings.write_to(&mut c);
         c
+    }
+}
+
+#[cfg(test)]
+impl Context {
+    /// Whether a record of several lights runs the later filter passes for several lights per dispatch.
+    pub(crate) fn has_light_slot_pipelines(&self) -> bool {
+        self.pipelines.as_ref().is_some_and(|p| p.filter_lights.is_some())
     }
 }
 
@@ -777,13 +833,18 @@ impl Hazards {
     }
 }
 
-/// The penumbra guidance constants (zero without hit distances): the same conversion the CPU reference uses.
+/// The penumbra guidance constants: the same conversion the CPU reference uses. Without hit distances the light's
+/// size is 0 (x), but the camera's pixel footprint (yz) is kept: a dispatch of several lights reads it from its
+/// first light's constants, guided or not.
 fn penumbra_constants(d: &ShadowsDispatch, height: u32) -> [f32; 4] {
-    if d.hit_distance.is_none() {
-        return [0.0; 4];
-    }
-    let p = crate::reference::Penumbra::new(d.light_angular_size as f64, d.projection_inverse.as_dmat4(), height as i32);
+    let size = if d.hit_distance.is_some() { d.light_angular_size as f64 } else { 0.0 };
+    let p = crate::reference::Penumbra::new(size, d.projection_inverse.as_dmat4(), height as i32);
     [p.tan_half_angle as f32, p.pixel_size as f32, p.pixel_size_per_depth as f32, crate::reference::PENUMBRA_SIGMA_SCALE as f32]
+}
+
+/// penumbra_constants(d, _)[0], which depends on the light alone.
+fn penumbra_tan_half_angle(d: &ShadowsDispatch) -> f32 {
+    if d.hit_distance.is_some() { crate::reference::Penumbra::tan_half_angle(d.light_angular_size as f64) as f32 } else { 0.0 }
 }
 
 fn binder_ref(b: &Option<Binder>) -> &Binder {
@@ -796,7 +857,7 @@ impl Drop for Context {
         let vk = &self.vk;
         let (d, alloc) = (&vk.device, vk.alloc());
         if let Some(mut p) = self.pipelines.take() {
-            p.all_mut().into_iter().for_each(|p| p.destroy(vk));
+            p.all_mut().for_each(|p| p.destroy(vk));
         }
         if let Some(mut b) = self.binder.take() {
             b.destroy(vk);

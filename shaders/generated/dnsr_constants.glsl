@@ -21,6 +21,8 @@ struct DnsrFrameConstants {
 
 struct DnsrFilterPush {
     uvec4 pass;
+    uvec4 lights;
+    vec4 light_tan_half_angle;
 };
 
 #define DNSR_FLAG_RESET 1u
@@ -49,5 +51,6 @@ struct DnsrFilterPush {
 #define DNSR_RUN_CLAMP_SAMPLES 3
 #define DNSR_SPEC_ID_PENUMBRA_GUIDED 0
 #define DNSR_SPEC_ID_STABLE_HISTORY 1
+#define DNSR_LIGHT_SLOTS 4
 
 #endif

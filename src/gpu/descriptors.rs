@@ -11,15 +11,17 @@ use crate::error::{vk_check, Result};
 use crate::gpu::loader::Vk;
 use crate::gpu::shader::Pipeline;
 use crate::passes::bindings::{BindingTable, Resource};
-use crate::passes::Role;
+use crate::passes::{Role, MAX_PASSES};
+use crate::settings::MAX_FILTER_PASSES;
 use ash::vk;
 
-/// Most bindings any pass declares.
-pub(crate) const MAX_BINDINGS: usize = 26;
+/// Most bindings any pass declares (the final light-slot variant: 29). At most 32, the least
+/// `maxPushDescriptors` a device with push descriptors has.
+pub(crate) const MAX_BINDINGS: usize = 32;
 
-/// The descriptor sets one record writes, one per pipeline role: every pass of the longest frame, and the single
-/// pass of a one-pass frame.
-pub(crate) const SETS_PER_RECORD: usize = crate::passes::MAX_PASSES + 1;
+/// The descriptor sets one record writes, one per pipeline role: every pass of the longest frame, the single
+/// pass of a one-pass frame, and the later passes of several lights (intermediate ones and the final one).
+pub(crate) const SETS_PER_RECORD: usize = MAX_PASSES + MAX_FILTER_PASSES as usize;
 
 /// The set of a ring slot that a pipeline role uses.
 fn set_index(role: Role) -> usize {
@@ -27,19 +29,23 @@ fn set_index(role: Role) -> usize {
         Role::Prepare => 0,
         Role::Classification => 1,
         Role::Filter(pass) => 2 + pass as usize,
-        Role::FilterFinal => SETS_PER_RECORD - 2,
-        Role::FilterOnly => SETS_PER_RECORD - 1,
+        Role::FilterFinal => MAX_PASSES - 1,
+        Role::FilterOnly => MAX_PASSES,
+        Role::FilterLights(pass) => MAX_PASSES + pass as usize,
+        Role::FilterLightsFinal => SETS_PER_RECORD - 1,
     }
 }
 
 /// Every role, in set order: every filter pass but the last can be an intermediate pass, one final pass after
-/// them, and the single pass of a one-pass frame.
+/// them, the single pass of a one-pass frame, then the later passes of several lights.
 pub(crate) fn roles() -> [Role; SETS_PER_RECORD] {
     std::array::from_fn(|i| match i {
         0 => Role::Prepare,
         1 => Role::Classification,
-        _ if i == SETS_PER_RECORD - 2 => Role::FilterFinal,
-        _ if i == SETS_PER_RECORD - 1 => Role::FilterOnly,
+        _ if i == MAX_PASSES - 1 => Role::FilterFinal,
+        _ if i == MAX_PASSES => Role::FilterOnly,
+        _ if i == SETS_PER_RECORD - 1 => Role::FilterLightsFinal,
+        _ if i > MAX_PASSES => Role::FilterLights((i - MAX_PASSES) as u32),
         _ => Role::Filter(i as u32 - 2),
     })
 }
@@ -149,7 +155,8 @@ impl Binder {
         }
     }
 
-    /// Takes the next ring slot of `light` for one record. Nothing is written yet; `write` fills each set the
+    /// Takes the next ring slot of `light` for one record (a dispatch of several lights uses the sets of its first
+    /// light's slot). Nothing is written yet; `write` fills each set the
     /// record uses. Infallible, so a record that reaches this point always completes.
     pub(crate) fn next_record(&mut self, light: u32) -> RecordSets {
         match self {
@@ -160,6 +167,11 @@ impl Binder {
                 RecordSets(ring.sets[(light * ring.slots + slot) as usize])
             }
         }
+    }
+
+    /// Whether bindings are written into sets before recording (the ring), not pushed at bind time.
+    pub(crate) fn writes_sets(&self) -> bool {
+        matches!(self, Binder::Ring(_))
     }
 
     /// Writes `table` into `set` (a no-op with push descriptors, which are written at bind time).

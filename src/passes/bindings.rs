@@ -34,6 +34,25 @@ pub(crate) enum Resource {
     TileDarkOut,
     TileDark,
     VisibilityOut,
+    /// Slots 1..LIGHT_SLOTS of the filter's light-slot variants (slot 0 is the resource without a number).
+    TileMeta1,
+    TileMeta2,
+    TileMeta3,
+    TileBlocker1,
+    TileBlocker2,
+    TileBlocker3,
+    FilterInput1,
+    FilterInput2,
+    FilterInput3,
+    FilterOutput1,
+    FilterOutput2,
+    FilterOutput3,
+    Output1,
+    Output2,
+    Output3,
+    DebugMoments1,
+    DebugMoments2,
+    DebugMoments3,
     /// An engine's own images (bindings ENGINE_BINDING_BASE.., any name), declared by engine-compiled variants.
     Engine0,
     Engine1,
@@ -46,13 +65,30 @@ pub(crate) enum Resource {
 }
 
 pub(crate) const RESOURCE_COUNT: usize = Resource::Engine7 as usize + 1;
-const NAMED_COUNT: usize = Resource::VisibilityOut as usize + 1;
+const NAMED_COUNT: usize = Resource::DebugMoments3 as usize + 1;
 
 impl Resource {
     /// The engine image at slot `slot` (binding ENGINE_BINDING_BASE + slot).
     pub(crate) fn engine(slot: usize) -> Option<Resource> {
         use Resource::*;
         [Engine0, Engine1, Engine2, Engine3, Engine4, Engine5, Engine6, Engine7].get(slot).copied()
+    }
+
+    /// This per-light resource of the filter's light-slot variants in slot `slot` (0..LIGHT_SLOTS); None for a
+    /// resource the slots do not repeat.
+    pub(crate) fn in_slot(self, slot: usize) -> Option<Resource> {
+        use Resource::*;
+        let slots = match self {
+            TileMeta => [TileMeta, TileMeta1, TileMeta2, TileMeta3],
+            TileBlocker => [TileBlocker, TileBlocker1, TileBlocker2, TileBlocker3],
+            FilterInput => [FilterInput, FilterInput1, FilterInput2, FilterInput3],
+            FilterOutput => [FilterOutput, FilterOutput1, FilterOutput2, FilterOutput3],
+            Output => [Output, Output1, Output2, Output3],
+            DebugMoments => [DebugMoments, DebugMoments1, DebugMoments2, DebugMoments3],
+            _ => return None,
+        };
+        const _: () = assert!(crate::passes::LIGHT_SLOTS == 4);
+        slots.get(slot).copied()
     }
 
     /// The engine slot of an engine resource.
@@ -91,6 +127,24 @@ const TABLE: [(&str, Resource, vk::DescriptorType); NAMED_COUNT] = [
     ("dnsr_tile_dark_out", Resource::TileDarkOut, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_tile_dark", Resource::TileDark, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_visibility_out", Resource::VisibilityOut, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_tile_meta_1", Resource::TileMeta1, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_tile_meta_2", Resource::TileMeta2, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_tile_meta_3", Resource::TileMeta3, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_tile_blocker_1", Resource::TileBlocker1, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_tile_blocker_2", Resource::TileBlocker2, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_tile_blocker_3", Resource::TileBlocker3, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_filter_input_1", Resource::FilterInput1, vk::DescriptorType::COMBINED_IMAGE_SAMPLER),
+    ("dnsr_filter_input_2", Resource::FilterInput2, vk::DescriptorType::COMBINED_IMAGE_SAMPLER),
+    ("dnsr_filter_input_3", Resource::FilterInput3, vk::DescriptorType::COMBINED_IMAGE_SAMPLER),
+    ("dnsr_filter_output_1", Resource::FilterOutput1, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_filter_output_2", Resource::FilterOutput2, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_filter_output_3", Resource::FilterOutput3, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_output_1", Resource::Output1, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_output_2", Resource::Output2, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_output_3", Resource::Output3, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_debug_moments_1", Resource::DebugMoments1, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_debug_moments_2", Resource::DebugMoments2, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_debug_moments_3", Resource::DebugMoments3, vk::DescriptorType::SAMPLED_IMAGE),
 ];
 
 impl Resource {

@@ -9,7 +9,8 @@
 //! output, so a pass that writes only there skips groups whose two tiles are cleared.
 
 use super::bindings::Resource;
-use super::{internal, FrameViews, Grid, Pass, Role, WIDE_GROUP};
+use super::{internal, FrameViews, Grid, Pass, Role, LIGHT_SLOTS, WIDE_GROUP};
+use crate::gpu::shader::SPEC_PENUMBRA_GUIDED;
 use crate::constants::{FilterPush, PASS_SKIP_CLEARED, PASS_WRITE_GUIDE, PASS_WRITE_INTERNAL};
 use crate::create_info::Precision;
 use crate::dispatch::DebugView;
@@ -25,6 +26,12 @@ pub(crate) fn shader(precision: Precision, final_output: Option<vk::Format>, lat
         (true, false) => "filter_later",
         (true, true) => "filter_later_final",
     };
+    variant_name(stem, final_output, precision)
+}
+
+/// The light-slot variant of a later pass (several lights per dispatch), intermediate or final.
+pub(crate) fn lights_shader(precision: Precision, final_output: Option<vk::Format>) -> Option<&'static str> {
+    let stem = if final_output.is_some() { "filter_later_lights_final" } else { "filter_later_lights" };
     variant_name(stem, final_output, precision)
 }
 
@@ -66,6 +73,38 @@ pub(crate) fn pass(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView
     Pass { role, bindings: t, grid: Grid::Pixels, group: WIDE_GROUP, push, spec: v.spec, enabled: true }
 }
 
+/// Later filter pass `pass` (1.., not the only pass) of `lights` (1..=LIGHT_SLOTS) at once, light k in slot k:
+/// slot 0's bindings are light 0's single-light ones (which also give the shared guide, G-buffer and constants),
+/// and slots beyond the lights repeat slot 0's images, which the shader never touches there.
+pub(crate) fn lights_pass(lights: &[&FrameViews], pass: u32, passes: u32, debug_view: DebugView) -> Pass {
+    debug_assert!(pass > 0 && (1..=LIGHT_SLOTS).contains(&lights.len()));
+    let mut p = self::pass(lights[0], pass, passes, debug_view);
+    const PER_LIGHT: [Resource; 6] =
+        [Resource::TileMeta, Resource::TileBlocker, Resource::FilterInput, Resource::FilterOutput, Resource::Output, Resource::DebugMoments];
+    let (mut guided, mut tan) = (0, [0.0; 4]);
+    for slot in 0..LIGHT_SLOTS {
+        let v = lights.get(slot).unwrap_or(&lights[0]);
+        let single = self::pass(v, pass, passes, debug_view).bindings;
+        for r in PER_LIGHT {
+            let at = r.in_slot(slot).expect("a per-light resource") as usize;
+            p.bindings[at] = single[r as usize];
+        }
+        if slot < lights.len() {
+            p.spec |= v.spec & (1 << SPEC_PENUMBRA_GUIDED);
+            if v.spec & (1 << SPEC_PENUMBRA_GUIDED) != 0 {
+                guided |= 1 << slot;
+                tan[slot] = v.penumbra_tan_half_angle;
+            }
+        }
+    }
+    p.role = if is_final(pass, passes) { Role::FilterLightsFinal } else { Role::FilterLights(pass) };
+    if let Some(push) = p.push.as_mut() {
+        push.lights = [lights.len() as u32, guided, 0, 0];
+        push.light_tan_half_angle = tan;
+    }
+    p
+}
+
 fn push_constants(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView) -> FilterPush {
     let last = is_final(pass, passes);
     let write_internal = pass == 0 || !last;
@@ -77,6 +116,6 @@ fn push_constants(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView)
         | (if internal_in_place && output_in_place { PASS_SKIP_CLEARED } else { 0 })
         | (if pass == 0 && passes > 1 { PASS_WRITE_GUIDE } else { 0 });
     let view = if last { debug_view as u32 } else { 0 };
-    FilterPush { pass: [1 << pass, flags, pass, view] }
+    FilterPush { pass: [1 << pass, flags, pass, view], ..Default::default() }
 }
 

@@ -55,7 +55,15 @@ pub(crate) enum Role {
     FilterFinal,
     /// A single filter pass: the first pass's variant writing the output.
     FilterOnly,
+    /// Intermediate later pass `n` (1..) for several lights at once (the light-slot variant).
+    FilterLights(u32),
+    /// The last of two or more passes for several lights at once.
+    FilterLightsFinal,
 }
+
+/// Lights one dispatch of the filter's light-slot variants filters (a record of more lights runs several).
+/// Generated into GLSL as DNSR_LIGHT_SLOTS.
+pub(crate) const LIGHT_SLOTS: usize = 4;
 
 /// What one invocation of a pass covers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -188,6 +196,8 @@ pub(crate) struct FrameViews {
     pub guide: vk::ImageView,
     /// The engine's own images (slot i: binding ENGINE_BINDING_BASE + i), for its shader variants.
     pub engine: [Binding; crate::MAX_ENGINE_IMAGES],
+    /// tan(light angular diameter / 2) of penumbra guidance (0 without): the one per-light filter constant.
+    pub penumbra_tan_half_angle: f32,
 }
 
 impl FrameViews {

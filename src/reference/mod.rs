@@ -186,7 +186,12 @@ impl Penumbra {
         let per_depth = if (z1 - z0).abs() > 1e-12 * z1.abs().max(1.0) { (s1 - s0) / (z1 - z0) } else { 0.0 };
         let (pixel_size, pixel_size_per_depth) =
             if per_depth.is_finite() && s0.is_finite() { (s0 - per_depth * z0, per_depth) } else { (0.0, 0.0) };
-        Penumbra { tan_half_angle: (angular_size * 0.5).tan(), pixel_size, pixel_size_per_depth }
+        Penumbra { tan_half_angle: Self::tan_half_angle(angular_size), pixel_size, pixel_size_per_depth }
+    }
+
+    /// tan(angular diameter / 2) of a light of angular diameter `angular_size` (radians).
+    pub fn tan_half_angle(angular_size: f64) -> f64 {
+        (angular_size * 0.5).tan()
     }
 
     /// Half-width in pixels of the penumbra a blocker `blocker` away casts on a receiver at linear depth `z`

@@ -89,17 +89,27 @@ fn reflected_interfaces_match_what_the_host_binds() {
             0,
             (1 << GUIDED) | (1 << STABLE),
         ),
-        ("filter", &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide, GuideOut], 16, 1 << GUIDED),
+        ("filter", &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide, GuideOut], 48, 1 << GUIDED),
         (
             "filter_later",
             &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide, GuideOut],
-            16,
+            48,
             1 << GUIDED,
         ),
         (
             "filter_final_r16f_fp16",
             &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Output, DebugMoments, Guide, GuideOut],
-            16,
+            48,
+            1 << GUIDED,
+        ),
+        (
+            "filter_later_lights_final_r16f",
+            &[
+                Constants, Depth, Normals, Guide, GuideOut, TileMeta, TileBlocker, FilterInput, FilterOutput, Output, DebugMoments,
+                TileMeta1, TileBlocker1, FilterInput1, FilterOutput1, Output1, DebugMoments1, TileMeta2, TileBlocker2, FilterInput2,
+                FilterOutput2, Output2, DebugMoments2, TileMeta3, TileBlocker3, FilterInput3, FilterOutput3, Output3, DebugMoments3,
+            ],
+            48,
             1 << GUIDED,
         ),
     ];
@@ -115,7 +125,7 @@ fn reflected_interfaces_match_what_the_host_binds() {
         assert_eq!(iface.specializes, *specializes, "{name} specialization constants");
         assert_eq!(iface.uniform_bytes, Some(std::mem::size_of::<FrameConstants>() as u32), "{name} constants block");
     }
-    assert_eq!(std::mem::size_of::<FilterPush>(), 16);
+    assert_eq!(std::mem::size_of::<FilterPush>(), 48);
     // Every variant reflects cleanly.
     for v in VARIANTS {
         reflect(v.spirv).unwrap_or_else(|e| panic!("{}: {e}", v.name));

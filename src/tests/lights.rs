@@ -10,11 +10,18 @@ use ash::vk;
 
 const W: u32 = 64;
 const H: u32 = 48;
-const LIGHTS: usize = 3;
+/// More lights than one dispatch of the filter's light-slot variants takes (crate::passes::LIGHT_SLOTS), so that
+/// the later filter passes run a full group and a partial one.
+const LIGHTS: usize = 5;
+const _: () = assert!(LIGHTS > crate::passes::LIGHT_SLOTS);
 /// The frame at which light 1 (only) restarts its history.
 const RESET_FRAME: u32 = 3;
-/// Penumbra guidance for light 2 (angular size in radians); the others have none.
+/// Penumbra guidance for lights 2 and 4 (angular size in radians, light 4's twice light 2's); the others have none.
 const GUIDED_ANGLE: f32 = 0.05;
+
+fn guided(light: usize) -> bool {
+    light == 2 || light == 4
+}
 
 /// Light `light`'s frame `frame`: one camera path for every light (so one G-buffer), a shadow of its own.
 fn light_frame(light: usize, frame: u32) -> FrameInputs {
@@ -23,6 +30,8 @@ fn light_frame(light: usize, frame: u32) -> FrameInputs {
         &|x, _| (0.5 + x / 3.0).clamp(0.0, 1.0),
         &|x, z| if x * x + z * z < 4.0 { 0.1 } else { 1.0 },
         &|x, z| if ((x + z) * 0.7).rem_euclid(2.0) < 1.0 { 0.0 } else { 0.8 },
+        &|x, z| (0.5 + 0.4 * (x * 0.8).sin() * (z * 0.6).cos()).clamp(0.0, 1.0),
+        &|_, z| if z < 0.5 { 0.0 } else { 1.0 },
     ];
     let seed = 1000 * light as u64 + frame as u64;
     render_with_blockers(W, H, &cam(frame), &cam(frame.saturating_sub(1)), 7.0, fields[light], &|x, _| 0.5 + x.abs(), seed)
@@ -41,13 +50,13 @@ fn floats(raw: &[u8]) -> Vec<f32> {
 }
 
 /// This light's fields of a dispatch over `mask`, `output` and the runner's hit distances.
-fn light(r: &Runner, index: usize, mask: &TestImage, output: &TestImage, frame: u32) -> LightDispatch {
+fn light(index: usize, mask: &TestImage, output: &TestImage, hit_distance: &TestImage, frame: u32) -> LightDispatch {
     LightDispatch {
         light_index: index as u32,
         hit_mask: mask.host(),
         output: output.host(),
-        hit_distance: (index == 2).then(|| r.hit_distance.host()),
-        light_angular_size: if index == 2 { GUIDED_ANGLE } else { 0.0 },
+        hit_distance: guided(index).then(|| hit_distance.host()),
+        light_angular_size: if guided(index) { GUIDED_ANGLE * (index / 2) as f32 } else { 0.0 },
         reset: index == 1 && frame == RESET_FRAME,
         ..Default::default()
     }
@@ -85,10 +94,14 @@ fn equal_to_one_record_per_light(g: &Gpu, input: ShadowInput) {
     let phase = |frame: u32| if input == ShadowInput::Checkerboard { frame % 2 } else { 0 };
     let mut single = runner(g, input);
     let mut batched = runner(g, input);
-    // Lights 0 and 1 of the batched runner read and write these; light 2 uses the runner's own images (its frame
-    // is the one the runner uploads, hit distances included).
-    let masks: Vec<TestImage> = (0..2).map(|_| g.image(vk::Format::R32_UINT, W / 8, H / 4, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)).collect();
-    let outputs: Vec<TestImage> = (0..2).map(|_| g.image(vk::Format::R32_SFLOAT, W, H, vk::ImageLayout::GENERAL)).collect();
+    assert!(batched.ctx.has_light_slot_pipelines(), "the later passes would run a dispatch per light");
+    // The batched runner's lights but the last read and write these; the last uses the runner's own images (its
+    // frame is the one the runner uploads, hit distances included).
+    let last = LIGHTS - 1;
+    let masks: Vec<TestImage> = (0..last).map(|_| g.image(vk::Format::R32_UINT, W / 8, H / 4, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)).collect();
+    let outputs: Vec<TestImage> = (0..last).map(|_| g.image(vk::Format::R32_SFLOAT, W, H, vk::ImageLayout::GENERAL)).collect();
+    let hit_distances: Vec<TestImage> =
+        (0..last).map(|_| g.image(vk::Format::R32_SFLOAT, W, H, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)).collect();
     let mut reset_changed = false;
     for frame in 0..6 {
         single.checkerboard_phase = phase(frame);
@@ -97,23 +110,25 @@ fn equal_to_one_record_per_light(g: &Gpu, input: ShadowInput) {
         let expected: Vec<Vec<f32>> = (0..LIGHTS)
             .map(|l| {
                 let d = single.dispatch(&inputs[l]);
-                let ld = light(&single, l, &single.mask, &single.output, frame);
+                let ld = light(l, &single.mask, &single.output, &single.hit_distance, frame);
                 single.run(&inputs[l], &ld.apply(&d)).expect("record_shadows")
             })
             .collect();
 
-        for (mask, f) in masks.iter().zip(&inputs) {
+        for ((mask, hit_distance), f) in masks.iter().zip(&hit_distances).zip(&inputs) {
             g.upload(mask, bytemuck::cast_slice(&f.mask));
+            g.upload(hit_distance, bytemuck::cast_slice(&f.hit_distance));
         }
-        let d = shared(&batched.dispatch(&inputs[2]));
-        let lights = [
-            light(&batched, 0, &masks[0], &outputs[0], frame),
-            light(&batched, 1, &masks[1], &outputs[1], frame),
-            light(&batched, 2, &batched.mask, &batched.output, frame),
-        ];
-        let (result, last) = batched.run_with(&inputs[2], |ctx, cmd| ctx.record_lights(cmd, &d, &lights));
+        let d = shared(&batched.dispatch(&inputs[last]));
+        let lights: Vec<LightDispatch> = (0..LIGHTS)
+            .map(|l| match l < last {
+                true => light(l, &masks[l], &outputs[l], &hit_distances[l], frame),
+                false => light(l, &batched.mask, &batched.output, &batched.hit_distance, frame),
+            })
+            .collect();
+        let (result, last_output) = batched.run_with(&inputs[last], |ctx, cmd| ctx.record_lights(cmd, &d, &lights));
         result.expect("record_lights");
-        let got = [floats(&g.download(&outputs[0])), floats(&g.download(&outputs[1])), last];
+        let got: Vec<Vec<f32>> = outputs.iter().map(|o| floats(&g.download(o))).chain([last_output]).collect();
         for l in 0..LIGHTS {
             let differing = got[l].iter().zip(&expected[l]).filter(|(a, b)| a.to_bits() != b.to_bits()).count();
             assert_eq!(differing, 0, "frame {frame} light {l}: {differing} pixels differ from its own record_shadows");
@@ -135,9 +150,9 @@ fn equal_to_one_record_per_light(g: &Gpu, input: ShadowInput) {
     // The lights share the filter's guide: every light after the first adds its own state only.
     let bytes = |lights| crate::memory_requirements(W, H, crate::Precision::Fp32, 3, lights).unwrap();
     let (one, added) = (bytes(1), bytes(2) - bytes(1));
-    assert_eq!(bytes(3) - bytes(1), 2 * added, "memory grows linearly with the light count");
+    assert_eq!(bytes(LIGHTS as u32) - bytes(1), (LIGHTS as u64 - 1) * added, "memory grows linearly with the light count");
     assert!(one >= added + 16 * (W * H) as u64, "the first light carries the guide ({one} B), the next {added} B each");
-    for img in masks.iter().chain(&outputs) {
+    for img in masks.iter().chain(&outputs).chain(&hit_distances) {
         g.destroy_image(img);
     }
 }
@@ -164,8 +179,8 @@ fn a_bad_light_refuses_the_whole_record() {
         ("an output another light reads", d, vec![base[0], LightDispatch { hit_mask: HostImage { image: r.output.image, ..r.mask.host() }, ..base[1] }], |e| {
             matches!(e, Error::Light { position: 0, error } if matches!(**error, Error::InvalidValue { field: "output", .. }))
         }),
-        ("light index out of range", d, vec![base[0], LightDispatch { light_index: 3, ..base[1] }], |e| {
-            matches!(e, Error::Light { position: 1, error } if matches!(**error, Error::InvalidLightIndex { index: 3, count: 3 }))
+        ("light index out of range", d, vec![base[0], LightDispatch { light_index: LIGHTS as u32, ..base[1] }], |e| {
+            matches!(e, Error::Light { position: 1, error } if matches!(**error, Error::InvalidLightIndex { index: 5, count: 5 }))
         }),
         ("a light without its hit mask", d, vec![base[0], LightDispatch { hit_mask: Default::default(), ..base[1] }], |e| {
             matches!(e, Error::Light { position: 1, .. })

@@ -178,7 +178,6 @@ vec3 dnsr_read_debug_moments(ivec2 p) { return texelFetch(dnsr_debug_moments, p 
 #endif
 
 #ifdef DNSR_LIGHT_SLOTS_VARIANT
-#extension GL_EXT_control_flow_attributes : require
 // Several lights per dispatch (the filter_later_lights variants, which a record of several lights runs for its
 // later filter passes): DNSR_LIGHT_SLOTS slots, each one light's per-light images. Slot 0 is the bindings above;
 // slot s > 0 has six bindings from 40 + 6 (s - 1), named with the suffix _s. A dispatch fills the first

@@ -5,121 +5,23 @@
 // holding both paths slowed the later passes from 0.383 / 0.371 to 0.454 / 0.477 ms although they never touch
 // the apron, and an apron for their variance blur alone slowed them too (their taps cannot wait for a barrier).
 // An apron sized for the widest step was 3-5x slower still.
+//
+// The light-slot variants (DNSR_LIGHT_SLOTS_VARIANT, which a record of several lights runs) filter up to
+// DNSR_LIGHT_SLOTS lights per dispatch: what does not depend on the light (the apron's depth and normals, the guide,
+// per tap the guide fetch and the depth, normal and kernel factors) once, each light's signal per light. Each
+// light's arithmetic is the single-light one, term for term, so its result is bit for bit the same. The helpers
+// below take the light `l` they work on (always 0 in the single-light variants).
 #ifndef DNSR_FILTER_GLSL
 #define DNSR_FILTER_GLSL
+
+// The loops over the lights unroll: each light's resources are then chosen at compile time.
+#extension GL_EXT_control_flow_attributes : require
 
 // Linear depth of a receiver, -1 for sky.
 float dnsr_tap_depth(ivec2 p) {
     float depth = dnsr_read_depth(p);
     return dnsr_is_receiver(depth) ? dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), depth) : -1.0;
 }
-
-#ifdef DNSR_FINAL_PASS
-// The debug views: what the output shows instead of the shadow (see DebugView in src/dispatch.rs).
-float dnsr_debug_value(uint view, ivec2 p, bool receiver, uint meta, vec2 result) {
-    bool cleared = (meta & DNSR_TILE_CLEARED) != 0u;
-    if (view == DNSR_DEBUG_VIEW_TILE_CLASSIFICATION) {
-        return !receiver ? 0.75 : (!cleared ? 0.5 : ((meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0));
-    }
-    if (view == DNSR_DEBUG_VIEW_VARIANCE) return clamp(sqrt(max(result.y, 0.0)), 0.0, 1.0);
-    float n = receiver ? dnsr_read_debug_moments(p).z : 0.0;
-    if (view == DNSR_DEBUG_VIEW_SAMPLE_COUNT) return clamp(n / dnsr_get_temporal_settings().z, 0.0, 1.0);
-    return receiver && !cleared && n <= 1.0 ? 1.0 : 0.0; // DNSR_DEBUG_VIEW_DISOCCLUSION
-}
-#endif
-
-void dnsr_filter_write(ivec2 p, vec2 result, bool receiver, uint meta) {
-    if (dnsr_get_write_internal()) dnsr_write_filter_output(p, result);
-#ifdef DNSR_FINAL_PASS
-    uint view = dnsr_get_debug_view();
-    float contrast = dnsr_get_filter_settings().z;
-    dnsr_write_output(p, view == DNSR_DEBUG_VIEW_NONE ? pow(result.x, max(contrast - result.y, 1.0))
-                                                      : dnsr_debug_value(view, p, receiver, meta, result));
-#endif
-}
-
-// Value of a pixel in a cleared tile: sky is lit, receivers take the tile's value.
-vec2 dnsr_cleared_value(bool receiver, uint meta) {
-    return receiver ? vec2((meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0, 0.0) : DNSR_SKY_SIGNAL;
-}
-
-#ifndef DNSR_LATER_PASS
-// The first pass (step 1) reads its group's pixels and a one-pixel apron into shared memory once: every pixel's
-// 3x3 neighbourhood, its taps and its variance-blur footprint, instead of nine fetches per pixel. It writes the
-// guide the later passes read.
-const ivec2 DNSR_APRON_SIZE = DNSR_WIDE_GROUP_SIZE + 2;
-const int DNSR_APRON_COUNT = DNSR_APRON_SIZE.x * DNSR_APRON_SIZE.y;
-shared vec2 dnsr_apron_signal[DNSR_APRON_COUNT];
-shared float dnsr_apron_depth[DNSR_APRON_COUNT];
-shared vec3 dnsr_apron_normal[DNSR_APRON_COUNT];
-
-void dnsr_load_apron(ivec2 origin, int invocation) {
-    for (int i = invocation; i < DNSR_APRON_COUNT; i += DNSR_WIDE_GROUP_INVOCATIONS) {
-        ivec2 q = origin - 1 + ivec2(i % DNSR_APRON_SIZE.x, i / DNSR_APRON_SIZE.x);
-        bool inside = dnsr_inside(q);
-        dnsr_apron_signal[i] = inside ? dnsr_read_filter_input(q) : DNSR_SKY_SIGNAL;
-        float z = inside ? dnsr_tap_depth(q) : -1.0;
-        dnsr_apron_depth[i] = z;
-        dnsr_apron_normal[i] = z >= 0.0 ? dnsr_read_normal(q) : vec3(0.0);
-    }
-}
-
-int dnsr_apron_index(ivec2 lid, int i, int j) { return (lid.y + 1 + j) * DNSR_APRON_SIZE.x + lid.x + 1 + i; }
-
-vec2 dnsr_center_signal(ivec2 p, ivec2 lid) { return dnsr_apron_signal[dnsr_apron_index(lid, 0, 0)]; }
-// Variances of the 3x3 neighbourhood, row by row (the sky's -1 outside the rectangle).
-void dnsr_variance_neighbourhood(ivec2 p, ivec2 lid, vec2 c, out float v[9]) {
-    for (int k = 0; k < 9; ++k) v[k] = dnsr_apron_signal[dnsr_apron_index(lid, k % 3 - 1, k / 3 - 1)].y;
-}
-// Tap (i, j): its signal, and its guide (linear depth or -1, normal).
-void dnsr_tap(ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal, out vec4 guide) {
-    int k = dnsr_apron_index(lid, i, j);
-    signal = dnsr_apron_signal[k];
-    guide = vec4(dnsr_apron_depth[k], dnsr_apron_normal[k]);
-}
-
-// Tile metadata of the group's tiles and of one block beyond it on every side: a later pass reaches at most one
-// block (its step is at most DNSR_GROUP_SIZE), so these say which cleared blocks a later pass taps.
-const ivec2 DNSR_BLOCK_TILES = DNSR_GROUP_SIZE / DNSR_TILE_SIZE;
-const ivec2 DNSR_META_TILES = (DNSR_WIDE_GROUP_SIZE / DNSR_GROUP_SIZE + 2) * DNSR_BLOCK_TILES;
-shared uint dnsr_meta[DNSR_META_TILES.y][DNSR_META_TILES.x];
-
-bool dnsr_block_cleared(ivec2 m) { return (dnsr_meta[m.y][m.x] & dnsr_meta[m.y + 1][m.x] & DNSR_TILE_CLEARED) != 0u; }
-
-// Whether a tile that is not cleared lies within one block of the block whose top tile is dnsr_meta[m.y][m.x].
-bool dnsr_block_is_tapped(ivec2 m) {
-    uint all_cleared = DNSR_TILE_CLEARED;
-    for (int r = -DNSR_BLOCK_TILES.y; r < 2 * DNSR_BLOCK_TILES.y; ++r) {
-        for (int c = -DNSR_BLOCK_TILES.x; c < 2 * DNSR_BLOCK_TILES.x; ++c) all_cleared &= dnsr_meta[m.y + r][m.x + c];
-    }
-    return all_cleared == 0u;
-}
-#else
-// The later passes (step 2 and up) fetch every tap from the images through the texture cache: a tap is the guide
-// the first pass wrote and the signal. (An apron for their variance blur slowed them: their taps cannot wait for
-// a barrier.)
-vec2 dnsr_center_signal(ivec2 p, ivec2 lid) { return dnsr_read_filter_input(p); }
-// Variances of the 3x3 neighbourhood, row by row (the sky's -1 outside the rectangle): four gathers of 2x2
-// texels instead of eight fetches.
-// From the gathers at the corners p, p + (1, 0), p + (0, 1), p + (1, 1) (a gather at corner q returns
-// (q + (-1, 0), q, q + (0, -1), q + (-1, -1)) as (x, y, z, w)) and the centre's signal c.
-void dnsr_gathered_neighbourhood(ivec2 p, vec4 a, vec4 b, vec4 d, vec4 e, vec2 c, out float v[9]) {
-    v = float[9](a.w, a.z, b.z, a.x, c.y, b.y, d.x, d.y, e.y);
-    for (int k = 0; k < 9; ++k) {
-        if (!dnsr_inside(p + ivec2(k % 3 - 1, k / 3 - 1))) v[k] = DNSR_SKY_SIGNAL.y;
-    }
-}
-void dnsr_variance_neighbourhood(ivec2 p, ivec2 lid, vec2 c, out float v[9]) {
-    dnsr_gathered_neighbourhood(p, dnsr_gather_filter_variance(p), dnsr_gather_filter_variance(p + ivec2(1, 0)),
-                                dnsr_gather_filter_variance(p + ivec2(0, 1)), dnsr_gather_filter_variance(p + ivec2(1, 1)), c, v);
-}
-void dnsr_tap(ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal, out vec4 guide) {
-    ivec2 q = p + ivec2(i, j) * step;
-    // Both fetches at once: the signal's does not wait for the guide's.
-    guide = dnsr_read_guide(q);
-    signal = dnsr_read_filter_input(q);
-}
-#endif
 
 // Penumbra guidance: 1 / (2 sigma^2) of the Gaussian over tap distance that keeps the kernel within the penumbra
 // the tile's blockers cast on a receiver at linear depth zc; 0 (no narrowing) without guidance or blocker.
@@ -134,6 +36,147 @@ float dnsr_penumbra_falloff(ivec2 p, float zc) {
     if (!DNSR_SPEC_PENUMBRA_GUIDED) return 0.0;
     return dnsr_penumbra_falloff_of(dnsr_read_tile_blocker(p / DNSR_TILE_SIZE), dnsr_get_penumbra_settings(), zc);
 }
+
+// Light l's resources: a slot of the light-slot variants, the single-light bindings otherwise.
+#ifdef DNSR_LIGHT_SLOTS_VARIANT
+const int DNSR_PASS_LIGHTS = DNSR_LIGHT_SLOTS;
+int dnsr_pass_light_count() { return dnsr_get_light_count(); }
+vec2 dnsr_pass_filter_input(int l, ivec2 p) { return dnsr_read_light_filter_input(l, p); }
+vec4 dnsr_pass_gather_variance(int l, ivec2 corner) { return dnsr_gather_light_filter_variance(l, corner); }
+uint dnsr_pass_tile_meta(int l, ivec2 tile) { return dnsr_read_light_tile_meta(l, tile); }
+float dnsr_pass_penumbra_falloff(int l, ivec2 p, float zc) {
+    if (!DNSR_SPEC_PENUMBRA_GUIDED || !dnsr_get_light_guided(l)) return 0.0;
+    return dnsr_penumbra_falloff_of(dnsr_read_light_tile_blocker(l, p / DNSR_TILE_SIZE), dnsr_get_light_penumbra_settings(l), zc);
+}
+void dnsr_pass_write_filter_output(int l, ivec2 p, vec2 mean_var) { dnsr_write_light_filter_output(l, p, mean_var); }
+#ifdef DNSR_FINAL_PASS
+void dnsr_pass_write_output(int l, ivec2 p, float shadow) { dnsr_write_light_output(l, p, shadow); }
+vec3 dnsr_pass_debug_moments(int l, ivec2 p) { return dnsr_read_light_debug_moments(l, p); }
+#endif
+#else
+const int DNSR_PASS_LIGHTS = 1;
+int dnsr_pass_light_count() { return 1; }
+vec2 dnsr_pass_filter_input(int l, ivec2 p) { return dnsr_read_filter_input(p); }
+vec4 dnsr_pass_gather_variance(int l, ivec2 corner) { return dnsr_gather_filter_variance(corner); }
+uint dnsr_pass_tile_meta(int l, ivec2 tile) { return dnsr_read_tile_meta(tile); }
+float dnsr_pass_penumbra_falloff(int l, ivec2 p, float zc) { return dnsr_penumbra_falloff(p, zc); }
+void dnsr_pass_write_filter_output(int l, ivec2 p, vec2 mean_var) { dnsr_write_filter_output(p, mean_var); }
+#ifdef DNSR_FINAL_PASS
+void dnsr_pass_write_output(int l, ivec2 p, float shadow) { dnsr_write_output(p, shadow); }
+vec3 dnsr_pass_debug_moments(int l, ivec2 p) { return dnsr_read_debug_moments(p); }
+#endif
+#endif
+
+#ifdef DNSR_FINAL_PASS
+// The debug views: what the output shows instead of the shadow (see DebugView in src/dispatch.rs).
+float dnsr_debug_value(int l, uint view, ivec2 p, bool receiver, uint meta, vec2 result) {
+    bool cleared = (meta & DNSR_TILE_CLEARED) != 0u;
+    if (view == DNSR_DEBUG_VIEW_TILE_CLASSIFICATION) {
+        return !receiver ? 0.75 : (!cleared ? 0.5 : ((meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0));
+    }
+    if (view == DNSR_DEBUG_VIEW_VARIANCE) return clamp(sqrt(max(result.y, 0.0)), 0.0, 1.0);
+    float n = receiver ? dnsr_pass_debug_moments(l, p).z : 0.0;
+    if (view == DNSR_DEBUG_VIEW_SAMPLE_COUNT) return clamp(n / dnsr_get_temporal_settings().z, 0.0, 1.0);
+    return receiver && !cleared && n <= 1.0 ? 1.0 : 0.0; // DNSR_DEBUG_VIEW_DISOCCLUSION
+}
+#endif
+
+void dnsr_filter_write(int l, ivec2 p, vec2 result, bool receiver, uint meta) {
+    if (dnsr_get_write_internal()) dnsr_pass_write_filter_output(l, p, result);
+#ifdef DNSR_FINAL_PASS
+    uint view = dnsr_get_debug_view();
+    float contrast = dnsr_get_filter_settings().z;
+    dnsr_pass_write_output(l, p, view == DNSR_DEBUG_VIEW_NONE ? pow(result.x, max(contrast - result.y, 1.0))
+                                                              : dnsr_debug_value(l, view, p, receiver, meta, result));
+#endif
+}
+
+// Value of a pixel in a cleared tile: sky is lit, receivers take the tile's value.
+vec2 dnsr_cleared_value(bool receiver, uint meta) {
+    return receiver ? vec2((meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0, 0.0) : DNSR_SKY_SIGNAL;
+}
+
+#ifndef DNSR_LATER_PASS
+// The first pass (step 1) reads its group's pixels and a one-pixel apron into shared memory once: every pixel's
+// 3x3 neighbourhood, its taps and its variance-blur footprint, instead of nine fetches per pixel. It writes the
+// guide the later passes read. Signals per light (light l's at l * DNSR_APRON_COUNT).
+const ivec2 DNSR_APRON_SIZE = DNSR_WIDE_GROUP_SIZE + 2;
+const int DNSR_APRON_COUNT = DNSR_APRON_SIZE.x * DNSR_APRON_SIZE.y;
+shared vec2 dnsr_apron_signal[DNSR_PASS_LIGHTS * DNSR_APRON_COUNT];
+shared float dnsr_apron_depth[DNSR_APRON_COUNT];
+shared vec3 dnsr_apron_normal[DNSR_APRON_COUNT];
+
+void dnsr_load_apron(ivec2 origin, int invocation) {
+    int lights = dnsr_pass_light_count();
+    for (int i = invocation; i < DNSR_APRON_COUNT; i += DNSR_WIDE_GROUP_INVOCATIONS) {
+        ivec2 q = origin - 1 + ivec2(i % DNSR_APRON_SIZE.x, i / DNSR_APRON_SIZE.x);
+        bool inside = dnsr_inside(q);
+        [[unroll]] for (int l = 0; l < DNSR_PASS_LIGHTS; ++l) {
+            if (l < lights) dnsr_apron_signal[l * DNSR_APRON_COUNT + i] = inside ? dnsr_pass_filter_input(l, q) : DNSR_SKY_SIGNAL;
+        }
+        float z = inside ? dnsr_tap_depth(q) : -1.0;
+        dnsr_apron_depth[i] = z;
+        dnsr_apron_normal[i] = z >= 0.0 ? dnsr_read_normal(q) : vec3(0.0);
+    }
+}
+
+int dnsr_apron_index(ivec2 lid, int i, int j) { return (lid.y + 1 + j) * DNSR_APRON_SIZE.x + lid.x + 1 + i; }
+
+vec2 dnsr_center_signal(int l, ivec2 p, ivec2 lid) { return dnsr_apron_signal[l * DNSR_APRON_COUNT + dnsr_apron_index(lid, 0, 0)]; }
+// Variances of the 3x3 neighbourhood, row by row (the sky's -1 outside the rectangle).
+void dnsr_variance_neighbourhood(int l, ivec2 p, ivec2 lid, vec2 c, out float v[9]) {
+    for (int k = 0; k < 9; ++k) v[k] = dnsr_apron_signal[l * DNSR_APRON_COUNT + dnsr_apron_index(lid, k % 3 - 1, k / 3 - 1)].y;
+}
+// Tap (i, j): its signal, and its guide (linear depth or -1, normal).
+void dnsr_tap(int l, ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal, out vec4 guide) {
+    int k = dnsr_apron_index(lid, i, j);
+    signal = dnsr_apron_signal[l * DNSR_APRON_COUNT + k];
+    guide = vec4(dnsr_apron_depth[k], dnsr_apron_normal[k]);
+}
+
+// Tile metadata of the group's tiles and of one block beyond it on every side: a later pass reaches at most one
+// block (its step is at most DNSR_GROUP_SIZE), so these say which cleared blocks a later pass taps.
+const ivec2 DNSR_BLOCK_TILES = DNSR_GROUP_SIZE / DNSR_TILE_SIZE;
+const ivec2 DNSR_META_TILES = (DNSR_WIDE_GROUP_SIZE / DNSR_GROUP_SIZE + 2) * DNSR_BLOCK_TILES;
+shared uint dnsr_meta[DNSR_PASS_LIGHTS][DNSR_META_TILES.y][DNSR_META_TILES.x];
+
+bool dnsr_block_cleared(int l, ivec2 m) { return (dnsr_meta[l][m.y][m.x] & dnsr_meta[l][m.y + 1][m.x] & DNSR_TILE_CLEARED) != 0u; }
+
+// Whether a tile that is not cleared lies within one block of the block whose top tile is dnsr_meta[l][m.y][m.x].
+bool dnsr_block_is_tapped(int l, ivec2 m) {
+    uint all_cleared = DNSR_TILE_CLEARED;
+    for (int r = -DNSR_BLOCK_TILES.y; r < 2 * DNSR_BLOCK_TILES.y; ++r) {
+        for (int c = -DNSR_BLOCK_TILES.x; c < 2 * DNSR_BLOCK_TILES.x; ++c) all_cleared &= dnsr_meta[l][m.y + r][m.x + c];
+    }
+    return all_cleared == 0u;
+}
+#else
+// The later passes (step 2 and up) fetch every tap from the images through the texture cache: a tap is the guide
+// the first pass wrote and the signal. (An apron for their variance blur slowed them: their taps cannot wait for
+// a barrier.)
+vec2 dnsr_center_signal(int l, ivec2 p, ivec2 lid) { return dnsr_pass_filter_input(l, p); }
+// Variances of the 3x3 neighbourhood, row by row (the sky's -1 outside the rectangle): four gathers of 2x2
+// texels instead of eight fetches.
+// From the gathers at the corners p, p + (1, 0), p + (0, 1), p + (1, 1) (a gather at corner q returns
+// (q + (-1, 0), q, q + (0, -1), q + (-1, -1)) as (x, y, z, w)) and the centre's signal c.
+void dnsr_gathered_neighbourhood(ivec2 p, vec4 a, vec4 b, vec4 d, vec4 e, vec2 c, out float v[9]) {
+    v = float[9](a.w, a.z, b.z, a.x, c.y, b.y, d.x, d.y, e.y);
+    for (int k = 0; k < 9; ++k) {
+        if (!dnsr_inside(p + ivec2(k % 3 - 1, k / 3 - 1))) v[k] = DNSR_SKY_SIGNAL.y;
+    }
+}
+void dnsr_variance_neighbourhood(int l, ivec2 p, ivec2 lid, vec2 c, out float v[9]) {
+    dnsr_gathered_neighbourhood(p, dnsr_pass_gather_variance(l, p), dnsr_pass_gather_variance(l, p + ivec2(1, 0)),
+                                dnsr_pass_gather_variance(l, p + ivec2(0, 1)), dnsr_pass_gather_variance(l, p + ivec2(1, 1)), c, v);
+}
+void dnsr_tap(int l, ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal, out vec4 guide) {
+    ivec2 q = p + ivec2(i, j) * step;
+    // Both fetches at once: the signal's does not wait for the guide's.
+    guide = dnsr_read_guide(q);
+    signal = dnsr_pass_filter_input(l, q);
+}
+#endif
+
 
 // 1 / sigma of the shadow edge stop: the variances of the 3x3 receivers (told apart by their signal, see
 // DNSR_SKY_SIGNAL) blurred, at least the floor `sigma_floor`.
@@ -152,16 +195,16 @@ float dnsr_inv_shadow_sigma(float v[9], float sigma_floor) {
 }
 
 // The filtered (mean, variance) of receiver p (linear depth zc, normal nc) in a tile that is not cleared.
-vec2 dnsr_filter_receiver(ivec2 p, ivec2 lid, int step, float zc, vec3 nc) {
+vec2 dnsr_filter_receiver(int l, ivec2 p, ivec2 lid, int step, float zc, vec3 nc) {
     vec4 settings = dnsr_get_filter_settings();
     float kernel[2] = float[2](1.0, settings.x);
     float normal_power = settings.y;
-    vec2 c = dnsr_center_signal(p, lid);
+    vec2 c = dnsr_center_signal(l, p, lid);
     float v[9];
-    dnsr_variance_neighbourhood(p, lid, c, v);
+    dnsr_variance_neighbourhood(l, p, lid, c, v);
     float inv_sigma = dnsr_inv_shadow_sigma(v, settings.w);
     float inv_depth_sigma = 1.0 / dnsr_get_depth_similarity_sigma();
-    float falloff = dnsr_penumbra_falloff(p, zc);
+    float falloff = dnsr_pass_penumbra_falloff(l, p, zc);
     float weight_sum = 1.0;
     float mean_sum = c.x;
     float var_sum = c.y;
@@ -171,7 +214,7 @@ vec2 dnsr_filter_receiver(ivec2 p, ivec2 lid, int step, float zc, vec3 nc) {
             if (!dnsr_inside(p + ivec2(i, j) * step)) continue;
             vec2 n;
             vec4 g;
-            dnsr_tap(p, lid, i, j, step, n, g);
+            dnsr_tap(l, p, lid, i, j, step, n, g);
             float zq = g.x;
             if (zq < 0.0) continue;
             // The shadow and depth edge stops and the penumbra kernel share one exp.
@@ -188,12 +231,12 @@ vec2 dnsr_filter_receiver(ivec2 p, ivec2 lid, int step, float zc, vec3 nc) {
 }
 
 // Pixel p of a block that is not cleared (its tile's metadata `meta`, its guide).
-void dnsr_filter_active(ivec2 p, ivec2 lid, int step, uint meta, vec4 guide) {
+void dnsr_filter_active(int l, ivec2 p, ivec2 lid, int step, uint meta, vec4 guide) {
     float zc = guide.x;
     vec2 result = zc < 0.0 ? DNSR_SKY_SIGNAL
                 : ((meta & DNSR_TILE_CLEARED) != 0u ? dnsr_cleared_value(true, meta)
-                                                   : dnsr_filter_receiver(p, lid, step, zc, guide.yzw));
-    dnsr_filter_write(p, result, zc >= 0.0, meta);
+                                                   : dnsr_filter_receiver(l, p, lid, step, zc, guide.yzw));
+    dnsr_filter_write(l, p, result, zc >= 0.0, meta);
 }
 
 #ifndef DNSR_LATER_PASS
@@ -203,23 +246,28 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     ivec2 p = origin + lid;
     int invocation = lid.y * DNSR_WIDE_GROUP_SIZE.x + lid.x;
 
+    int lights = dnsr_pass_light_count();
     ivec2 tiles = (dnsr_get_extent() + DNSR_TILE_SIZE - 1) / DNSR_TILE_SIZE;
     ivec2 base_tile = origin / DNSR_TILE_SIZE - DNSR_BLOCK_TILES;
     for (int i = invocation; i < DNSR_META_TILES.x * DNSR_META_TILES.y; i += DNSR_WIDE_GROUP_INVOCATIONS) {
         ivec2 m = ivec2(i % DNSR_META_TILES.x, i / DNSR_META_TILES.x);
         ivec2 t = base_tile + m;
         bool inside = all(greaterThanEqual(t, ivec2(0))) && all(lessThan(t, tiles));
-        // Tiles outside the rectangle count as cleared: they hold no pixel to filter.
-        dnsr_meta[m.y][m.x] = inside ? dnsr_read_tile_meta(t) : DNSR_TILE_CLEARED;
+        // Tiles outside the rectangle count as cleared: they hold no pixel to filter (nor do slots without a light).
+        [[unroll]] for (int l = 0; l < DNSR_PASS_LIGHTS; ++l) {
+            dnsr_meta[l][m.y][m.x] = inside && l < lights ? dnsr_pass_tile_meta(l, t) : DNSR_TILE_CLEARED;
+        }
     }
     barrier();
 
-    // The apron is loaded when any block of the group is not cleared (the whole group decides alike, so the
-    // barrier is reached by every invocation or by none).
+    // The apron is loaded when any block of the group is not cleared for some light (the whole group decides
+    // alike, so the barrier is reached by every invocation or by none).
     bool any_active = false;
     for (int by = 0; by < DNSR_WIDE_GROUP_SIZE.y / DNSR_GROUP_SIZE.y; ++by) {
         for (int bx = 0; bx < DNSR_WIDE_GROUP_SIZE.x / DNSR_GROUP_SIZE.x; ++bx) {
-            any_active = any_active || !dnsr_block_cleared((ivec2(bx, by) + 1) * DNSR_BLOCK_TILES);
+            [[unroll]] for (int l = 0; l < DNSR_PASS_LIGHTS; ++l) {
+                any_active = any_active || !dnsr_block_cleared(l, (ivec2(bx, by) + 1) * DNSR_BLOCK_TILES);
+            }
         }
     }
     if (any_active) {
@@ -229,23 +277,32 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
 
     if (!dnsr_inside(p)) return;
     ivec2 m = (lid / DNSR_GROUP_SIZE + 1) * DNSR_BLOCK_TILES;
-    uint meta = dnsr_meta[m.y + (lid.y % DNSR_GROUP_SIZE.y) / DNSR_TILE_SIZE.y][m.x];
-    if (dnsr_block_cleared(m)) {
-        // Cleared values are already where this pass would write them (classification wrote the output and the
-        // reprojection image): nothing to do.
-        if (dnsr_get_skip_cleared()) return;
-        bool receiver = dnsr_is_receiver(dnsr_read_depth(p));
-        // The guide is needed here only where a later pass taps this block from a tile it filters.
-        if (dnsr_get_write_guide() && dnsr_block_is_tapped(m)) {
-            dnsr_write_guide(p, dnsr_tap_depth(p), receiver ? dnsr_read_normal(p) : vec3(0.0));
-        }
-        dnsr_filter_write(p, dnsr_cleared_value(receiver, meta), receiver, meta);
-        return;
+    int meta_row = m.y + (lid.y % DNSR_GROUP_SIZE.y) / DNSR_TILE_SIZE.y;
+    // Cleared values are already where this pass would write them (classification wrote the output and the
+    // reprojection image) when it skips cleared blocks: nothing to do there.
+    bool skip_cleared = dnsr_get_skip_cleared();
+    bool block_active = false, cleared_written = false, cleared_tapped = false;
+    [[unroll]] for (int l = 0; l < DNSR_PASS_LIGHTS; ++l) {
+        if (l >= lights) continue;
+        bool cleared = dnsr_block_cleared(l, m);
+        block_active = block_active || !cleared;
+        cleared_written = cleared_written || (cleared && !skip_cleared);
+        // The guide of a cleared block is needed only where a later pass taps it from a tile it filters.
+        cleared_tapped = cleared_tapped || (cleared && !skip_cleared && dnsr_block_is_tapped(l, m));
     }
     int k = dnsr_apron_index(lid, 0, 0);
-    vec4 guide = vec4(dnsr_apron_depth[k], dnsr_apron_normal[k]);
-    if (dnsr_get_write_guide()) dnsr_write_guide(p, guide.x, guide.yzw);
-    dnsr_filter_active(p, lid, 1, meta, guide);
+    vec4 guide = block_active ? vec4(dnsr_apron_depth[k], dnsr_apron_normal[k]) : vec4(0.0);
+    bool receiver = cleared_written && dnsr_is_receiver(dnsr_read_depth(p));
+    if (dnsr_get_write_guide()) {
+        if (block_active) dnsr_write_guide(p, guide.x, guide.yzw);
+        else if (cleared_tapped) dnsr_write_guide(p, dnsr_tap_depth(p), receiver ? dnsr_read_normal(p) : vec3(0.0));
+    }
+    [[unroll]] for (int l = 0; l < DNSR_PASS_LIGHTS; ++l) {
+        if (l >= lights) continue;
+        uint meta = dnsr_meta[l][meta_row][m.x];
+        if (!dnsr_block_cleared(l, m)) dnsr_filter_active(l, p, lid, 1, meta, guide);
+        else if (!skip_cleared) dnsr_filter_write(l, p, dnsr_cleared_value(receiver, meta), receiver, meta);
+    }
 }
 #else
 // A later pass over a group of DNSR_WIDE_GROUP_SIZE pixels: each 8x8 block on its own.
@@ -264,45 +321,21 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
         // reprojection image): nothing to do.
         if (dnsr_get_skip_cleared()) return;
         bool receiver = dnsr_is_receiver(dnsr_read_depth(p));
-        dnsr_filter_write(p, dnsr_cleared_value(receiver, meta), receiver, meta);
+        dnsr_filter_write(0, p, dnsr_cleared_value(receiver, meta), receiver, meta);
         return;
     }
-    dnsr_filter_active(p, lid, dnsr_get_filter_step(), meta, dnsr_read_guide(p));
+    dnsr_filter_active(0, p, lid, dnsr_get_filter_step(), meta, dnsr_read_guide(p));
 }
 
 #ifdef DNSR_LIGHT_SLOTS_VARIANT
 // A later pass for several lights at once (one per slot): per tap the guide is fetched and the depth, normal and
 // kernel factors are computed once for every light; each light fetches only its signal. Each light's arithmetic is
 // dnsr_filter_receiver's, term for term.
-
-#ifdef DNSR_FINAL_PASS
-float dnsr_light_debug_value(int l, uint view, ivec2 p, bool receiver, uint meta, vec2 result) {
-    bool cleared = (meta & DNSR_TILE_CLEARED) != 0u;
-    if (view == DNSR_DEBUG_VIEW_TILE_CLASSIFICATION) {
-        return !receiver ? 0.75 : (!cleared ? 0.5 : ((meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0));
-    }
-    if (view == DNSR_DEBUG_VIEW_VARIANCE) return clamp(sqrt(max(result.y, 0.0)), 0.0, 1.0);
-    float n = receiver ? dnsr_read_light_debug_moments(l, p).z : 0.0;
-    if (view == DNSR_DEBUG_VIEW_SAMPLE_COUNT) return clamp(n / dnsr_get_temporal_settings().z, 0.0, 1.0);
-    return receiver && !cleared && n <= 1.0 ? 1.0 : 0.0; // DNSR_DEBUG_VIEW_DISOCCLUSION
-}
-#endif
-
-void dnsr_light_filter_write(int l, ivec2 p, vec2 result, bool receiver, uint meta) {
-    if (dnsr_get_write_internal()) dnsr_write_light_filter_output(l, p, result);
-#ifdef DNSR_FINAL_PASS
-    uint view = dnsr_get_debug_view();
-    float contrast = dnsr_get_filter_settings().z;
-    dnsr_write_light_output(l, p, view == DNSR_DEBUG_VIEW_NONE ? pow(result.x, max(contrast - result.y, 1.0))
-                                                               : dnsr_light_debug_value(l, view, p, receiver, meta, result));
-#endif
-}
-
 void dnsr_filter_lights(ivec2 gid, ivec2 lid) {
     ivec2 origin = gid * DNSR_WIDE_GROUP_SIZE + (lid / DNSR_GROUP_SIZE) * DNSR_GROUP_SIZE;
     ivec2 p = gid * DNSR_WIDE_GROUP_SIZE + lid;
     if (!dnsr_inside(p)) return;
-    int count = dnsr_get_light_count();
+    int count = dnsr_pass_light_count();
 
     // Each light's tile metadata, and whether both tiles of its block are cleared.
     ivec2 tile = origin / DNSR_TILE_SIZE;
@@ -315,8 +348,8 @@ void dnsr_filter_lights(ivec2 gid, ivec2 lid) {
         meta[l] = DNSR_TILE_CLEARED;
         block_cleared[l] = true;
         if (l >= count) continue;
-        uint top = dnsr_read_light_tile_meta(l, tile);
-        uint bottom = has_bottom ? dnsr_read_light_tile_meta(l, tile + ivec2(0, 1)) : top;
+        uint top = dnsr_pass_tile_meta(l, tile);
+        uint bottom = has_bottom ? dnsr_pass_tile_meta(l, tile + ivec2(0, 1)) : top;
         meta[l] = top_half ? top : bottom;
         block_cleared[l] = (top & bottom & DNSR_TILE_CLEARED) != 0u;
         any_active = any_active || !block_cleared[l];
@@ -327,7 +360,7 @@ void dnsr_filter_lights(ivec2 gid, ivec2 lid) {
     if (any_cleared && !dnsr_get_skip_cleared()) {
         bool receiver = dnsr_is_receiver(dnsr_read_depth(p));
         [[unroll]] for (int l = 0; l < DNSR_LIGHT_SLOTS; ++l) {
-            if (l < count && block_cleared[l]) dnsr_light_filter_write(l, p, dnsr_cleared_value(receiver, meta[l]), receiver, meta[l]);
+            if (l < count && block_cleared[l]) dnsr_filter_write(l, p, dnsr_cleared_value(receiver, meta[l]), receiver, meta[l]);
         }
     }
     if (!any_active) return;
@@ -351,16 +384,11 @@ void dnsr_filter_lights(ivec2 gid, ivec2 lid) {
         c[l] = vec2(0.0);
         inv_sigma[l] = falloff[l] = 0.0;
         if (!filtering[l]) continue;
-        c[l] = dnsr_read_light_filter_input(l, p);
+        c[l] = dnsr_center_signal(l, p, lid);
         float v[9];
-        dnsr_gathered_neighbourhood(p, dnsr_gather_light_filter_variance(l, p), dnsr_gather_light_filter_variance(l, p + ivec2(1, 0)),
-                                    dnsr_gather_light_filter_variance(l, p + ivec2(0, 1)),
-                                    dnsr_gather_light_filter_variance(l, p + ivec2(1, 1)), c[l], v);
+        dnsr_variance_neighbourhood(l, p, lid, c[l], v);
         inv_sigma[l] = dnsr_inv_shadow_sigma(v, settings.w);
-        if (DNSR_SPEC_PENUMBRA_GUIDED && dnsr_get_light_guided(l)) {
-            falloff[l] = dnsr_penumbra_falloff_of(dnsr_read_light_tile_blocker(l, p / DNSR_TILE_SIZE),
-                                                  dnsr_get_light_penumbra_settings(l), zc);
-        }
+        falloff[l] = dnsr_pass_penumbra_falloff(l, p, zc);
     }
     [[unroll]] for (int l = 0; l < DNSR_LIGHT_SLOTS; ++l) {
         weight_sum[l] = 1.0;
@@ -381,7 +409,7 @@ void dnsr_filter_lights(ivec2 gid, ivec2 lid) {
             float normal_weight = pow(max(dot(nc, g.yzw), 0.0), normal_power);
             [[unroll]] for (int l = 0; l < DNSR_LIGHT_SLOTS; ++l) {
                 if (!filtering[l]) continue;
-                vec2 n = dnsr_read_light_filter_input(l, q);
+                vec2 n = dnsr_pass_filter_input(l, q);
                 float w = kernel_weight * exp(-(abs(c[l].x - n.x) * inv_sigma[l] + depth_term + distance2 * falloff[l]))
                         * normal_weight;
                 weight_sum[l] += w;
@@ -396,7 +424,7 @@ void dnsr_filter_lights(ivec2 gid, ivec2 lid) {
                     : (!filtering[l] ? dnsr_cleared_value(true, meta[l])
                                      : vec2(clamp(mean_sum[l] / weight_sum[l], 0.0, 1.0),
                                             max(var_sum[l] / (weight_sum[l] * weight_sum[l]), 0.0)));
-        dnsr_light_filter_write(l, p, result, zc >= 0.0, meta[l]);
+        dnsr_filter_write(l, p, result, zc >= 0.0, meta[l]);
     }
 }
 #endif

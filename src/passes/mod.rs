@@ -55,7 +55,8 @@ pub(crate) enum Role {
     FilterFinal,
     /// A single filter pass: the first pass's variant writing the output.
     FilterOnly,
-    /// Intermediate later pass `n` (1..) for several lights at once (the light-slot variant).
+    /// Intermediate filter pass `n` for several lights at once (the light-slot variants): pass 0 runs the first
+    /// pass's, the others the later passes'.
     FilterLights(u32),
     /// The last of two or more passes for several lights at once.
     FilterLightsFinal,
@@ -64,6 +65,25 @@ pub(crate) enum Role {
 /// Lights one dispatch of the filter's light-slot variants filters (a record of more lights runs several).
 /// Generated into GLSL as DNSR_LIGHT_SLOTS.
 pub(crate) const LIGHT_SLOTS: usize = 4;
+/// Fewer lights than this left over after the full groups run a single-light dispatch each. Two lights in one
+/// dispatch of the later passes were slower than two dispatches on an H100 at 4K (typical scene: 0.344 / 0.338
+/// against 0.325 / 0.305 ms), four were 24% faster (BENCHMARKS.md).
+const MIN_LIGHTS_PER_GROUP: usize = 3;
+
+/// How many dispatches a filter pass of `n` lights runs: full groups of LIGHT_SLOTS lights, then either one group
+/// of the rest or, when the rest are fewer than MIN_LIGHTS_PER_GROUP, one dispatch each.
+pub(crate) fn light_group_count(n: usize) -> usize {
+    let rest = n % LIGHT_SLOTS;
+    n / LIGHT_SLOTS + if rest >= MIN_LIGHTS_PER_GROUP { 1 } else { rest }
+}
+
+/// The lights (positions in the record's list) of dispatch `k` of `light_group_count(n)`.
+pub(crate) fn light_group(n: usize, k: usize) -> std::ops::Range<usize> {
+    let full = n / LIGHT_SLOTS;
+    let start = if k <= full { k * LIGHT_SLOTS } else { k - full + full * LIGHT_SLOTS };
+    let len = if k < full { LIGHT_SLOTS } else if n % LIGHT_SLOTS >= MIN_LIGHTS_PER_GROUP { n % LIGHT_SLOTS } else { 1 };
+    start..start + len
+}
 
 /// What one invocation of a pass covers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -218,3 +238,20 @@ fn internal(view: vk::ImageView) -> Binding {
     image(view, GENERAL)
 }
 
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn light_groups_cover_every_light_once() {
+        for n in 1..=crate::MAX_LIGHTS_PER_RECORD {
+            let groups: Vec<_> = (0..light_group_count(n)).map(|k| light_group(n, k)).collect();
+            let lights: Vec<usize> = groups.iter().flat_map(|g| g.clone()).collect();
+            assert_eq!(lights, (0..n).collect::<Vec<_>>(), "{n} lights: {groups:?}");
+            assert!(groups.iter().all(|g| g.len() == 1 || (MIN_LIGHTS_PER_GROUP..=LIGHT_SLOTS).contains(&g.len())), "{n}: {groups:?}");
+        }
+        assert_eq!(light_group_count(2), 2);
+        assert_eq!(light_group_count(7), 2);
+        assert_eq!(light_group(6, 2), 5..6);
+    }
+}

@@ -11,8 +11,8 @@ use ash::vk;
 const W: u32 = 64;
 const H: u32 = 48;
 /// More lights than one dispatch of the filter's light-slot variants takes (crate::passes::LIGHT_SLOTS), so that
-/// the later filter passes run a full group and a partial one.
-const LIGHTS: usize = 5;
+/// the filter passes run a full group and a partial one (three lights in four slots).
+const LIGHTS: usize = 7;
 const _: () = assert!(LIGHTS > crate::passes::LIGHT_SLOTS);
 /// The frame at which light 1 (only) restarts its history.
 const RESET_FRAME: u32 = 3;
@@ -32,6 +32,8 @@ fn light_frame(light: usize, frame: u32) -> FrameInputs {
         &|x, z| if ((x + z) * 0.7).rem_euclid(2.0) < 1.0 { 0.0 } else { 0.8 },
         &|x, z| (0.5 + 0.4 * (x * 0.8).sin() * (z * 0.6).cos()).clamp(0.0, 1.0),
         &|_, z| if z < 0.5 { 0.0 } else { 1.0 },
+        &|x, z| if (x - 1.0).abs() + z.abs() < 2.5 { 0.3 } else { 1.0 },
+        &|x, z| (0.2 + 0.1 * x - 0.05 * z).clamp(0.0, 1.0),
     ];
     let seed = 1000 * light as u64 + frame as u64;
     render_with_blockers(W, H, &cam(frame), &cam(frame.saturating_sub(1)), 7.0, fields[light], &|x, _| 0.5 + x.abs(), seed)
@@ -180,7 +182,7 @@ fn a_bad_light_refuses_the_whole_record() {
             matches!(e, Error::Light { position: 0, error } if matches!(**error, Error::InvalidValue { field: "output", .. }))
         }),
         ("light index out of range", d, vec![base[0], LightDispatch { light_index: LIGHTS as u32, ..base[1] }], |e| {
-            matches!(e, Error::Light { position: 1, error } if matches!(**error, Error::InvalidLightIndex { index: 5, count: 5 }))
+            matches!(e, Error::Light { position: 1, error } if matches!(**error, Error::InvalidLightIndex { index, count } if index == LIGHTS as u32 && count == LIGHTS as u32))
         }),
         ("a light without its hit mask", d, vec![base[0], LightDispatch { hit_mask: Default::default(), ..base[1] }], |e| {
             matches!(e, Error::Light { position: 1, .. })

@@ -6,11 +6,10 @@
 // the apron, and an apron for their variance blur alone slowed them too (their taps cannot wait for a barrier).
 // An apron sized for the widest step was 3-5x slower still.
 //
-// The light-slot variants (DNSR_LIGHT_SLOTS_VARIANT, which a record of several lights runs) filter up to
-// DNSR_LIGHT_SLOTS lights per dispatch: what does not depend on the light (the apron's depth and normals, the guide,
-// per tap the guide fetch and the depth, normal and kernel factors) once, each light's signal per light. Each
-// light's arithmetic is the single-light one, term for term, so its result is bit for bit the same. The helpers
-// below take the light `l` they work on (always 0 in the single-light variants).
+// The later passes' light-slot variant (DNSR_LIGHT_SLOTS_VARIANT, which a record of several lights runs) filters up
+// to DNSR_LIGHT_SLOTS lights per dispatch: per tap the guide fetch and the depth, normal and kernel factors once,
+// each light's signal per light. Each light's arithmetic is the single-light one, term for term, so its result is
+// bit for bit the same. The helpers below take the light `l` they work on (always 0 in the single-light variants).
 #ifndef DNSR_FILTER_GLSL
 #define DNSR_FILTER_GLSL
 
@@ -39,8 +38,6 @@ float dnsr_penumbra_falloff(ivec2 p, float zc) {
 
 // Light l's resources: a slot of the light-slot variants, the single-light bindings otherwise.
 #ifdef DNSR_LIGHT_SLOTS_VARIANT
-const int DNSR_PASS_LIGHTS = DNSR_LIGHT_SLOTS;
-int dnsr_pass_light_count() { return dnsr_get_light_count(); }
 vec2 dnsr_pass_filter_input(int l, ivec2 p) { return dnsr_read_light_filter_input(l, p); }
 vec4 dnsr_pass_gather_variance(int l, ivec2 corner) { return dnsr_gather_light_filter_variance(l, corner); }
 uint dnsr_pass_tile_meta(int l, ivec2 tile) { return dnsr_read_light_tile_meta(l, tile); }
@@ -54,8 +51,6 @@ void dnsr_pass_write_output(int l, ivec2 p, float shadow) { dnsr_write_light_out
 vec3 dnsr_pass_debug_moments(int l, ivec2 p) { return dnsr_read_light_debug_moments(l, p); }
 #endif
 #else
-const int DNSR_PASS_LIGHTS = 1;
-int dnsr_pass_light_count() { return 1; }
 vec2 dnsr_pass_filter_input(int l, ivec2 p) { return dnsr_read_filter_input(p); }
 vec4 dnsr_pass_gather_variance(int l, ivec2 corner) { return dnsr_gather_filter_variance(corner); }
 uint dnsr_pass_tile_meta(int l, ivec2 tile) { return dnsr_read_tile_meta(tile); }
@@ -99,21 +94,19 @@ vec2 dnsr_cleared_value(bool receiver, uint meta) {
 #ifndef DNSR_LATER_PASS
 // The first pass (step 1) reads its group's pixels and a one-pixel apron into shared memory once: every pixel's
 // 3x3 neighbourhood, its taps and its variance-blur footprint, instead of nine fetches per pixel. It writes the
-// guide the later passes read. Signals per light (light l's at l * DNSR_APRON_COUNT).
+// guide the later passes read. One light only (l is 0): a first pass for several lights (their signals in shared
+// memory side by side) was slower on an H100 than one dispatch per light (BENCHMARKS.md).
 const ivec2 DNSR_APRON_SIZE = DNSR_WIDE_GROUP_SIZE + 2;
 const int DNSR_APRON_COUNT = DNSR_APRON_SIZE.x * DNSR_APRON_SIZE.y;
-shared vec2 dnsr_apron_signal[DNSR_PASS_LIGHTS * DNSR_APRON_COUNT];
+shared vec2 dnsr_apron_signal[DNSR_APRON_COUNT];
 shared float dnsr_apron_depth[DNSR_APRON_COUNT];
 shared vec3 dnsr_apron_normal[DNSR_APRON_COUNT];
 
 void dnsr_load_apron(ivec2 origin, int invocation) {
-    int lights = dnsr_pass_light_count();
     for (int i = invocation; i < DNSR_APRON_COUNT; i += DNSR_WIDE_GROUP_INVOCATIONS) {
         ivec2 q = origin - 1 + ivec2(i % DNSR_APRON_SIZE.x, i / DNSR_APRON_SIZE.x);
         bool inside = dnsr_inside(q);
-        [[unroll]] for (int l = 0; l < DNSR_PASS_LIGHTS; ++l) {
-            if (l < lights) dnsr_apron_signal[l * DNSR_APRON_COUNT + i] = inside ? dnsr_pass_filter_input(l, q) : DNSR_SKY_SIGNAL;
-        }
+        dnsr_apron_signal[i] = inside ? dnsr_read_filter_input(q) : DNSR_SKY_SIGNAL;
         float z = inside ? dnsr_tap_depth(q) : -1.0;
         dnsr_apron_depth[i] = z;
         dnsr_apron_normal[i] = z >= 0.0 ? dnsr_read_normal(q) : vec3(0.0);
@@ -122,15 +115,15 @@ void dnsr_load_apron(ivec2 origin, int invocation) {
 
 int dnsr_apron_index(ivec2 lid, int i, int j) { return (lid.y + 1 + j) * DNSR_APRON_SIZE.x + lid.x + 1 + i; }
 
-vec2 dnsr_center_signal(int l, ivec2 p, ivec2 lid) { return dnsr_apron_signal[l * DNSR_APRON_COUNT + dnsr_apron_index(lid, 0, 0)]; }
+vec2 dnsr_center_signal(int l, ivec2 p, ivec2 lid) { return dnsr_apron_signal[dnsr_apron_index(lid, 0, 0)]; }
 // Variances of the 3x3 neighbourhood, row by row (the sky's -1 outside the rectangle).
 void dnsr_variance_neighbourhood(int l, ivec2 p, ivec2 lid, vec2 c, out float v[9]) {
-    for (int k = 0; k < 9; ++k) v[k] = dnsr_apron_signal[l * DNSR_APRON_COUNT + dnsr_apron_index(lid, k % 3 - 1, k / 3 - 1)].y;
+    for (int k = 0; k < 9; ++k) v[k] = dnsr_apron_signal[dnsr_apron_index(lid, k % 3 - 1, k / 3 - 1)].y;
 }
 // Tap (i, j): its signal, and its guide (linear depth or -1, normal).
 void dnsr_tap(int l, ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal, out vec4 guide) {
     int k = dnsr_apron_index(lid, i, j);
-    signal = dnsr_apron_signal[l * DNSR_APRON_COUNT + k];
+    signal = dnsr_apron_signal[k];
     guide = vec4(dnsr_apron_depth[k], dnsr_apron_normal[k]);
 }
 
@@ -138,15 +131,15 @@ void dnsr_tap(int l, ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal
 // block (its step is at most DNSR_GROUP_SIZE), so these say which cleared blocks a later pass taps.
 const ivec2 DNSR_BLOCK_TILES = DNSR_GROUP_SIZE / DNSR_TILE_SIZE;
 const ivec2 DNSR_META_TILES = (DNSR_WIDE_GROUP_SIZE / DNSR_GROUP_SIZE + 2) * DNSR_BLOCK_TILES;
-shared uint dnsr_meta[DNSR_PASS_LIGHTS][DNSR_META_TILES.y][DNSR_META_TILES.x];
+shared uint dnsr_meta[DNSR_META_TILES.y][DNSR_META_TILES.x];
 
-bool dnsr_block_cleared(int l, ivec2 m) { return (dnsr_meta[l][m.y][m.x] & dnsr_meta[l][m.y + 1][m.x] & DNSR_TILE_CLEARED) != 0u; }
+bool dnsr_block_cleared(ivec2 m) { return (dnsr_meta[m.y][m.x] & dnsr_meta[m.y + 1][m.x] & DNSR_TILE_CLEARED) != 0u; }
 
-// Whether a tile that is not cleared lies within one block of the block whose top tile is dnsr_meta[l][m.y][m.x].
-bool dnsr_block_is_tapped(int l, ivec2 m) {
+// Whether a tile that is not cleared lies within one block of the block whose top tile is dnsr_meta[m.y][m.x].
+bool dnsr_block_is_tapped(ivec2 m) {
     uint all_cleared = DNSR_TILE_CLEARED;
     for (int r = -DNSR_BLOCK_TILES.y; r < 2 * DNSR_BLOCK_TILES.y; ++r) {
-        for (int c = -DNSR_BLOCK_TILES.x; c < 2 * DNSR_BLOCK_TILES.x; ++c) all_cleared &= dnsr_meta[l][m.y + r][m.x + c];
+        for (int c = -DNSR_BLOCK_TILES.x; c < 2 * DNSR_BLOCK_TILES.x; ++c) all_cleared &= dnsr_meta[m.y + r][m.x + c];
     }
     return all_cleared == 0u;
 }
@@ -246,28 +239,23 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     ivec2 p = origin + lid;
     int invocation = lid.y * DNSR_WIDE_GROUP_SIZE.x + lid.x;
 
-    int lights = dnsr_pass_light_count();
     ivec2 tiles = (dnsr_get_extent() + DNSR_TILE_SIZE - 1) / DNSR_TILE_SIZE;
     ivec2 base_tile = origin / DNSR_TILE_SIZE - DNSR_BLOCK_TILES;
     for (int i = invocation; i < DNSR_META_TILES.x * DNSR_META_TILES.y; i += DNSR_WIDE_GROUP_INVOCATIONS) {
         ivec2 m = ivec2(i % DNSR_META_TILES.x, i / DNSR_META_TILES.x);
         ivec2 t = base_tile + m;
         bool inside = all(greaterThanEqual(t, ivec2(0))) && all(lessThan(t, tiles));
-        // Tiles outside the rectangle count as cleared: they hold no pixel to filter (nor do slots without a light).
-        [[unroll]] for (int l = 0; l < DNSR_PASS_LIGHTS; ++l) {
-            dnsr_meta[l][m.y][m.x] = inside && l < lights ? dnsr_pass_tile_meta(l, t) : DNSR_TILE_CLEARED;
-        }
+        // Tiles outside the rectangle count as cleared: they hold no pixel to filter.
+        dnsr_meta[m.y][m.x] = inside ? dnsr_read_tile_meta(t) : DNSR_TILE_CLEARED;
     }
     barrier();
 
-    // The apron is loaded when any block of the group is not cleared for some light (the whole group decides
-    // alike, so the barrier is reached by every invocation or by none).
+    // The apron is loaded when any block of the group is not cleared (the whole group decides alike, so the
+    // barrier is reached by every invocation or by none).
     bool any_active = false;
     for (int by = 0; by < DNSR_WIDE_GROUP_SIZE.y / DNSR_GROUP_SIZE.y; ++by) {
         for (int bx = 0; bx < DNSR_WIDE_GROUP_SIZE.x / DNSR_GROUP_SIZE.x; ++bx) {
-            [[unroll]] for (int l = 0; l < DNSR_PASS_LIGHTS; ++l) {
-                any_active = any_active || !dnsr_block_cleared(l, (ivec2(bx, by) + 1) * DNSR_BLOCK_TILES);
-            }
+            any_active = any_active || !dnsr_block_cleared((ivec2(bx, by) + 1) * DNSR_BLOCK_TILES);
         }
     }
     if (any_active) {
@@ -277,32 +265,23 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
 
     if (!dnsr_inside(p)) return;
     ivec2 m = (lid / DNSR_GROUP_SIZE + 1) * DNSR_BLOCK_TILES;
-    int meta_row = m.y + (lid.y % DNSR_GROUP_SIZE.y) / DNSR_TILE_SIZE.y;
-    // Cleared values are already where this pass would write them (classification wrote the output and the
-    // reprojection image) when it skips cleared blocks: nothing to do there.
-    bool skip_cleared = dnsr_get_skip_cleared();
-    bool block_active = false, cleared_written = false, cleared_tapped = false;
-    [[unroll]] for (int l = 0; l < DNSR_PASS_LIGHTS; ++l) {
-        if (l >= lights) continue;
-        bool cleared = dnsr_block_cleared(l, m);
-        block_active = block_active || !cleared;
-        cleared_written = cleared_written || (cleared && !skip_cleared);
-        // The guide of a cleared block is needed only where a later pass taps it from a tile it filters.
-        cleared_tapped = cleared_tapped || (cleared && !skip_cleared && dnsr_block_is_tapped(l, m));
+    uint meta = dnsr_meta[m.y + (lid.y % DNSR_GROUP_SIZE.y) / DNSR_TILE_SIZE.y][m.x];
+    if (dnsr_block_cleared(m)) {
+        // Cleared values are already where this pass would write them (classification wrote the output and the
+        // reprojection image): nothing to do.
+        if (dnsr_get_skip_cleared()) return;
+        bool receiver = dnsr_is_receiver(dnsr_read_depth(p));
+        // The guide is needed here only where a later pass taps this block from a tile it filters.
+        if (dnsr_get_write_guide() && dnsr_block_is_tapped(m)) {
+            dnsr_write_guide(p, dnsr_tap_depth(p), receiver ? dnsr_read_normal(p) : vec3(0.0));
+        }
+        dnsr_filter_write(0, p, dnsr_cleared_value(receiver, meta), receiver, meta);
+        return;
     }
     int k = dnsr_apron_index(lid, 0, 0);
-    vec4 guide = block_active ? vec4(dnsr_apron_depth[k], dnsr_apron_normal[k]) : vec4(0.0);
-    bool receiver = cleared_written && dnsr_is_receiver(dnsr_read_depth(p));
-    if (dnsr_get_write_guide()) {
-        if (block_active) dnsr_write_guide(p, guide.x, guide.yzw);
-        else if (cleared_tapped) dnsr_write_guide(p, dnsr_tap_depth(p), receiver ? dnsr_read_normal(p) : vec3(0.0));
-    }
-    [[unroll]] for (int l = 0; l < DNSR_PASS_LIGHTS; ++l) {
-        if (l >= lights) continue;
-        uint meta = dnsr_meta[l][meta_row][m.x];
-        if (!dnsr_block_cleared(l, m)) dnsr_filter_active(l, p, lid, 1, meta, guide);
-        else if (!skip_cleared) dnsr_filter_write(l, p, dnsr_cleared_value(receiver, meta), receiver, meta);
-    }
+    vec4 guide = vec4(dnsr_apron_depth[k], dnsr_apron_normal[k]);
+    if (dnsr_get_write_guide()) dnsr_write_guide(p, guide.x, guide.yzw);
+    dnsr_filter_active(0, p, lid, 1, meta, guide);
 }
 #else
 // A later pass over a group of DNSR_WIDE_GROUP_SIZE pixels: each 8x8 block on its own.
@@ -335,7 +314,7 @@ void dnsr_filter_lights(ivec2 gid, ivec2 lid) {
     ivec2 origin = gid * DNSR_WIDE_GROUP_SIZE + (lid / DNSR_GROUP_SIZE) * DNSR_GROUP_SIZE;
     ivec2 p = gid * DNSR_WIDE_GROUP_SIZE + lid;
     if (!dnsr_inside(p)) return;
-    int count = dnsr_pass_light_count();
+    int count = dnsr_get_light_count();
 
     // Each light's tile metadata, and whether both tiles of its block are cleared.
     ivec2 tile = origin / DNSR_TILE_SIZE;

@@ -61,9 +61,9 @@ struct Pipelines {
     filter_later: Pipeline,
     filter_final: Pipeline,
     filter_only: Pipeline,
-    /// The light-slot variants of the filter passes (first, later, later final), which filter up to LIGHT_SLOTS
+    /// The light-slot variants of the later filter passes (intermediate, final), which filter up to LIGHT_SLOTS
     /// lights per dispatch: a context of several lights without shader overrides has them.
-    filter_lights: Option<[Pipeline; 3]>,
+    filter_lights: Option<[Pipeline; 2]>,
 }
 
 impl Pipelines {
@@ -90,9 +90,8 @@ impl Pipelines {
             Role::FilterOnly => &self.filter_only,
             // A context without them never records these roles; its descriptor ring's sets for them take the
             // later passes' layouts.
-            Role::FilterLights(0) => self.filter_lights.as_ref().map_or(&self.filter_first, |l| &l[0]),
-            Role::FilterLights(_) => self.filter_lights.as_ref().map_or(&self.filter_later, |l| &l[1]),
-            Role::FilterLightsFinal => self.filter_lights.as_ref().map_or(&self.filter_final, |l| &l[2]),
+            Role::FilterLights(_) => self.filter_lights.as_ref().map_or(&self.filter_later, |l| &l[0]),
+            Role::FilterLightsFinal => self.filter_lights.as_ref().map_or(&self.filter_final, |l| &l[1]),
         }
     }
 }
@@ -294,18 +293,17 @@ impl Context {
             filter_only: next(),
             filter_lights: None,
         };
-        if let (Some(a), Some(b), Some(c)) = (it.next(), it.next(), it.next()) {
-            pipelines.filter_lights = Some([a, b, c]);
+        if let (Some(a), Some(b)) = (it.next(), it.next()) {
+            pipelines.filter_lights = Some([a, b]);
         }
         Ok(pipelines)
     }
 
-    /// The light-slot variants of the filter passes (first, later, later final).
-    fn light_slot_names(&self) -> [&'static str; 3] {
+    /// The light-slot variants of the later filter passes (intermediate, final).
+    fn light_slot_names(&self) -> [&'static str; 2] {
         [
-            filter::lights_shader(self.precision, None, false).expect("non-final variant exists"),
-            filter::lights_shader(self.precision, None, true).expect("non-final variant exists"),
-            filter::lights_shader(self.precision, Some(self.output_format), true).expect("output format checked"),
+            filter::lights_shader(self.precision, None).expect("non-final variant exists"),
+            filter::lights_shader(self.precision, Some(self.output_format)).expect("output format checked"),
         ]
     }
 
@@ -545,7 +543,8 @@ impl Context {
         // The later filter passes of several lights run LIGHT_SLOTS lights per dispatch where the context has the
         // light-slot variants; every other pass runs a dispatch per light.
         let pipelines = self.pipelines.as_ref().expect("created");
-        let grouped = |index: usize| index >= 2 && filter_passes > 1 && pipelines.filter_lights.is_some();
+        // (index 3 on: the filter passes after the first.)
+        let grouped = |index: usize| index >= 3 && pipelines.filter_lights.is_some();
         let group = |index: usize, k: usize| if grouped(index) { crate::passes::light_group(ds.len(), k) } else { k..k + 1 };
         let dispatch_count = |index: usize| if grouped(index) { crate::passes::light_group_count(ds.len()) } else { ds.len() };
         // The light whose descriptor ring slot holds dispatch k's sets: its first.

@@ -77,8 +77,6 @@ pub(crate) const VARIANTS: &[ShaderVariant] = &[
     variant!("filter_later_final_r32f_fp16", "filter.comp", ["DNSR_LATER_PASS", "DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r32f", "DNSR_FP16"]),
     variant!("filter_later_final_rgba8_fp16", "filter.comp", ["DNSR_LATER_PASS", "DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=rgba8", "DNSR_FP16"]),
     variant!("filter_later_final_rgba16f_fp16", "filter.comp", ["DNSR_LATER_PASS", "DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=rgba16f", "DNSR_FP16"]),
-    variant!("filter_lights", "filter.comp", ["DNSR_LIGHT_SLOTS_VARIANT"]),
-    variant!("filter_lights_fp16", "filter.comp", ["DNSR_LIGHT_SLOTS_VARIANT", "DNSR_FP16"]),
     variant!("filter_later_lights", "filter.comp", ["DNSR_LATER_PASS", "DNSR_LIGHT_SLOTS_VARIANT"]),
     variant!("filter_later_lights_fp16", "filter.comp", ["DNSR_LATER_PASS", "DNSR_LIGHT_SLOTS_VARIANT", "DNSR_FP16"]),
     variant!("filter_later_lights_final_r8", "filter.comp", ["DNSR_LATER_PASS", "DNSR_LIGHT_SLOTS_VARIANT", "DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r8"]),

@@ -29,15 +29,10 @@ pub(crate) fn shader(precision: Precision, final_output: Option<vk::Format>, lat
     variant_name(stem, final_output, precision)
 }
 
-/// The light-slot variant (several lights per dispatch) of the first pass (`later` false; never the only pass,
-/// so never final) or of a later pass, intermediate or final.
-pub(crate) fn lights_shader(precision: Precision, final_output: Option<vk::Format>, later: bool) -> Option<&'static str> {
-    let stem = match (later, final_output.is_some()) {
-        (false, false) => "filter_lights",
-        (false, true) => return None,
-        (true, false) => "filter_later_lights",
-        (true, true) => "filter_later_lights_final",
-    };
+/// The light-slot variant of a later pass (several lights per dispatch), intermediate or final. (The first pass
+/// has none: one for several lights was slower than a dispatch per light, see filter.glsl.)
+pub(crate) fn lights_shader(precision: Precision, final_output: Option<vk::Format>) -> Option<&'static str> {
+    let stem = if final_output.is_some() { "filter_later_lights_final" } else { "filter_later_lights" };
     variant_name(stem, final_output, precision)
 }
 
@@ -79,11 +74,11 @@ pub(crate) fn pass(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView
     Pass { role, bindings: t, grid: Grid::Pixels, group: WIDE_GROUP, push, spec: v.spec, enabled: true }
 }
 
-/// Filter pass `pass` (not the only one) of `lights` (1..=LIGHT_SLOTS) at once, light k in slot k:
+/// Later filter pass `pass` (1..) of `lights` (1..=LIGHT_SLOTS) at once, light k in slot k:
 /// slot 0's bindings are light 0's single-light ones (which also give the shared guide, G-buffer and constants),
 /// and slots beyond the lights repeat slot 0's images, which the shader never touches there.
 pub(crate) fn lights_pass(lights: &[&FrameViews], pass: u32, passes: u32, debug_view: DebugView) -> Pass {
-    debug_assert!(passes > 1 && (1..=LIGHT_SLOTS).contains(&lights.len()));
+    debug_assert!(pass > 0 && (1..=LIGHT_SLOTS).contains(&lights.len()));
     let mut p = self::pass(lights[0], pass, passes, debug_view);
     const PER_LIGHT: [Resource; 6] =
         [Resource::TileMeta, Resource::TileBlocker, Resource::FilterInput, Resource::FilterOutput, Resource::Output, Resource::DebugMoments];

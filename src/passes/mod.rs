@@ -55,8 +55,7 @@ pub(crate) enum Role {
     FilterFinal,
     /// A single filter pass: the first pass's variant writing the output.
     FilterOnly,
-    /// Intermediate filter pass `n` for several lights at once (the light-slot variants): pass 0 runs the first
-    /// pass's, the others the later passes'.
+    /// Intermediate later pass `n` (1..) for several lights at once (the light-slot variant).
     FilterLights(u32),
     /// The last of two or more passes for several lights at once.
     FilterLightsFinal,
@@ -67,7 +66,7 @@ pub(crate) enum Role {
 pub(crate) const LIGHT_SLOTS: usize = 4;
 /// Fewer lights than this left over after the full groups run a single-light dispatch each. Two lights in one
 /// dispatch of the later passes were slower than two dispatches on an H100 at 4K (typical scene: 0.344 / 0.338
-/// against 0.325 / 0.305 ms), four were 24% faster (BENCHMARKS.md).
+/// against 0.325 / 0.305 ms), three and four faster (BENCHMARKS.md "Several lights per record").
 const MIN_LIGHTS_PER_GROUP: usize = 3;
 
 /// How many dispatches a filter pass of `n` lights runs: full groups of LIGHT_SLOTS lights, then either one group

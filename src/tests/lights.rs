@@ -11,7 +11,7 @@ use ash::vk;
 const W: u32 = 64;
 const H: u32 = 48;
 /// More lights than one dispatch of the filter's light-slot variants takes (crate::passes::LIGHT_SLOTS), so that
-/// the filter passes run a full group and a partial one (three lights in four slots).
+/// the later filter passes run a full group and a partial one (three lights in four slots).
 const LIGHTS: usize = 7;
 const _: () = assert!(LIGHTS > crate::passes::LIGHT_SLOTS);
 /// The frame at which light 1 (only) restarts its history.

@@ -159,6 +159,12 @@ fn check_features(vk: &Vk, info: &ContextCreateInfo) -> Result<()> {
 /// Every override names a variant once and fits dnsr's interface (checked before anything is created).
 fn check_shader_overrides(overrides: &[crate::ShaderOverride]) -> Result<()> {
     for (i, o) in overrides.iter().enumerate() {
+        if crate::gpu::shader::is_light_slot_variant(&o.variant) {
+            return Err(Error::ShaderInterface(format!(
+                "shader override {i}: \"{}\" filters several lights per dispatch and is dnsr's own; a context with overrides runs a dispatch per light instead",
+                o.variant
+            )));
+        }
         if !crate::shader_variants().any(|v| v.name == o.variant) {
             return Err(Error::ShaderInterface(format!(
                 "shader override {i} names \"{}\", which is not a dnsr shader variant (shader_variants lists them)",
@@ -493,8 +499,10 @@ impl Context {
     /// Records the denoiser for several lights that share one G-buffer and camera (`shared`; its per-light fields
     /// stay at their defaults) into `cmd`: each light reads its own hit mask (or visibility) and writes its own
     /// output, with its own history. The lights' dispatches of each pass are recorded together, with one barrier
-    /// between passes for all of them, so the GPU overlaps their work. The result for every light is the result
-    /// of a `record_shadows` call for it alone. Expectations on the host as for `record_shadows`; on error
+    /// between passes for all of them, and the filter passes after the first filter up to `LIGHT_SLOTS` (four)
+    /// lights per dispatch, fetching the guide and computing the geometric weights once per tap for all of them
+    /// (a context with shader overrides runs a dispatch per light). The result for every light is the result of a
+    /// `record_shadows` call for it alone. Expectations on the host as for `record_shadows`; on error
     /// (`Error::Light` names the light) nothing is recorded and no state changes.
     pub fn record_lights(&mut self, cmd: vk::CommandBuffer, shared: &ShadowsDispatch, lights: &[LightDispatch]) -> Result<()> {
         validate::light_list(shared, lights)?;

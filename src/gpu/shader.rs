@@ -119,9 +119,16 @@ pub struct ShaderVariantInfo {
     pub defines: &'static [&'static str],
 }
 
-/// Every pass variant dnsr may create; a context creates the ones its precision and output format select.
+/// Every pass variant an engine may compile itself; a context creates the ones its precision and output format
+/// select. (The light-slot variants, which filter several lights per dispatch, are dnsr's alone: see
+/// docs/callbacks.md "Several lights".)
 pub fn shader_variants() -> impl Iterator<Item = ShaderVariantInfo> {
-    VARIANTS.iter().map(|v| ShaderVariantInfo { name: v.name, source: v.source, defines: v.defines })
+    VARIANTS.iter().filter(|v| !is_light_slot_variant(v.name)).map(|v| ShaderVariantInfo { name: v.name, source: v.source, defines: v.defines })
+}
+
+/// A light-slot variant (several lights per dispatch), which no engine overrides.
+pub(crate) fn is_light_slot_variant(name: &str) -> bool {
+    name.starts_with("filter_later_lights")
 }
 
 /// The glslc arguments dnsr's own variants are compiled with, besides `-I<shader dir>` and the definitions:

@@ -107,6 +107,7 @@ fn mismatched_overrides_are_refused_before_anything_is_created() {
         ("not SPIR-V", vec![ShaderOverride { variant: "filter_final_r16f".into(), spirv: b"#version 450\nvoid main(){}".to_vec() }], "is not SPIR-V"),
         ("unknown variant", vec![ShaderOverride { variant: "filter_final_rgb9e5".into(), ..good.clone() }], "not a dnsr shader variant"),
         ("twice", vec![good.clone(), good.clone()], "overridden twice"),
+        ("a light-slot variant", vec![ShaderOverride { variant: "filter_later_lights".into(), ..good.clone() }], "is dnsr's own"),
         ("SPIR-V 1.5", vec![ShaderOverride { variant: "filter_final_r16f".into(), spirv: spirv15.spirv }], "SPIR-V 1.5"),
         ("entry point renamed", vec![patched(b"main\0", b"mian\0")], "entry point named \"main\""),
         ("workgroup size", vec![local_size], "workgroup size"),

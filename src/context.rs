@@ -263,8 +263,11 @@ impl Context {
     }
 
     fn create_pipelines(&self, push: bool, overrides: &[crate::ShaderOverride]) -> Result<Pipelines> {
-        let names = self.pipeline_names();
-        let mut made: Vec<Pipeline> = Vec::with_capacity(names.len());
+        // Several lights per dispatch only with dnsr's own variants: an engine's override of the later pass would
+        // not be the one that runs for several lights (and light-slot variants are never overridden).
+        let light_slots = if self.light_count > 1 && overrides.is_empty() { &self.light_slot_names()[..] } else { &[] };
+        let names = self.pipeline_names().into_iter().chain(light_slots.iter().copied());
+        let mut made: Vec<Pipeline> = Vec::with_capacity(8);
         for name in names {
             let spirv = overrides.iter().find(|o| o.variant == name).map_or(variant(name).spirv, |o| &o.spirv[..]);
             match Pipeline::new(&self.vk, name, spirv, push) {
@@ -272,19 +275,6 @@ impl Context {
                 Err(e) => {
                     made.iter_mut().for_each(|p| p.destroy(&self.vk));
                     return Err(e);
-                }
-            }
-        }
-        // Several lights per dispatch only with dnsr's own variants: an engine's override of the later pass would
-        // not be the one that runs for several lights.
-        if self.light_count > 1 && overrides.is_empty() {
-            for name in self.light_slot_names() {
-                match Pipeline::new(&self.vk, name, variant(name).spirv, push) {
-                    Ok(p) => made.push(p),
-                    Err(e) => {
-                        made.iter_mut().for_each(|p| p.destroy(&self.vk));
-                        return Err(e);
-                    }
                 }
             }
         }

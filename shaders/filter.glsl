@@ -40,7 +40,6 @@ float dnsr_penumbra_falloff(ivec2 p, float zc) {
 #ifdef DNSR_LIGHT_SLOTS_VARIANT
 vec2 dnsr_pass_filter_input(int l, ivec2 p) { return dnsr_read_light_filter_input(l, p); }
 vec4 dnsr_pass_gather_variance(int l, ivec2 corner) { return dnsr_gather_light_filter_variance(l, corner); }
-uint dnsr_pass_tile_meta(int l, ivec2 tile) { return dnsr_read_light_tile_meta(l, tile); }
 float dnsr_pass_penumbra_falloff(int l, ivec2 p, float zc) {
     if (!DNSR_SPEC_PENUMBRA_GUIDED || !dnsr_get_light_guided(l)) return 0.0;
     return dnsr_penumbra_falloff_of(dnsr_read_light_tile_blocker(l, p / DNSR_TILE_SIZE), dnsr_get_light_penumbra_settings(l), zc);
@@ -53,7 +52,6 @@ vec3 dnsr_pass_debug_moments(int l, ivec2 p) { return dnsr_read_light_debug_mome
 #else
 vec2 dnsr_pass_filter_input(int l, ivec2 p) { return dnsr_read_filter_input(p); }
 vec4 dnsr_pass_gather_variance(int l, ivec2 corner) { return dnsr_gather_filter_variance(corner); }
-uint dnsr_pass_tile_meta(int l, ivec2 tile) { return dnsr_read_tile_meta(tile); }
 float dnsr_pass_penumbra_falloff(int l, ivec2 p, float zc) { return dnsr_penumbra_falloff(p, zc); }
 void dnsr_pass_write_filter_output(int l, ivec2 p, vec2 mean_var) { dnsr_write_filter_output(p, mean_var); }
 #ifdef DNSR_FINAL_PASS
@@ -327,8 +325,8 @@ void dnsr_filter_lights(ivec2 gid, ivec2 lid) {
         meta[l] = DNSR_TILE_CLEARED;
         block_cleared[l] = true;
         if (l >= count) continue;
-        uint top = dnsr_pass_tile_meta(l, tile);
-        uint bottom = has_bottom ? dnsr_pass_tile_meta(l, tile + ivec2(0, 1)) : top;
+        uint top = dnsr_read_light_tile_meta(l, tile);
+        uint bottom = has_bottom ? dnsr_read_light_tile_meta(l, tile + ivec2(0, 1)) : top;
         meta[l] = top_half ? top : bottom;
         block_cleared[l] = (top & bottom & DNSR_TILE_CLEARED) != 0u;
         any_active = any_active || !block_cleared[l];

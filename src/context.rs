@@ -837,12 +837,11 @@ impl Hazards {
 /// size is 0 (x), but the camera's pixel footprint (yz) is kept: a dispatch of several lights reads it from its
 /// first light's constants, guided or not.
 fn penumbra_constants(d: &ShadowsDispatch, height: u32) -> [f32; 4] {
-    let size = if d.hit_distance.is_some() { d.light_angular_size as f64 } else { 0.0 };
-    let p = crate::reference::Penumbra::new(size, d.projection_inverse.as_dmat4(), height as i32);
-    [p.tan_half_angle as f32, p.pixel_size as f32, p.pixel_size_per_depth as f32, crate::reference::PENUMBRA_SIGMA_SCALE as f32]
+    let p = crate::reference::Penumbra::new(0.0, d.projection_inverse.as_dmat4(), height as i32);
+    [penumbra_tan_half_angle(d), p.pixel_size as f32, p.pixel_size_per_depth as f32, crate::reference::PENUMBRA_SIGMA_SCALE as f32]
 }
 
-/// penumbra_constants(d, _)[0], which depends on the light alone.
+/// The light's part of the penumbra constants (x), which a dispatch of several lights pushes per light.
 fn penumbra_tan_half_angle(d: &ShadowsDispatch) -> f32 {
     if d.hit_distance.is_some() { crate::reference::Penumbra::tan_half_angle(d.light_angular_size as f64) as f32 } else { 0.0 }
 }

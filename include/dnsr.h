@@ -94,6 +94,23 @@
 #define DNSR_MAX_ENGINE_IMAGES 8
 
 /**
+ * Most shadow-map cascades one classify dispatch reads.
+ */
+#define DNSR_MAX_CASCADES 4
+
+/**
+ * Bytes of one record of the classifier's tile list: uint32 x (tile x | tile y << 16), mask of the tile's
+ * pixels to trace (bit (y % 4) * 8 + (x % 8)), minT and maxT (float bits, world units).
+ */
+#define DNSR_CLASSIFY_TILE_BYTES 16
+
+/**
+ * Bytes of the classifier's counts: uint32 words 0..3 VkDispatchIndirectCommand (tiles, 1, 1) and the tile count;
+ * words 4..7 (32 x tiles, 1, 1, 0), one invocation per pixel of every listed tile.
+ */
+#define DNSR_CLASSIFY_COUNTS_BYTES 32
+
+/**
  * Result of every dnsr function. Negative values are errors; `dnsr_last_error_message` says what was wrong.
  */
 enum DnsrResult
@@ -195,6 +212,10 @@ enum DnsrResult
    * `queueFamilyIndex` does not exist on the physical device, or the family cannot run compute work.
    */
   DNSR_ERROR_INVALID_QUEUE_FAMILY = -22,
+  /**
+   * The classifier was used on a context created without DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER.
+   */
+  DNSR_ERROR_CLASSIFIER_NOT_ENABLED = -23,
   /**
    * Forces a 32-bit enum.
    */
@@ -900,6 +921,158 @@ typedef struct DnsrLightDispatch {
 } DnsrLightDispatch;
 
 /**
+ * Flags of `DnsrClassifyDispatch`.
+ */
+typedef uint32_t DnsrClassifyFlags;
+
+/**
+ * One frame of the hybrid-shadows classifier (`dnsr_classify_record`): from the engine's cascaded shadow maps it
+ * prefills the hit mask with the pixels they decide (surely lit, surely shadowed, facing away from the light)
+ * and lists the 8x4 tiles whose other pixels need a shadow ray. Then the engine traces the listed pixels (ORing
+ * its bit into the mask: occluded with DNSR_HIT_MASK_OCCLUDED_BITS, lit with DNSR_HIT_MASK_LIT_BITS; they are
+ * prefilled 0) and records the denoiser with that mask. Conventions as `DnsrShadowsDispatch`.
+ */
+typedef struct DnsrClassifyDispatch {
+  /**
+   * Must be DNSR_STRUCTURE_TYPE_CLASSIFY_DISPATCH.
+   */
+  DnsrStructureType sType;
+  /**
+   * Must be NULL (reserved for extensions).
+   */
+  const void *pNext;
+  /**
+   * Required. The command buffer the host is recording (outside a render pass).
+   */
+  VkCommandBuffer commandBuffer;
+  /**
+   * DNSR_CLASSIFY_* bits (DNSR_CLASSIFY_REJECT_LIT_PIXELS | DNSR_CLASSIFY_BOUND_RAY_INTERVAL recommended).
+   */
+  DnsrClassifyFlags flags;
+  /**
+   * The convention of the engine's trace and of the denoiser's dispatch (DnsrShadowsDispatch).
+   */
+  DnsrHitMaskConvention hitMaskConvention;
+  /**
+   * Required. The hit mask the classifier prefills: VK_FORMAT_R32_UINT, ceil(W/8) x ceil(H/4), created with
+   * STORAGE usage, layout GENERAL; the same image the engine's trace completes and the denoiser reads.
+   */
+  struct DnsrHostImage hitMask;
+  /**
+   * Required. W x H depth in the context's convention (formats and layouts as DnsrShadowsDispatch::depth).
+   */
+  struct DnsrHostImage depth;
+  /**
+   * Required. W x H world-space normals (formats as DnsrShadowsDispatch::normals): a pixel facing away from the
+   * light is shadowed without a ray; an unusable (zero) normal leaves the decision to the cascades.
+   */
+  struct DnsrHostImage normals;
+  /**
+   * Normal decode multiplier (2 for UNORM normals).
+   */
+  float normalsUnpackMul;
+  /**
+   * Normal decode offset (-1 for UNORM normals).
+   */
+  float normalsUnpackAdd;
+  /**
+   * Current clip -> world (the space the cascades' matrices take).
+   */
+  float viewProjectionInverse[16];
+  /**
+   * World-space direction from the surfaces toward the light (the sun); any non-zero length.
+   */
+  float lightDirection[3];
+  /**
+   * The light's angular diameter in radians, in [0, pi) (the sun: about 0.0093): the blocker search radius
+   * is the widest penumbra a blocker between the receiver and the cascade's near plane can cast.
+   */
+  float lightAngularSize;
+  /**
+   * Cascades used, 1..DNSR_MAX_CASCADES (0: DNSR_ERROR_INVALID_ARGUMENT). The first one containing a pixel
+   * decides it; a pixel in none is traced.
+   */
+  uint32_t cascadeCount;
+  /**
+   * Per cascade (finest first) a column-major float[16]: world position (w = 1) to (u, v, depth) of its
+   * shadow map, u, v in [0, 1] across the image (0, 0 the top-left texel corner), depth as stored. Affine
+   * (last row 0 0 0 1; orthographic sun cascades). A "shadow matrix plus per-cascade scale and offset"
+   * setup (FidelityFX) passes translate(offset) * scale(scale) * shadowMatrix. NaN/Inf: DNSR_ERROR_NON_FINITE.
+   */
+  float cascadeWorldToShadow[4][16];
+  /**
+   * Without DNSR_CLASSIFY_CASCADE_ARRAY: cascade i's shadow map (a 2D depth-aspect view of a depth format as
+   * DnsrShadowsDispatch::depth, any size, a depth read-only or shader read-only layout); the first
+   * cascadeCount are read.
+   */
+  struct DnsrHostImage cascadeImages[4];
+  /**
+   * With DNSR_CLASSIFY_CASCADE_ARRAY: the cascades as layers of one image (a 2D-array view, layer i cascade
+   * i); cascadeImages stay zero.
+   */
+  struct DnsrHostImage cascadeArray;
+  /**
+   * Layers of cascadeArray's view (at least cascadeCount).
+   */
+  uint32_t cascadeArrayLayers;
+  /**
+   * World distance along the light direction a shadow-map depth must be in front of the receiver to count as
+   * a blocker (the shadow maps' bias), >= 0.
+   */
+  float blockerOffset;
+  /**
+   * Blocker-search taps per pixel: 8, 16, 24 (recommended) or 32; anything else is
+   * DNSR_ERROR_INVALID_ARGUMENT.
+   */
+  uint32_t tapCount;
+  /**
+   * A tile is listed only with more pixels to trace than this, 0..31 (0: every tile with one). The pixels to
+   * trace of a tile that is not listed get the verdict most of their taps give.
+   */
+  uint32_t tileCutoff;
+  /**
+   * Region to classify with DNSR_CLASSIFY_USE_RENDER_RECT.
+   */
+  struct DnsrRect renderRect;
+  /**
+   * Optional barriers: the writes of depth, normals and shadow maps before; the host's use of the hit mask,
+   * tile list and counts after (its trace: e.g. DRAW_INDIRECT | RAY_TRACING_SHADER_KHR with
+   * INDIRECT_COMMAND_READ | SHADER_READ | SHADER_WRITE). dnsr's own prepare pass is always covered.
+   */
+  struct DnsrHostSync sync;
+} DnsrClassifyDispatch;
+
+/**
+ * The buffers the classifier writes (`dnsr_context_get_classifier_buffers`). dnsr owns them; they change only
+ * with `dnsr_context_resize`. Usage STORAGE_BUFFER | STORAGE_TEXEL_BUFFER | INDIRECT_BUFFER | TRANSFER_SRC |
+ * TRANSFER_DST.
+ */
+typedef struct DnsrClassifierBuffers {
+  /**
+   * Must be DNSR_STRUCTURE_TYPE_CLASSIFIER_BUFFERS.
+   */
+  DnsrStructureType sType;
+  /**
+   * Must be NULL.
+   */
+  void *pNext;
+  /**
+   * The tile list: tileCapacity records of DNSR_CLASSIFY_TILE_BYTES; the last classify dispatch wrote the
+   * first (counts word 3) of them, in no particular order.
+   */
+  VkBuffer tiles;
+  /**
+   * Records `tiles` holds (every 8x4 tile of the render size).
+   */
+  uint32_t tileCapacity;
+  /**
+   * DNSR_CLASSIFY_COUNTS_BYTES of counts, reset by every classify dispatch; word 0 is the indirect dispatch
+   * of one workgroup per listed tile.
+   */
+  VkBuffer counts;
+} DnsrClassifierBuffers;
+
+/**
  * Named settings (`dnsr_settings_init_preset`), chosen from the accuracy measurements in docs/accuracy.md.
  */
 typedef uint32_t DnsrPreset;
@@ -1256,6 +1429,16 @@ typedef struct DnsrDiagnosis {
 #define DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH 6
 
 /**
+ * `DnsrClassifyDispatch`.
+ */
+#define DNSR_STRUCTURE_TYPE_CLASSIFY_DISPATCH 7
+
+/**
+ * `DnsrClassifierBuffers`.
+ */
+#define DNSR_STRUCTURE_TYPE_CLASSIFIER_BUFFERS 8
+
+/**
  * Forces 32 bits.
  */
 #define DNSR_STRUCTURE_TYPE_MAX_ENUM 2147483647
@@ -1284,6 +1467,12 @@ typedef struct DnsrDiagnosis {
  * Record GPU timestamps around each pass (read with `dnsr_context_get_timings`).
  */
 #define DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS (1 << 2)
+
+/**
+ * Create the hybrid-shadows classifier (`dnsr_classify_record`): its pipelines and its tile list and counts
+ * buffers (16 B per 8x4 tile, about 0.5 B/px, plus 1 KiB).
+ */
+#define DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER (1 << 3)
 
 /**
  * Forces 32 bits.
@@ -1462,6 +1651,38 @@ typedef struct DnsrDiagnosis {
  */
 #define DNSR_LIGHT_DISPATCH_MAX_ENUM 2147483647
 
+/**
+ * Pixels no blocker-search tap finds a blocker for are decided lit (recommended). Without it only shadowed
+ * pixels are decided and every other receiver is traced.
+ */
+#define DNSR_CLASSIFY_REJECT_LIT_PIXELS (1 << 0)
+
+/**
+ * A listed tile's ray interval is bounded by the blockers its pixels' taps found (recommended); without it,
+ * from the push-off (0.04 world units) to infinity.
+ */
+#define DNSR_CLASSIFY_BOUND_RAY_INTERVAL (1 << 1)
+
+/**
+ * The shadow maps hold 1 at the light's near plane and 0 at its far plane (reverse-Z cascades).
+ */
+#define DNSR_CLASSIFY_CASCADES_DEPTH_INVERTED (1 << 2)
+
+/**
+ * Classify only `renderRect`.
+ */
+#define DNSR_CLASSIFY_USE_RENDER_RECT (1 << 3)
+
+/**
+ * The cascades are the layers of `cascadeArray` (a 2D-array view) instead of `pCascadeImages`' images.
+ */
+#define DNSR_CLASSIFY_CASCADE_ARRAY (1 << 4)
+
+/**
+ * Forces 32 bits.
+ */
+#define DNSR_CLASSIFY_MAX_ENUM 2147483647
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -1515,6 +1736,22 @@ DnsrResult dnsr_lights_record(DnsrContext context,
                               const struct DnsrShadowsDispatch *pDispatch,
                               uint32_t lightCount,
                               const struct DnsrLightDispatch *pLights);
+
+/**
+ * Records the hybrid-shadows classifier into `pDispatch->commandBuffer` (needs
+ * DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER): prefills `pDispatch->hitMask` with the shadow maps' verdicts and lists
+ * the tiles with pixels left to trace in the classifier's buffers (`dnsr_context_get_classifier_buffers`), with
+ * indirect-dispatch counts. Record the engine's trace of the listed pixels after it, then the denoiser. On error
+ * nothing is recorded.
+ */
+DnsrResult dnsr_classify_record(DnsrContext context,
+                                const struct DnsrClassifyDispatch *pDispatch);
+
+/**
+ * Writes the classifier's tile list and counts buffers to `*pBuffers` (sType set by the caller).
+ */
+DnsrResult dnsr_context_get_classifier_buffers(DnsrContext context,
+                                               struct DnsrClassifierBuffers *pBuffers);
 
 /**
  * Reallocates the internal state for a new render size; histories restart. The GPU must have finished every

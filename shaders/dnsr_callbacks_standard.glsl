@@ -4,7 +4,8 @@
 // G-buffer depth and normal reads it defines DNSR_ENGINE_DEPTH_NORMALS, includes this file, then declares
 // dnsr_depth and dnsr_normals (bindings 4 and 6) and dnsr_read_depth / dnsr_read_normal itself.
 //
-// The entry file defines exactly one of DNSR_PASS_PREPARE, DNSR_PASS_TILE_CLASSIFICATION, DNSR_PASS_FILTER
+// The entry file defines exactly one of DNSR_PASS_PREPARE, DNSR_PASS_TILE_CLASSIFICATION, DNSR_PASS_FILTER,
+// DNSR_PASS_CLASSIFY (the hybrid-shadows classifier)
 // before including the callbacks, so each pass declares only the resources it touches.
 //
 // Coordinates handed to callbacks are relative to the render rectangle; callbacks add its offset.
@@ -47,7 +48,7 @@ vec4 dnsr_get_run_settings() { return dnsr_constants.runs; }
 vec4 dnsr_get_penumbra_settings() { return dnsr_constants.penumbra; }
 
 // Decoded host G-buffer reads shared by the classification and filter passes.
-#if (defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER)) && !defined(DNSR_ENGINE_DEPTH_NORMALS)
+#if (defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER) || defined(DNSR_PASS_CLASSIFY)) && !defined(DNSR_ENGINE_DEPTH_NORMALS)
 layout(set = 0, binding = 4) uniform texture2D dnsr_depth;
 layout(set = 0, binding = 6) uniform texture2D dnsr_normals;
 
@@ -253,6 +254,54 @@ vec3 dnsr_read_light_debug_moments(int l, ivec2 p) {
 }
 #endif
 #endif
+#endif
+
+#ifdef DNSR_PASS_CLASSIFY
+// The hybrid-shadows classifier: its own constants next to the frame constants, the cascades' shadow maps (separate
+// images, or the layers of one array image with DNSR_CASCADE_ARRAY), and its outputs: the host's hit mask
+// (prefilled with the verdicts), the tile list and the counts (dnsr's buffers, as texel buffers so that reflection
+// sees them).
+layout(set = 0, binding = 28, std140) uniform DnsrClassifyBlock { DnsrClassifyConstants dnsr_classify_constants; };
+layout(set = 0, binding = 29, r32ui) uniform writeonly uimage2D dnsr_hit_mask_out;
+layout(set = 0, binding = 30, rgba32ui) uniform writeonly uimageBuffer dnsr_tile_list;
+layout(set = 0, binding = 31, r32ui) uniform uimageBuffer dnsr_tile_count;
+#ifdef DNSR_CASCADE_ARRAY
+layout(set = 0, binding = 62) uniform texture2DArray dnsr_cascades;
+ivec2 dnsr_get_cascade_size(int c) { return textureSize(dnsr_cascades, 0).xy; }
+float dnsr_read_cascade_depth(int c, ivec2 texel) { return texelFetch(dnsr_cascades, ivec3(texel, c), 0).r; }
+#else
+layout(set = 0, binding = 58) uniform texture2D dnsr_cascade_0;
+layout(set = 0, binding = 59) uniform texture2D dnsr_cascade_1;
+layout(set = 0, binding = 60) uniform texture2D dnsr_cascade_2;
+layout(set = 0, binding = 61) uniform texture2D dnsr_cascade_3;
+ivec2 dnsr_get_cascade_size(int c) {
+    return c == 0 ? textureSize(dnsr_cascade_0, 0) : c == 1 ? textureSize(dnsr_cascade_1, 0)
+         : c == 2 ? textureSize(dnsr_cascade_2, 0) : textureSize(dnsr_cascade_3, 0);
+}
+float dnsr_read_cascade_depth(int c, ivec2 texel) {
+    return c == 0 ? texelFetch(dnsr_cascade_0, texel, 0).r : c == 1 ? texelFetch(dnsr_cascade_1, texel, 0).r
+         : c == 2 ? texelFetch(dnsr_cascade_2, texel, 0).r : texelFetch(dnsr_cascade_3, texel, 0).r;
+}
+#endif
+mat4 dnsr_get_cascade_matrix(int c) {
+    return c == 0 ? dnsr_classify_constants.cascade0 : c == 1 ? dnsr_classify_constants.cascade1 : c == 2 ? dnsr_classify_constants.cascade2 : dnsr_classify_constants.cascade3;
+}
+vec4 dnsr_get_cascade_units(int c) { return dnsr_classify_constants.cascade_units[c]; }
+int dnsr_get_cascade_count() { return int(dnsr_classify_constants.settings.x); }
+int dnsr_get_classify_taps() { return int(dnsr_classify_constants.settings.y); }
+uint dnsr_get_tile_cutoff() { return dnsr_classify_constants.settings.z; }
+bool dnsr_get_classify_flag(uint flag) { return (dnsr_classify_constants.settings.w & flag) != 0u; }
+vec3 dnsr_get_light_direction() { return dnsr_classify_constants.light.xyz; }
+float dnsr_get_light_tan_half_angle() { return dnsr_classify_constants.light.w; }
+ivec2 dnsr_get_tile_offset() { return dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT); }
+void dnsr_write_hit_mask(ivec2 tile, uint word) { imageStore(dnsr_hit_mask_out, tile + dnsr_get_tile_offset(), uvec4(word)); }
+// Appends a tile record; the counts hold (tiles, 1, 1, tiles) then (32 x tiles, 1, 1, 0).
+void dnsr_append_tile(uvec4 record) {
+    int index = int(imageAtomicAdd(dnsr_tile_count, 0, 1u));
+    imageAtomicAdd(dnsr_tile_count, 3, 1u);
+    imageAtomicAdd(dnsr_tile_count, 4, 32u);
+    imageStore(dnsr_tile_list, index, record);
+}
 #endif
 
 #endif

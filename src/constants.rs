@@ -95,6 +95,36 @@ gpu_block! {
     }
 }
 
+gpu_block! {
+    /// Constants of the hybrid-shadows classifier (`Context::record_classify`), written with `vkCmdUpdateBuffer`
+    /// next to the frame constants it also reads (render rectangle, camera, normal decode).
+    pub(crate) struct ClassifyConstants as "DnsrClassifyConstants" {
+        /// Cascade 0: world position (w = 1) to (u, v, depth) of its shadow map; affine.
+        cascade0: [[f32; 4]; 4],
+        /// Cascade 1, as cascade 0.
+        cascade1: [[f32; 4]; 4],
+        /// Cascade 2, as cascade 0.
+        cascade2: [[f32; 4]; 4],
+        /// Cascade 3, as cascade 0.
+        cascade3: [[f32; 4]; 4],
+        /// Column i, cascade i: x: its depth units per world unit along the light direction (> 0); y, z: its u and
+        /// v units per world unit across the light direction; w: the blocker offset in its depth units.
+        cascade_units: [[f32; 4]; 4],
+        /// xyz: unit world-space direction from the surfaces toward the light; w: tan(angular diameter / 2).
+        light: [f32; 4],
+        /// x: cascade count; y: blocker-search taps; z: tile cut-off (a tile is listed with more pixels to trace
+        /// than this); w: DNSR_CLASSIFY_* bits.
+        settings: [u32; 4],
+    }
+}
+
+/// Classifier flag: pixels every blocker-search tap finds unoccluded are decided lit (else they are traced).
+pub(crate) const CLASSIFY_REJECT_LIT: u32 = 1 << 0;
+/// Classifier flag: the ray interval of a listed tile is bounded by the blockers the cascades show.
+pub(crate) const CLASSIFY_BOUND_INTERVAL: u32 = 1 << 1;
+/// Classifier flag: the shadow maps hold 1 at the light's near plane and 0 at its far plane.
+pub(crate) const CLASSIFY_CASCADES_INVERTED: u32 = 1 << 2;
+
 /// Frame flag: treat every pixel as disoccluded (camera cut, first frame, resize).
 pub(crate) const FLAG_RESET: u32 = 1 << 0;
 /// Frame flag: depth 0 is far, closest-depth means largest depth.
@@ -128,6 +158,9 @@ pub(crate) const GLSL_FLAGS: &[(&str, u32)] = &[
     ("DNSR_DEBUG_VIEW_SAMPLE_COUNT", crate::dispatch::DebugView::SampleCount as u32),
     ("DNSR_DEBUG_VIEW_VARIANCE", crate::dispatch::DebugView::Variance as u32),
     ("DNSR_DEBUG_VIEW_DISOCCLUSION", crate::dispatch::DebugView::Disocclusion as u32),
+    ("DNSR_CLASSIFY_REJECT_LIT", CLASSIFY_REJECT_LIT),
+    ("DNSR_CLASSIFY_BOUND_INTERVAL", CLASSIFY_BOUND_INTERVAL),
+    ("DNSR_CLASSIFY_CASCADES_INVERTED", CLASSIFY_CASCADES_INVERTED),
 ];
 
 /// Sizes shared by shaders and host, as plain GLSL ints (usable in `layout(local_size_x = ...)` and array sizes).
@@ -145,6 +178,8 @@ pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
     ("DNSR_SPEC_ID_PENUMBRA_GUIDED", crate::gpu::shader::SPEC_PENUMBRA_GUIDED),
     ("DNSR_SPEC_ID_STABLE_HISTORY", crate::gpu::shader::SPEC_STABLE_HISTORY),
     ("DNSR_LIGHT_SLOTS", crate::passes::LIGHT_SLOTS as u32),
+    ("DNSR_MAX_CASCADES", crate::classify::MAX_CASCADES as u32),
+    ("DNSR_MAX_CLASSIFY_TAPS", crate::classify::MAX_TAPS as u32),
 ];
 
 /// The complete text of `shaders/generated/dnsr_constants.glsl`.
@@ -158,6 +193,8 @@ pub(crate) fn generated_glsl() -> String {
     s.push('\n');
     s += &FilterPush::glsl();
     s.push('\n');
+    s += &ClassifyConstants::glsl();
+    s.push('\n');
     for (name, value) in GLSL_FLAGS {
         let _ = writeln!(s, "#define {name} {value}u");
     }
@@ -165,6 +202,14 @@ pub(crate) fn generated_glsl() -> String {
     for (name, value) in GLSL_INTS {
         let _ = writeln!(s, "#define {name} {value}");
     }
+    // The classifier's blocker-search taps: the first n of these for n taps (each prefix is spread over the disc).
+    let _ = writeln!(s, "\n#define DNSR_CLASSIFY_PUSH_OFF {:?}", crate::classify::PUSH_OFF);
+    s += "const vec2 DNSR_CLASSIFY_DISC[DNSR_MAX_CLASSIFY_TAPS] = vec2[](\n";
+    let disc = crate::classify::blocker_disc();
+    for (i, [x, y]) in disc.iter().enumerate() {
+        let _ = writeln!(s, "    vec2({x:?}, {y:?}){}", if i + 1 < disc.len() { "," } else { "" });
+    }
+    s += ");\n";
     s.push_str("\n#endif\n");
     s
 }

@@ -128,6 +128,8 @@ pub struct Context {
     engine_reads: bool,
     /// Some pipeline declares engine images (bindings ENGINE_BINDING_BASE..): dispatches must give them.
     engine_images_declared: bool,
+    /// The hybrid-shadows classifier, with `ContextCreateInfo::enable_classifier`.
+    classifier: Option<crate::classify::Classifier>,
 }
 
 fn check_features(vk: &Vk, info: &ContextCreateInfo) -> Result<()> {
@@ -227,18 +229,23 @@ impl Context {
             supported_stages,
             engine_reads: false,
             engine_images_declared: false,
+            classifier: None,
         };
         ctx.engine_reads = ctx.engine_decodes(&info.shader_overrides);
         // On any error below, dropping `ctx` releases what was created so far.
         let pipelines = ctx.pipelines.insert(ctx.create_pipelines(push.is_some(), &info.shader_overrides)?);
         let layouts = roles().map(|r| pipelines.for_role(r));
         ctx.engine_images_declared = layouts.iter().any(|p| p.interface.bindings.iter().any(|b| b.resource.engine_slot().is_some()));
+        let push_descriptors = push.is_some();
         ctx.binder = Some(Binder::new(&ctx.vk, push, layouts, info.light_count, info.max_frames_in_flight)?);
         ctx.create_sampler_and_constants()?;
         if info.enable_timestamps {
             ctx.timestamps = Some(Timestamps::new(&ctx.vk, info.queue_family_index)?);
         }
         ctx.allocate_lights()?;
+        if info.enable_classifier {
+            ctx.classifier = Some(crate::classify::Classifier::new(&ctx.vk, ctx.size, push_descriptors, info.max_frames_in_flight)?);
+        }
         Ok(ctx)
     }
 
@@ -363,10 +370,17 @@ impl Context {
         memory::check_available(&self.vk, needed.saturating_sub(self.memory_bytes()))?;
         self.destroy_lights();
         self.size = [width, height];
-        let allocated = self.allocate_lights();
+        let mut allocated = self.allocate_lights();
+        if let (Ok(()), Some(c)) = (&allocated, self.classifier.as_mut()) {
+            c.free_buffers(&self.vk);
+            allocated = c.allocate(&self.vk, self.size);
+        }
         if allocated.is_err() {
             // Leave no half-allocated state: record refuses until a resize succeeds.
             self.destroy_lights();
+            if let Some(c) = self.classifier.as_mut() {
+                c.free_buffers(&self.vk);
+            }
         }
         allocated
     }
@@ -406,7 +420,47 @@ impl Context {
     /// Bytes of device memory dnsr allocated (internal images and the constants buffer).
     pub fn memory_bytes(&self) -> u64 {
         let guide = self.guide.as_ref().map_or(0, |g| g.bytes);
-        self.lights.iter().map(LightState::bytes).sum::<u64>() + guide + constants_bytes(self.light_count)
+        let classifier = self.classifier.as_ref().map_or(0, |c| c.bytes());
+        self.lights.iter().map(LightState::bytes).sum::<u64>() + guide + constants_bytes(self.light_count) + classifier
+    }
+
+    /// The classifier's tile list and counts (`ContextCreateInfo::enable_classifier`), which the engine's trace
+    /// reads after `record_classify`. They change only with `resize`.
+    pub fn classifier_buffers(&self) -> Result<crate::ClassifierBuffers> {
+        let c = self.classifier.as_ref().ok_or(Error::ClassifierNotEnabled)?;
+        if !c.has_buffers() {
+            return Err(Error::NotResized);
+        }
+        Ok(c.buffers())
+    }
+
+    /// Records the hybrid-shadows classifier into `cmd` (outside a render pass): it prefills `d.hit_mask` with
+    /// the shadow maps' verdicts and lists the tiles with pixels left to trace in `classifier_buffers()`, with
+    /// indirect-dispatch counts. The engine then traces the listed pixels (ORing its bits into the mask) and
+    /// records the denoiser with that mask. On error nothing is recorded.
+    pub fn record_classify(&mut self, cmd: vk::CommandBuffer, d: &crate::ClassifyDispatch) -> Result<()> {
+        if cmd == vk::CommandBuffer::null() {
+            return Err(Error::NullHandle("command_buffer"));
+        }
+        let classifier = self.classifier.as_ref().ok_or(Error::ClassifierNotEnabled)?;
+        if !classifier.has_buffers() {
+            return Err(Error::NotResized);
+        }
+        let rect = validate::classify(&self.vk, d, self.size, self.supported_stages)?;
+        crate::classify::constants(d)?;
+        let shadows = ShadowsDispatch {
+            depth: d.depth,
+            normals: d.normals,
+            normals_unpack_mul: d.normals_unpack_mul,
+            normals_unpack_add: d.normals_unpack_add,
+            view_projection_inverse: d.view_projection_inverse,
+            hit_mask_convention: d.hit_mask_convention,
+            ..Default::default()
+        };
+        let frame = self.frame_constants(&shadows, rect, false);
+        let binder = binder_ref(&self.binder);
+        let classifier = self.classifier.as_mut().expect("checked above");
+        classifier.record(&self.vk, binder, cmd, d, &frame, rect)
     }
 
     /// Features the context was created with.
@@ -860,6 +914,9 @@ impl Drop for Context {
         }
         if let Some(mut b) = self.binder.take() {
             b.destroy(vk);
+        }
+        if let Some(mut c) = self.classifier.take() {
+            c.destroy(vk);
         }
         if let Some(t) = self.timestamps.take() {
             unsafe { d.destroy_query_pool(t.pool, alloc) };

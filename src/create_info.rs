@@ -102,6 +102,9 @@ pub struct ContextCreateInfo {
     pub max_frames_in_flight: u32,
     /// Record GPU timestamps around each pass; read them with `Context::timings`.
     pub enable_timestamps: bool,
+    /// Create the hybrid-shadows classifier (`Context::record_classify`): its pipelines and its tile list and
+    /// counts buffers (16 B per 8x4 tile, about 0.5 B/px, plus 1 KiB).
+    pub enable_classifier: bool,
     /// Initial settings.
     pub settings: Settings,
     /// Host allocators and debug names (all optional).
@@ -154,6 +157,7 @@ impl ContextCreateInfo {
             light_count: 1,
             max_frames_in_flight: DEFAULT_MAX_FRAMES_IN_FLIGHT,
             enable_timestamps: false,
+            enable_classifier: false,
             settings: Settings::default(),
             hooks: HostHooks::default(),
             shader_overrides: Vec::new(),

@@ -20,6 +20,8 @@ pub enum ImageRole {
     HitDistance,
     /// Per-pixel visibility (a context with `ShadowInput::Visibility`).
     Visibility,
+    /// A shadow-map cascade of the classifier (`ClassifyDispatch::cascade_images` or `cascade_array`).
+    Cascade,
 }
 
 impl ImageRole {
@@ -33,6 +35,7 @@ impl ImageRole {
             ImageRole::Output => "output",
             ImageRole::HitDistance => "hit_distance",
             ImageRole::Visibility => "visibility",
+            ImageRole::Cascade => "cascade_images",
         }
     }
 }
@@ -162,6 +165,8 @@ pub enum Error {
     NotResized,
     /// Timestamps were requested but the queue family cannot write them.
     TimestampsUnsupported,
+    /// The classifier was used on a context created without `enable_classifier`.
+    ClassifierNotEnabled,
     /// Reflection of embedded or host-supplied SPIR-V failed or does not match the binding interface.
     ShaderInterface(String),
     /// A Vulkan call failed.
@@ -234,6 +239,9 @@ impl fmt::Display for Error {
                 "the internal images are missing because the last resize failed; call Context::resize again before recording"
             ),
             Error::TimestampsUnsupported => write!(f, "the queue family has no timestamp support"),
+            Error::ClassifierNotEnabled => {
+                write!(f, "the context has no classifier: create it with enable_classifier (DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER)")
+            }
             Error::ShaderInterface(msg) => write!(f, "shader interface: {msg}"),
             Error::Vulkan { call, result } => write!(f, "{call} failed: {result:?}"),
         }

@@ -95,6 +95,7 @@ fn host_image(
         ImageRole::Output => ("output.image", "output.view"),
         ImageRole::HitDistance => ("hit_distance.image", "hit_distance.view"),
         ImageRole::Visibility => ("visibility.image", "visibility.view"),
+        ImageRole::Cascade => ("cascade_array.image", "cascade_array.view"),
     };
     if img.image == vk::Image::null() {
         return Err(Error::NullHandle(name.0));
@@ -207,16 +208,7 @@ pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, rules: &DispatchRules) -> R
         });
     }
     host_sync(&d.sync, supported_stages)?;
-    let rect = d.render_rect.unwrap_or(Rect { x: 0, y: 0, width: size[0], height: size[1] });
-    if rect.width == 0 || rect.height == 0 {
-        return Err(Error::InvalidRenderRect { reason: "zero width or height" });
-    }
-    if rect.x % 8 != 0 || rect.y % 4 != 0 {
-        return Err(Error::InvalidRenderRect { reason: "x must be a multiple of 8 and y of 4 (tile grid)" });
-    }
-    if rect.x as u64 + rect.width as u64 > size[0] as u64 || rect.y as u64 + rect.height as u64 > size[1] as u64 {
-        return Err(Error::InvalidRenderRect { reason: "reaches outside the render size" });
-    }
+    let rect = render_rect(d.render_rect, size)?;
     // Relations between fields, once each field is known to be usable.
     if let Some(role) = input_images(d).find(|(_, img)| *img == d.output.image).map(|(role, _)| role) {
         return Err(Error::InvalidValue {
@@ -226,6 +218,115 @@ pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, rules: &DispatchRules) -> R
         });
     }
     Ok(rect)
+}
+
+/// The effective render rectangle: `rect` or the whole render size, on the tile grid and inside it.
+fn render_rect(rect: Option<Rect>, size: [u32; 2]) -> Result<Rect> {
+    let rect = rect.unwrap_or(Rect { x: 0, y: 0, width: size[0], height: size[1] });
+    if rect.width == 0 || rect.height == 0 {
+        return Err(Error::InvalidRenderRect { reason: "zero width or height" });
+    }
+    if rect.x % 8 != 0 || rect.y % 4 != 0 {
+        return Err(Error::InvalidRenderRect { reason: "x must be a multiple of 8 and y of 4 (tile grid)" });
+    }
+    if rect.x as u64 + rect.width as u64 > size[0] as u64 || rect.y as u64 + rect.height as u64 > size[1] as u64 {
+        return Err(Error::InvalidRenderRect { reason: "reaches outside the render size" });
+    }
+    Ok(rect)
+}
+
+/// Validates a classify dispatch for a context of render size `size`; returns the effective render rect.
+pub(crate) fn classify(vk: &Vk, d: &crate::ClassifyDispatch, size: [u32; 2], supported_stages: vk::PipelineStageFlags) -> Result<Rect> {
+    use crate::classify::{CLASSIFY_TAP_COUNTS, MAX_CASCADES};
+    let sampled = vk::FormatFeatureFlags::SAMPLED_IMAGE;
+    let tiles = [size[0].div_ceil(8), size[1].div_ceil(4)];
+    host_image(vk, ImageRole::Depth, &d.depth, DEPTH_FORMATS, DEPTH_LAYOUTS, size, sampled)?;
+    host_image(vk, ImageRole::Normals, &d.normals, NORMAL_FORMATS, SAMPLED_LAYOUTS, size, sampled)?;
+    host_image(vk, ImageRole::HitMask, &d.hit_mask, &[F::R32_UINT], &[L::GENERAL], tiles, vk::FormatFeatureFlags::STORAGE_IMAGE)?;
+    let invalid = |field: &'static str, value: String, allowed: &'static str| Err(Error::InvalidValue { field, value, allowed });
+    if !(1..=MAX_CASCADES as u32).contains(&d.cascade_count) {
+        return invalid(
+            "cascade_count",
+            d.cascade_count.to_string(),
+            "it must be in [1, 4]: the classifier decides pixels from the shadow-map cascades, so it needs at least one",
+        );
+    }
+    const NAMES: [[&str; 3]; MAX_CASCADES] = [
+        ["cascade_images[0].image", "cascade_images[0].view", "cascades[0].world_to_shadow"],
+        ["cascade_images[1].image", "cascade_images[1].view", "cascades[1].world_to_shadow"],
+        ["cascade_images[2].image", "cascade_images[2].view", "cascades[2].world_to_shadow"],
+        ["cascade_images[3].image", "cascade_images[3].view", "cascades[3].world_to_shadow"],
+    ];
+    for (i, [image, view, matrix]) in NAMES.iter().enumerate().take(d.cascade_count as usize) {
+        let m = &d.cascades[i].world_to_shadow;
+        finite_mat(matrix, m)?;
+        if m.row(3) != glam::Vec4::W {
+            return invalid(matrix, format!("a last row of {:?}", m.row(3).to_array()), "it must be affine (last row 0, 0, 0, 1): an orthographic sun cascade");
+        }
+        if d.cascade_array.is_none() {
+            let img = &d.cascade_images[i];
+            if img.image == vk::Image::null() {
+                return Err(Error::NullHandle(image));
+            }
+            if img.view == vk::ImageView::null() {
+                return Err(Error::NullHandle(view));
+            }
+            cascade_image(vk, img)?;
+        }
+    }
+    if let Some(array) = &d.cascade_array {
+        host_image(vk, ImageRole::Cascade, array, DEPTH_FORMATS, DEPTH_LAYOUTS, [array.width, array.height], sampled)?;
+        cascade_image(vk, array)?;
+        if d.cascade_array_layers < d.cascade_count {
+            return invalid(
+                "cascade_array_layers",
+                d.cascade_array_layers.to_string(),
+                "the array view needs a layer per cascade (at least cascade_count)",
+            );
+        }
+        if d.cascade_images.iter().any(|c| c.image != vk::Image::null() || c.view != vk::ImageView::null()) {
+            return invalid("cascade_images", "given".into(), "leave them null when cascade_array is given");
+        }
+    }
+    if !CLASSIFY_TAP_COUNTS.contains(&d.tap_count) {
+        return invalid("tap_count", d.tap_count.to_string(), "it must be 8, 16, 24 or 32 (blocker-search taps per pixel)");
+    }
+    if d.tile_cutoff > 31 {
+        return invalid("tile_cutoff", d.tile_cutoff.to_string(), "it must be in [0, 31]: a tile is listed with more pixels to trace than this");
+    }
+    finite_mat("view_projection_inverse", &d.view_projection_inverse)?;
+    if !d.light_direction.is_finite() {
+        return Err(Error::NonFinite("light_direction"));
+    }
+    if d.light_direction.length_squared() == 0.0 || !d.light_direction.length_squared().is_normal() {
+        return invalid("light_direction", format!("{:?}", d.light_direction.to_array()), "a direction toward the light of non-zero length");
+    }
+    light_angular_size(d.light_angular_size)?;
+    if !d.blocker_offset.is_finite() {
+        return Err(Error::NonFinite("blocker_offset"));
+    }
+    if d.blocker_offset < 0.0 {
+        return invalid("blocker_offset", d.blocker_offset.to_string(), "it must be >= 0 (world units along the light direction)");
+    }
+    if !d.normals_unpack_mul.is_finite() || !d.normals_unpack_add.is_finite() {
+        return Err(Error::NonFinite("normals_unpack_mul/add"));
+    }
+    host_sync(&d.sync, supported_stages)?;
+    render_rect(d.render_rect, size)
+}
+
+/// A cascade's shadow map: a depth format the device samples, a depth or shader read-only layout, not empty.
+fn cascade_image(vk: &Vk, img: &HostImage) -> Result<()> {
+    if !DEPTH_FORMATS.contains(&img.format) || !vk.format_features(img.format).contains(vk::FormatFeatureFlags::SAMPLED_IMAGE) {
+        return Err(Error::UnsupportedFormat { role: Some(ImageRole::Cascade), format: img.format });
+    }
+    if !DEPTH_LAYOUTS.contains(&img.layout) {
+        return Err(Error::UnsupportedLayout { role: ImageRole::Cascade, layout: img.layout });
+    }
+    if img.width == 0 || img.height == 0 {
+        return Err(Error::ZeroExtent { what: "cascade image" });
+    }
+    Ok(())
 }
 
 /// The host images a dispatch reads, by role (null ones included).

@@ -42,6 +42,7 @@ fn code(e: &Error) -> DnsrResult {
         Error::Light { error, .. } => code(error),
         Error::NotResized => DNSR_ERROR_VULKAN,
         Error::TimestampsUnsupported => DNSR_ERROR_TIMESTAMPS_UNSUPPORTED,
+        Error::ClassifierNotEnabled => DNSR_ERROR_CLASSIFIER_NOT_ENABLED,
         Error::ShaderInterface(_) => DNSR_ERROR_SHADER_INTERFACE,
         Error::Vulkan { .. } => DNSR_ERROR_VULKAN,
     }

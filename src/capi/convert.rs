@@ -166,6 +166,7 @@ pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo, sink: &mut Option<Lo
             n => n,
         },
         enable_timestamps: c.flags & DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS != 0,
+        enable_classifier: c.flags & DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER != 0,
         settings,
         hooks,
         shader_overrides: shader_overrides_from_c(c)?,
@@ -216,11 +217,7 @@ pub(crate) fn dispatch_from_c(c: &DnsrShadowsDispatch) -> Result<(vk::CommandBuf
     if unknown != 0 {
         return Err(CallError::InvalidArgument(format!("pDispatch->flags has unknown bits {unknown:#x}")));
     }
-    let hit_mask_convention = match c.hit_mask_convention {
-        DNSR_HIT_MASK_OCCLUDED_BITS => HitMaskConvention::OccludedBits,
-        DNSR_HIT_MASK_LIT_BITS => HitMaskConvention::LitBits,
-        other => return Err(CallError::InvalidArgument(format!("pDispatch->hitMaskConvention {other} is not a DnsrHitMaskConvention"))),
-    };
+    let hit_mask_convention = hit_mask_convention_from_c(c.hit_mask_convention)?;
     let debug_view = match c.debug_view {
         DNSR_DEBUG_VIEW_NONE => DebugView::None,
         DNSR_DEBUG_VIEW_TILE_CLASSIFICATION => DebugView::TileClassification,
@@ -253,16 +250,69 @@ pub(crate) fn dispatch_from_c(c: &DnsrShadowsDispatch) -> Result<(vk::CommandBuf
         depth_similarity_sigma: c.depth_similarity_sigma,
         reset: c.flags & DNSR_DISPATCH_RESET != 0,
         render_rect: (c.flags & DNSR_DISPATCH_USE_RENDER_RECT != 0).then_some(Rect { x: r.x, y: r.y, width: r.width, height: r.height }),
-        sync: HostSync {
-            input_src_stages: c.sync.input_src_stages,
-            input_src_access: c.sync.input_src_access,
-            output_dst_stages: c.sync.output_dst_stages,
-            output_dst_access: c.sync.output_dst_access,
-        },
+        sync: sync_from_c(&c.sync),
         engine_images: engine_images_from_c(c)?,
         checkerboard_phase: c.checkerboard_phase,
     };
     Ok((c.command_buffer, d))
+}
+
+/// Converts a `DnsrClassifyDispatch`.
+pub(crate) fn classify_from_c(c: &DnsrClassifyDispatch) -> Result<(vk::CommandBuffer, crate::ClassifyDispatch), CallError> {
+    const WHAT: &str = "pDispatch";
+    check_type(c.s_type, DNSR_STRUCTURE_TYPE_CLASSIFY_DISPATCH, "DNSR_STRUCTURE_TYPE_CLASSIFY_DISPATCH", WHAT)?;
+    check_no_next(c.p_next, WHAT)?;
+    let known = DNSR_CLASSIFY_REJECT_LIT_PIXELS
+        | DNSR_CLASSIFY_BOUND_RAY_INTERVAL
+        | DNSR_CLASSIFY_CASCADES_DEPTH_INVERTED
+        | DNSR_CLASSIFY_USE_RENDER_RECT
+        | DNSR_CLASSIFY_CASCADE_ARRAY;
+    if c.flags & !known != 0 {
+        return Err(CallError::InvalidArgument(format!("pDispatch->flags has unknown bits {:#x}", c.flags & !known)));
+    }
+    let r = c.render_rect;
+    let d = crate::ClassifyDispatch {
+        depth: image(&c.depth),
+        normals: image(&c.normals),
+        normals_unpack_mul: c.normals_unpack_mul,
+        normals_unpack_add: c.normals_unpack_add,
+        view_projection_inverse: Mat4::from_cols_array(&c.view_projection_inverse),
+        light_direction: Vec3::from_array(c.light_direction),
+        light_angular_size: c.light_angular_size,
+        cascade_count: c.cascade_count,
+        cascades: c.cascade_world_to_shadow.map(|m| crate::ShadowCascade { world_to_shadow: Mat4::from_cols_array(&m) }),
+        cascade_images: c.cascade_images.map(|i| image(&i)),
+        cascade_array: (c.flags & DNSR_CLASSIFY_CASCADE_ARRAY != 0).then(|| image(&c.cascade_array)),
+        cascade_array_layers: c.cascade_array_layers,
+        cascades_depth_inverted: c.flags & DNSR_CLASSIFY_CASCADES_DEPTH_INVERTED != 0,
+        blocker_offset: c.blocker_offset,
+        tap_count: c.tap_count,
+        tile_cutoff: c.tile_cutoff,
+        reject_lit_pixels: c.flags & DNSR_CLASSIFY_REJECT_LIT_PIXELS != 0,
+        cascades_bound_ray_interval: c.flags & DNSR_CLASSIFY_BOUND_RAY_INTERVAL != 0,
+        hit_mask: image(&c.hit_mask),
+        hit_mask_convention: hit_mask_convention_from_c(c.hit_mask_convention)?,
+        render_rect: (c.flags & DNSR_CLASSIFY_USE_RENDER_RECT != 0).then_some(Rect { x: r.x, y: r.y, width: r.width, height: r.height }),
+        sync: sync_from_c(&c.sync),
+    };
+    Ok((c.command_buffer, d))
+}
+
+fn hit_mask_convention_from_c(c: DnsrHitMaskConvention) -> Result<HitMaskConvention, CallError> {
+    match c {
+        DNSR_HIT_MASK_OCCLUDED_BITS => Ok(HitMaskConvention::OccludedBits),
+        DNSR_HIT_MASK_LIT_BITS => Ok(HitMaskConvention::LitBits),
+        other => Err(CallError::InvalidArgument(format!("pDispatch->hitMaskConvention {other} is not a DnsrHitMaskConvention"))),
+    }
+}
+
+fn sync_from_c(s: &DnsrHostSync) -> HostSync {
+    HostSync {
+        input_src_stages: s.input_src_stages,
+        input_src_access: s.input_src_access,
+        output_dst_stages: s.output_dst_stages,
+        output_dst_access: s.output_dst_access,
+    }
 }
 
 /// Converts the light list of `dnsr_lights_record`.

@@ -12,7 +12,7 @@ pub mod reference;
 pub mod types;
 
 use boundary::{check_no_next, check_type, guard, last_error_ptr, required, CallError};
-use convert::{create_info_from_c, dispatch_from_c, lights_from_c, precision_from_c, preset_from_c, settings_from_c, settings_to_c};
+use convert::{classify_from_c, create_info_from_c, dispatch_from_c, lights_from_c, precision_from_c, preset_from_c, settings_from_c, settings_to_c};
 use std::ffi::c_char;
 use types::*;
 
@@ -135,6 +135,39 @@ pub extern "C" fn dnsr_lights_record(
         let (cmd, shared) = dispatch_from_c(required(p_dispatch, "pDispatch")?)?;
         let (lights, count) = lights_from_c(light_count, p_lights)?;
         entry.lock()?.record_lights(cmd, &shared, &lights[..count])?;
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// Records the hybrid-shadows classifier into `pDispatch->commandBuffer` (needs
+/// DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER): prefills `pDispatch->hitMask` with the shadow maps' verdicts and lists
+/// the tiles with pixels left to trace in the classifier's buffers (`dnsr_context_get_classifier_buffers`), with
+/// indirect-dispatch counts. Record the engine's trace of the listed pixels after it, then the denoiser. On error
+/// nothing is recorded.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_classify_record(context: DnsrContext, p_dispatch: *const DnsrClassifyDispatch) -> DnsrResult {
+    guard(|sink| {
+        let entry = handles::get(context)?;
+        *sink = entry.log;
+        let (cmd, dispatch) = classify_from_c(required(p_dispatch, "pDispatch")?)?;
+        entry.lock()?.record_classify(cmd, &dispatch)?;
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// Writes the classifier's tile list and counts buffers to `*pBuffers` (sType set by the caller).
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_context_get_classifier_buffers(context: DnsrContext, p_buffers: *mut DnsrClassifierBuffers) -> DnsrResult {
+    guard(|sink| {
+        let entry = handles::get(context)?;
+        *sink = entry.log;
+        let out = unsafe { p_buffers.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pBuffers is NULL".into()))?;
+        check_type(out.s_type, DNSR_STRUCTURE_TYPE_CLASSIFIER_BUFFERS, "DNSR_STRUCTURE_TYPE_CLASSIFIER_BUFFERS", "pBuffers")?;
+        check_no_next(out.p_next, "pBuffers")?;
+        let b = entry.lock()?.classifier_buffers()?;
+        out.tiles = b.tiles;
+        out.tile_capacity = b.tile_capacity;
+        out.counts = b.counts;
         Ok(DnsrResult::DNSR_SUCCESS)
     })
 }
@@ -310,8 +343,9 @@ pub extern "C" fn dnsr_result_to_string(result: i32) -> *const c_char {
         DNSR_ERROR_OUT_OF_DEVICE_MEMORY,
         DNSR_ERROR_INVALID_HOST_SYNC,
         DNSR_ERROR_INVALID_QUEUE_FAMILY,
+        DNSR_ERROR_CLASSIFIER_NOT_ENABLED,
     ];
-    let names: [&'static std::ffi::CStr; 23] = [
+    let names: [&'static std::ffi::CStr; 24] = [
         c"DNSR_SUCCESS",
         c"DNSR_NOT_READY",
         c"DNSR_ERROR_INVALID_ARGUMENT",
@@ -335,6 +369,7 @@ pub extern "C" fn dnsr_result_to_string(result: i32) -> *const c_char {
         c"DNSR_ERROR_OUT_OF_DEVICE_MEMORY",
         c"DNSR_ERROR_INVALID_HOST_SYNC",
         c"DNSR_ERROR_INVALID_QUEUE_FAMILY",
+        c"DNSR_ERROR_CLASSIFIER_NOT_ENABLED",
     ];
     all.iter().position(|&r| r as i32 == result).map_or(c"DNSR_RESULT_UNKNOWN", |i| names[i]).as_ptr()
 }

@@ -20,6 +20,8 @@ pub type VkCommandBuffer = vk::CommandBuffer;
 pub type VkImage = vk::Image;
 /// `VkImageView`.
 pub type VkImageView = vk::ImageView;
+/// `VkBuffer`.
+pub type VkBuffer = vk::Buffer;
 /// `VkFormat`.
 pub type VkFormat = vk::Format;
 /// `VkImageLayout`.
@@ -98,6 +100,8 @@ pub enum DnsrResult {
     DNSR_ERROR_INVALID_HOST_SYNC = -21,
     /// `queueFamilyIndex` does not exist on the physical device, or the family cannot run compute work.
     DNSR_ERROR_INVALID_QUEUE_FAMILY = -22,
+    /// The classifier was used on a context created without DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER.
+    DNSR_ERROR_CLASSIFIER_NOT_ENABLED = -23,
     /// Forces a 32-bit enum.
     DNSR_RESULT_MAX_ENUM = 0x7FFF_FFFF,
 }
@@ -116,6 +120,10 @@ pub const DNSR_STRUCTURE_TYPE_PASS_TIMINGS: DnsrStructureType = 4;
 pub const DNSR_STRUCTURE_TYPE_DEVICE_REQUIREMENTS: DnsrStructureType = 5;
 /// `DnsrLightDispatch`.
 pub const DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH: DnsrStructureType = 6;
+/// `DnsrClassifyDispatch`.
+pub const DNSR_STRUCTURE_TYPE_CLASSIFY_DISPATCH: DnsrStructureType = 7;
+/// `DnsrClassifierBuffers`.
+pub const DNSR_STRUCTURE_TYPE_CLASSIFIER_BUFFERS: DnsrStructureType = 8;
 /// Forces 32 bits.
 pub const DNSR_STRUCTURE_TYPE_MAX_ENUM: DnsrStructureType = 0x7FFF_FFFF;
 
@@ -136,6 +144,9 @@ pub const DNSR_CONTEXT_CREATE_DEPTH_INVERTED: DnsrContextCreateFlags = 1 << 0;
 // 1 << 1 was DNSR_CONTEXT_CREATE_INFINITE_FAR (dnsr 0.1.0): an infinite far plane needs no flag.
 /// Record GPU timestamps around each pass (read with `dnsr_context_get_timings`).
 pub const DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS: DnsrContextCreateFlags = 1 << 2;
+/// Create the hybrid-shadows classifier (`dnsr_classify_record`): its pipelines and its tile list and counts
+/// buffers (16 B per 8x4 tile, about 0.5 B/px, plus 1 KiB).
+pub const DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER: DnsrContextCreateFlags = 1 << 3;
 /// Forces 32 bits.
 pub const DNSR_CONTEXT_CREATE_MAX_ENUM: DnsrContextCreateFlags = 0x7FFF_FFFF;
 
@@ -697,4 +708,122 @@ pub struct DnsrDeviceRequirements {
     /// DNSR_FEATURE_* bits dnsr can use: FLOAT16 = shaderFloat16 + storageBuffer16BitAccess (for
     /// DNSR_PRECISION_FP16) and PUSH_DESCRIPTOR.
     pub optional_features: DnsrFeatureFlags,
+}
+
+/// Flags of `DnsrClassifyDispatch`.
+pub type DnsrClassifyFlags = u32;
+/// Pixels no blocker-search tap finds a blocker for are decided lit (recommended). Without it only shadowed
+/// pixels are decided and every other receiver is traced.
+pub const DNSR_CLASSIFY_REJECT_LIT_PIXELS: DnsrClassifyFlags = 1 << 0;
+/// A listed tile's ray interval is bounded by the blockers its pixels' taps found (recommended); without it,
+/// from the push-off (0.04 world units) to infinity.
+pub const DNSR_CLASSIFY_BOUND_RAY_INTERVAL: DnsrClassifyFlags = 1 << 1;
+/// The shadow maps hold 1 at the light's near plane and 0 at its far plane (reverse-Z cascades).
+pub const DNSR_CLASSIFY_CASCADES_DEPTH_INVERTED: DnsrClassifyFlags = 1 << 2;
+/// Classify only `renderRect`.
+pub const DNSR_CLASSIFY_USE_RENDER_RECT: DnsrClassifyFlags = 1 << 3;
+/// The cascades are the layers of `cascadeArray` (a 2D-array view) instead of `pCascadeImages`' images.
+pub const DNSR_CLASSIFY_CASCADE_ARRAY: DnsrClassifyFlags = 1 << 4;
+/// Forces 32 bits.
+pub const DNSR_CLASSIFY_MAX_ENUM: DnsrClassifyFlags = 0x7FFF_FFFF;
+
+/// Most shadow-map cascades one classify dispatch reads.
+pub const DNSR_MAX_CASCADES: u32 = 4;
+const _: () = assert!(DNSR_MAX_CASCADES as usize == crate::MAX_CASCADES);
+/// Bytes of one record of the classifier's tile list: uint32 x (tile x | tile y << 16), mask of the tile's
+/// pixels to trace (bit (y % 4) * 8 + (x % 8)), minT and maxT (float bits, world units).
+pub const DNSR_CLASSIFY_TILE_BYTES: u32 = 16;
+/// Bytes of the classifier's counts: uint32 words 0..3 VkDispatchIndirectCommand (tiles, 1, 1) and the tile count;
+/// words 4..7 (32 x tiles, 1, 1, 0), one invocation per pixel of every listed tile.
+pub const DNSR_CLASSIFY_COUNTS_BYTES: u32 = 32;
+
+/// One frame of the hybrid-shadows classifier (`dnsr_classify_record`): from the engine's cascaded shadow maps it
+/// prefills the hit mask with the pixels they decide (surely lit, surely shadowed, facing away from the light)
+/// and lists the 8x4 tiles whose other pixels need a shadow ray. Then the engine traces the listed pixels (ORing
+/// its bit into the mask: occluded with DNSR_HIT_MASK_OCCLUDED_BITS, lit with DNSR_HIT_MASK_LIT_BITS; they are
+/// prefilled 0) and records the denoiser with that mask. Conventions as `DnsrShadowsDispatch`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct DnsrClassifyDispatch {
+    /// Must be DNSR_STRUCTURE_TYPE_CLASSIFY_DISPATCH.
+    pub s_type: DnsrStructureType,
+    /// Must be NULL (reserved for extensions).
+    pub p_next: *const c_void,
+    /// Required. The command buffer the host is recording (outside a render pass).
+    pub command_buffer: VkCommandBuffer,
+    /// DNSR_CLASSIFY_* bits (DNSR_CLASSIFY_REJECT_LIT_PIXELS | DNSR_CLASSIFY_BOUND_RAY_INTERVAL recommended).
+    pub flags: DnsrClassifyFlags,
+    /// The convention of the engine's trace and of the denoiser's dispatch (DnsrShadowsDispatch).
+    pub hit_mask_convention: DnsrHitMaskConvention,
+    /// Required. The hit mask the classifier prefills: VK_FORMAT_R32_UINT, ceil(W/8) x ceil(H/4), created with
+    /// STORAGE usage, layout GENERAL; the same image the engine's trace completes and the denoiser reads.
+    pub hit_mask: DnsrHostImage,
+    /// Required. W x H depth in the context's convention (formats and layouts as DnsrShadowsDispatch::depth).
+    pub depth: DnsrHostImage,
+    /// Required. W x H world-space normals (formats as DnsrShadowsDispatch::normals): a pixel facing away from the
+    /// light is shadowed without a ray; an unusable (zero) normal leaves the decision to the cascades.
+    pub normals: DnsrHostImage,
+    /// Normal decode multiplier (2 for UNORM normals).
+    pub normals_unpack_mul: f32,
+    /// Normal decode offset (-1 for UNORM normals).
+    pub normals_unpack_add: f32,
+    /// Current clip -> world (the space the cascades' matrices take).
+    pub view_projection_inverse: [f32; 16],
+    /// World-space direction from the surfaces toward the light (the sun); any non-zero length.
+    pub light_direction: [f32; 3],
+    /// The light's angular diameter in radians, in [0, pi) (the sun: about 0.0093): the blocker search radius
+    /// is the widest penumbra a blocker between the receiver and the cascade's near plane can cast.
+    pub light_angular_size: f32,
+    /// Cascades used, 1..DNSR_MAX_CASCADES (0: DNSR_ERROR_INVALID_ARGUMENT). The first one containing a pixel
+    /// decides it; a pixel in none is traced.
+    pub cascade_count: u32,
+    /// Per cascade (finest first) a column-major float[16]: world position (w = 1) to (u, v, depth) of its
+    /// shadow map, u, v in [0, 1] across the image (0, 0 the top-left texel corner), depth as stored. Affine
+    /// (last row 0 0 0 1; orthographic sun cascades). A "shadow matrix plus per-cascade scale and offset"
+    /// setup (FidelityFX) passes translate(offset) * scale(scale) * shadowMatrix. NaN/Inf: DNSR_ERROR_NON_FINITE.
+    pub cascade_world_to_shadow: [[f32; 16]; 4],
+    /// Without DNSR_CLASSIFY_CASCADE_ARRAY: cascade i's shadow map (a 2D depth-aspect view of a depth format as
+    /// DnsrShadowsDispatch::depth, any size, a depth read-only or shader read-only layout); the first
+    /// cascadeCount are read.
+    pub cascade_images: [DnsrHostImage; 4],
+    /// With DNSR_CLASSIFY_CASCADE_ARRAY: the cascades as layers of one image (a 2D-array view, layer i cascade
+    /// i); cascadeImages stay zero.
+    pub cascade_array: DnsrHostImage,
+    /// Layers of cascadeArray's view (at least cascadeCount).
+    pub cascade_array_layers: u32,
+    /// World distance along the light direction a shadow-map depth must be in front of the receiver to count as
+    /// a blocker (the shadow maps' bias), >= 0.
+    pub blocker_offset: f32,
+    /// Blocker-search taps per pixel: 8, 16, 24 (recommended) or 32; anything else is
+    /// DNSR_ERROR_INVALID_ARGUMENT.
+    pub tap_count: u32,
+    /// A tile is listed only with more pixels to trace than this, 0..31 (0: every tile with one). The pixels to
+    /// trace of a tile that is not listed get the verdict most of their taps give.
+    pub tile_cutoff: u32,
+    /// Region to classify with DNSR_CLASSIFY_USE_RENDER_RECT.
+    pub render_rect: DnsrRect,
+    /// Optional barriers: the writes of depth, normals and shadow maps before; the host's use of the hit mask,
+    /// tile list and counts after (its trace: e.g. DRAW_INDIRECT | RAY_TRACING_SHADER_KHR with
+    /// INDIRECT_COMMAND_READ | SHADER_READ | SHADER_WRITE). dnsr's own prepare pass is always covered.
+    pub sync: DnsrHostSync,
+}
+
+/// The buffers the classifier writes (`dnsr_context_get_classifier_buffers`). dnsr owns them; they change only
+/// with `dnsr_context_resize`. Usage STORAGE_BUFFER | STORAGE_TEXEL_BUFFER | INDIRECT_BUFFER | TRANSFER_SRC |
+/// TRANSFER_DST.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct DnsrClassifierBuffers {
+    /// Must be DNSR_STRUCTURE_TYPE_CLASSIFIER_BUFFERS.
+    pub s_type: DnsrStructureType,
+    /// Must be NULL.
+    pub p_next: *mut c_void,
+    /// The tile list: tileCapacity records of DNSR_CLASSIFY_TILE_BYTES; the last classify dispatch wrote the
+    /// first (counts word 3) of them, in no particular order.
+    pub tiles: VkBuffer,
+    /// Records `tiles` holds (every 8x4 tile of the render size).
+    pub tile_capacity: u32,
+    /// DNSR_CLASSIFY_COUNTS_BYTES of counts, reset by every classify dispatch; word 0 is the indirect dispatch
+    /// of one workgroup per listed tile.
+    pub counts: VkBuffer,
 }

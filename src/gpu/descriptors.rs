@@ -10,7 +10,7 @@
 use crate::error::{vk_check, Result};
 use crate::gpu::loader::Vk;
 use crate::gpu::shader::Pipeline;
-use crate::passes::bindings::{BindingTable, Resource};
+use crate::passes::bindings::BindingTable;
 use crate::passes::{Role, MAX_PASSES};
 use crate::settings::MAX_FILTER_PASSES;
 use ash::vk;
@@ -72,22 +72,20 @@ fn with_writes<R>(pipeline: &Pipeline, table: &BindingTable, sampler: vk::Sample
     let bindings = &pipeline.interface.bindings;
     let mut images = [vk::DescriptorImageInfo::default(); MAX_BINDINGS];
     let mut buffers = [vk::DescriptorBufferInfo::default(); MAX_BINDINGS];
+    let mut texels = [vk::BufferView::null(); MAX_BINDINGS];
     for (i, b) in bindings.iter().enumerate() {
         let bound = table[b.resource as usize];
         images[i] = vk::DescriptorImageInfo { sampler, image_view: bound.view, image_layout: bound.layout };
-        buffers[i] = vk::DescriptorBufferInfo {
-            buffer: bound.buffer,
-            offset: bound.offset,
-            range: std::mem::size_of::<crate::constants::FrameConstants>() as vk::DeviceSize,
-        };
+        buffers[i] = vk::DescriptorBufferInfo { buffer: bound.buffer, offset: bound.offset, range: bound.range };
+        texels[i] = bound.texel;
     }
     let mut writes = [vk::WriteDescriptorSet::default(); MAX_BINDINGS];
     for (i, b) in bindings.iter().enumerate() {
         let w = vk::WriteDescriptorSet::default().dst_binding(b.binding).descriptor_type(b.descriptor_type);
-        writes[i] = if b.resource == Resource::Constants {
-            w.buffer_info(std::slice::from_ref(&buffers[i]))
-        } else {
-            w.image_info(std::slice::from_ref(&images[i]))
+        writes[i] = match b.descriptor_type {
+            vk::DescriptorType::UNIFORM_BUFFER => w.buffer_info(std::slice::from_ref(&buffers[i])),
+            vk::DescriptorType::STORAGE_TEXEL_BUFFER => w.texel_buffer_view(std::slice::from_ref(&texels[i])),
+            _ => w.image_info(std::slice::from_ref(&images[i])),
         };
     }
     f(&writes[..bindings.len()])

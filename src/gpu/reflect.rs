@@ -40,6 +40,7 @@ fn descriptor_type(t: ffi::SpvReflectDescriptorType) -> Option<vk::DescriptorTyp
             vk::DescriptorType::COMBINED_IMAGE_SAMPLER
         }
         ffi::SpvReflectDescriptorType_SPV_REFLECT_DESCRIPTOR_TYPE_UNIFORM_BUFFER => vk::DescriptorType::UNIFORM_BUFFER,
+        ffi::SpvReflectDescriptorType_SPV_REFLECT_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER => vk::DescriptorType::STORAGE_TEXEL_BUFFER,
         _ => return None,
     })
 }

@@ -77,6 +77,8 @@ pub(crate) const VARIANTS: &[ShaderVariant] = &[
     variant!("filter_later_final_r32f_fp16", "filter.comp", ["DNSR_LATER_PASS", "DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r32f", "DNSR_FP16"]),
     variant!("filter_later_final_rgba8_fp16", "filter.comp", ["DNSR_LATER_PASS", "DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=rgba8", "DNSR_FP16"]),
     variant!("filter_later_final_rgba16f_fp16", "filter.comp", ["DNSR_LATER_PASS", "DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=rgba16f", "DNSR_FP16"]),
+    variant!("classify", "classify.comp", []),
+    variant!("classify_cascade_array", "classify.comp", ["DNSR_CASCADE_ARRAY"]),
     variant!("filter_later_lights", "filter.comp", ["DNSR_LATER_PASS", "DNSR_LIGHT_SLOTS_VARIANT"]),
     variant!("filter_later_lights_fp16", "filter.comp", ["DNSR_LATER_PASS", "DNSR_LIGHT_SLOTS_VARIANT", "DNSR_FP16"]),
     variant!("filter_later_lights_final_r8", "filter.comp", ["DNSR_LATER_PASS", "DNSR_LIGHT_SLOTS_VARIANT", "DNSR_FINAL_PASS", "DNSR_OUTPUT_FORMAT=r8"]),
@@ -123,12 +125,17 @@ pub struct ShaderVariantInfo {
 /// select. (The light-slot variants, which filter several lights per dispatch, are dnsr's alone: see
 /// docs/callbacks.md "Several lights".)
 pub fn shader_variants() -> impl Iterator<Item = ShaderVariantInfo> {
-    VARIANTS.iter().filter(|v| !is_light_slot_variant(v.name)).map(|v| ShaderVariantInfo { name: v.name, source: v.source, defines: v.defines })
+    VARIANTS.iter().filter(|v| !is_light_slot_variant(v.name) && !is_classify_variant(v.name)).map(|v| ShaderVariantInfo { name: v.name, source: v.source, defines: v.defines })
 }
 
 /// A light-slot variant (several lights per dispatch), which no engine overrides.
 pub(crate) fn is_light_slot_variant(name: &str) -> bool {
     name.starts_with("filter_later_lights")
+}
+
+/// A variant of the hybrid-shadows classifier, which no engine overrides (yet: its dispatch has no engine images).
+pub(crate) fn is_classify_variant(name: &str) -> bool {
+    name.starts_with("classify")
 }
 
 /// The glslc arguments dnsr's own variants are compiled with, besides `-I<shader dir>` and the definitions:
@@ -297,6 +304,10 @@ pub(crate) fn reflect(spirv: &[u8]) -> Result<Interface> {
         }
         if resource == Resource::Constants {
             uniform_bytes = Some(b.block_bytes);
+        }
+        let classify_bytes = std::mem::size_of::<crate::constants::ClassifyConstants>() as u32;
+        if resource == Resource::ClassifyConstants && b.block_bytes != classify_bytes {
+            return Err(Error::ShaderInterface(format!("classify constants block is {} bytes, host writes {classify_bytes}", b.block_bytes)));
         }
         if bindings.iter().any(|x: &ReflectedBinding| x.resource == resource || x.binding == b.binding) {
             return Err(Error::ShaderInterface(format!("binding '{name}' or number {} declared twice", b.binding)));

@@ -53,6 +53,16 @@ pub(crate) enum Resource {
     DebugMoments1,
     DebugMoments2,
     DebugMoments3,
+    /// The hybrid-shadows classifier's own.
+    ClassifyConstants,
+    HitMaskOut,
+    TileList,
+    TileCount,
+    Cascade0,
+    Cascade1,
+    Cascade2,
+    Cascade3,
+    CascadeArray,
     /// An engine's own images (bindings ENGINE_BINDING_BASE.., any name), declared by engine-compiled variants.
     Engine0,
     Engine1,
@@ -65,7 +75,7 @@ pub(crate) enum Resource {
 }
 
 pub(crate) const RESOURCE_COUNT: usize = Resource::Engine7 as usize + 1;
-const NAMED_COUNT: usize = Resource::DebugMoments3 as usize + 1;
+const NAMED_COUNT: usize = Resource::CascadeArray as usize + 1;
 
 impl Resource {
     /// The engine image at slot `slot` (binding ENGINE_BINDING_BASE + slot).
@@ -145,6 +155,15 @@ const TABLE: [(&str, Resource, vk::DescriptorType); NAMED_COUNT] = [
     ("dnsr_debug_moments_1", Resource::DebugMoments1, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_debug_moments_2", Resource::DebugMoments2, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_debug_moments_3", Resource::DebugMoments3, vk::DescriptorType::SAMPLED_IMAGE),
+    ("DnsrClassifyBlock", Resource::ClassifyConstants, vk::DescriptorType::UNIFORM_BUFFER),
+    ("dnsr_hit_mask_out", Resource::HitMaskOut, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_tile_list", Resource::TileList, vk::DescriptorType::STORAGE_TEXEL_BUFFER),
+    ("dnsr_tile_count", Resource::TileCount, vk::DescriptorType::STORAGE_TEXEL_BUFFER),
+    ("dnsr_cascade_0", Resource::Cascade0, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_cascade_1", Resource::Cascade1, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_cascade_2", Resource::Cascade2, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_cascade_3", Resource::Cascade3, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_cascades", Resource::CascadeArray, vk::DescriptorType::SAMPLED_IMAGE),
 ];
 
 impl Resource {
@@ -161,11 +180,15 @@ pub(crate) struct Binding {
     pub buffer: vk::Buffer,
     /// Where the constants of this dispatch's light start in `buffer`.
     pub offset: vk::DeviceSize,
+    /// Bytes of `buffer` bound from `offset`.
+    pub range: vk::DeviceSize,
+    /// A texel buffer's view (the classifier's tile list and counts).
+    pub texel: vk::BufferView,
 }
 
 /// Every resource's binding for one pass of one frame; unset entries stay null.
 pub(crate) type BindingTable = [Binding; RESOURCE_COUNT];
 
 pub(crate) fn image(view: vk::ImageView, layout: vk::ImageLayout) -> Binding {
-    Binding { view, layout, buffer: vk::Buffer::null(), offset: 0 }
+    Binding { view, layout, ..Default::default() }
 }

@@ -4,6 +4,7 @@
 //! bindings, barriers, dispatches and timestamps from that list, so fusing or splitting passes is a change here.
 
 pub(crate) mod bindings;
+pub(crate) mod classify;
 pub(crate) mod filter;
 pub(crate) mod prepare;
 pub(crate) mod tile_classification;
@@ -223,7 +224,12 @@ impl FrameViews {
     /// The bindings every pass shares: constants, the G-buffer and the engine's images.
     fn base_table(&self) -> BindingTable {
         let mut t: BindingTable = [Binding::default(); bindings::RESOURCE_COUNT];
-        t[Resource::Constants as usize] = Binding { buffer: self.constants, offset: self.constants_offset, ..Default::default() };
+        t[Resource::Constants as usize] = Binding {
+            buffer: self.constants,
+            offset: self.constants_offset,
+            range: std::mem::size_of::<crate::constants::FrameConstants>() as vk::DeviceSize,
+            ..Default::default()
+        };
         t[Resource::Depth as usize] = self.depth;
         t[Resource::Normals as usize] = self.normals;
         for (slot, &b) in self.engine.iter().enumerate() {

@@ -4,6 +4,7 @@
 //!
 //! Coordinates handed to the interface are relative to the render rectangle, as on the GPU.
 
+pub mod classify;
 pub mod diagnostics;
 pub mod filter;
 pub mod memory;

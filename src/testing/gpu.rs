@@ -246,7 +246,8 @@ impl Gpu {
         assert!(m.is_empty(), "{} validation message(s):\n{}", m.len(), m.join("\n"));
     }
 
-    fn memory_type(&self, bits: u32, flags: vk::MemoryPropertyFlags) -> u32 {
+    /// A memory type index of `bits` with `flags`.
+    pub fn memory_type(&self, bits: u32, flags: vk::MemoryPropertyFlags) -> u32 {
         let props = unsafe { self.instance.get_physical_device_memory_properties(self.physical_device) };
         (0..props.memory_type_count)
             .find(|&i| bits & (1 << i) != 0 && props.memory_types[i as usize].property_flags.contains(flags))

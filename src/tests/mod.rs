@@ -4,6 +4,7 @@
 mod bad_input;
 mod capi;
 mod checkerboard;
+mod classify;
 pub(crate) mod correctness;
 mod diagnostics;
 mod extremes;

@@ -17,6 +17,8 @@ PACKAGES=(
     binutils                # readelf: soname and NEEDED checks of the install test
     libglfw3-dev
     libtinygltf-dev
+    libstb-dev              # the viewer's PNGs (stb_image_write; libstb0 comes with tinygltf already)
+    nlohmann-json3-dev      # the viewer's report.json
     xvfb                    # the viewer's windowed test (xvfb-run)
     python3                 # the viewer test checks PNGs and report.json
 )

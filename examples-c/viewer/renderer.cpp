@@ -24,31 +24,6 @@ const uint32_t kCompositeSpv[] =
 const uint32_t kPrimaryPackedSpv[] =  // also writes the packed G-buffer (--gbuffer packed)
 #include "primary_packed.comp.inc"
     ;
-// dnsr's passes compiled against examples-c/custom_gbuffer/engine_callbacks.glsl by its build_shaders.sh (CMake),
-// for --gbuffer packed.
-const uint32_t kDnsrClassification[] =
-#include "dnsr_engine/tile_classification_r32f.inc"
-    ;
-const uint32_t kDnsrFilter[] =
-#include "dnsr_engine/filter.inc"
-    ;
-const uint32_t kDnsrFilterLater[] =
-#include "dnsr_engine/filter_later.inc"
-    ;
-const uint32_t kDnsrFilterFinal[] =
-#include "dnsr_engine/filter_final_r32f.inc"
-    ;
-const uint32_t kDnsrFilterLaterFinal[] =
-#include "dnsr_engine/filter_later_final_r32f.inc"
-    ;
-const DnsrShaderOverride kPackedOverrides[] = {
-    {"tile_classification_r32f", kDnsrClassification, sizeof kDnsrClassification},
-    {"filter", kDnsrFilter, sizeof kDnsrFilter},
-    {"filter_later", kDnsrFilterLater, sizeof kDnsrFilterLater},
-    {"filter_final_r32f", kDnsrFilterFinal, sizeof kDnsrFilterFinal},
-    {"filter_later_final_r32f", kDnsrFilterLaterFinal, sizeof kDnsrFilterLaterFinal},
-};
-
 // Host copy of shaders/common.glsl's FrameConstants (std140: vec4-aligned members only, so no padding rules).
 struct FrameConstants {
     Mat4 viewProj, invViewProj, prevViewProj;
@@ -99,16 +74,6 @@ constexpr LightBindings kLightBindings[kMaxLights] = {
 enum Timestamp : uint32_t { kStart, kAfterPrimary, kAfterShadow, kAfterReference, kAfterDnsr, kAfterComposite, kCount };
 
 constexpr uint32_t kReferenceChunk = 32;  // samples per reference dispatch: keeps each dispatch short
-
-[[noreturn]] void dnsrFail(const char *call, DnsrResult r)
-{
-    throw VulkanError(std::string(call) + " failed: " + dnsr_result_to_string(r) + ": " + dnsr_last_error_message());
-}
-
-DnsrHostImage hostImage(const GpuImage &img)
-{
-    return DnsrHostImage{img.image, img.view, img.format, VK_IMAGE_LAYOUT_GENERAL, img.width, img.height};
-}
 
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst,
                    VkAccessFlags dstAccess)
@@ -243,7 +208,19 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
     queryInfo.queryCount = kCount;
     VK_CHECK(vkCreateQueryPool(ctx.device, &queryInfo, nullptr, &timestamps_));
 
-    createDenoiser();
+    // The context after the images: an engine creates it once it knows the render size, with its G-buffer's encoding
+    // and how its shadow rays are handed over.
+    DenoiserSettings ds;
+    ds.width = w, ds.height = h;
+    ds.lights = settings.lights;
+    // --rays k > 1: several rays per pixel, handed over as per-pixel visibility instead of the hit mask;
+    // --checkerboard: half a ray per pixel in the hit mask.
+    ds.shadowInput = settings.rays > 1        ? DNSR_SHADOW_INPUT_VISIBILITY
+                     : settings.checkerboard ? DNSR_SHADOW_INPUT_CHECKERBOARD
+                                             : DNSR_SHADOW_INPUT_HIT_MASK;
+    ds.packedGbuffer = settings.packedGbuffer;
+    ds.preset = settings.preset;
+    denoiser_.create(ctx, ds);
 }
 
 // One descriptor set layout for all four passes: each shader uses the subset of bindings it needs.
@@ -331,53 +308,6 @@ std::vector<GpuImage *> Renderer::images()
     return all;
 }
 
-// The denoiser, created exactly as an engine would through include/dnsr.h.
-void Renderer::createDenoiser()
-{
-    // A header built for another library version would misread every structure: check first.
-    if (dnsr_version() != DNSR_VERSION)
-        throw VulkanError("dnsr.h is version " + std::to_string(DNSR_VERSION) + " but libdnsr is " +
-                          std::to_string(dnsr_version()));
-    DnsrContextCreateInfo info{};
-    info.sType = DNSR_STRUCTURE_TYPE_CONTEXT_CREATE_INFO;
-    info.instance = ctx_->instance;
-    info.physicalDevice = ctx_->physicalDevice;
-    info.device = ctx_->device;
-    info.vulkanFunctions = {vkGetInstanceProcAddr, vkGetDeviceProcAddr};  // dnsr never links the loader
-    info.apiVersion = ctx_->apiVersion;
-    info.queueFamilyIndex = ctx_->queueFamily;
-    info.enabledFeatures = ctx_->pushDescriptorEnabled ? DNSR_FEATURE_PUSH_DESCRIPTOR : 0;
-    info.width = settings_.width;
-    info.height = settings_.height;
-    info.flags = DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS;  // standard depth (sky = 1), finite far plane
-    info.precision = DNSR_PRECISION_FP32;
-    info.outputFormat = VK_FORMAT_R32_SFLOAT;
-    info.lightCount = settings_.lights;  // each light its own history
-    // --rays k > 1: several rays per pixel, handed over as per-pixel visibility instead of the hit mask;
-    // --checkerboard: half a ray per pixel in the hit mask.
-    info.shadowInput = settings_.rays > 1        ? DNSR_SHADOW_INPUT_VISIBILITY
-                       : settings_.checkerboard ? DNSR_SHADOW_INPUT_CHECKERBOARD
-                                                : DNSR_SHADOW_INPUT_HIT_MASK;
-    if (settings_.packedGbuffer) {
-        // The engine's own G-buffer encoding: dnsr runs passes compiled against its callbacks.
-        info.shaderOverrideCount = sizeof kPackedOverrides / sizeof kPackedOverrides[0];
-        info.pShaderOverrides = kPackedOverrides;
-    }
-    DnsrResult r = dnsr_context_create(&info, &denoiser_);
-    if (r != DNSR_SUCCESS) dnsrFail("dnsr_context_create", r);
-    DnsrSettings dnsrSettings;
-    r = dnsr_settings_init_preset(settings_.preset, &dnsrSettings);
-    if (r == DNSR_SUCCESS) r = dnsr_context_set_settings(denoiser_, &dnsrSettings);
-    if (r != DNSR_SUCCESS) dnsrFail("dnsr_settings_init_preset / dnsr_context_set_settings", r);
-}
-
-uint64_t Renderer::dnsrMemoryBytes() const
-{
-    uint64_t bytes = 0;
-    if (denoiser_) dnsr_context_get_memory_usage(denoiser_, &bytes);
-    return bytes;
-}
-
 void Renderer::dispatch(VkCommandBuffer cmd, VkPipeline pipeline, uint32_t groupsX, uint32_t groupsY, uint32_t mode,
                         uint32_t sampleBase, uint32_t sampleCount, uint32_t light)
 {
@@ -403,6 +333,22 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
     // of 0xAA55AA55 is set where x + y is even.
     const uint32_t phase = settings_.checkerboard ? frameIndex_ % 2 : 0;
     tracedBits_ = !settings_.checkerboard ? ~0u : phase == 0 ? 0xAA55AA55u : 0x55AA55AAu;
+
+    // What every dnsr dispatch of this frame reads (its G-buffer once primary.comp has written it, the camera):
+    // described once, up front, so that a dispatch recorded before the shadow rays could take it as well.
+    DenoiserFrame frame;
+    frame.cmd = cmd;
+    // --gbuffer packed: dnsr reads the engine's own encoding through the passes the context was created with.
+    frame.depth = settings_.packedGbuffer ? &linearDepth_ : &depth_;
+    frame.velocity = &velocity_;
+    frame.normals = settings_.packedGbuffer ? &octNormals_ : &normals_;
+    frame.projectionInverse = invProjection;
+    frame.viewProjectionInverse = invViewProj;
+    frame.reprojection = reprojection;
+    frame.eye = in.eye;
+    frame.frameIndex = frameIndex_;
+    frame.checkerboardPhase = phase;
+    frame.cameraCut = in.cameraCut;
 
     // Per-frame constants. The buffer is host-coherent and the previous frame has completed (one frame in
     // flight), so writing it now is safe.
@@ -458,71 +404,21 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
     referenceCount_ = referenceAfter;
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterReference);
 
-    // ---- dnsr ----
-    // What differs from light to light: its inputs from the shadow pass, its output, and its flags.
-    DnsrLightDispatch lights[kMaxLights]{};
+    // ---- dnsr (denoiser.cpp): the shadow pass's outputs of each light -> its denoised shadow ----
+    std::vector<DenoiserLight> lights(settings_.lights);
     for (uint32_t i = 0; i < settings_.lights; i++) {
-        DnsrLightDispatch &l = lights[i];
-        l.sType = DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH;
-        l.lightIndex = i;
-        l.flags = (in.cameraCut ? DNSR_LIGHT_DISPATCH_RESET : 0) |
-                  (in.hitDistance ? DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE : 0);
-        if (settings_.rays > 1)
-            l.visibility = hostImage(lights_[i].visibility);  // the hit mask stays empty: the context takes visibility
-        else
-            l.hitMask = hostImage(lights_[i].hitMask);
-        l.output = hostImage(lights_[i].denoised);
-        if (in.hitDistance) {
-            // Written by the shadow pass above, like the hit mask: the same input barrier (sync below) covers it.
-            l.hitDistance = hostImage(lights_[i].hitDistance);
-            l.lightAngularSize = in.lightAngularSize;
-        }
+        DenoiserLight &l = lights[i];
+        if (settings_.rays > 1) l.visibility = &lights_[i].visibility;
+        else l.hitMask = &lights_[i].hitMask;
+        if (in.hitDistance) l.hitDistance = &lights_[i].hitDistance, l.lightAngularSize = in.lightAngularSize;
+        l.output = &lights_[i].denoised;
     }
-    // What the lights share: the G-buffer, camera, settings of the call and sync.
-    DnsrShadowsDispatch d{};
-    d.sType = DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH;
-    d.commandBuffer = cmd;
-    d.hitMaskConvention = DNSR_HIT_MASK_OCCLUDED_BITS;  // bit = 1: the ray hit an occluder
-    d.depth = hostImage(settings_.packedGbuffer ? linearDepth_ : depth_);
-    d.velocity = hostImage(velocity_);
-    d.normals = hostImage(settings_.packedGbuffer ? octNormals_ : normals_);
-    d.motionVectorScale[0] = d.motionVectorScale[1] = 1.0f;  // velocity = prev_uv - uv, in uv units
-    d.normalsUnpackMul = 1.0f;  // float normals, stored as is
-    d.normalsUnpackAdd = 0.0f;
-    d.eye[0] = in.eye.x, d.eye[1] = in.eye.y, d.eye[2] = in.eye.z;
-    d.frameIndex = frameIndex_;
-    d.checkerboardPhase = phase;  // shared by every light of dnsr_lights_record: their masks are traced alike
-    std::memcpy(d.projectionInverse, invProjection.m, sizeof d.projectionInverse);
-    std::memcpy(d.reprojectionMatrix, reprojection.m, sizeof d.reprojectionMatrix);  // current clip -> previous
-    std::memcpy(d.viewProjectionInverse, invViewProj.m, sizeof d.viewProjectionInverse);
-    d.depthSimilaritySigma = 1.0f;
-    // dnsr emits the barriers around its work: our compute passes' writes before its reads, its output write
-    // before our composite pass reads it.
-    d.sync.inputSrcStages = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
-    d.sync.inputSrcAccess = VK_ACCESS_SHADER_WRITE_BIT;
-    d.sync.outputDstStages = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
-    d.sync.outputDstAccess = VK_ACCESS_SHADER_READ_BIT;
-    // Views 5..8 map in order onto DNSR_DEBUG_VIEW_TILE_CLASSIFICATION .. DNSR_DEBUG_VIEW_DISOCCLUSION (one
-    // setting for the whole call: every light's output gets the debug view).
+    // Views 5..8 map in order onto DNSR_DEBUG_VIEW_TILE_CLASSIFICATION .. DNSR_DEBUG_VIEW_DISOCCLUSION.
     bool dnsrView = in.display >= View::DnsrTiles;
-    d.debugView = dnsrView ? DNSR_DEBUG_VIEW_TILE_CLASSIFICATION + (uint32_t(in.display) - uint32_t(View::DnsrTiles))
-                           : DNSR_DEBUG_VIEW_NONE;
-    if (settings_.lights == 1) {
-        // One light: the single-light call, with the light's own fields in the dispatch itself.
-        const DnsrLightDispatch &l = lights[0];
-        d.lightIndex = l.lightIndex;
-        d.flags = (l.flags & DNSR_LIGHT_DISPATCH_RESET ? DNSR_DISPATCH_RESET : 0) |
-                  (l.flags & DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE ? DNSR_DISPATCH_USE_HIT_DISTANCE : 0);
-        d.hitMask = l.hitMask, d.visibility = l.visibility, d.output = l.output;
-        d.hitDistance = l.hitDistance, d.lightAngularSize = l.lightAngularSize;
-        DnsrResult r = dnsr_shadows_record(denoiser_, &d);
-        if (r != DNSR_SUCCESS) dnsrFail("dnsr_shadows_record", r);
-    } else {
-        // Several lights: all in one call (each pass recorded for every light behind one barrier); the dispatch
-        // keeps its per-light fields zero.
-        DnsrResult r = dnsr_lights_record(denoiser_, &d, settings_.lights, lights);
-        if (r != DNSR_SUCCESS) dnsrFail("dnsr_lights_record", r);
-    }
+    denoiser_.recordDenoise(frame, lights,
+                            dnsrView ? DNSR_DEBUG_VIEW_TILE_CLASSIFICATION +
+                                           (uint32_t(in.display) - uint32_t(View::DnsrTiles))
+                                     : DNSR_DEBUG_VIEW_NONE);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterDnsr);
 
     // dnsr's debug views land in its output images: shown like the denoised shadow (composite mode 1).
@@ -549,15 +445,7 @@ void Renderer::afterFrame()
                          span(kAfterShadow, kAfterReference), span(kAfterReference, kAfterDnsr),
                          span(kAfterDnsr, kAfterComposite)};
     }
-    DnsrPassTimings t{};
-    t.sType = DNSR_STRUCTURE_TYPE_PASS_TIMINGS;
-    DnsrResult result = dnsr_context_get_timings(denoiser_, &t);
-    if (result == DNSR_SUCCESS) {
-        dnsrTimings = t;
-        haveDnsrTimings = true;
-    } else if (result != DNSR_NOT_READY) {
-        dnsrFail("dnsr_context_get_timings", result);
-    }
+    if (denoiser_.fetchTimings(dnsrTimings)) haveDnsrTimings = true;
 }
 
 void Renderer::recordReadback(VkCommandBuffer cmd)
@@ -590,8 +478,7 @@ void Renderer::destroy()
     VkDevice dev = ctx_->device;
     vkDeviceWaitIdle(dev);
     // The context goes first, once the GPU has finished every command buffer it recorded into.
-    if (denoiser_) dnsr_context_destroy(denoiser_);
-    denoiser_ = nullptr;
+    denoiser_.destroy();
     for (VkPipeline p : {primary_, shadow_, reference_pipeline_, composite_})
         if (p) vkDestroyPipeline(dev, p, nullptr);
     if (pipelineLayout_) vkDestroyPipelineLayout(dev, pipelineLayout_, nullptr);

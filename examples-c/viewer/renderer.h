@@ -5,8 +5,8 @@
 //                   light's 8x4-tile hit mask (and, for dnsr's penumbra guidance, the distance to the nearest
 //                   occluder per pixel)
 //   reference.comp  (when asked) per light, many shadow rays per pixel -> the ground truth, for error measurements
-//   dnsr            dnsr_shadows_record (one light) or dnsr_lights_record (all lights in one call): hit masks +
-//                   G-buffer -> one denoised shadow per light
+//   dnsr            (denoiser.h) dnsr_shadows_record (one light) or dnsr_lights_record (all lights in one call):
+//                   hit masks + G-buffer -> one denoised shadow per light
 //   composite.comp  albedo * (ambient + sum over the lights of N.L * shadow), or a debug view of one light -> the
 //                   display image
 //
@@ -15,11 +15,10 @@
 // simple; an engine would keep a few, with one set of per-frame resources each).
 #pragma once
 
-#include <dnsr.h>
-
 #include <vector>
 
 #include "bvh.h"
+#include "denoiser.h"
 #include "scene_gltf.h"
 #include "vk_context.h"
 
@@ -113,7 +112,7 @@ public:
     // The hit-mask bits the last recorded frame traced, the same word for every tile (tiles start at even x and
     // y): all of them, or with --checkerboard those of the pixels with (x + y) % 2 == the frame's phase.
     uint32_t tracedBits() const { return tracedBits_; }
-    uint64_t dnsrMemoryBytes() const;
+    uint64_t dnsrMemoryBytes() const { return denoiser_.memoryBytes(); }
 
     DnsrPassTimings dnsrTimings{};  // dnsr's per-pass GPU times (valid when haveDnsrTimings)
     bool haveDnsrTimings = false;
@@ -133,14 +132,13 @@ private:
         return reinterpret_cast<const T *>(static_cast<const uint8_t *>(readback_.mapped) + offset);
     }
     void createDescriptors();
-    void createDenoiser();
     std::vector<GpuImage *> images();  // every image, for the initial clear and destroy()
     void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, uint32_t groupsX, uint32_t groupsY, uint32_t mode = 0,
                   uint32_t sampleBase = 0, uint32_t sampleCount = 0, uint32_t light = 0);
 
     VulkanContext *ctx_ = nullptr;
     RendererSettings settings_;
-    DnsrContext denoiser_ = nullptr;
+    Denoiser denoiser_;
     uint32_t frameIndex_ = 0;
     uint32_t referenceCount_ = 0;
     uint32_t tracedBits_ = ~0u;

@@ -39,13 +39,13 @@ cmake -S examples-c/viewer -B "$asan_build" -DCMAKE_BUILD_TYPE=Debug -DDNSR_VIEW
   -DDNSR_LIB="$PWD/target/release/libdnsr.so" >/dev/null
 cmake --build "$asan_build" -j "$(nproc)" >/dev/null
 
-# ---- --help: every option main.cpp parses, every key it handles, every view name ----
+# ---- --help: every option options.cpp parses, every key window.cpp handles, every view name ----
 help=$("$viewer" --help) || fail "--help exited with status $?"
-options=$(grep -o 'a == "-[-a-z]*"' examples-c/viewer/main.cpp | cut -d'"' -f2)
-[[ $(wc -w <<<"$options") -ge 10 ]] || fail "found only $(wc -w <<<"$options") options in main.cpp: update this test"
+options=$(grep -o 'a == "-[-a-z]*"' examples-c/viewer/options.cpp | cut -d'"' -f2)
+[[ $(wc -w <<<"$options") -ge 10 ]] || fail "found only $(wc -w <<<"$options") options in options.cpp: update this test"
 for opt in $options; do grep -qF -- "$opt" <<<"$help" || fail "--help does not list $opt"; done
-keys=$(grep -o 'case GLFW_KEY_[A-Z0-9]*' examples-c/viewer/main.cpp | sed 's/case GLFW_KEY_//')
-[[ $(wc -w <<<"$keys") -ge 12 ]] || fail "found only $(wc -w <<<"$keys") keys in main.cpp: update this test"
+keys=$(grep -o 'case GLFW_KEY_[A-Z0-9]*' examples-c/viewer/window.cpp | sed 's/case GLFW_KEY_//')
+[[ $(wc -w <<<"$keys") -ge 12 ]] || fail "found only $(wc -w <<<"$keys") keys in window.cpp: update this test"
 for key in $keys; do
   word=$key
   [[ $key == ESCAPE ]] && word=Esc
@@ -57,8 +57,8 @@ for view in noisy denoised reference composite tiles classification samples vari
 done
 echo "help: lists $(wc -w <<<"$options") options and $(wc -w <<<"$keys") keys"
 
-# read_png(path): the samples of a PNG as png_write.cpp writes them (8-bit, filter 0, stored deflate), row after
-# row. A module for the checks below (python3 with PYTHONPATH="$tmp").
+# read_png(path): the samples of an 8-bit PNG (gray, RGB or RGBA, not interlaced, any row filters: stb_image_write
+# picks one per row), row after row. A module for the checks below (python3 with PYTHONPATH="$tmp").
 cat > "$tmp/viewer_png.py" <<'PY'
 import struct, zlib
 
@@ -70,15 +70,37 @@ def read_png(path):
         n = struct.unpack(">I", data[pos:pos + 4])[0]
         kind, payload = data[pos + 4:pos + 8], data[pos + 8:pos + 8 + n]
         if kind == b"IHDR":
-            w, h, depth, color = struct.unpack(">IIBB", payload[:10])
+            w, h, depth, color, _, _, interlace = struct.unpack(">IIBBBBB", payload[:13])
+            assert depth == 8 and interlace == 0, "not an 8-bit, non-interlaced PNG"
         elif kind == b"IDAT":
             idat += payload
         pos += 12 + n
-    channels = {0: 1, 2: 3, 6: 4}[color]
+    bpp = {0: 1, 2: 3, 6: 4}[color]
     raw = zlib.decompress(idat)
-    row = w * channels + 1
-    assert len(raw) == row * h, "truncated image data"
-    return b"".join(raw[y * row + 1:(y + 1) * row] for y in range(h))
+    stride = w * bpp
+    assert len(raw) == (stride + 1) * h, "truncated image data"
+    # Undo each row's filter (PNG spec, section 9): 0 none, 1 sub, 2 up, 3 average, 4 Paeth.
+    out, prev = bytearray(), bytearray(stride)
+    for y in range(h):
+        kind, row = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = row[i - bpp] if i >= bpp else 0
+            b, c = prev[i], prev[i - bpp] if i >= bpp else 0
+            if kind == 1:
+                row[i] = (row[i] + a) & 255
+            elif kind == 2:
+                row[i] = (row[i] + b) & 255
+            elif kind == 3:
+                row[i] = (row[i] + (a + b) // 2) & 255
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                row[i] = (row[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+            else:
+                assert kind == 0, f"unknown PNG filter {kind}"
+        out += row
+        prev = row
+    return bytes(out)
 PY
 
 # Prints "min max" of a PNG's samples.
@@ -99,6 +121,8 @@ status=0
 "$viewer" --headless --validate --frames 8 --size 160x96 --out "$out" > "$tmp/headless.log" 2>&1 || status=$?
 (( status == 0 )) || { cat "$tmp/headless.log"; fail "headless run exited with status $status"; }
 for f in noisy denoised reference composite strip tiles; do check_not_blank "$out/$f.png"; done
+# Deflated (stb_image_write), not stored: the 646x96 RGB strip well under its 186 kB of raw samples.
+(( $(stat -c %s "$out/strip.png") < 186048 / 2 )) || fail "strip.png is $(stat -c %s "$out/strip.png") bytes: not compressed"
 [[ -s "$out/report.json" ]] || fail "no report.json"
 quality=$(python3 - "$out/report.json" <<'PY'
 import json, sys

@@ -1,7 +1,7 @@
 // vk_context.cpp: see vk_context.h.
 #include "vk_context.h"
 
-#include <dnsr.h>
+#include "denoiser.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -42,6 +42,8 @@ VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFl
     return VK_FALSE;
 }
 
+}  // namespace
+
 bool hasDeviceExtension(VkPhysicalDevice physicalDevice, const char *name)
 {
     uint32_t count = 0;
@@ -52,8 +54,6 @@ bool hasDeviceExtension(VkPhysicalDevice physicalDevice, const char *name)
         if (std::strcmp(p.extensionName, name) == 0) return true;
     return false;
 }
-
-}  // namespace
 
 void VulkanContext::create(const VulkanContextOptions &options)
 {
@@ -150,30 +150,14 @@ void VulkanContext::pickDevice(const VulkanContextOptions &options)
 }
 
 // Creates the device with every extension dnsr requires, plus VK_KHR_push_descriptor when dnsr can use it and
-// the device has it (dnsr then writes its descriptors into the command buffer instead of its own sets).
+// the device has it (dnsr then writes its descriptors into the command buffer instead of its own sets): see
+// addDenoiserDeviceExtensions in denoiser.cpp.
 // The one core feature it enables is the viewer's own: shaderStorageImageExtendedFormats, for the R16_SFLOAT
 // hit-distance image its shadow pass writes.
 void VulkanContext::createDevice(const VulkanContextOptions &options)
 {
-    DnsrDeviceRequirements req{};
-    req.sType = DNSR_STRUCTURE_TYPE_DEVICE_REQUIREMENTS;
-    if (dnsr_get_device_requirements(&req) != DNSR_SUCCESS)
-        throw VulkanError(std::string("dnsr_get_device_requirements: ") + dnsr_last_error_message());
-    if (apiVersion < req.minApiVersion) throw VulkanError("the device's Vulkan version is too old for dnsr");
-
     std::vector<const char *> extensions = options.deviceExtensions;
-    for (uint32_t i = 0; i < req.requiredExtensionCount; i++) {
-        if (!hasDeviceExtension(physicalDevice, req.ppRequiredExtensionNames[i]))
-            throw VulkanError(std::string("the device lacks ") + req.ppRequiredExtensionNames[i] + ", which dnsr needs");
-        extensions.push_back(req.ppRequiredExtensionNames[i]);
-    }
-    for (uint32_t i = 0; i < req.optionalExtensionCount; i++) {
-        const char *name = req.ppOptionalExtensionNames[i];
-        if (std::strcmp(name, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME) == 0 && hasDeviceExtension(physicalDevice, name)) {
-            extensions.push_back(name);
-            pushDescriptorEnabled = true;
-        }
-    }
+    pushDescriptorEnabled = addDenoiserDeviceExtensions(physicalDevice, apiVersion, extensions);
 
     VkPhysicalDeviceFeatures available{}, enabled{};
     vkGetPhysicalDeviceFeatures(physicalDevice, &available);

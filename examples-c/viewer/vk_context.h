@@ -17,6 +17,8 @@ struct VulkanError : std::runtime_error {
 
 void vkCheck(VkResult result, const char *call);
 
+bool hasDeviceExtension(VkPhysicalDevice physicalDevice, const char *name);
+
 // A zero-initialised Vulkan structure with its sType set (brace-initialising only sType would make -Wextra
 // complain about every other member).
 template <typename T> T vkStruct(VkStructureType type)

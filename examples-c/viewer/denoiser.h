@@ -1,0 +1,80 @@
+// denoiser.h: how to integrate dnsr. Every dnsr_* call of the viewer is in denoiser.cpp, in the order an engine
+// makes them; this is the part to copy. The rest of the viewer only plays the engine around it: it owns the
+// Vulkan device, the G-buffer and the shadow rays, and hands dnsr their images.
+//
+//   1. device creation   addDenoiserDeviceExtensions: the extensions dnsr needs (dnsr_get_device_requirements)
+//   2. once              Denoiser::create: the context (dnsr_context_create) and its settings (a preset)
+//   3. every frame       Denoiser::recordDenoise, after the shadow rays: dnsr_shadows_record, or dnsr_lights_record
+//                        for several lights in one call
+//   4. after the frame   Denoiser::fetchTimings: dnsr's per-pass GPU times (dnsr_context_get_timings)
+//   5. at the end        Denoiser::destroy, once the GPU is idle (dnsr_context_destroy)
+//
+// Another dnsr dispatch of the frame (one recorded before the shadow rays, say) goes next to recordDenoise: it
+// takes the same DenoiserFrame, whose G-buffer and camera every dispatch reads.
+#pragma once
+
+#include <dnsr.h>
+
+#include <vector>
+
+#include "vec_math.h"
+#include "vk_context.h"
+
+// Before vkCreateDevice: appends the device extensions dnsr needs to `extensions` (VulkanError when the device
+// lacks one or is too old), and VK_KHR_push_descriptor when the device has it. Returns whether it added that one:
+// the context is then told (DNSR_FEATURE_PUSH_DESCRIPTOR) and keeps its descriptors in the command buffer.
+bool addDenoiserDeviceExtensions(VkPhysicalDevice physicalDevice, uint32_t apiVersion,
+                                 std::vector<const char *> &extensions);
+
+struct DenoiserSettings {
+    uint32_t width = 0, height = 0;
+    uint32_t lights = 1;  // each light keeps its own history in the one context
+    // DNSR_SHADOW_INPUT_HIT_MASK (one ray per pixel in an 8x4-tile bit mask), _VISIBILITY (several rays per pixel,
+    // their lit fraction) or _CHECKERBOARD (half a ray per pixel in the hit mask).
+    uint32_t shadowInput = DNSR_SHADOW_INPUT_HIT_MASK;
+    // The engine's own G-buffer encoding (linear depth, octahedral normals): dnsr runs its passes compiled against
+    // the engine's callbacks (examples-c/custom_gbuffer) instead of reading the default formats.
+    bool packedGbuffer = false;
+    DnsrPreset preset = DNSR_PRESET_BALANCED;
+};
+
+// What every dnsr dispatch of one frame reads: the G-buffer, the camera and where the frame is in the sequence.
+struct DenoiserFrame {
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    const GpuImage *depth = nullptr, *velocity = nullptr, *normals = nullptr;
+    Mat4 projectionInverse, viewProjectionInverse;
+    Mat4 reprojection;  // current clip -> previous clip (reprojection() in vec_math.h: double precision matters)
+    Vec3 eye;
+    uint32_t frameIndex = 0;
+    uint32_t checkerboardPhase = 0;  // DNSR_SHADOW_INPUT_CHECKERBOARD: the (x + y) % 2 this frame traced
+    bool cameraCut = false;          // the history no longer matches the view: dnsr restarts it
+};
+
+// One light's images: what the shadow pass wrote for it, and where dnsr writes its shadow.
+struct DenoiserLight {
+    const GpuImage *hitMask = nullptr;      // DNSR_SHADOW_INPUT_HIT_MASK and _CHECKERBOARD
+    const GpuImage *visibility = nullptr;   // DNSR_SHADOW_INPUT_VISIBILITY
+    const GpuImage *hitDistance = nullptr;  // penumbra guidance; null: off
+    float lightAngularSize = 0.0f;          // with hitDistance: the light's angular diameter, radians
+    const GpuImage *output = nullptr;
+};
+
+class Denoiser {
+public:
+    // VulkanError with dnsr's own message when it refuses.
+    void create(const VulkanContext &ctx, const DenoiserSettings &settings);
+    void destroy();
+
+    // Records the denoising of `lights` (one per light of the context) into frame.cmd, behind the shadow pass.
+    // debugView: DNSR_DEBUG_VIEW_NONE, or one of dnsr's views of its internal state, written to every output.
+    void recordDenoise(const DenoiserFrame &frame, const std::vector<DenoiserLight> &lights, uint32_t debugView);
+
+    // After the GPU finished a frame: dnsr's per-pass GPU times. False until a frame's timings are available.
+    bool fetchTimings(DnsrPassTimings &timings);
+    uint64_t memoryBytes() const;
+
+private:
+    DnsrShadowsDispatch frameDispatch(const DenoiserFrame &frame) const;
+
+    DnsrContext context_ = nullptr;
+};

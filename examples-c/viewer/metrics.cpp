@@ -1,0 +1,135 @@
+// metrics.cpp: see metrics.h.
+#include "metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+
+namespace {
+
+const char kReferenceMagic[8] = {'d', 'n', 's', 'r', 'r', 'e', 'f', '1'};
+
+}  // namespace
+
+double psnr(double rmse) { return rmse > 0 ? std::min(100.0, -20.0 * std::log10(rmse)) : 100.0; }
+
+uint64_t fnv1a(const void *data, size_t bytes)
+{
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (size_t i = 0; i < bytes; i++) h = (h ^ static_cast<const uint8_t *>(data)[i]) * 0x100000001b3ull;
+    return h;
+}
+
+ShadowImages readShadows(const Renderer &r, uint32_t light, uint32_t w, uint32_t h)
+{
+    ShadowImages s;
+    s.width = w, s.height = h;
+    size_t n = size_t(w) * h;
+    s.noisy.resize(n), s.denoised.resize(n), s.reference.resize(n), s.receiver.resize(n);
+    s.depth.assign(r.readDepth(), r.readDepth() + n);
+    const uint32_t *mask = r.readHitMask(light);
+    auto bit = [](uint32_t x, uint32_t y) { return (y % 4) * 8 + x % 8; };  // in the 8x4 tile's word
+    auto ray = [&](uint32_t x, uint32_t y) {
+        return (mask[(y / 4) * r.tilesX() + x / 8] >> bit(x, y)) & 1u ? 0.0f : 1.0f;
+    };
+    float count = float(std::max(r.referenceCount(), 1u));
+    for (uint32_t y = 0; y < h; y++)
+        for (uint32_t x = 0; x < w; x++) {
+            size_t i = size_t(y) * w + x;
+            // A pixel --checkerboard did not trace gets its traced neighbours' mean, as dnsr reconstructs it (and
+            // composite.comp's noisy view): the noisy error is that of what dnsr starts from.
+            if ((r.tracedBits() >> bit(x, y)) & 1u) {
+                s.noisy[i] = ray(x, y);
+            } else {
+                float sum = 0, traced = 0;
+                if (x > 0) sum += ray(x - 1, y), traced++;
+                if (x + 1 < w) sum += ray(x + 1, y), traced++;
+                if (y > 0) sum += ray(x, y - 1), traced++;
+                if (y + 1 < h) sum += ray(x, y + 1), traced++;
+                s.noisy[i] = sum / traced;  // at least 2: the image is at least 8x8
+            }
+            s.denoised[i] = std::clamp(r.readDenoised(light)[i], 0.0f, 1.0f);
+            s.reference[i] = r.readReferenceSum(light)[i] / count;
+            s.receiver[i] = r.readDepth()[i] < 1.0f;
+        }
+    s.hitMaskHash = fnv1a(mask, size_t(r.tilesX()) * r.tilesY() * 4);
+    s.denoisedHash = fnv1a(r.readDenoised(light), n * 4);
+    return s;
+}
+
+ErrorStats measure(const ShadowImages &s)
+{
+    ErrorStats e;
+    double noisy = 0, denoised = 0;
+    for (size_t i = 0; i < s.receiver.size(); i++) {
+        if (!s.receiver[i]) continue;
+        noisy += double(s.noisy[i] - s.reference[i]) * (s.noisy[i] - s.reference[i]);
+        denoised += double(s.denoised[i] - s.reference[i]) * (s.denoised[i] - s.reference[i]);
+        e.pixels++;
+    }
+    if (e.pixels) {
+        e.rmseNoisy = std::sqrt(noisy / e.pixels);
+        e.rmseDenoised = std::sqrt(denoised / e.pixels);
+    }
+
+    const int w = int(s.width), h = int(s.height);
+    auto shadowed = [&](int x, int y) {
+        size_t i = size_t(y) * w + x;
+        return s.receiver[i] && s.reference[i] < 0.5f;
+    };
+    double sum = 0, worst = -1e30;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            size_t i = size_t(y) * w + x;
+            if (!s.receiver[i] || !(s.reference[i] >= 254.5f / 255.0f)) continue;
+            bool nearShadow = false;
+            for (int dy = -kCreaseRadius; dy <= kCreaseRadius && !nearShadow; dy++)
+                for (int dx = -kCreaseRadius; dx <= kCreaseRadius && !nearShadow; dx++) {
+                    int nx = x + dx, ny = y + dy;
+                    nearShadow = nx >= 0 && ny >= 0 && nx < w && ny < h && shadowed(nx, ny);
+                }
+            if (!nearShadow) continue;
+            double darkening = (double(s.reference[i]) - s.denoised[i]) * 255.0;
+            sum += darkening;
+            worst = std::max(worst, darkening);
+            e.creasePixels++;
+        }
+    if (e.creasePixels) {
+        e.creaseMax = worst;
+        e.creaseMean = sum / double(e.creasePixels);
+    }
+    return e;
+}
+
+void saveReference(const std::string &path, const ShadowImages &s, uint32_t samples)
+{
+    FILE *f = std::fopen(path.c_str(), "wb");
+    uint32_t header[3] = {s.width, s.height, samples};
+    size_t n = s.depth.size();
+    bool ok = f && std::fwrite(kReferenceMagic, 8, 1, f) == 1 && std::fwrite(header, sizeof header, 1, f) == 1 &&
+              std::fwrite(s.depth.data(), 4, n, f) == n && std::fwrite(s.reference.data(), 4, n, f) == n;
+    if (f && std::fclose(f) != 0) ok = false;
+    if (!ok) throw VulkanError("cannot write " + path);
+}
+
+ReferenceFile loadReference(const std::string &path)
+{
+    std::unique_ptr<FILE, int (*)(FILE *)> f(std::fopen(path.c_str(), "rb"), std::fclose);
+    if (!f) throw std::runtime_error(path + ": cannot open the reference file");
+    char magic[8];
+    uint32_t header[3];
+    if (std::fread(magic, 8, 1, f.get()) != 1 || std::memcmp(magic, kReferenceMagic, 8) != 0 ||
+        std::fread(header, sizeof header, 1, f.get()) != 1 || header[0] < 1 || header[1] < 1 || header[0] > 8192 ||
+        header[1] > 8192 || header[2] < 1)
+        throw std::runtime_error(path + ": not a reference file written by --save-reference");
+    ReferenceFile r{header[0], header[1], header[2], {}, {}};
+    size_t n = size_t(r.width) * r.height;
+    r.depth.resize(n), r.visibility.resize(n);
+    if (std::fread(r.depth.data(), 4, n, f.get()) != n || std::fread(r.visibility.data(), 4, n, f.get()) != n ||
+        std::fgetc(f.get()) != EOF)
+        throw std::runtime_error(path + ": truncated or oversized reference file");
+    return r;
+}

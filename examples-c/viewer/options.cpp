@@ -1,0 +1,184 @@
+// options.cpp: see options.h.
+#include "options.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+namespace {
+
+const char *kUsage =
+    "usage: dnsr_viewer [SCENE.gltf|SCENE.glb] [options]\n"
+    "  SCENE                   a glTF 2.0 file (default " VIEWER_DEFAULT_SCENE ")\n"
+    "  --headless              render without a window; writes PNGs and report.json to --out\n"
+    "  --frames N              frames to render, 1..1000000 (headless default 16; window: until closed)\n"
+    "  --size WxH              render size, 8x8..8192x8192 (default 960x540 windowed, 320x192 headless)\n"
+    "  --out DIR               headless output directory (default out/viewer)\n"
+    "  --screenshot FILE       window mode: save the displayed image (PNG) after --frames N frames and exit\n"
+    "  --point-light           a spherical point light instead of the directional light\n"
+    "  --light-angle DEG       angular radius of the light, 0..30 (default 3; sets the penumbra width)\n"
+    "  --light-motion          start with the light moving (key L toggles it)\n"
+    "  --lights N              1 or 2 lights (default 1). The second (light 1) is the first (light 0) turned 100\n"
+    "                          degrees about the up axis: same elevation, size and kind (a point light the same\n"
+    "                          distance from the scene's centre). Each has its own shadow rays, dnsr history and\n"
+    "                          output; both are denoised in one dnsr_lights_record call and light the composite.\n"
+    "                          Headless: also {noisy,denoised,reference}_light1.png and report.json's per_light\n"
+    "  --gbuffer default|packed  packed: keep linear depth and octahedral RG16 normals, and run dnsr's passes\n"
+    "                          compiled against examples-c/custom_gbuffer's callbacks (default: default)\n"
+    "  --rays N                shadow rays per pixel, 1..64 (default 1: the hit mask; more: their lit fraction as\n"
+    "                          per-pixel visibility, DNSR_SHADOW_INPUT_VISIBILITY)\n"
+    "  --checkerboard          half a ray per pixel: each frame traces only the pixels with (x + y) % 2 == frame % 2\n"
+    "                          (DNSR_SHADOW_INPUT_CHECKERBOARD); dnsr gives the others their traced neighbours' mean,\n"
+    "                          and so does the noisy view. Takes --rays 1 and --gbuffer default\n"
+    "  --hit-distance on|off   penumbra guidance: give dnsr each shadow ray's distance to its nearest occluder and\n"
+    "                          the light's angular diameter (DNSR_DISPATCH_USE_HIT_DISTANCE; default on; key H)\n"
+    "  --reference-samples N   shadow rays per pixel of the reference, 1..65536 (default 256)\n"
+    "  --save-reference FILE   headless: also write the last frame's reference (and depth) to FILE (--lights 1)\n"
+    "  --load-reference FILE   headless: measure against FILE's reference instead of rendering one (same scene,\n"
+    "                          size, frames, light and camera: the run fails if the last frame's depth differs;\n"
+    "                          --lights 1)\n"
+    "  --view NAME             window mode: first view (noisy, denoised, reference, composite, tiles, or dnsr's\n"
+    "                          debug views classification, samples, variance, disocclusion; keys 1-9)\n"
+    "  --orbit-speed DEG       headless: camera orbit per frame in degrees, -45..45 (default 0.25; 0 = static)\n"
+    "  --preset NAME           dnsr's settings: fast, balanced (the FidelityFX defaults; default) or quality\n"
+    "  --validate              enable VK_LAYER_KHRONOS_validation; any validation message makes the exit status 1\n"
+    "                          (the Vulkan loader's own notices are shown but not counted)\n"
+    "  -h, --help              print this and exit\n"
+    "environment: VIEWER_DEVICE=<substring of the device name> picks a Vulkan device (default: the first)\n"
+    "window keys: left-drag orbit, scroll zoom, R reset view (a camera cut: dnsr's history restarts),\n"
+    "             1 noisy, 2 denoised, 3 reference (accumulates while nothing moves), 4 composite,\n"
+    "             5 hit-mask density per tile, 6 dnsr tile classification, 7 dnsr sample count,\n"
+    "             8 dnsr variance, 9 dnsr disocclusion, L toggle light motion, H toggle penumbra guidance\n"
+    "             (hit distances), N the other light in views 1-3, 5-9 (--lights 2), Esc/Q quit\n"
+    "exit status: 0 success, 1 a Vulkan/dnsr failure or (with --validate) a validation message,\n"
+    "             2 a bad command line, or a scene or reference file the viewer cannot load\n";
+
+uint32_t parseCount(const char *flag, const char *value, uint32_t min, uint32_t max)
+{
+    char *end = nullptr;
+    long v = std::strtol(value, &end, 10);
+    if (!*value || *end || v < long(min) || v > long(max))
+        throw UsageError(std::string(flag) + " wants a number in " + std::to_string(min) + ".." + std::to_string(max) +
+                         ", got '" + value + "'");
+    return static_cast<uint32_t>(v);
+}
+
+}  // namespace
+
+Options parseOptions(int argc, char **argv)
+{
+    Options o;
+    bool haveScene = false;
+    for (int i = 1; i < argc; i++) {
+        std::string a = argv[i];
+        auto value = [&]() -> const char * {
+            if (i + 1 >= argc) throw UsageError(a + " needs a value");
+            return argv[++i];
+        };
+        if (a == "--help" || a == "-h") {
+            std::fputs(kUsage, stdout);
+            std::exit(0);
+        } else if (a == "--headless") {
+            o.headless = true;
+        } else if (a == "--validate") {
+            o.validate = true;
+        } else if (a == "--frames") {
+            o.frames = parseCount("--frames", value(), 1, 1000000);
+        } else if (a == "--size") {
+            const char *v = value();
+            unsigned w = 0, h = 0;
+            char tail = 0;
+            if (std::sscanf(v, "%ux%u%c", &w, &h, &tail) != 2 || w < 8 || h < 8 || w > 8192 || h > 8192)
+                throw UsageError(std::string("--size wants WxH between 8x8 and 8192x8192, got '") + v + "'");
+            o.width = w, o.height = h;
+        } else if (a == "--out") {
+            o.outDir = value();
+        } else if (a == "--screenshot") {
+            o.screenshot = value();
+        } else if (a == "--point-light") {
+            o.pointLight = true;
+        } else if (a == "--light-angle") {
+            const char *v = value();
+            char *end = nullptr;
+            o.lightAngleDeg = std::strtof(v, &end);
+            if (!*v || *end || !(o.lightAngleDeg >= 0.0f && o.lightAngleDeg <= 30.0f))
+                throw UsageError(std::string("--light-angle wants degrees in 0..30, got '") + v + "'");
+        } else if (a == "--orbit-speed") {
+            const char *v = value();
+            char *end = nullptr;
+            o.orbitDegPerFrame = std::strtof(v, &end);
+            if (!*v || *end || !(std::fabs(o.orbitDegPerFrame) <= 45.0f))
+                throw UsageError(std::string("--orbit-speed wants degrees in -45..45, got '") + v + "'");
+        } else if (a == "--view") {
+            std::string v = value();
+            const char *names[] = {"noisy",          "denoised", "reference", "composite",   "tiles",
+                                   "classification", "samples",  "variance",  "disocclusion"};
+            auto it = std::find(std::begin(names), std::end(names), v);
+            if (it == std::end(names))
+                throw UsageError("--view wants noisy, denoised, reference, composite, tiles, classification, samples, "
+                                 "variance or disocclusion, got '" + v + "'");
+            o.view = static_cast<View>(it - std::begin(names));
+        } else if (a == "--preset") {
+            std::string v = value();
+            const char *names[] = {"fast", "balanced", "quality"};  // DNSR_PRESET_FAST, _BALANCED, _QUALITY
+            auto it = std::find(std::begin(names), std::end(names), v);
+            if (it == std::end(names)) throw UsageError("--preset wants fast, balanced or quality, got '" + v + "'");
+            o.preset = static_cast<DnsrPreset>(it - std::begin(names));
+        } else if (a == "--gbuffer") {
+            std::string v = value();
+            if (v != "default" && v != "packed") throw UsageError("--gbuffer wants default or packed, got '" + v + "'");
+            o.packedGbuffer = v == "packed";
+        } else if (a == "--rays") {
+            o.rays = parseCount("--rays", value(), 1, 64);
+        } else if (a == "--checkerboard") {
+            o.checkerboard = true;
+        } else if (a == "--lights") {
+            o.lights = parseCount("--lights", value(), 1, kMaxLights);
+        } else if (a == "--hit-distance") {
+            std::string v = value();
+            if (v != "on" && v != "off") throw UsageError("--hit-distance wants on or off, got '" + v + "'");
+            o.hitDistance = v == "on";
+        } else if (a == "--light-motion") {
+            o.lightMotion = true;
+        } else if (a == "--reference-samples") {
+            o.referenceSamples = parseCount("--reference-samples", value(), 1, 65536);
+        } else if (a == "--save-reference") {
+            o.saveReference = value();
+        } else if (a == "--load-reference") {
+            o.loadReference = value();
+        } else if (!a.empty() && a[0] == '-') {
+            throw UsageError("unknown option " + a);
+        } else if (haveScene) {
+            throw UsageError("more than one scene file given");
+        } else {
+            o.scene = a;
+            haveScene = true;
+        }
+    }
+    if (!o.width) {
+        o.width = o.headless ? 320 : 960;
+        o.height = o.headless ? 192 : 540;
+    }
+    if (o.headless && !o.frames) o.frames = 16;
+    // The packed build's classification variants read the hit mask (examples-c/custom_gbuffer overrides those only).
+    if (o.packedGbuffer && o.rays > 1) throw UsageError("--gbuffer packed takes one ray per pixel (--rays 1)");
+    if (o.checkerboard && o.rays > 1)
+        throw UsageError("--checkerboard takes --rays 1 (it traces half a ray per pixel into the hit mask; several "
+                         "rays per pixel go to dnsr as visibility, another input)");
+    // A checkerboard input is classified by the visibility variants too: dnsr takes the combination, but runs its
+    // own variant on the packed depth and normals (every pixel came out lit).
+    if (o.checkerboard && o.packedGbuffer)
+        throw UsageError("--checkerboard takes --gbuffer default (dnsr then classifies tiles with its visibility "
+                         "variants, which examples-c/custom_gbuffer does not compile against the packed G-buffer)");
+    if (o.headless && !o.screenshot.empty()) throw UsageError("--screenshot is for window mode (headless writes PNGs)");
+    if (!o.screenshot.empty() && !o.frames) throw UsageError("--screenshot needs --frames N");
+    if (!o.headless && !(o.saveReference.empty() && o.loadReference.empty()))
+        throw UsageError("--save-reference and --load-reference are for --headless");
+    if (!o.saveReference.empty() && !o.loadReference.empty())
+        throw UsageError("--save-reference and --load-reference exclude each other");
+    // A reference file holds one light's reference (its format predates --lights).
+    if (o.lights > 1 && !(o.saveReference.empty() && o.loadReference.empty()))
+        throw UsageError("--save-reference and --load-reference take one light (--lights 1)");
+    return o;
+}

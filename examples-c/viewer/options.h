@@ -1,0 +1,42 @@
+// options.h: the viewer's command line (--help prints every option and key).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include "renderer.h"
+
+#ifndef VIEWER_DEFAULT_SCENE
+#define VIEWER_DEFAULT_SCENE "scenes/default.gltf"
+#endif
+
+struct Options {
+    std::string scene = VIEWER_DEFAULT_SCENE;
+    bool headless = false;
+    bool validate = false;
+    uint32_t frames = 0;  // 0: headless default 16, window: run until closed
+    uint32_t width = 0, height = 0;
+    std::string outDir = "out/viewer";
+    std::string screenshot;
+    bool pointLight = false;
+    bool packedGbuffer = false;
+    uint32_t rays = 1;  // shadow rays per pixel (more than 1: DNSR_SHADOW_INPUT_VISIBILITY)
+    bool checkerboard = false;  // half a ray per pixel (DNSR_SHADOW_INPUT_CHECKERBOARD)
+    uint32_t lights = 1;  // more than 1: the others derived from the first, all denoised by one dnsr_lights_record
+    float lightAngleDeg = 3.0f;
+    bool hitDistance = true;  // penumbra guidance (DNSR_DISPATCH_USE_HIT_DISTANCE)
+    bool lightMotion = false;
+    uint32_t referenceSamples = 256;
+    std::string saveReference, loadReference;  // headless: the reference, written to / read from a file
+    float orbitDegPerFrame = 0.25f;
+    DnsrPreset preset = DNSR_PRESET_BALANCED;
+    View view = View::Composite;  // window mode: the view shown first
+};
+
+// A bad command line: main prints the message and exits with status 2.
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Throws UsageError; prints the usage and exits 0 for --help.
+Options parseOptions(int argc, char **argv);

@@ -1,0 +1,19 @@
+// report.h: report.json, what a headless run measured (test.sh and accuracy.py read it; README.md lists its fields).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "metrics.h"
+#include "session.h"
+
+// What the headless run measured on its last frame, light by light (light 0 first).
+struct Measurements {
+    std::vector<ShadowImages> shadows;
+    std::vector<ErrorStats> errors;
+    uint32_t referenceSamples = 0;  // rays per pixel of the reference measured against
+    bool referenceLoaded = false;   // from --load-reference
+};
+
+// Throws VulkanError when the file cannot be written.
+void writeReport(const std::string &path, const Session &session, const Measurements &m);

@@ -1,0 +1,42 @@
+// session.cpp: see session.h.
+#include "session.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+VulkanContextOptions contextOptions(const Options &options)
+{
+    VulkanContextOptions vo;
+    vo.validate = options.validate;
+    if (const char *d = std::getenv("VIEWER_DEVICE")) vo.deviceSubstring = d;
+    return vo;
+}
+
+Session::Session(const Options &options, const Scene &s, VulkanContext &context)
+    : opt(options), ctx(context), scene(frameScene(s))
+{
+    orbit0 = orbit = initialOrbit(s);
+    light.point = opt.pointLight;
+    light.angle = radians(opt.lightAngleDeg);
+    light.moving = opt.lightMotion;
+    light.hitDistance = opt.hitDistance;
+    // Light from the side of the starting view (100 degrees around from the camera), so that the shadows fall where
+    // the camera sees them whatever the scene.
+    light.azimuth = orbit.yaw + radians(100.0f);
+}
+
+void Session::createRenderer()
+{
+    RendererSettings rs;
+    rs.width = opt.width, rs.height = opt.height;
+    rs.sceneRadius = scene.radius;
+    rs.preset = opt.preset;
+    rs.packedGbuffer = opt.packedGbuffer;
+    rs.rays = opt.rays;
+    rs.checkerboard = opt.checkerboard;
+    rs.lights = opt.lights;
+    renderer.create(ctx, *scene.scene, rs);
+    std::printf("viewer: %s on %s, %ux%u, %u triangles, BVH %u nodes (depth %u), push descriptors %s\n",
+                opt.scene.c_str(), ctx.properties.deviceName, opt.width, opt.height, renderer.triangles,
+                renderer.bvhNodes, renderer.bvhDepth, ctx.pushDescriptorEnabled ? "on" : "off");
+}

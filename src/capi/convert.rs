@@ -104,7 +104,7 @@ pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo, sink: &mut Option<Lo
         let unknown = c.enabled_features & !known_features;
         return Err(CallError::InvalidArgument(format!("pCreateInfo->enabledFeatures has unknown bits {unknown:#x}")));
     }
-    let known_flags = DNSR_CONTEXT_CREATE_DEPTH_INVERTED | DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS;
+    let known_flags = DNSR_CONTEXT_CREATE_DEPTH_INVERTED | DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS | DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER;
     if c.flags & !known_flags != 0 {
         let unknown = c.flags & !known_flags;
         return Err(CallError::InvalidArgument(format!("pCreateInfo->flags has unknown bits {unknown:#x}")));

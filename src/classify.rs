@@ -317,11 +317,8 @@ impl Classifier {
 
     fn create(&mut self, vk: &Vk, size: [u32; 2], push: bool, slots: u32) -> Result<()> {
         for name in PIPELINE_NAMES {
-            let p = Pipeline::new(vk, name, variant(name).spirv, push)?;
-            if p.interface.uniform_bytes.is_some_and(|b| b != std::mem::size_of::<FrameConstants>() as u32) {
-                return Err(Error::ShaderInterface(format!("{name}: frame constants block of {:?} bytes", p.interface.uniform_bytes)));
-            }
-            self.pipelines.push(p);
+            // Pipeline::new checks both constants blocks' sizes against the host's.
+            self.pipelines.push(Pipeline::new(vk, name, variant(name).spirv, push)?);
         }
         self.allocate(vk, size)?;
         let uniform = vk::BufferUsageFlags::UNIFORM_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
@@ -388,7 +385,8 @@ impl Classifier {
         self.tiles.buffer != vk::Buffer::null()
     }
 
-    /// Records a validated dispatch: the counters' reset and the constants, the pass, and the barriers around.
+    /// Records a validated dispatch (its constants from `constants`): the counters' reset and the constants, the
+    /// pass, and the barriers around. Infallible: everything that can fail was checked before.
     pub(crate) fn record(
         &mut self,
         vk: &Vk,
@@ -396,13 +394,12 @@ impl Classifier {
         cmd: vk::CommandBuffer,
         d: &ClassifyDispatch,
         frame: &FrameConstants,
+        classify: &ClassifyConstants,
         rect: Rect,
-    ) -> Result<()> {
-        let classify = constants(d)?;
+    ) {
         let array = d.cascade_array.is_some();
         let pipeline = &self.pipelines[array as usize];
         let table = self.bindings(d);
-        // Nothing below fails.
         let set = match self.sets.get(self.next_set) {
             Some(sets) => sets[array as usize],
             None => vk::DescriptorSet::null(),
@@ -427,21 +424,13 @@ impl Classifier {
         );
         let mut uniforms = [0u8; UNIFORM_BYTES as usize];
         uniforms[..std::mem::size_of::<FrameConstants>()].copy_from_slice(bytemuck::bytes_of(frame));
-        uniforms[CLASSIFY_CONSTANTS_OFFSET as usize..].copy_from_slice(bytemuck::bytes_of(&classify));
+        uniforms[CLASSIFY_CONSTANTS_OFFSET as usize..].copy_from_slice(bytemuck::bytes_of(classify));
         let counts: [u32; 8] = [0, 1, 1, 0, 0, 1, 1, 0];
         unsafe {
             dev.cmd_update_buffer(cmd, self.uniforms.buffer, 0, &uniforms);
             dev.cmd_update_buffer(cmd, self.counts.buffer, 0, bytemuck::bytes_of(&counts));
         }
-        barrier::memory(
-            dev,
-            cmd,
-            vk::PipelineStageFlags::TRANSFER,
-            vk::AccessFlags::TRANSFER_WRITE,
-            vk::PipelineStageFlags::COMPUTE_SHADER,
-            vk::AccessFlags::UNIFORM_READ | vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE,
-            &[],
-        );
+        barrier::transfer_to_compute(dev, cmd);
         let groups = crate::passes::classify::group_count([rect.width, rect.height]);
         unsafe { dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.for_frame(0)) };
         binder.bind(dev, cmd, pipeline, &table, vk::Sampler::null(), set);
@@ -460,7 +449,6 @@ impl Classifier {
                 | d.sync.output_dst_access,
             &[],
         );
-        Ok(())
     }
 
     fn bindings(&self, d: &ClassifyDispatch) -> BindingTable {

@@ -447,7 +447,7 @@ impl Context {
             return Err(Error::NotResized);
         }
         let rect = validate::classify(&self.vk, d, self.size, self.supported_stages)?;
-        crate::classify::constants(d)?;
+        let classify = crate::classify::constants(d)?;
         let shadows = ShadowsDispatch {
             depth: d.depth,
             normals: d.normals,
@@ -460,7 +460,8 @@ impl Context {
         let frame = self.frame_constants(&shadows, rect, false);
         let binder = binder_ref(&self.binder);
         let classifier = self.classifier.as_mut().expect("checked above");
-        classifier.record(&self.vk, binder, cmd, d, &frame, rect)
+        classifier.record(&self.vk, binder, cmd, d, &frame, &classify, rect);
+        Ok(())
     }
 
     /// Features the context was created with.
@@ -683,15 +684,7 @@ impl Context {
         }
         let written = ds.len() * CONSTANTS_STRIDE as usize;
         unsafe { dev.cmd_update_buffer(cmd, self.constants_buffer, 0, &constants[..written]) };
-        barrier::memory(
-            dev,
-            cmd,
-            vk::PipelineStageFlags::TRANSFER,
-            vk::AccessFlags::TRANSFER_WRITE,
-            vk::PipelineStageFlags::COMPUTE_SHADER,
-            vk::AccessFlags::UNIFORM_READ | vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE,
-            &[],
-        );
+        barrier::transfer_to_compute(dev, cmd);
 
         // The frame's passes in order, each for every light; a barrier wherever a dispatch touches what an earlier
         // one wrote, or writes what an earlier one read, since the last barrier. The lights' dispatches of one pass

@@ -298,7 +298,7 @@ pub(crate) fn classify(vk: &Vk, d: &crate::ClassifyDispatch, size: [u32; 2], sup
     if !d.light_direction.is_finite() {
         return Err(Error::NonFinite("light_direction"));
     }
-    if d.light_direction.length_squared() == 0.0 || !d.light_direction.length_squared().is_normal() {
+    if !d.light_direction.length_squared().is_normal() {
         return invalid("light_direction", format!("{:?}", d.light_direction.to_array()), "a direction toward the light of non-zero length");
     }
     light_angular_size(d.light_angular_size)?;

@@ -26,6 +26,20 @@ pub(crate) fn memory(
     };
 }
 
+/// After a `vkCmdUpdateBuffer` of constants or counters: the transfer's writes before the compute passes that read
+/// them (uniform or storage) or write them.
+pub(crate) fn transfer_to_compute(device: &ash::Device, cmd: vk::CommandBuffer) {
+    memory(
+        device,
+        cmd,
+        vk::PipelineStageFlags::TRANSFER,
+        vk::AccessFlags::TRANSFER_WRITE,
+        vk::PipelineStageFlags::COMPUTE_SHADER,
+        vk::AccessFlags::UNIFORM_READ | vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE,
+        &[],
+    );
+}
+
 /// Between two of dnsr's compute passes: earlier writes become visible to later reads, and later writes wait
 /// for earlier reads.
 pub(crate) fn compute_to_compute(device: &ash::Device, cmd: vk::CommandBuffer) {

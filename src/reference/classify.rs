@@ -7,6 +7,7 @@
 //! without a fragile pixel exactly.
 
 use crate::classify::{blocker_disc, constants, ClassifyDispatch, PUSH_OFF};
+use crate::constants::ClassifyConstants;
 use crate::dispatch::HitMaskConvention;
 use crate::error::Result;
 use glam::{DMat4, DVec2, DVec3, DVec4};
@@ -73,13 +74,12 @@ const EPS: f64 = 1e-5;
 const EPS_TEXEL: f64 = 1e-4;
 
 /// The verdict of pixel (x, y) and whether it is fragile.
-fn classify_pixel(inp: &ClassifyInputs, x: u32, y: u32) -> Result<(Verdict, bool)> {
+fn classify_pixel(inp: &ClassifyInputs, c: &ClassifyConstants, x: u32, y: u32) -> (Verdict, bool) {
     let d = inp.dispatch;
-    let c = constants(d)?;
     let i = (y * inp.width + x) as usize;
     let depth = inp.depth[i] as f64;
     if !(depth > 0.0 && depth < 1.0) {
-        return Ok((Verdict::Lit, false));
+        return (Verdict::Lit, false);
     }
     let to_light = DVec3::new(c.light[0] as f64, c.light[1] as f64, c.light[2] as f64);
     let stored = inp.normals[i];
@@ -91,7 +91,7 @@ fn classify_pixel(inp: &ClassifyInputs, x: u32, y: u32) -> Result<(Verdict, bool
         let facing = n.dot(to_light);
         fragile |= facing.abs() < EPS;
         if facing <= 0.0 {
-            return Ok((Verdict::Shadowed, fragile));
+            return (Verdict::Shadowed, fragile);
         }
     }
     let unbounded = Verdict::Trace { guess_lit: true, min_t: PUSH_OFF as f64, max_t: f64::INFINITY };
@@ -107,7 +107,7 @@ fn classify_pixel(inp: &ClassifyInputs, x: u32, y: u32) -> Result<(Verdict, bool
             break;
         }
     }
-    let Some((k, s)) = chosen else { return Ok((unbounded, fragile)) };
+    let Some((k, s)) = chosen else { return (unbounded, fragile) };
     let units = c.cascade_units[k].map(|u| u as f64);
     let inverted = d.cascades_depth_inverted;
     let z = if inverted { 1.0 - s.z } else { s.z };
@@ -137,24 +137,25 @@ fn classify_pixel(inp: &ClassifyInputs, x: u32, y: u32) -> Result<(Verdict, bool
         }
     }
     if valid > 0 && blocking == valid {
-        return Ok((Verdict::Shadowed, fragile));
+        return (Verdict::Shadowed, fragile);
     }
     if valid > 0 && blocking == 0 && d.reject_lit_pixels {
-        return Ok((Verdict::Lit, fragile));
+        return (Verdict::Lit, fragile);
     }
     let guess_lit = 2 * blocking < valid;
     if blocking > 0 && d.cascades_bound_ray_interval {
         let min_t = ((z - nearest_receiver - units[3]) / units[0]).max(PUSH_OFF as f64);
         let along = (z - nearest_light + units[3]) / units[0];
         let max_t = (along * along + radius * radius).sqrt().max(min_t);
-        return Ok((Verdict::Trace { guess_lit, min_t, max_t }, fragile));
+        return (Verdict::Trace { guess_lit, min_t, max_t }, fragile);
     }
-    Ok((Verdict::Trace { guess_lit, min_t: PUSH_OFF as f64, max_t: f64::INFINITY }, fragile))
+    (Verdict::Trace { guess_lit, min_t: PUSH_OFF as f64, max_t: f64::INFINITY }, fragile)
 }
 
 /// Runs the classifier over every tile.
 pub fn classify(inp: &ClassifyInputs) -> Result<ClassifyOutput> {
     let d = inp.dispatch;
+    let c = constants(d)?;
     let (tw, th) = (inp.width.div_ceil(8), inp.height.div_ceil(4));
     let mut out = ClassifyOutput {
         hit_mask: vec![0; (tw * th) as usize],
@@ -169,7 +170,7 @@ pub fn classify(inp: &ClassifyInputs) -> Result<ClassifyOutput> {
             for y in ty * 4..(ty * 4 + 4).min(inp.height) {
                 for x in tx * 8..(tx * 8 + 8).min(inp.width) {
                     let bit = 1u32 << ((y % 4) * 8 + x % 8);
-                    let (v, fragile) = classify_pixel(inp, x, y)?;
+                    let (v, fragile) = classify_pixel(inp, &c, x, y);
                     let i = (y * inp.width + x) as usize;
                     out.fragile[i] = fragile;
                     out.verdicts[i] = v;

@@ -1017,7 +1017,9 @@ typedef struct DnsrClassifyDispatch {
   uint32_t cascadeArrayLayers;
   /**
    * World distance along the light direction a shadow-map depth must be in front of the receiver to count as
-   * a blocker (the shadow maps' bias), >= 0.
+   * a blocker (the shadow maps' bias), >= 0. Each tap is compared with the receiver's tangent plane (from its
+   * normal) under it, so a sloping receiver needs no larger offset than a flat one: texel size and depth
+   * precision set it.
    */
   float blockerOffset;
   /**
@@ -1659,7 +1661,7 @@ typedef struct DnsrDiagnosis {
 
 /**
  * A listed tile's ray interval is bounded by the blockers its pixels' taps found (recommended); without it,
- * from the push-off (0.04 world units) to infinity.
+ * from 0 (the receiver: the engine's own ray offset keeps its rays off their surface) to infinity.
  */
 #define DNSR_CLASSIFY_BOUND_RAY_INTERVAL (1 << 1)
 

@@ -33,7 +33,7 @@ struct DnsrVerdict {
 
 DnsrVerdict dnsr_classify_pixel(ivec2 p) {
     const float infinity = uintBitsToFloat(0x7f800000u);
-    DnsrVerdict v = DnsrVerdict(DNSR_VERDICT_LIT, true, DNSR_CLASSIFY_PUSH_OFF, infinity);
+    DnsrVerdict v = DnsrVerdict(DNSR_VERDICT_LIT, true, 0.0, infinity);
     float depth = dnsr_read_depth(p);
     if (!dnsr_is_receiver(depth)) {
         return v;
@@ -70,7 +70,13 @@ DnsrVerdict dnsr_classify_pixel(ivec2 p) {
     // One texel more than the penumbra, so that a blocker at its edge is not missed between taps.
     vec2 reach = radius * units.yz * vec2(size) + 1.0;
     vec2 centre = s.xy * vec2(size);
-    float limit = z - units.w;
+    // The receiver's tangent plane: a tap is compared with the plane's depth under it, not the receiver's, so that
+    // a surface sloping away from the light is not its own blocker across the search disc (a slope-scaled bias).
+    // Steeper than DNSR_CLASSIFY_MAX_SLOPE, the plane is clamped: the uphill side then counts as a blocker and the
+    // pixel is traced rather than guessed.
+    vec3 axis_u = dnsr_get_cascade_axis_u(cascade);
+    vec3 axis_v = dnsr_get_cascade_axis_v(cascade);
+    float facing = n == vec3(0.0) ? 0.0 : dot(n, to_light);
     float nearest_light = infinity;
     float nearest_receiver = -infinity;
     int valid = 0;
@@ -83,6 +89,11 @@ DnsrVerdict dnsr_classify_pixel(ivec2 p) {
         float d = dnsr_read_cascade_depth(cascade, texel);
         d = inverted ? 1.0 - d : d;
         valid += 1;
+        vec2 offset = (vec2(texel) + 0.5 - centre) / vec2(size);
+        vec3 across = axis_u * offset.x + axis_v * offset.y;
+        float bound = DNSR_CLASSIFY_MAX_SLOPE * length(across);
+        float rise = facing > 0.0 ? clamp(dot(n, across) / facing, -bound, bound) : 0.0;
+        float limit = z + rise * units.x - units.w;
         if (d < limit) {
             blocking += 1;
             nearest_light = min(nearest_light, d);
@@ -101,7 +112,7 @@ DnsrVerdict dnsr_classify_pixel(ivec2 p) {
     if (blocking > 0 && dnsr_get_classify_flag(DNSR_CLASSIFY_BOUND_INTERVAL)) {
         // From just before the blocker nearest the receiver to just past the one nearest the light, widened by the
         // penumbra radius (the engine's jittered rays lean by up to that much).
-        v.min_t = max((z - nearest_receiver - units.w) / units.x, DNSR_CLASSIFY_PUSH_OFF);
+        v.min_t = max((z - nearest_receiver - units.w) / units.x, 0.0);
         float along = (z - nearest_light + units.w) / units.x;
         v.max_t = max(sqrt(along * along + radius * radius), v.min_t);
     }

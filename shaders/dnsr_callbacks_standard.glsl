@@ -287,6 +287,8 @@ mat4 dnsr_get_cascade_matrix(int c) {
     return c == 0 ? dnsr_classify_constants.cascade0 : c == 1 ? dnsr_classify_constants.cascade1 : c == 2 ? dnsr_classify_constants.cascade2 : dnsr_classify_constants.cascade3;
 }
 vec4 dnsr_get_cascade_units(int c) { return dnsr_classify_constants.cascade_units[c]; }
+vec3 dnsr_get_cascade_axis_u(int c) { return dnsr_classify_constants.cascade_axes_u[c].xyz; }
+vec3 dnsr_get_cascade_axis_v(int c) { return dnsr_classify_constants.cascade_axes_v[c].xyz; }
 int dnsr_get_cascade_count() { return int(dnsr_classify_constants.settings.x); }
 int dnsr_get_classify_taps() { return int(dnsr_classify_constants.settings.y); }
 uint dnsr_get_tile_cutoff() { return dnsr_classify_constants.settings.z; }

@@ -17,7 +17,7 @@ use crate::gpu::shader::{variant, Pipeline};
 use crate::host::ResourceKind;
 use crate::passes::bindings::{Binding, BindingTable, Resource, RESOURCE_COUNT};
 use ash::vk;
-use glam::{Mat4, Vec3, Vec4Swizzles};
+use glam::{Mat3, Mat4, Vec3, Vec4Swizzles};
 
 /// Most shadow-map cascades one classify dispatch reads.
 pub const MAX_CASCADES: usize = 4;
@@ -25,8 +25,9 @@ pub const MAX_CASCADES: usize = 4;
 pub const CLASSIFY_TAP_COUNTS: [u32; 4] = [8, 16, 24, 32];
 /// Most blocker-search taps.
 pub(crate) const MAX_TAPS: usize = 32;
-/// The nearest a listed tile's ray interval starts (world units), so that a ray does not hit its own surface.
-pub(crate) const PUSH_OFF: f32 = 0.04;
+/// Steepest receiver slope (tangent of the angle between its normal and the light) the blocker search follows
+/// with the receiver's tangent plane; steeper receivers compare with a plane clamped to this slope.
+pub(crate) const MAX_SLOPE: f32 = 4.0;
 /// Bytes of one tile record in `ClassifierBuffers::tiles`: uvec4 (x | y << 16 in tiles, mask of pixels to trace
 /// with bit (y % 4) * 8 + (x % 8), min t, max t as float bits).
 pub const CLASSIFY_TILE_BYTES: u64 = 16;
@@ -88,7 +89,9 @@ pub struct ClassifyDispatch {
     /// The shadow maps hold 1 at the light's near plane and 0 at its far plane (reverse-Z cascades).
     pub cascades_depth_inverted: bool,
     /// World distance along the light direction a shadow-map depth must be in front of the receiver to count as
-    /// a blocker (the shadow maps' bias), >= 0.
+    /// a blocker (the shadow maps' bias), >= 0. Each tap is compared with the receiver's tangent plane (from its
+    /// normal) under it, so a sloping receiver needs no larger offset than a flat one: texel size and depth
+    /// precision set it.
     pub blocker_offset: f32,
     /// Blocker-search taps per pixel: 8, 16, 24 (default) or 32.
     pub tap_count: u32,
@@ -98,8 +101,8 @@ pub struct ClassifyDispatch {
     /// Pixels no tap finds a blocker for are decided lit (default). Off: only shadowed pixels are decided, every
     /// other receiver is traced.
     pub reject_lit_pixels: bool,
-    /// A listed tile's ray interval is bounded by the blockers its pixels' taps found (default); off: from
-    /// the push-off (0.04) to infinity.
+    /// A listed tile's ray interval is bounded by the blockers its pixels' taps found (default); off: from 0
+    /// (the receiver: the engine's own ray offset keeps its rays off their surface) to infinity.
     pub cascades_bound_ray_interval: bool,
     /// The host's hit mask, written (prefilled) by the classifier: R32_UINT, ceil(W/8) x ceil(H/4), STORAGE
     /// usage, GENERAL layout. The same image the engine's trace completes and `ShadowsDispatch::hit_mask`
@@ -194,6 +197,7 @@ pub(crate) fn constants(d: &ClassifyDispatch) -> Result<ClassifyConstants> {
     let to_light = d.light_direction.normalize();
     let sign = if d.cascades_depth_inverted { 1.0 } else { -1.0 };
     let mut units = [[0.0f32; 4]; 4];
+    let (mut axes_u, mut axes_v) = ([[0.0f32; 4]; 4], [[0.0f32; 4]; 4]);
     for (i, c) in d.cascades.iter().take(d.cascade_count as usize).enumerate() {
         let m = c.world_to_shadow.transpose();
         let (row_u, row_v, row_depth) = (m.x_axis.xyz(), m.y_axis.xyz(), m.z_axis.xyz());
@@ -205,6 +209,18 @@ pub(crate) fn constants(d: &ClassifyDispatch) -> Result<ClassifyConstants> {
                 allowed: "its depth must grow away from the light along light_direction (decrease, with cascades_depth_inverted)",
             });
         }
+        let linear = Mat3::from_mat4(c.world_to_shadow);
+        let det = linear.determinant();
+        if !det.is_normal() {
+            return Err(Error::InvalidValue {
+                field: CASCADE_MATRIX[i],
+                value: format!("a 3x3 part with determinant {det:e}"),
+                allowed: "u, v and depth must change independently across the world (an invertible 3x3 part)",
+            });
+        }
+        let inverse = linear.inverse();
+        axes_u[i] = inverse.x_axis.extend(0.0).to_array();
+        axes_v[i] = inverse.y_axis.extend(0.0).to_array();
         let across = |row: Vec3| (row - row.dot(to_light) * to_light).length();
         units[i] = [depth_per_unit, across(row_u), across(row_v), d.blocker_offset * depth_per_unit];
     }
@@ -218,6 +234,8 @@ pub(crate) fn constants(d: &ClassifyDispatch) -> Result<ClassifyConstants> {
         cascade2: cascade(2),
         cascade3: cascade(3),
         cascade_units: units,
+        cascade_axes_u: axes_u,
+        cascade_axes_v: axes_v,
         light: [to_light.x, to_light.y, to_light.z, (0.5 * d.light_angular_size).tan()],
         settings: [d.cascade_count, d.tap_count, d.tile_cutoff, flags],
     })

@@ -110,6 +110,11 @@ gpu_block! {
         /// Column i, cascade i: x: its depth units per world unit along the light direction (> 0); y, z: its u and
         /// v units per world unit across the light direction; w: the blocker offset in its depth units.
         cascade_units: [[f32; 4]; 4],
+        /// Column i, cascade i: the world displacement (xyz) of a unit step along its u at constant v and depth
+        /// (the inverse matrix's first column): where the blocker-search taps lie in the world.
+        cascade_axes_u: [[f32; 4]; 4],
+        /// Column i, cascade i: as `cascade_axes_u`, along v.
+        cascade_axes_v: [[f32; 4]; 4],
         /// xyz: unit world-space direction from the surfaces toward the light; w: tan(angular diameter / 2).
         light: [f32; 4],
         /// x: cascade count; y: blocker-search taps; z: tile cut-off (a tile is listed with more pixels to trace
@@ -203,7 +208,7 @@ pub(crate) fn generated_glsl() -> String {
         let _ = writeln!(s, "#define {name} {value}");
     }
     // The classifier's blocker-search taps: the first n of these for n taps (each prefix is spread over the disc).
-    let _ = writeln!(s, "\n#define DNSR_CLASSIFY_PUSH_OFF {:?}", crate::classify::PUSH_OFF);
+    let _ = writeln!(s, "\n#define DNSR_CLASSIFY_MAX_SLOPE {:?}", crate::classify::MAX_SLOPE);
     s += "const vec2 DNSR_CLASSIFY_DISC[DNSR_MAX_CLASSIFY_TAPS] = vec2[](\n";
     let disc = crate::classify::blocker_disc();
     for (i, [x, y]) in disc.iter().enumerate() {

@@ -31,6 +31,8 @@ struct DnsrClassifyConstants {
     mat4 cascade2;
     mat4 cascade3;
     mat4 cascade_units;
+    mat4 cascade_axes_u;
+    mat4 cascade_axes_v;
     vec4 light;
     uvec4 settings;
 };
@@ -68,7 +70,7 @@ struct DnsrClassifyConstants {
 #define DNSR_MAX_CASCADES 4
 #define DNSR_MAX_CLASSIFY_TAPS 32
 
-#define DNSR_CLASSIFY_PUSH_OFF 0.04
+#define DNSR_CLASSIFY_MAX_SLOPE 4.0
 const vec2 DNSR_CLASSIFY_DISC[DNSR_MAX_CLASSIFY_TAPS] = vec2[](
     vec2(-0.73016983, 0.57152957),
     vec2(0.45812374, -0.628413),

@@ -716,7 +716,7 @@ pub type DnsrClassifyFlags = u32;
 /// pixels are decided and every other receiver is traced.
 pub const DNSR_CLASSIFY_REJECT_LIT_PIXELS: DnsrClassifyFlags = 1 << 0;
 /// A listed tile's ray interval is bounded by the blockers its pixels' taps found (recommended); without it,
-/// from the push-off (0.04 world units) to infinity.
+/// from 0 (the receiver: the engine's own ray offset keeps its rays off their surface) to infinity.
 pub const DNSR_CLASSIFY_BOUND_RAY_INTERVAL: DnsrClassifyFlags = 1 << 1;
 /// The shadow maps hold 1 at the light's near plane and 0 at its far plane (reverse-Z cascades).
 pub const DNSR_CLASSIFY_CASCADES_DEPTH_INVERTED: DnsrClassifyFlags = 1 << 2;
@@ -792,7 +792,9 @@ pub struct DnsrClassifyDispatch {
     /// Layers of cascadeArray's view (at least cascadeCount).
     pub cascade_array_layers: u32,
     /// World distance along the light direction a shadow-map depth must be in front of the receiver to count as
-    /// a blocker (the shadow maps' bias), >= 0.
+    /// a blocker (the shadow maps' bias), >= 0. Each tap is compared with the receiver's tangent plane (from its
+    /// normal) under it, so a sloping receiver needs no larger offset than a flat one: texel size and depth
+    /// precision set it.
     pub blocker_offset: f32,
     /// Blocker-search taps per pixel: 8, 16, 24 (recommended) or 32; anything else is
     /// DNSR_ERROR_INVALID_ARGUMENT.

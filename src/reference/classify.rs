@@ -6,7 +6,7 @@
 //! shadow-map depth at the blocker limit, a normal at the terminator), and the parity test compares the tiles
 //! without a fragile pixel exactly.
 
-use crate::classify::{blocker_disc, constants, ClassifyDispatch, PUSH_OFF};
+use crate::classify::{blocker_disc, constants, ClassifyDispatch, MAX_SLOPE};
 use crate::constants::ClassifyConstants;
 use crate::dispatch::HitMaskConvention;
 use crate::error::Result;
@@ -94,7 +94,7 @@ fn classify_pixel(inp: &ClassifyInputs, c: &ClassifyConstants, x: u32, y: u32) -
             return (Verdict::Shadowed, fragile);
         }
     }
-    let unbounded = Verdict::Trace { guess_lit: true, min_t: PUSH_OFF as f64, max_t: f64::INFINITY };
+    let unbounded = Verdict::Trace { guess_lit: true, min_t: 0.0, max_t: f64::INFINITY };
     let uv = DVec2::new((x as f64 + 0.5) / inp.width as f64, (y as f64 + 0.5) / inp.height as f64);
     let h = d.view_projection_inverse.as_dmat4() * DVec4::new(uv.x * 2.0 - 1.0, uv.y * 2.0 - 1.0, depth, 1.0);
     let world = h.truncate() / h.w;
@@ -116,7 +116,10 @@ fn classify_pixel(inp: &ClassifyInputs, c: &ClassifyConstants, x: u32, y: u32) -
     let size = DVec2::new(map.width as f64, map.height as f64);
     let reach = radius * DVec2::new(units[1], units[2]) * size + 1.0;
     let centre = DVec2::new(s.x, s.y) * size;
-    let limit = z - units[3];
+    // Taps compare with the receiver's tangent plane under them, its slope clamped to MAX_SLOPE.
+    let axis = |m: &[[f32; 4]; 4]| DVec3::new(m[k][0] as f64, m[k][1] as f64, m[k][2] as f64);
+    let (axis_u, axis_v) = (axis(&c.cascade_axes_u), axis(&c.cascade_axes_v));
+    let facing = if n == DVec3::ZERO { 0.0 } else { n.dot(to_light) };
     let (mut valid, mut blocking) = (0u32, 0u32);
     let (mut nearest_light, mut nearest_receiver) = (f64::INFINITY, f64::NEG_INFINITY);
     for tap in blocker_disc().iter().take(d.tap_count as usize) {
@@ -129,6 +132,11 @@ fn classify_pixel(inp: &ClassifyInputs, c: &ClassifyConstants, x: u32, y: u32) -
         let stored = map.depth[(t.y as u32 * map.width + t.x as u32) as usize] as f64;
         let depth = if inverted { 1.0 - stored } else { stored };
         valid += 1;
+        let offset = (t + 0.5 - centre) / size;
+        let across = axis_u * offset.x + axis_v * offset.y;
+        let bound = MAX_SLOPE as f64 * across.length();
+        let rise = if facing > 0.0 { (n.dot(across) / facing).clamp(-bound, bound) } else { 0.0 };
+        let limit = z + rise * units[0] - units[3];
         fragile |= (depth - limit).abs() < EPS;
         if depth < limit {
             blocking += 1;
@@ -144,12 +152,12 @@ fn classify_pixel(inp: &ClassifyInputs, c: &ClassifyConstants, x: u32, y: u32) -
     }
     let guess_lit = 2 * blocking < valid;
     if blocking > 0 && d.cascades_bound_ray_interval {
-        let min_t = ((z - nearest_receiver - units[3]) / units[0]).max(PUSH_OFF as f64);
+        let min_t = ((z - nearest_receiver - units[3]) / units[0]).max(0.0);
         let along = (z - nearest_light + units[3]) / units[0];
         let max_t = (along * along + radius * radius).sqrt().max(min_t);
         return (Verdict::Trace { guess_lit, min_t, max_t }, fragile);
     }
-    (Verdict::Trace { guess_lit, min_t: PUSH_OFF as f64, max_t: f64::INFINITY }, fragile)
+    (Verdict::Trace { guess_lit, min_t: 0.0, max_t: f64::INFINITY }, fragile)
 }
 
 /// Runs the classifier over every tile.

@@ -346,6 +346,16 @@ fn classifier_bad_input_is_refused() {
             ClassifyDispatch { cascades_depth_inverted: true, ..good },
             Box::new(invalid("cascades[0].world_to_shadow")),
         ),
+        (
+            "cascade whose u does not change across the world",
+            ClassifyDispatch {
+                cascades: [ShadowCascade {
+                    world_to_shadow: glam::Mat4::from_cols(glam::Vec4::ZERO, glam::Vec4::Y, -to_light().as_vec3().extend(0.0), glam::Vec4::W),
+                }; 4],
+                ..good
+            },
+            Box::new(invalid("cascades[0].world_to_shadow")),
+        ),
         ("zero light direction", ClassifyDispatch { light_direction: glam::Vec3::ZERO, ..good }, Box::new(invalid("light_direction"))),
         ("negative blocker offset", ClassifyDispatch { blocker_offset: -1.0, ..good }, Box::new(invalid("blocker_offset"))),
         (

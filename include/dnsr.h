@@ -100,7 +100,9 @@
 
 /**
  * Bytes of one record of the classifier's tile list: uint32 x (tile x | tile y << 16), mask of the tile's
- * pixels to trace (bit (y % 4) * 8 + (x % 8)), minT and maxT (float bits, world units).
+ * pixels to trace (bit (y % 4) * 8 + (x % 8)), minT and maxT (float bits, world units). minT is 0 (kept for the
+ * FidelityFX record layout): rays start at their receiver, since blockers nearer than the blocker offset or
+ * between the blocker-search taps are invisible to the cascades.
  */
 #define DNSR_CLASSIFY_TILE_BYTES 16
 

@@ -14,8 +14,7 @@ shared uint s_inside;
 shared uint s_lit;
 shared uint s_trace;
 shared uint s_guess_lit;
-// Non-negative floats order like their bit patterns, so the interval's bounds are uint atomics.
-shared uint s_min_t;
+// Non-negative floats order like their bit patterns, so the interval's end is a uint atomic.
 shared uint s_max_t;
 
 const uint DNSR_VERDICT_LIT = 0u;
@@ -26,14 +25,13 @@ struct DnsrVerdict {
     uint kind;
     // For a pixel to trace: whether most of its taps saw no blocker (its bit if its tile is not listed).
     bool guess_lit;
-    // World-space ray interval of a pixel to trace.
-    float min_t;
+    // Where the ray of a pixel to trace may end (world units from the receiver along the light).
     float max_t;
 };
 
 DnsrVerdict dnsr_classify_pixel(ivec2 p) {
     const float infinity = uintBitsToFloat(0x7f800000u);
-    DnsrVerdict v = DnsrVerdict(DNSR_VERDICT_LIT, true, 0.0, infinity);
+    DnsrVerdict v = DnsrVerdict(DNSR_VERDICT_LIT, true, infinity);
     float depth = dnsr_read_depth(p);
     if (!dnsr_is_receiver(depth)) {
         return v;
@@ -78,7 +76,6 @@ DnsrVerdict dnsr_classify_pixel(ivec2 p) {
     vec3 axis_v = dnsr_get_cascade_axis_v(cascade);
     float facing = n == vec3(0.0) ? 0.0 : dot(n, to_light);
     float nearest_light = infinity;
-    float nearest_receiver = -infinity;
     int valid = 0;
     int blocking = 0;
     for (int k = 0; k < dnsr_get_classify_taps(); ++k) {
@@ -97,7 +94,6 @@ DnsrVerdict dnsr_classify_pixel(ivec2 p) {
         if (d < limit) {
             blocking += 1;
             nearest_light = min(nearest_light, d);
-            nearest_receiver = max(nearest_receiver, d);
         }
     }
     if (valid > 0 && blocking == valid) {
@@ -110,11 +106,11 @@ DnsrVerdict dnsr_classify_pixel(ivec2 p) {
     }
     v.guess_lit = 2 * blocking < valid;
     if (blocking > 0 && dnsr_get_classify_flag(DNSR_CLASSIFY_BOUND_INTERVAL)) {
-        // From just before the blocker nearest the receiver to just past the one nearest the light, widened by the
-        // penumbra radius (the engine's jittered rays lean by up to that much).
-        v.min_t = max((z - nearest_receiver - units.w) / units.x, 0.0);
+        // Just past the blocker nearest the light, widened by the penumbra radius (the engine's jittered rays lean
+        // by up to that much). The ray starts at the receiver: a blocker nearer than the blocker offset, or thinner
+        // than the taps' spacing, is invisible to the cascades, and only a ray from the surface finds it.
         float along = (z - nearest_light + units.w) / units.x;
-        v.max_t = max(sqrt(along * along + radius * radius), v.min_t);
+        v.max_t = max(sqrt(along * along + radius * radius), 0.0);
     }
     return v;
 }
@@ -126,7 +122,6 @@ void dnsr_classify(ivec2 tile, ivec2 lid) {
         s_lit = 0u;
         s_trace = 0u;
         s_guess_lit = 0u;
-        s_min_t = 0x7f800000u;
         s_max_t = 0u;
     }
     barrier();
@@ -140,7 +135,6 @@ void dnsr_classify(ivec2 tile, ivec2 lid) {
         } else if (v.kind == DNSR_VERDICT_TRACE) {
             atomicOr(s_trace, bit);
             if (v.guess_lit) atomicOr(s_guess_lit, bit);
-            atomicMin(s_min_t, floatBitsToUint(v.min_t));
             atomicMax(s_max_t, floatBitsToUint(v.max_t));
         }
     }
@@ -152,7 +146,7 @@ void dnsr_classify(ivec2 tile, ivec2 lid) {
         dnsr_write_hit_mask(tile, dnsr_get_is_lit_bit_mask() ? lit : s_inside & ~lit & ~traced);
         if (listed) {
             ivec2 t = tile + dnsr_get_tile_offset();
-            dnsr_append_tile(uvec4(uint(t.x) | (uint(t.y) << 16), s_trace, s_min_t, s_max_t));
+            dnsr_append_tile(uvec4(uint(t.x) | (uint(t.y) << 16), s_trace, 0u, s_max_t));
         }
     }
 }

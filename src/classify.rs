@@ -29,7 +29,9 @@ pub(crate) const MAX_TAPS: usize = 32;
 /// with the receiver's tangent plane; steeper receivers compare with a plane clamped to this slope.
 pub(crate) const MAX_SLOPE: f32 = 4.0;
 /// Bytes of one tile record in `ClassifierBuffers::tiles`: uvec4 (x | y << 16 in tiles, mask of pixels to trace
-/// with bit (y % 4) * 8 + (x % 8), min t, max t as float bits).
+/// with bit (y % 4) * 8 + (x % 8), min t, max t as float bits). Min t is 0 (the FidelityFX record's field): a ray
+/// starts at its receiver, since blockers nearer than the blocker offset or between taps are invisible to the
+/// cascades.
 pub const CLASSIFY_TILE_BYTES: u64 = 16;
 /// Bytes of `ClassifierBuffers::counts`: u32 words 0..3 `VkDispatchIndirectCommand` (tiles, 1, 1) and the tile
 /// count; words 4..7 (32 x tiles, 1, 1, 0): one invocation per pixel of every listed tile, e.g. for

@@ -731,7 +731,9 @@ pub const DNSR_CLASSIFY_MAX_ENUM: DnsrClassifyFlags = 0x7FFF_FFFF;
 pub const DNSR_MAX_CASCADES: u32 = 4;
 const _: () = assert!(DNSR_MAX_CASCADES as usize == crate::MAX_CASCADES);
 /// Bytes of one record of the classifier's tile list: uint32 x (tile x | tile y << 16), mask of the tile's
-/// pixels to trace (bit (y % 4) * 8 + (x % 8)), minT and maxT (float bits, world units).
+/// pixels to trace (bit (y % 4) * 8 + (x % 8)), minT and maxT (float bits, world units). minT is 0 (kept for the
+/// FidelityFX record layout): rays start at their receiver, since blockers nearer than the blocker offset or
+/// between the blocker-search taps are invisible to the cascades.
 pub const DNSR_CLASSIFY_TILE_BYTES: u32 = 16;
 /// Bytes of the classifier's counts: uint32 words 0..3 VkDispatchIndirectCommand (tiles, 1, 1) and the tile count;
 /// words 4..7 (32 x tiles, 1, 1, 0), one invocation per pixel of every listed tile.

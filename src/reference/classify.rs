@@ -45,13 +45,11 @@ pub enum Verdict {
     Lit,
     /// Decided shadowed.
     Shadowed,
-    /// Needs a ray: whether most taps saw no blocker, and the world-space interval.
+    /// Needs a ray: whether most taps saw no blocker, and where the ray may end (it starts at the receiver).
     Trace {
         /// Most taps saw no blocker (the pixel's bit if its tile is not listed).
         guess_lit: bool,
-        /// Interval start.
-        min_t: f64,
-        /// Interval end.
+        /// World units from the receiver along the light.
         max_t: f64,
     },
 }
@@ -94,7 +92,7 @@ fn classify_pixel(inp: &ClassifyInputs, c: &ClassifyConstants, x: u32, y: u32) -
             return (Verdict::Shadowed, fragile);
         }
     }
-    let unbounded = Verdict::Trace { guess_lit: true, min_t: 0.0, max_t: f64::INFINITY };
+    let unbounded = Verdict::Trace { guess_lit: true, max_t: f64::INFINITY };
     let uv = DVec2::new((x as f64 + 0.5) / inp.width as f64, (y as f64 + 0.5) / inp.height as f64);
     let h = d.view_projection_inverse.as_dmat4() * DVec4::new(uv.x * 2.0 - 1.0, uv.y * 2.0 - 1.0, depth, 1.0);
     let world = h.truncate() / h.w;
@@ -121,7 +119,7 @@ fn classify_pixel(inp: &ClassifyInputs, c: &ClassifyConstants, x: u32, y: u32) -
     let (axis_u, axis_v) = (axis(&c.cascade_axes_u), axis(&c.cascade_axes_v));
     let facing = if n == DVec3::ZERO { 0.0 } else { n.dot(to_light) };
     let (mut valid, mut blocking) = (0u32, 0u32);
-    let (mut nearest_light, mut nearest_receiver) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut nearest_light = f64::INFINITY;
     for tap in blocker_disc().iter().take(d.tap_count as usize) {
         let q = centre + DVec2::new(tap[0] as f64, tap[1] as f64) * reach;
         fragile |= [q.x, q.y].iter().any(|v| (v - v.round()).abs() < EPS_TEXEL);
@@ -141,7 +139,6 @@ fn classify_pixel(inp: &ClassifyInputs, c: &ClassifyConstants, x: u32, y: u32) -
         if depth < limit {
             blocking += 1;
             nearest_light = nearest_light.min(depth);
-            nearest_receiver = nearest_receiver.max(depth);
         }
     }
     if valid > 0 && blocking == valid {
@@ -152,12 +149,12 @@ fn classify_pixel(inp: &ClassifyInputs, c: &ClassifyConstants, x: u32, y: u32) -
     }
     let guess_lit = 2 * blocking < valid;
     if blocking > 0 && d.cascades_bound_ray_interval {
-        let min_t = ((z - nearest_receiver - units[3]) / units[0]).max(0.0);
+        // The ray starts at the receiver: blockers nearer than the offset or between taps are invisible here.
         let along = (z - nearest_light + units[3]) / units[0];
-        let max_t = (along * along + radius * radius).sqrt().max(min_t);
-        return (Verdict::Trace { guess_lit, min_t, max_t }, fragile);
+        let max_t = (along * along + radius * radius).sqrt().max(0.0);
+        return (Verdict::Trace { guess_lit, max_t }, fragile);
     }
-    (Verdict::Trace { guess_lit, min_t: 0.0, max_t: f64::INFINITY }, fragile)
+    (Verdict::Trace { guess_lit, max_t: f64::INFINITY }, fragile)
 }
 
 /// Runs the classifier over every tile.
@@ -174,7 +171,7 @@ pub fn classify(inp: &ClassifyInputs) -> Result<ClassifyOutput> {
     for ty in 0..th {
         for tx in 0..tw {
             let (mut inside, mut lit, mut trace, mut guess) = (0u32, 0u32, 0u32, 0u32);
-            let (mut min_t, mut max_t) = (f64::INFINITY, 0.0f64);
+            let mut max_t = 0.0f64;
             for y in ty * 4..(ty * 4 + 4).min(inp.height) {
                 for x in tx * 8..(tx * 8 + 8).min(inp.width) {
                     let bit = 1u32 << ((y % 4) * 8 + x % 8);
@@ -186,12 +183,11 @@ pub fn classify(inp: &ClassifyInputs) -> Result<ClassifyOutput> {
                     match v {
                         Verdict::Lit => lit |= bit,
                         Verdict::Shadowed => {}
-                        Verdict::Trace { guess_lit, min_t: a, max_t: b } => {
+                        Verdict::Trace { guess_lit, max_t: b } => {
                             trace |= bit;
                             if guess_lit {
                                 guess |= bit;
                             }
-                            min_t = min_t.min(a);
                             max_t = max_t.max(b);
                         }
                     }
@@ -205,7 +201,7 @@ pub fn classify(inp: &ClassifyInputs) -> Result<ClassifyOutput> {
                 HitMaskConvention::OccludedBits => inside & !lit & !traced,
             };
             if listed {
-                out.tiles.push((tx | (ty << 16), trace, min_t, max_t));
+                out.tiles.push((tx | (ty << 16), trace, 0.0, max_t));
             }
         }
     }

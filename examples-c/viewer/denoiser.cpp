@@ -92,6 +92,7 @@ void Denoiser::create(const VulkanContext &ctx, const DenoiserSettings &settings
     info.width = settings.width;
     info.height = settings.height;
     info.flags = DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS;  // standard depth (sky = 1), finite far plane
+    if (settings.classifier) info.flags |= DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER;
     info.precision = DNSR_PRECISION_FP32;
     info.outputFormat = VK_FORMAT_R32_SFLOAT;
     info.lightCount = settings.lights;
@@ -177,6 +178,51 @@ void Denoiser::recordDenoise(const DenoiserFrame &frame, const std::vector<Denoi
         DnsrResult r = dnsr_lights_record(context_, &d, uint32_t(perLight.size()), perLight.data());
         if (r != DNSR_SUCCESS) dnsrFail("dnsr_lights_record", r);
     }
+}
+
+void Denoiser::recordClassify(const DenoiserFrame &f, const DenoiserClassify &c)
+{
+    DnsrClassifyDispatch d{};
+    d.sType = DNSR_STRUCTURE_TYPE_CLASSIFY_DISPATCH;
+    d.commandBuffer = f.cmd;
+    // Pixels no blocker-search tap finds a blocker for are lit without a ray; a listed tile's rays only cover the
+    // stretch of the light direction where the cascades saw its blockers.
+    d.flags = DNSR_CLASSIFY_REJECT_LIT_PIXELS | DNSR_CLASSIFY_BOUND_RAY_INTERVAL;
+    d.hitMaskConvention = DNSR_HIT_MASK_OCCLUDED_BITS;  // as the trace and recordDenoise
+    d.hitMask = hostImage(c.hitMask);
+    d.depth = hostImage(f.depth);
+    d.normals = hostImage(f.normals);
+    d.normalsUnpackMul = 1.0f;
+    d.normalsUnpackAdd = 0.0f;
+    std::memcpy(d.viewProjectionInverse, f.viewProjectionInverse.m, sizeof d.viewProjectionInverse);
+    d.lightDirection[0] = c.toLight.x, d.lightDirection[1] = c.toLight.y, d.lightDirection[2] = c.toLight.z;
+    d.lightAngularSize = c.lightAngularSize;
+    d.cascadeCount = c.cascades->count;
+    for (uint32_t i = 0; i < c.cascades->count; i++) {
+        std::memcpy(d.cascadeWorldToShadow[i], c.cascades->cascades[i].worldToShadow.m, sizeof d.cascadeWorldToShadow[i]);
+        d.cascadeImages[i] = hostImage(c.cascadeImages[i]);
+    }
+    d.blockerOffset = c.blockerOffset;
+    d.tapCount = c.taps;
+    d.tileCutoff = c.tileCutoff;
+    // The G-buffer and the cascades come from compute passes; the trace after it is a compute dispatch that reads
+    // its size from the counts, the tile list and the mask, and ORs its rays into the mask.
+    d.sync.inputSrcStages = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+    d.sync.inputSrcAccess = VK_ACCESS_SHADER_WRITE_BIT;
+    d.sync.outputDstStages = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT;
+    d.sync.outputDstAccess = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
+    DnsrResult r = dnsr_classify_record(context_, &d);
+    if (r != DNSR_SUCCESS) dnsrFail("dnsr_classify_record", r);
+}
+
+void Denoiser::classifierBuffers(VkBuffer &tiles, VkBuffer &counts) const
+{
+    DnsrClassifierBuffers b{};
+    b.sType = DNSR_STRUCTURE_TYPE_CLASSIFIER_BUFFERS;
+    DnsrResult r = dnsr_context_get_classifier_buffers(context_, &b);
+    if (r != DNSR_SUCCESS) dnsrFail("dnsr_context_get_classifier_buffers", r);
+    tiles = b.tiles;
+    counts = b.counts;
 }
 
 bool Denoiser::fetchTimings(DnsrPassTimings &timings)

@@ -5,7 +5,9 @@
 //   1. device creation   addDenoiserDeviceExtensions: the extensions dnsr needs (dnsr_get_device_requirements)
 //   2. once              Denoiser::create: the context (dnsr_context_create) and its settings (a preset)
 //   3. every frame       Denoiser::recordDenoise, after the shadow rays: dnsr_shadows_record, or dnsr_lights_record
-//                        for several lights in one call
+//                        for several lights in one call. In hybrid mode, before the rays: Denoiser::recordClassify
+//                        (dnsr_classify_record) prefills the hit mask from the cascaded shadow maps and lists the
+//                        tiles still to trace (Denoiser::classifierBuffers: dnsr_context_get_classifier_buffers)
 //   4. after the frame   Denoiser::fetchTimings: dnsr's per-pass GPU times (dnsr_context_get_timings)
 //   5. at the end        Denoiser::destroy, once the GPU is idle (dnsr_context_destroy)
 //
@@ -17,6 +19,7 @@
 
 #include <vector>
 
+#include "cascades.h"
 #include "vec_math.h"
 #include "vk_context.h"
 
@@ -36,6 +39,7 @@ struct DenoiserSettings {
     // the engine's callbacks (examples-c/custom_gbuffer) instead of reading the default formats.
     bool packedGbuffer = false;
     DnsrPreset preset = DNSR_PRESET_BALANCED;
+    bool classifier = false;  // hybrid shadows: recordClassify (DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER)
 };
 
 // What every dnsr dispatch of one frame reads: the G-buffer, the camera and where the frame is in the sequence.
@@ -59,6 +63,17 @@ struct DenoiserLight {
     const GpuImage *output = nullptr;
 };
 
+// Hybrid shadows: what the classifier reads besides the frame's G-buffer, and the hit mask it prefills.
+struct DenoiserClassify {
+    const GpuImage *hitMask = nullptr;  // the one light's mask: prefilled here, completed by the trace, denoised
+    Vec3 toLight;                       // the sun (a directional light)
+    float lightAngularSize = 0.0f;      // its angular diameter, radians: how far the blocker search reaches
+    const CascadeSet *cascades = nullptr;
+    const GpuImage *cascadeImages[kMaxCascades] = {};  // the first cascades->count
+    float blockerOffset = 0.0f;         // world units (the shadow maps' bias)
+    uint32_t taps = 24, tileCutoff = 0;
+};
+
 class Denoiser {
 public:
     // VulkanError with dnsr's own message when it refuses.
@@ -68,6 +83,13 @@ public:
     // Records the denoising of `lights` (one per light of the context) into frame.cmd, behind the shadow pass.
     // debugView: DNSR_DEBUG_VIEW_NONE, or one of dnsr's views of its internal state, written to every output.
     void recordDenoise(const DenoiserFrame &frame, const std::vector<DenoiserLight> &lights, uint32_t debugView);
+
+    // Hybrid shadows, behind the G-buffer and the cascades and before the trace: prefills c.hitMask where the
+    // cascades decide and lists the tiles to trace in classifierBuffers(), their count as indirect dispatch
+    // arguments (one workgroup per tile). The barriers after it cover a compute trace sized by those counts.
+    void recordClassify(const DenoiserFrame &frame, const DenoiserClassify &c);
+    // dnsr's tile list and counts (context created with DenoiserSettings::classifier): fixed until a resize.
+    void classifierBuffers(VkBuffer &tiles, VkBuffer &counts) const;
 
     // After the GPU finished a frame: dnsr's per-pass GPU times. False until a frame's timings are available.
     bool fetchTimings(DnsrPassTimings &timings);

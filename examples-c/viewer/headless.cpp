@@ -35,6 +35,7 @@ Measurements measureLastFrame(Session &s, const ReferenceFile *loaded)
         saveReference(opt.saveReference, light0, m.referenceSamples);
     }
     for (const ShadowImages &light : m.shadows) m.errors.push_back(measure(light));
+    m.traced = tracedStats(s.renderer, light0);
     return m;
 }
 
@@ -62,9 +63,32 @@ std::vector<uint8_t> tileImage(const Renderer &renderer, const ShadowImages &s)
     return tiles;
 }
 
+// Hybrid mode, what decided each pixel, as view 0 of the window shows it: pale = lit and dark blue = shadowed by the
+// cascades, orange = lit and dark red = occluded by a ray; sky grey; the traced tiles' grid drawn.
+std::vector<uint8_t> hybridImage(const Renderer &renderer, const ShadowImages &s)
+{
+    const uint32_t w = s.width, h = s.height;
+    std::vector<uint8_t> out(size_t(w) * h * 3);
+    for (uint32_t y = 0; y < h; y++)
+        for (uint32_t x = 0; x < w; x++) {
+            size_t i = size_t(y) * w + x, tile = (y / 4) * renderer.tilesX() + x / 8;
+            uint32_t bit = 1u << ((y % 4) * 8 + x % 8), traced = renderer.readTraced()[tile];
+            bool ray = traced & bit, lit = !(renderer.readHitMask(0)[tile] & bit);
+            float rgb[3] = {0.5f, 0.5f, 0.5f};
+            auto set = [&](float r, float g, float b) { rgb[0] = r, rgb[1] = g, rgb[2] = b; };
+            if (s.receiver[i]) {
+                if (ray) lit ? set(1.0f, 0.6f, 0.15f) : set(0.55f, 0.1f, 0.08f);
+                else lit ? set(0.85f, 0.85f, 0.8f) : set(0.15f, 0.2f, 0.45f);
+            }
+            float shade = traced && (x % 8 == 0 || y % 4 == 0) ? 0.7f : 1.0f;
+            for (int c = 0; c < 3; c++) out[3 * i + c] = uint8_t(rgb[c] * shade * 255.0f + 0.5f);
+        }
+    return out;
+}
+
 // noisy.png, denoised.png, reference.png per light (light i > 0 with the suffix _light<i>), then light 0's
 // composite.png, strip.png and tiles.png.
-void writeImages(const std::string &dir, const Renderer &renderer, const Measurements &m)
+void writeImages(const std::string &dir, const Renderer &renderer, const Measurements &m, bool hybrid)
 {
     const ShadowImages &s = m.shadows[0];
     const uint32_t w = s.width, h = s.height;
@@ -92,14 +116,24 @@ void writeImages(const std::string &dir, const Renderer &renderer, const Measure
         }
     savePng(dir + "strip.png", stripW, h, 3, strip);
     savePng(dir + "tiles.png", w, h, 3, tileImage(renderer, s));
+    if (hybrid) savePng(dir + "hybrid.png", w, h, 3, hybridImage(renderer, s));
 }
 
 void printSummary(const Session &s, const Measurements &m, const std::string &dir)
 {
     const ErrorStats &e = m.errors[0];
+    if (s.hybrid)
+        std::printf("viewer: hybrid: %zu of %zu receivers traced (%.1f%%), %zu of %zu tiles; decided without a ray: "
+                    "%zu against the reference's majority, mean error %.4f; GPU ms: cascades %.3f, classify %.3f, "
+                    "listed rays %.3f\n",
+                    m.traced.traced, m.traced.receivers,
+                    m.traced.receivers ? 100.0 * double(m.traced.traced) / double(m.traced.receivers) : 0.0,
+                    m.traced.listedTiles, m.traced.tiles, m.traced.decidedWrong, m.traced.decidedMeanError,
+                    s.renderer.viewerTimings.cascades,
+                    s.renderer.viewerTimings.classify, s.renderer.viewerTimings.shadow);
     std::printf("viewer: %u frames, penumbra guidance %s; RMSE vs %u-ray reference over %zu pixels: noisy %.4f "
                 "(%.1f dB), denoised %.4f (%.1f dB)\n",
-                s.opt.frames, s.light.hitDistance ? "on" : "off", m.referenceSamples, e.pixels, e.rmseNoisy,
+                s.opt.frames, s.light.hitDistance && !s.hybrid ? "on" : "off", m.referenceSamples, e.pixels, e.rmseNoisy,
                 psnr(e.rmseNoisy), e.rmseDenoised, psnr(e.rmseDenoised));
     std::printf("viewer: lit pixels within %d px of a shadowed one (%zu): darkening vs the reference, worst "
                 "%.2f, mean %.2f (1/255)\n",
@@ -117,8 +151,8 @@ void printSummary(const Session &s, const Measurements &m, const std::string &di
     std::printf("viewer: dnsr GPU ms (frame %llu): prepare %.3f, tiles %.3f, filter [%s], total %.3f\n",
                 static_cast<unsigned long long>(t.frame), t.prepareMs, t.tileClassificationMs, filters.c_str(),
                 t.totalMs);
-    std::printf("viewer: wrote %s{noisy,denoised,reference,composite,strip,tiles}.png%s and report.json\n",
-                dir.c_str(), m.shadows.size() > 1 ? ", {noisy,denoised,reference}_light1.png" : "");
+    std::printf("viewer: wrote %s{noisy,denoised,reference,composite,strip,tiles%s}.png%s and report.json\n",
+                dir.c_str(), s.hybrid ? ",hybrid" : "", m.shadows.size() > 1 ? ", {noisy,denoised,reference}_light1.png" : "");
 }
 
 }  // namespace
@@ -137,6 +171,7 @@ int runHeadless(VulkanContext &ctx, const Options &opt, const Scene &scene, cons
         FrameInput in = makeFrame(s.scene, o, s.light, opt.width, opt.height);
         in.cameraCut = f == 0;
         in.display = View::Composite;
+        in.hybrid = s.hybrid;
         // The reference, for the frame that is measured only: many rays per pixel from the same G-buffer (none when
         // it comes from --load-reference).
         in.resetReference = last;
@@ -151,7 +186,7 @@ int runHeadless(VulkanContext &ctx, const Options &opt, const Scene &scene, cons
     std::filesystem::create_directories(opt.outDir);
     const std::string dir = opt.outDir + "/";
     Measurements m = measureLastFrame(s, reference);
-    writeImages(dir, s.renderer, m);
+    writeImages(dir, s.renderer, m, s.hybrid);
     writeReport(dir + "report.json", s, m);
     printSummary(s, m, dir);
     return 0;

@@ -133,3 +133,27 @@ ReferenceFile loadReference(const std::string &path)
         throw std::runtime_error(path + ": truncated or oversized reference file");
     return r;
 }
+
+TracedStats tracedStats(const Renderer &r, const ShadowImages &s)
+{
+    TracedStats t;
+    const uint32_t *traced = r.readTraced();
+    t.tiles = size_t(r.tilesX()) * r.tilesY();
+    for (size_t i = 0; i < t.tiles; i++) t.listedTiles += traced[i] != 0;
+    for (uint32_t y = 0; y < s.height; y++)
+        for (uint32_t x = 0; x < s.width; x++) {
+            size_t i = size_t(y) * s.width + x;
+            if (!s.receiver[i]) continue;
+            t.receivers++;
+            if ((traced[(y / 4) * r.tilesX() + x / 8] >> ((y % 4) * 8 + x % 8)) & 1u) {
+                t.traced++;
+                continue;
+            }
+            double error = std::fabs(double(s.noisy[i]) - double(s.reference[i]));  // noisy: the verdict, 0 or 1
+            t.decidedWrong += error > 0.5;
+            t.decidedMeanError += error;
+        }
+    size_t decided = t.receivers - t.traced;
+    if (decided) t.decidedMeanError /= double(decided);
+    return t;
+}

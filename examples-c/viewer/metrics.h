@@ -40,6 +40,17 @@ struct ShadowImages {
     uint64_t hitMaskHash = 0, denoisedHash = 0;
 };
 
+// Which receivers' shadow rays the last frame traced (hybrid mode: the listed ones; otherwise all of them).
+// Of the pixels decided without a ray: how many the reference finds mostly on the other side (lit < 0.5 where the
+// verdict is lit, or > 0.5 where it is shadowed), and their mean absolute error against it.
+struct TracedStats {
+    size_t receivers = 0, traced = 0;  // pixels
+    size_t tiles = 0, listedTiles = 0;  // 8x4 tiles; listed: with a traced pixel
+    size_t decidedWrong = 0;
+    double decidedMeanError = 0;
+};
+TracedStats tracedStats(const Renderer &r, const ShadowImages &s);
+
 // Light `light`'s shadows from the renderer's readback (after recordReadback and the GPU's completion).
 ShadowImages readShadows(const Renderer &r, uint32_t light, uint32_t w, uint32_t h);
 

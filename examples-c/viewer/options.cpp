@@ -41,6 +41,18 @@ const char *kUsage =
     "  --view NAME             window mode: first view (noisy, denoised, reference, composite, tiles, or dnsr's\n"
     "                          debug views classification, samples, variance, disocclusion; keys 1-9)\n"
     "  --orbit-speed DEG       headless: camera orbit per frame in degrees, -45..45 (default 0.25; 0 = static)\n"
+    "  --hybrid                hybrid shadows: cascaded shadow maps decide what they can, dnsr's classifier lists\n"
+    "                          the 8x4 tiles whose other pixels need a ray, and only those are traced (one\n"
+    "                          directional light, --rays 1, --gbuffer default; penumbra guidance off; key C)\n"
+    "  --cascades N            hybrid: shadow-map cascades, 1..4 (default 2)\n"
+    "  --cascade-size N        hybrid: texels per cascade side, 64..8192 (default: the render size's larger side\n"
+    "                          rounded up to a power of two)\n"
+    "  --taps N                hybrid: the classifier's blocker-search taps, 8, 16, 24 or 32 (default 24)\n"
+    "  --tile-cutoff N         hybrid: a tile is traced only with more than N pixels to trace, 0..31 (default 0);\n"
+    "                          the others keep the verdict most of their taps give\n"
+    "  --blocker-offset F      hybrid: how far (in scene radii, 0..1) a cascade depth must be in front of a\n"
+    "                          receiver's tangent plane to block it (default 0.005)\n"
+    "  --reverse-rays          hybrid: trace from the light's end of the classifier's interval towards the surface\n"
     "  --preset NAME           dnsr's settings: fast, balanced (the FidelityFX defaults; default) or quality\n"
     "  --validate              enable VK_LAYER_KHRONOS_validation; any validation message makes the exit status 1\n"
     "                          (the Vulkan loader's own notices are shown but not counted)\n"
@@ -50,7 +62,8 @@ const char *kUsage =
     "             1 noisy, 2 denoised, 3 reference (accumulates while nothing moves), 4 composite,\n"
     "             5 hit-mask density per tile, 6 dnsr tile classification, 7 dnsr sample count,\n"
     "             8 dnsr variance, 9 dnsr disocclusion, L toggle light motion, H toggle penumbra guidance\n"
-    "             (hit distances), N the other light in views 1-3, 5-9 (--lights 2), Esc/Q quit\n"
+    "             (hit distances), N the other light in views 1-3, 5-9 (--lights 2), C toggle hybrid mode,\n"
+    "             0 hybrid: what decided each pixel, T hybrid: pixels traced per tile, Esc/Q quit\n"
     "exit status: 0 success, 1 a Vulkan/dnsr failure or (with --validate) a validation message,\n"
     "             2 a bad command line, or a scene or reference file the viewer cannot load\n";
 
@@ -112,12 +125,12 @@ Options parseOptions(int argc, char **argv)
                 throw UsageError(std::string("--orbit-speed wants degrees in -45..45, got '") + v + "'");
         } else if (a == "--view") {
             std::string v = value();
-            const char *names[] = {"noisy",          "denoised", "reference", "composite",   "tiles",
-                                   "classification", "samples",  "variance",  "disocclusion"};
+            const char *names[] = {"noisy",   "denoised",     "reference", "composite", "tiles", "classification",
+                                   "samples", "variance",     "disocclusion", "hybrid", "traced"};
             auto it = std::find(std::begin(names), std::end(names), v);
             if (it == std::end(names))
                 throw UsageError("--view wants noisy, denoised, reference, composite, tiles, classification, samples, "
-                                 "variance or disocclusion, got '" + v + "'");
+                                 "variance, disocclusion, hybrid or traced, got '" + v + "'");
             o.view = static_cast<View>(it - std::begin(names));
         } else if (a == "--preset") {
             std::string v = value();
@@ -139,6 +152,26 @@ Options parseOptions(int argc, char **argv)
             std::string v = value();
             if (v != "on" && v != "off") throw UsageError("--hit-distance wants on or off, got '" + v + "'");
             o.hitDistance = v == "on";
+        } else if (a == "--hybrid") {
+            o.hybrid = true;
+        } else if (a == "--cascades") {
+            o.cascades = parseCount("--cascades", value(), 1, 4);
+        } else if (a == "--cascade-size") {
+            o.cascadeSize = parseCount("--cascade-size", value(), 64, 8192);
+        } else if (a == "--taps") {
+            const char *v = value();
+            o.taps = parseCount("--taps", v, 8, 32);
+            if (o.taps % 8) throw UsageError(std::string("--taps wants 8, 16, 24 or 32, got '") + v + "'");
+        } else if (a == "--tile-cutoff") {
+            o.tileCutoff = parseCount("--tile-cutoff", value(), 0, 31);
+        } else if (a == "--blocker-offset") {
+            const char *v = value();
+            char *end = nullptr;
+            o.blockerOffset = std::strtof(v, &end);
+            if (!*v || *end || !(o.blockerOffset >= 0.0f && o.blockerOffset <= 1.0f))
+                throw UsageError(std::string("--blocker-offset wants scene radii in 0..1, got '") + v + "'");
+        } else if (a == "--reverse-rays") {
+            o.reverseRays = true;
         } else if (a == "--light-motion") {
             o.lightMotion = true;
         } else if (a == "--reference-samples") {
@@ -180,5 +213,19 @@ Options parseOptions(int argc, char **argv)
     // A reference file holds one light's reference (its format predates --lights).
     if (o.lights > 1 && !(o.saveReference.empty() && o.loadReference.empty()))
         throw UsageError("--save-reference and --load-reference take one light (--lights 1)");
+    if (o.hybrid) {
+        std::string why = hybridUnsupported(o);
+        if (!why.empty()) throw UsageError("--hybrid " + why);
+    }
     return o;
+}
+
+std::string hybridUnsupported(const Options &o)
+{
+    if (o.pointLight) return "takes the directional light (dnsr's classifier reads a sun's cascaded shadow maps)";
+    if (o.lights > 1) return "takes one light (--lights 1): the viewer traces cascades for one sun";
+    if (o.rays > 1 || o.checkerboard)
+        return "takes one ray per pixel (--rays 1, no --checkerboard): the classifier prefills a full hit mask";
+    if (o.packedGbuffer) return "takes --gbuffer default (dnsr's classifier has no custom-callback build yet)";
+    return "";
 }

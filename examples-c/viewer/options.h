@@ -31,7 +31,16 @@ struct Options {
     float orbitDegPerFrame = 0.25f;
     DnsrPreset preset = DNSR_PRESET_BALANCED;
     View view = View::Composite;  // window mode: the view shown first
+    // Hybrid shadows (RendererSettings::hybrid): start in hybrid mode, and its settings.
+    bool hybrid = false;
+    uint32_t cascades = 2, cascadeSize = 0, taps = 24, tileCutoff = 0;
+    float blockerOffset = 0.005f;  // in scene radii
+    bool reverseRays = false;
 };
+
+// Whether the options allow hybrid mode: dnsr's classifier takes one directional light's hit mask, traced one ray
+// per pixel, with the default G-buffer. Empty when they do, else why not.
+std::string hybridUnsupported(const Options &options);
 
 // A bad command line: main prints the message and exits with status 2.
 struct UsageError : std::runtime_error {

@@ -24,6 +24,12 @@ const uint32_t kCompositeSpv[] =
 const uint32_t kPrimaryPackedSpv[] =  // also writes the packed G-buffer (--gbuffer packed)
 #include "primary_packed.comp.inc"
     ;
+const uint32_t kCascadeSpv[] =
+#include "cascade.comp.inc"
+    ;
+const uint32_t kShadowListedSpv[] =
+#include "shadow_listed.comp.inc"
+    ;
 // Host copy of shaders/common.glsl's FrameConstants (std140: vec4-aligned members only, so no padding rules).
 struct FrameConstants {
     Mat4 viewProj, invViewProj, prevViewProj;
@@ -33,6 +39,8 @@ struct FrameConstants {
     uint32_t size[4];
     uint32_t info[4];
     float skyColor[4];
+    float cascadeOrigin[kMaxCascades][4], cascadeAxisU[kMaxCascades][4], cascadeAxisV[kMaxCascades][4];
+    float cascadeParams[4];
 };
 
 // The shaders' binding numbers (shaders/common.glsl).
@@ -59,8 +67,21 @@ enum Binding : uint32_t {
     kReference1,
     kHitDistance1,
     kVisibility1,
+    kCascade0,     // cascade.comp (hybrid mode), one binding per cascade
+    kCascade1,
+    kCascade2,
+    kCascade3,
+    kTileList,     // dnsr's tile list (shadow_listed.comp)
+    kTraced,       // pixels traced per tile (shadow_listed.comp writes, composite.comp reads)
     kBindingCount
 };
+
+VkDescriptorType descriptorType(uint32_t binding)
+{
+    if (binding == kFrameConstants) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    if (binding <= kTriShading || binding == kTileList) return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+}
 
 // Each light's bindings (common.glsl, shadow.comp).
 struct LightBindings {
@@ -71,7 +92,17 @@ constexpr LightBindings kLightBindings[kMaxLights] = {
     {kHitMask1, kHitDistance1, kVisibility1, kDenoised1, kReference1},
 };
 
-enum Timestamp : uint32_t { kStart, kAfterPrimary, kAfterShadow, kAfterReference, kAfterDnsr, kAfterComposite, kCount };
+enum Timestamp : uint32_t {
+    kStart,
+    kAfterPrimary,
+    kAfterCascades,
+    kAfterClassify,
+    kAfterShadow,
+    kAfterReference,
+    kAfterDnsr,
+    kAfterComposite,
+    kCount
+};
 
 constexpr uint32_t kReferenceChunk = 32;  // samples per reference dispatch: keeps each dispatch short
 
@@ -85,6 +116,13 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags 
 }
 
 uint32_t divUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
+
+uint32_t powerOfTwoAtLeast(uint32_t v)
+{
+    uint32_t p = 1;
+    while (p < v) p *= 2;
+    return p;
+}
 
 }  // namespace
 
@@ -145,6 +183,17 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
         l.visibility = ctx.createImage(ctx.storageImageExtendedFormats ? VK_FORMAT_R16_SFLOAT : VK_FORMAT_R32_SFLOAT,
                                        w, h, usage);
     }
+    // Hybrid mode's cascades (R32F depth, which dnsr's classifier samples) and traced pixels per tile. Without it
+    // 1x1 stand-ins keep every binding valid.
+    const HybridSettings &hybrid = settings.hybrid;
+    cascadeSize_ = !hybrid.enabled       ? 1
+                   : hybrid.cascadeSize ? hybrid.cascadeSize
+                                         : std::min(powerOfTwoAtLeast(std::max(w, h)), 8192u);
+    for (uint32_t i = 0; i < kMaxCascades; i++) {
+        uint32_t size = hybrid.enabled && i < hybrid.cascades ? cascadeSize_ : 1;
+        cascades_[i] = ctx.createImage(VK_FORMAT_R32_SFLOAT, size, size, usage);
+    }
+    traced_ = ctx.createImage(VK_FORMAT_R32_UINT, tilesX(), tilesY(), usage);
     if (settings.packedGbuffer && !ctx.storageImageExtendedFormats)
         throw VulkanError("--gbuffer packed writes RG16_SNORM normals, which needs shaderStorageImageExtendedFormats");
     linearDepth_ = ctx.createImage(VK_FORMAT_R32_SFLOAT, w, h, usage);
@@ -166,6 +215,7 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
         lights_[i].referenceOffset = section(pixels * 4);
     }
     displayOffset_ = section(pixels * 4);
+    tracedOffset_ = section(VkDeviceSize(tilesX()) * tilesY() * 4);
     normalsOffset_ = section(pixels * 8);
     velocityOffset_ = section(pixels * 8);
     readback_ = ctx.createBuffer(offset, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
@@ -194,20 +244,6 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT);
     ctx.submitAndWait(cmd);
 
-    createDescriptors();
-    primary_ = settings.packedGbuffer ? ctx.createComputePipeline(pipelineLayout_, kPrimaryPackedSpv, sizeof kPrimaryPackedSpv)
-                                      : ctx.createComputePipeline(pipelineLayout_, kPrimarySpv, sizeof kPrimarySpv);
-    shadow_ = ctx.storageImageExtendedFormats
-                  ? ctx.createComputePipeline(pipelineLayout_, kShadowSpv, sizeof kShadowSpv)
-                  : ctx.createComputePipeline(pipelineLayout_, kShadowR32fSpv, sizeof kShadowR32fSpv);
-    reference_pipeline_ = ctx.createComputePipeline(pipelineLayout_, kReferenceSpv, sizeof kReferenceSpv);
-    composite_ = ctx.createComputePipeline(pipelineLayout_, kCompositeSpv, sizeof kCompositeSpv);
-
-    auto queryInfo = vkStruct<VkQueryPoolCreateInfo>(VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO);
-    queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    queryInfo.queryCount = kCount;
-    VK_CHECK(vkCreateQueryPool(ctx.device, &queryInfo, nullptr, &timestamps_));
-
     // The context after the images: an engine creates it once it knows the render size, with its G-buffer's encoding
     // and how its shadow rays are handed over.
     DenoiserSettings ds;
@@ -220,7 +256,28 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
                                              : DNSR_SHADOW_INPUT_HIT_MASK;
     ds.packedGbuffer = settings.packedGbuffer;
     ds.preset = settings.preset;
+    ds.classifier = hybrid.enabled;
     denoiser_.create(ctx, ds);
+    if (hybrid.enabled) denoiser_.classifierBuffers(tileList_, tileCounts_);
+
+    createDescriptors();
+    primary_ = settings.packedGbuffer ? ctx.createComputePipeline(pipelineLayout_, kPrimaryPackedSpv, sizeof kPrimaryPackedSpv)
+                                      : ctx.createComputePipeline(pipelineLayout_, kPrimarySpv, sizeof kPrimarySpv);
+    shadow_ = ctx.storageImageExtendedFormats
+                  ? ctx.createComputePipeline(pipelineLayout_, kShadowSpv, sizeof kShadowSpv)
+                  : ctx.createComputePipeline(pipelineLayout_, kShadowR32fSpv, sizeof kShadowR32fSpv);
+    reference_pipeline_ = ctx.createComputePipeline(pipelineLayout_, kReferenceSpv, sizeof kReferenceSpv);
+    composite_ = ctx.createComputePipeline(pipelineLayout_, kCompositeSpv, sizeof kCompositeSpv);
+    if (hybrid.enabled) {
+        cascade_ = ctx.createComputePipeline(pipelineLayout_, kCascadeSpv, sizeof kCascadeSpv);
+        shadowListed_ = ctx.createComputePipeline(pipelineLayout_, kShadowListedSpv, sizeof kShadowListedSpv);
+    }
+
+    auto queryInfo = vkStruct<VkQueryPoolCreateInfo>(VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO);
+    queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    queryInfo.queryCount = kCount;
+    VK_CHECK(vkCreateQueryPool(ctx.device, &queryInfo, nullptr, &timestamps_));
+
 }
 
 // One descriptor set layout for all four passes: each shader uses the subset of bindings it needs.
@@ -230,9 +287,7 @@ void Renderer::createDescriptors()
     std::vector<VkDescriptorSetLayoutBinding> bindings(kBindingCount);
     for (uint32_t i = 0; i < kBindingCount; i++) {
         bindings[i].binding = i;
-        bindings[i].descriptorType = i == kFrameConstants ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
-                                     : i <= kTriShading   ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
-                                                          : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+        bindings[i].descriptorType = descriptorType(i);
         bindings[i].descriptorCount = 1;
         bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
     }
@@ -250,8 +305,8 @@ void Renderer::createDescriptors()
     VK_CHECK(vkCreatePipelineLayout(dev, &pipelineInfo, nullptr, &pipelineLayout_));
 
     VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
-                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kBindingCount - 4}};
+                                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
+                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kBindingCount - 5}};
     auto poolInfo = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
     poolInfo.maxSets = 1;
     poolInfo.poolSizeCount = 3;
@@ -263,14 +318,19 @@ void Renderer::createDescriptors()
     alloc.pSetLayouts = &setLayout_;
     VK_CHECK(vkAllocateDescriptorSets(dev, &alloc, &set_));
 
-    VkDescriptorBufferInfo buffers[4] = {{frameConstants_.buffer, 0, VK_WHOLE_SIZE},
-                                         {nodes_.buffer, 0, VK_WHOLE_SIZE},
-                                         {triGeometry_.buffer, 0, VK_WHOLE_SIZE},
-                                         {triShading_.buffer, 0, VK_WHOLE_SIZE}};
+    // Without hybrid mode the tile list's binding gets a stand-in (the BVH nodes): declared, never read.
+    VkDescriptorBufferInfo buffers[kBindingCount] = {};
+    buffers[kFrameConstants] = {frameConstants_.buffer, 0, VK_WHOLE_SIZE};
+    buffers[kBvhNodes] = {nodes_.buffer, 0, VK_WHOLE_SIZE};
+    buffers[kTriGeometry] = {triGeometry_.buffer, 0, VK_WHOLE_SIZE};
+    buffers[kTriShading] = {triShading_.buffer, 0, VK_WHOLE_SIZE};
+    buffers[kTileList] = {tileList_ ? tileList_ : nodes_.buffer, 0, VK_WHOLE_SIZE};
     const GpuImage *images[kBindingCount] = {};
     images[kRayOrigin] = &rayOrigin_, images[kDepth] = &depth_, images[kNormals] = &normals_;
     images[kVelocity] = &velocity_, images[kAlbedo] = &albedo_, images[kDisplay] = &display_;
     images[kLinearDepth] = &linearDepth_, images[kOctNormals] = &octNormals_;
+    for (uint32_t i = 0; i < kMaxCascades; i++) images[kCascade0 + i] = &cascades_[i];
+    images[kTraced] = &traced_;
     // With one light, light 1's bindings get light 0's images: the shaders declare them (so they must be valid)
     // but use them only when there is a second light.
     for (uint32_t i = 0; i < kMaxLights; i++) {
@@ -279,7 +339,7 @@ void Renderer::createDescriptors()
         images[b.hitMask] = &l.hitMask, images[b.hitDistance] = &l.hitDistance, images[b.visibility] = &l.visibility;
         images[b.denoised] = &l.denoised, images[b.reference] = &l.reference;
     }
-    VkDescriptorImageInfo imageInfos[kBindingCount - 4];
+    VkDescriptorImageInfo imageInfos[kBindingCount] = {};
     std::vector<VkWriteDescriptorSet> writes(kBindingCount,
                                              vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET));
     for (uint32_t i = 0; i < kBindingCount; i++) {
@@ -287,11 +347,11 @@ void Renderer::createDescriptors()
         writes[i].dstBinding = i;
         writes[i].descriptorCount = 1;
         writes[i].descriptorType = bindings[i].descriptorType;
-        if (i < 4) {
+        if (bindings[i].descriptorType != VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) {
             writes[i].pBufferInfo = &buffers[i];
         } else {
-            imageInfos[i - 4] = {VK_NULL_HANDLE, images[i]->view, VK_IMAGE_LAYOUT_GENERAL};
-            writes[i].pImageInfo = &imageInfos[i - 4];
+            imageInfos[i] = {VK_NULL_HANDLE, images[i]->view, VK_IMAGE_LAYOUT_GENERAL};
+            writes[i].pImageInfo = &imageInfos[i];
         }
     }
     vkUpdateDescriptorSets(dev, kBindingCount, writes.data(), 0, nullptr);
@@ -299,8 +359,9 @@ void Renderer::createDescriptors()
 
 std::vector<GpuImage *> Renderer::images()
 {
-    std::vector<GpuImage *> all = {&rayOrigin_, &depth_,   &normals_,      &velocity_,
-                                   &albedo_,    &display_, &linearDepth_, &octNormals_};
+    std::vector<GpuImage *> all = {&rayOrigin_, &depth_,       &normals_,    &velocity_, &albedo_,
+                                   &display_,   &linearDepth_, &octNormals_, &traced_};
+    for (GpuImage &c : cascades_) all.push_back(&c);
     for (uint32_t i = 0; i < settings_.lights; i++) {
         LightResources &l = lights_[i];
         all.insert(all.end(), {&l.hitMask, &l.hitDistance, &l.visibility, &l.denoised, &l.reference});
@@ -308,14 +369,45 @@ std::vector<GpuImage *> Renderer::images()
     return all;
 }
 
-void Renderer::dispatch(VkCommandBuffer cmd, VkPipeline pipeline, uint32_t groupsX, uint32_t groupsY, uint32_t mode,
-                        uint32_t sampleBase, uint32_t sampleCount, uint32_t light)
+void Renderer::bind(VkCommandBuffer cmd, VkPipeline pipeline, uint32_t mode, uint32_t sampleBase,
+                    uint32_t sampleCount, uint32_t light)
 {
     const uint32_t push[4] = {mode, sampleBase, sampleCount, light};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set_, 0, nullptr);
     vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, push);
+}
+
+void Renderer::dispatch(VkCommandBuffer cmd, VkPipeline pipeline, uint32_t groupsX, uint32_t groupsY, uint32_t mode,
+                        uint32_t sampleBase, uint32_t sampleCount, uint32_t light)
+{
+    bind(cmd, pipeline, mode, sampleBase, sampleCount, light);
     vkCmdDispatch(cmd, groupsX, groupsY, 1);
+}
+
+void Renderer::recordHybridShadows(VkCommandBuffer cmd, const FrameInput &in, const DenoiserFrame &frame)
+{
+    // The cascades (an engine renders its shadow maps here), then dnsr's classifier reads them with the G-buffer.
+    for (uint32_t c = 0; c < cascadeSet_.count; c++)
+        dispatch(cmd, cascade_, divUp(cascadeSize_, 8), divUp(cascadeSize_, 8), 0, 0, 0, c);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterCascades);
+
+    const HybridSettings &h = settings_.hybrid;
+    DenoiserClassify c;
+    c.hitMask = &lights_[0].hitMask;
+    c.toLight = in.lights[0];
+    c.lightAngularSize = in.lightAngularSize;
+    c.cascades = &cascadeSet_;
+    for (uint32_t i = 0; i < cascadeSet_.count; i++) c.cascadeImages[i] = &cascades_[i];
+    c.blockerOffset = h.blockerOffset;
+    c.taps = h.taps;
+    c.tileCutoff = h.tileCutoff;
+    denoiser_.recordClassify(frame, c);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterClassify);
+
+    // One workgroup per listed tile: the classifier wrote the group count into its counts buffer (word 0..2).
+    bind(cmd, shadowListed_, h.reverseRays ? 1u : 0u);
+    vkCmdDispatchIndirect(cmd, tileCounts_, 0);
 }
 
 void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
@@ -333,6 +425,12 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
     // of 0xAA55AA55 is set where x + y is even.
     const uint32_t phase = settings_.checkerboard ? frameIndex_ % 2 : 0;
     tracedBits_ = !settings_.checkerboard ? ~0u : phase == 0 ? 0xAA55AA55u : 0x55AA55AAu;
+    if (in.hybrid && !settings_.hybrid.enabled) throw VulkanError("hybrid mode was not enabled at creation");
+    const bool hybrid = in.hybrid;
+    const bool guidance = in.hitDistance && !hybrid;  // the cascades' verdicts come without a hit distance
+    if (hybrid)
+        cascadeSet_ = fitCascades(invViewProj, in.eye, in.lights[0], settings_.sceneCenter, settings_.sceneRadius,
+                                  settings_.hybrid.cascades, cascadeSize_);
 
     // What every dnsr dispatch of this frame reads (its G-buffer once primary.comp has written it, the camera):
     // described once, up front, so that a dispatch recorded before the shadow rays could take it as well.
@@ -368,6 +466,14 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
     c.size[0] = w, c.size[1] = h, c.size[2] = tilesX(), c.size[3] = tilesY();
     c.info[0] = frameIndex_, c.info[1] = referenceAfter, c.info[2] = settings_.lights, c.info[3] = tracedBits_;
     c.skyColor[0] = 0.55f, c.skyColor[1] = 0.70f, c.skyColor[2] = 0.90f, c.skyColor[3] = 1.0f;
+    for (uint32_t i = 0; i < cascadeSet_.count; i++) {
+        const Cascade &k = cascadeSet_.cascades[i];
+        const Vec3 *v[3] = {&k.origin, &k.axisU, &k.axisV};
+        float(*dst[3])[4] = {c.cascadeOrigin, c.cascadeAxisU, c.cascadeAxisV};
+        for (int j = 0; j < 3; j++) dst[j][i][0] = v[j]->x, dst[j][i][1] = v[j]->y, dst[j][i][2] = v[j]->z;
+    }
+    c.cascadeParams[0] = cascadeSet_.depthRange;
+    c.cascadeParams[1] = float(cascadeSize_);
     std::memcpy(frameConstants_.mapped, &c, sizeof c);
 
     vkCmdResetQueryPool(cmd, timestamps_, 0, kCount);
@@ -378,6 +484,13 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT |
                       VK_ACCESS_TRANSFER_WRITE_BIT);
+    // Which pixels this frame traces, per tile: shadow_listed.comp fills in the listed tiles in hybrid mode.
+    VkClearColorValue traced{};
+    traced.uint32[0] = hybrid ? 0u : tracedBits_;
+    VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(cmd, traced_.image, VK_IMAGE_LAYOUT_GENERAL, &traced, 1, &range);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps_, kStart);
 
     dispatch(cmd, primary_, divUp(w, 8), divUp(h, 8));
@@ -385,11 +498,17 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
 
-    // Mode 1: the rays find their nearest occluder and write its distance (penumbra guidance); mode 0: any
-    // occluder ends a ray, and the hit-distance image is left alone. The hit mask is the same either way. The
-    // lights' dispatches write different images: no barrier between them.
-    for (uint32_t i = 0; i < settings_.lights; i++)
-        dispatch(cmd, shadow_, divUp(tilesX(), 8), divUp(tilesY(), 8), in.hitDistance ? 1u : 0u, 0, settings_.rays, i);
+    if (hybrid) {
+        recordHybridShadows(cmd, in, frame);
+    } else {
+        vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterCascades);
+        vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterClassify);
+        // Mode 1: the rays find their nearest occluder and write its distance (penumbra guidance); mode 0: any
+        // occluder ends a ray, and the hit-distance image is left alone. The hit mask is the same either way. The
+        // lights' dispatches write different images: no barrier between them.
+        for (uint32_t i = 0; i < settings_.lights; i++)
+            dispatch(cmd, shadow_, divUp(tilesX(), 8), divUp(tilesY(), 8), guidance ? 1u : 0u, 0, settings_.rays, i);
+    }
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterShadow);
 
     // Reference samples, in chunks; each chunk adds to the sum the previous one wrote.
@@ -410,11 +529,11 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
         DenoiserLight &l = lights[i];
         if (settings_.rays > 1) l.visibility = &lights_[i].visibility;
         else l.hitMask = &lights_[i].hitMask;
-        if (in.hitDistance) l.hitDistance = &lights_[i].hitDistance, l.lightAngularSize = in.lightAngularSize;
+        if (guidance) l.hitDistance = &lights_[i].hitDistance, l.lightAngularSize = in.lightAngularSize;
         l.output = &lights_[i].denoised;
     }
     // Views 5..8 map in order onto DNSR_DEBUG_VIEW_TILE_CLASSIFICATION .. DNSR_DEBUG_VIEW_DISOCCLUSION.
-    bool dnsrView = in.display >= View::DnsrTiles;
+    bool dnsrView = in.display >= View::DnsrTiles && in.display <= View::DnsrDisocclusion;
     denoiser_.recordDenoise(frame, lights,
                             dnsrView ? DNSR_DEBUG_VIEW_TILE_CLASSIFICATION +
                                            (uint32_t(in.display) - uint32_t(View::DnsrTiles))
@@ -441,7 +560,8 @@ void Renderer::afterFrame()
     if (r == VK_SUCCESS) {
         double ms = ctx_->properties.limits.timestampPeriod * 1e-6;
         auto span = [&](int a, int b) { return ticks[b] > ticks[a] ? double(ticks[b] - ticks[a]) * ms : 0.0; };
-        viewerTimings = {span(kStart, kAfterPrimary), span(kAfterPrimary, kAfterShadow),
+        viewerTimings = {span(kStart, kAfterPrimary),      span(kAfterPrimary, kAfterCascades),
+                         span(kAfterCascades, kAfterClassify), span(kAfterClassify, kAfterShadow),
                          span(kAfterShadow, kAfterReference), span(kAfterReference, kAfterDnsr),
                          span(kAfterDnsr, kAfterComposite)};
     }
@@ -466,6 +586,7 @@ void Renderer::recordReadback(VkCommandBuffer cmd)
         copy(lights_[i].reference, lights_[i].referenceOffset);
     }
     copy(display_, displayOffset_);
+    copy(traced_, tracedOffset_);
     copy(normals_, normalsOffset_);
     copy(velocity_, velocityOffset_);
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
@@ -479,7 +600,7 @@ void Renderer::destroy()
     vkDeviceWaitIdle(dev);
     // The context goes first, once the GPU has finished every command buffer it recorded into.
     denoiser_.destroy();
-    for (VkPipeline p : {primary_, shadow_, reference_pipeline_, composite_})
+    for (VkPipeline p : {primary_, shadow_, reference_pipeline_, composite_, cascade_, shadowListed_})
         if (p) vkDestroyPipeline(dev, p, nullptr);
     if (pipelineLayout_) vkDestroyPipelineLayout(dev, pipelineLayout_, nullptr);
     if (descriptorPool_) vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);

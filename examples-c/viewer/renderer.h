@@ -4,6 +4,12 @@
 //   shadow.comp     per light, one jittered shadow ray per pixel (with --checkerboard, for half the pixels) -> the
 //                   light's 8x4-tile hit mask (and, for dnsr's penumbra guidance, the distance to the nearest
 //                   occluder per pixel)
+//   or, in hybrid mode (--hybrid, key C; one directional light):
+//     cascade.comp        the sun's cascaded shadow maps (cascades.h), traced since the viewer has no rasteriser
+//     dnsr classifier     (denoiser.h) dnsr_classify_record: G-buffer + cascades -> the hit mask prefilled where
+//                         the cascades decide, and the list of tiles whose other pixels need a ray
+//     shadow_listed.comp  one workgroup per listed tile (vkCmdDispatchIndirect on the classifier's counts): the
+//                         listed pixels' shadow rays, within the interval the cascades bound, ORed into the mask
 //   reference.comp  (when asked) per light, many shadow rays per pixel -> the ground truth, for error measurements
 //   dnsr            (denoiser.h) dnsr_shadows_record (one light) or dnsr_lights_record (all lights in one call):
 //                   hit masks + G-buffer -> one denoised shadow per light
@@ -18,6 +24,7 @@
 #include <vector>
 
 #include "bvh.h"
+#include "cascades.h"
 #include "denoiser.h"
 #include "scene_gltf.h"
 #include "vk_context.h"
@@ -37,6 +44,19 @@ enum class View : uint32_t {
     DnsrSampleCount = 6,
     DnsrVariance = 7,
     DnsrDisocclusion = 8,
+    Hybrid = 9,       // what decided each pixel: the cascades or a ray (hybrid mode)
+    TracedTiles = 10, // the fraction of each tile's pixels traced this frame
+};
+
+// Hybrid shadows: the cascades, dnsr's classifier and the trace of the pixels it lists.
+struct HybridSettings {
+    bool enabled = false;      // create what hybrid mode needs (FrameInput::hybrid then picks the mode per frame)
+    uint32_t cascades = 2;     // 1..kMaxCascades
+    uint32_t cascadeSize = 0;  // texels per side; 0: the render size's larger side rounded up to a power of two
+    uint32_t taps = 24;        // the classifier's blocker-search taps: 8, 16, 24 or 32
+    uint32_t tileCutoff = 0;   // a tile is listed with more pixels to trace than this (0..31)
+    float blockerOffset = 0;   // world units a cascade depth must be in front of the receiver to block it
+    bool reverseRays = false;  // trace from the light's end of the classifier's interval towards the surface
 };
 
 struct RendererSettings {
@@ -53,6 +73,8 @@ struct RendererSettings {
     bool checkerboard = false;
     // 1..kMaxLights lights, each with its own shadow rays, dnsr history (DnsrContextCreateInfo::lightCount) and output.
     uint32_t lights = 1;
+    Vec3 sceneCenter;  // with sceneRadius, the sphere the cascades cover
+    HybridSettings hybrid;
 };
 
 struct FrameInput {
@@ -70,6 +92,9 @@ struct FrameInput {
     bool hitDistance = false;
     float lightAngularSize = 0.0f;
     bool cameraCut = false;          // discard dnsr's history (first frame, view reset)
+    // Hybrid mode (needs RendererSettings::hybrid.enabled): rays only where dnsr's classifier cannot decide from
+    // the cascades. Penumbra guidance is off then (the pixels the cascades decide have no hit distance).
+    bool hybrid = false;
     View display = View::Composite;  // what composite.comp writes to the display image
     uint32_t shownLight = 0;         // the light the views other than the composite show (dnsr's included)
     bool resetReference = false;     // restart the reference accumulation (camera or light changed)
@@ -77,8 +102,9 @@ struct FrameInput {
 };
 
 // GPU time of the viewer's own passes in the last completed frame, in milliseconds.
+// cascades and classify are 0 outside hybrid mode; shadow is then the trace of the listed pixels only.
 struct ViewerTimings {
-    double primary = 0, shadow = 0, reference = 0, dnsr = 0, composite = 0;
+    double primary = 0, cascades = 0, classify = 0, shadow = 0, reference = 0, dnsr = 0, composite = 0;
 };
 
 class Renderer {
@@ -100,6 +126,9 @@ public:
     const float *readDenoised(uint32_t light) const { return at<float>(lights_[light].denoisedOffset); }
     const float *readReferenceSum(uint32_t light) const { return at<float>(lights_[light].referenceOffset); }
     const uint8_t *readDisplay() const { return at<uint8_t>(displayOffset_); }
+    // Per tile, the pixels whose shadow ray the frame traced (bit as in the hit mask): in hybrid mode the ones the
+    // classifier listed, otherwise tracedBits() (sky pixels included, though no ray is cast for them).
+    const uint32_t *readTraced() const { return at<uint32_t>(tracedOffset_); }
     // RGBA16F texels (raw half floats), for checking the G-buffer against dnsr's CPU reference.
     const uint16_t *readNormals() const { return at<uint16_t>(normalsOffset_); }
     const uint16_t *readVelocity() const { return at<uint16_t>(velocityOffset_); }
@@ -113,6 +142,8 @@ public:
     // y): all of them, or with --checkerboard those of the pixels with (x + y) % 2 == the frame's phase.
     uint32_t tracedBits() const { return tracedBits_; }
     uint64_t dnsrMemoryBytes() const { return denoiser_.memoryBytes(); }
+    bool hybridAvailable() const { return settings_.hybrid.enabled; }
+    uint32_t cascadeSize() const { return cascadeSize_; }
 
     DnsrPassTimings dnsrTimings{};  // dnsr's per-pass GPU times (valid when haveDnsrTimings)
     bool haveDnsrTimings = false;
@@ -133,8 +164,12 @@ private:
     }
     void createDescriptors();
     std::vector<GpuImage *> images();  // every image, for the initial clear and destroy()
+    void bind(VkCommandBuffer cmd, VkPipeline pipeline, uint32_t mode = 0, uint32_t sampleBase = 0,
+              uint32_t sampleCount = 0, uint32_t light = 0);
     void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, uint32_t groupsX, uint32_t groupsY, uint32_t mode = 0,
                   uint32_t sampleBase = 0, uint32_t sampleCount = 0, uint32_t light = 0);
+    // Hybrid mode: cascades, classifier, the listed pixels' rays (instead of shadow.comp).
+    void recordHybridShadows(VkCommandBuffer cmd, const FrameInput &in, const DenoiserFrame &frame);
 
     VulkanContext *ctx_ = nullptr;
     RendererSettings settings_;
@@ -148,13 +183,19 @@ private:
     GpuImage rayOrigin_, depth_, normals_, velocity_, albedo_, display_;
     GpuImage linearDepth_, octNormals_;  // --gbuffer packed
     LightResources lights_[kMaxLights];  // the first settings_.lights are created
-    VkDeviceSize depthOffset_ = 0, displayOffset_ = 0, normalsOffset_ = 0, velocityOffset_ = 0;
+    // Hybrid mode: the cascades (1x1 placeholders without it), the traced pixels per tile, dnsr's tile list and
+    // counts (its classifier's buffers), where the cascades lie this frame.
+    GpuImage cascades_[kMaxCascades], traced_;
+    VkBuffer tileList_ = VK_NULL_HANDLE, tileCounts_ = VK_NULL_HANDLE;
+    CascadeSet cascadeSet_;
+    uint32_t cascadeSize_ = 0;
+    VkDeviceSize depthOffset_ = 0, displayOffset_ = 0, normalsOffset_ = 0, velocityOffset_ = 0, tracedOffset_ = 0;
 
     VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
     VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
     VkDescriptorSet set_ = VK_NULL_HANDLE;
     VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
     VkPipeline primary_ = VK_NULL_HANDLE, shadow_ = VK_NULL_HANDLE, reference_pipeline_ = VK_NULL_HANDLE,
-               composite_ = VK_NULL_HANDLE;
+               composite_ = VK_NULL_HANDLE, cascade_ = VK_NULL_HANDLE, shadowListed_ = VK_NULL_HANDLE;
     VkQueryPool timestamps_ = VK_NULL_HANDLE;
 };

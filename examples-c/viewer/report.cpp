@@ -56,13 +56,32 @@ void writeReport(const std::string &path, const Session &session, const Measurem
     r["light_angle_deg"] = rounded(opt.lightAngleDeg, 2);
     // Penumbra guidance, and the angular diameter (radians) it passed to dnsr.
     FrameInput last = makeFrame(session.scene, session.orbit, session.light, opt.width, opt.height);
-    r["hit_distance"] = session.light.hitDistance;
+    r["hit_distance"] = session.light.hitDistance && !session.hybrid;  // hybrid mode has no guidance
     r["light_angular_size_rad"] = rounded(last.lightAngularSize, 6);
     const char *presets[] = {"fast", "balanced", "quality"};
     r["preset"] = presets[opt.preset];
     r["gbuffer"] = opt.packedGbuffer ? "packed" : "default";
     r["rays_per_pixel"] = opt.rays;
     r["checkerboard"] = opt.checkerboard;
+    // Hybrid shadows: its settings, and how many of the receivers' shadow rays were traced in the last frame (all
+    // of them without it).
+    const Renderer &rr = session.renderer;
+    r["hybrid"] = !session.hybrid ? Json(nullptr)
+                                  : Json{{"cascades", opt.cascades},
+                                         {"cascade_size", rr.cascadeSize()},
+                                         {"taps", opt.taps},
+                                         {"tile_cutoff", opt.tileCutoff},
+                                         {"blocker_offset_scene_radii", rounded(opt.blockerOffset, 6)},
+                                         {"reverse_rays", opt.reverseRays}};
+    const TracedStats &ts = m.traced;
+    r["traced"] = {{"receivers", ts.receivers},
+                   {"rays", ts.traced},
+                   {"fraction", rounded(ts.receivers ? double(ts.traced) / double(ts.receivers) : 0.0, 6)},
+                   {"rays_saved", ts.receivers - ts.traced},
+                   {"tiles", ts.tiles},
+                   {"tiles_traced", ts.listedTiles},
+                   {"decided_wrong", ts.decidedWrong},
+                   {"decided_mean_abs_error", rounded(ts.decidedMeanError, 6)}};
     r["reference_samples"] = m.referenceSamples;
     r["reference_file"] = m.referenceLoaded ? Json(opt.loadReference) : Json(nullptr);
     r["pixels_compared"] = e.pixels;
@@ -100,7 +119,8 @@ void writeReport(const std::string &path, const Session &session, const Measurem
                         {"filter", filters},
                         {"total", rounded(t.totalMs, 4)}};
     const ViewerTimings &v = renderer.viewerTimings;
-    r["viewer_gpu_ms"] = {{"primary", rounded(v.primary, 4)},     {"shadow", rounded(v.shadow, 4)},
+    r["viewer_gpu_ms"] = {{"primary", rounded(v.primary, 4)},   {"cascades", rounded(v.cascades, 4)},
+                          {"classify", rounded(v.classify, 4)}, {"shadow", rounded(v.shadow, 4)},
                           {"reference", rounded(v.reference, 4)}, {"dnsr", rounded(v.dnsr, 4)},
                           {"composite", rounded(v.composite, 4)}};
     r["dnsr_memory_bytes"] = renderer.dnsrMemoryBytes();

@@ -13,6 +13,7 @@ struct Measurements {
     std::vector<ErrorStats> errors;
     uint32_t referenceSamples = 0;  // rays per pixel of the reference measured against
     bool referenceLoaded = false;   // from --load-reference
+    TracedStats traced;             // light 0's
 };
 
 // Throws VulkanError when the file cannot be written.

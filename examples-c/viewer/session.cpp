@@ -23,6 +23,8 @@ Session::Session(const Options &options, const Scene &s, VulkanContext &context)
     // Light from the side of the starting view (100 degrees around from the camera), so that the shadows fall where
     // the camera sees them whatever the scene.
     light.azimuth = orbit.yaw + radians(100.0f);
+    hybrid = opt.hybrid;
+    hybridAvailable = opt.hybrid || (!opt.headless && hybridUnsupported(opt).empty());
 }
 
 void Session::createRenderer()
@@ -35,8 +37,18 @@ void Session::createRenderer()
     rs.rays = opt.rays;
     rs.checkerboard = opt.checkerboard;
     rs.lights = opt.lights;
+    rs.sceneCenter = scene.center;
+    HybridSettings &h = rs.hybrid;
+    h.enabled = hybridAvailable;
+    h.cascades = opt.cascades, h.cascadeSize = opt.cascadeSize, h.taps = opt.taps, h.tileCutoff = opt.tileCutoff;
+    h.blockerOffset = opt.blockerOffset * scene.radius;
+    h.reverseRays = opt.reverseRays;
     renderer.create(ctx, *scene.scene, rs);
     std::printf("viewer: %s on %s, %ux%u, %u triangles, BVH %u nodes (depth %u), push descriptors %s\n",
                 opt.scene.c_str(), ctx.properties.deviceName, opt.width, opt.height, renderer.triangles,
                 renderer.bvhNodes, renderer.bvhDepth, ctx.pushDescriptorEnabled ? "on" : "off");
+    if (hybridAvailable)
+        std::printf("viewer: hybrid shadows %s: %u cascades of %u^2, %u taps, tile cut-off %u, blocker offset %g%s\n",
+                    hybrid ? "on" : "available (key C)", opt.cascades, renderer.cascadeSize(), opt.taps, opt.tileCutoff,
+                    rs.hybrid.blockerOffset, opt.reverseRays ? ", reversed rays" : "");
 }

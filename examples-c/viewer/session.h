@@ -27,5 +27,8 @@ struct Session {
     SceneFrame scene;
     Orbit orbit0, orbit;  // where the camera started (key R goes back there), where it is
     LightState light;
+    // Hybrid mode: whether the renderer has what it needs (--hybrid, or a window with options that allow it: key
+    // C), and whether it is on.
+    bool hybridAvailable = false, hybrid = false;
     Renderer renderer;
 };

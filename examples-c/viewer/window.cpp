@@ -102,6 +102,7 @@ public:
             in.cameraCut = cameraCut_;
             in.display = view_;
             in.shownLight = shownLight_;
+            in.hybrid = s_.hybrid;
             // The reference accumulates while nothing moves (view 3 shows it converging); any change restarts it.
             bool changed = std::memcmp(&lastOrbit, &s_.orbit, sizeof s_.orbit) != 0 || lastAzimuth != s_.light.azimuth;
             in.resetReference = changed || cameraCut_;
@@ -189,6 +190,12 @@ private:
         case GLFW_KEY_L: s_.light.moving = !s_.light.moving; break;
         case GLFW_KEY_H: s_.light.hitDistance = !s_.light.hitDistance; break;
         case GLFW_KEY_N: shownLight_ = (shownLight_ + 1) % s_.opt.lights; break;
+        case GLFW_KEY_0: view_ = View::Hybrid; break;
+        case GLFW_KEY_T: view_ = View::TracedTiles; break;
+        case GLFW_KEY_C:
+            if (s_.hybridAvailable) s_.hybrid = !s_.hybrid;
+            else std::printf("viewer: no hybrid mode: it %s\n", hybridUnsupported(s_.opt).c_str());
+            break;
         default: break;
         }
     }
@@ -274,7 +281,9 @@ private:
                                "dnsr tile classification (1 lit, 0 shadow, 0.5 filtered, 0.75 sky)",
                                "dnsr sample count",
                                "dnsr variance (std dev)",
-                               "dnsr disocclusion (history restarted)"};
+                               "dnsr disocclusion (history restarted)",
+                               "hybrid: cascades lit pale / shadowed blue, rays lit orange / occluded red",
+                               "hybrid: pixels traced per tile (grey none, red few, yellow all)"};
         char title[512];
         const DnsrPassTimings &t = s_.renderer.dnsrTimings;
         double filter = 0;
@@ -285,11 +294,15 @@ private:
                       s_.renderer.referenceCount());
         char shown[32] = "";  // the light the view shows (key N), where there is a choice
         if (s_.opt.lights > 1 && view_ != View::Composite) std::snprintf(shown, sizeof shown, ", light %u", shownLight_);
+        char hybrid[96] = "";  // hybrid mode's own passes, when it is on
+        if (s_.hybrid)
+            std::snprintf(hybrid, sizeof hybrid, " | hybrid: cascades %.2f, classify %.2f ms", v.cascades, v.classify);
         std::snprintf(title, sizeof title,
-                      "dnsr viewer | %s%s%s | guidance %s | dnsr GPU ms: prepare %.2f, tiles %.2f, filter %.2f (%u "
+                      "dnsr viewer | %s%s%s | guidance %s%s | dnsr GPU ms: prepare %.2f, tiles %.2f, filter %.2f (%u "
                       "passes), total %.2f | rays ms: primary %.2f, shadow %.2f | %.1f fps",
-                      view, shown, s_.light.moving ? " | light moving" : "", s_.light.hitDistance ? "on" : "off",
-                      t.prepareMs, t.tileClassificationMs, filter, t.filterPasses, t.totalMs, v.primary, v.shadow, fps);
+                      view, shown, s_.light.moving ? " | light moving" : "",
+                      s_.light.hitDistance && !s_.hybrid ? "on" : "off", hybrid, t.prepareMs, t.tileClassificationMs,
+                      filter, t.filterPasses, t.totalMs, v.primary, v.shadow, fps);
         glfwSetWindowTitle(window_, title);
     }
 

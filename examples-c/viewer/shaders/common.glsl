@@ -2,6 +2,7 @@
 // traversal and the shadow-ray sampling. Included by every .comp file.
 
 const uint kMaxLights = 2u;  // = kMaxLights in renderer.h
+const uint kMaxCascades = 4u;  // = kMaxCascades in cascades.h
 
 // ---- Per-frame constants (host struct FrameConstants in renderer.cpp; std140) ----
 layout(set = 0, binding = 0, std140) uniform FrameConstants {
@@ -16,6 +17,12 @@ layout(set = 0, binding = 0, std140) uniform FrameConstants {
     uvec4 info;         // x: frame index; y: reference samples accumulated so far; z: number of lights;
                         // w: the hit-mask bits this frame traces (see tracedThisFrame)
     vec4 skyColor;
+    // Hybrid mode's cascades (cascades.h): the world position of each one's texel corner (0, 0) on the plane its
+    // rays start from, and its world extent along u and v.
+    vec4 cascadeOrigin[kMaxCascades];
+    vec4 cascadeAxisU[kMaxCascades];
+    vec4 cascadeAxisV[kMaxCascades];
+    vec4 cascadeParams;  // x: world distance along the light that depth 0..1 spans; y: texels per side
 } frame;
 
 // ---- Scene: the BVH and its triangles (storage buffers; host structs in bvh.h / renderer.cpp) ----
@@ -30,6 +37,8 @@ layout(set = 0, binding = 6, rgba16f) uniform image2D normalImage;     // world 
 layout(set = 0, binding = 7, rgba16f) uniform image2D velocityImage;   // prev_uv - uv (xy)
 layout(set = 0, binding = 8, rgba8) uniform image2D albedoImage;       // base colour
 layout(set = 0, binding = 12, rgba8) uniform image2D displayImage;     // what the window or a PNG shows
+// Per 8x4 tile, the pixels whose shadow ray this frame traced (hit-mask bits): hybrid mode's listed ones, or all.
+layout(set = 0, binding = 27, r32ui) uniform uimage2D tracedImage;
 
 // Each light's own images: light 0's at bindings 9..11, light 1's at 17..19 (bound to light 0's images when there
 // is one light). Separate bindings rather than arrays of images: indexing those by a light number that is not a
@@ -230,9 +239,26 @@ vec3 lightDirection(uint light, vec3 p, out float dist)
     return d / dist;
 }
 
+// The direction of the shadow ray for sample u from `origin` to light `light` (l: the direction to its centre), and
+// how far it goes: within a cone of the light's angular radius for a directional light, to a point of the disk of
+// the light sphere facing `origin` for a point light.
+vec3 shadowRayDirection(uint light, vec3 origin, vec3 l, vec2 u, out float tMax)
+{
+    vec3 t = normalize(abs(l.x) > 0.9 ? cross(l, vec3(0, 1, 0)) : cross(l, vec3(1, 0, 0)));
+    vec3 b = cross(l, t);
+    vec2 d = concentricDisk(u);
+    if (frame.lights[light].w == 0.0) {
+        tMax = kInfinity;
+        return normalize(l + (d.x * t + d.y * b) * frame.lightParams.x);
+    }
+    vec3 target = frame.lights[light].xyz + (d.x * t + d.y * b) * frame.lightParams.x;
+    vec3 dir = target - origin;
+    tMax = length(dir);
+    return dir / tMax;
+}
+
 // One shadow ray from `origin` (a surface point already nudged off its surface) with shading normal n, towards
-// a point of light `light` chosen by u: within a cone of the light's angular radius for a directional light, on the
-// disk of the light sphere facing the point for a point light. Returns true when occluded. A surface facing away
+// the point of light `light` sample u picks (shadowRayDirection). Returns true when occluded. A surface facing away
 // from the light counts as occluded, as a ray through the object would find. With `closest`, the traversal finds
 // the nearest occluder and hitDistance is its distance along the ray (the penumbra guidance dnsr reads); without
 // it the first occluder found ends the traversal (cheaper) and hitDistance is only some occluder's distance. It
@@ -243,20 +269,8 @@ bool shadowRay(uint light, vec3 origin, vec3 n, vec2 u, bool closest, out float 
     float dist;
     vec3 l = lightDirection(light, origin, dist);
     if (dot(n, l) <= 0.0) return true;
-    vec3 t = normalize(abs(l.x) > 0.9 ? cross(l, vec3(0, 1, 0)) : cross(l, vec3(1, 0, 0)));
-    vec3 b = cross(l, t);
-    vec2 d = concentricDisk(u);
-    vec3 dir;
     float tMax;
-    if (frame.lights[light].w == 0.0) {
-        dir = normalize(l + (d.x * t + d.y * b) * frame.lightParams.x);
-        tMax = kInfinity;
-    } else {
-        vec3 target = frame.lights[light].xyz + (d.x * t + d.y * b) * frame.lightParams.x;
-        dir = target - origin;
-        tMax = length(dir);
-        dir /= tMax;
-    }
+    vec3 dir = shadowRayDirection(light, origin, l, u, tMax);
     uint tri;
     float hitT;
     vec2 bary;
@@ -270,4 +284,26 @@ float shadowSample(uint light, vec3 origin, vec3 n, vec2 u)
 {
     float unused;
     return shadowRay(light, origin, n, u, false, unused) ? 0.0 : 1.0;
+}
+
+// Hybrid mode: shadowRay's ray for sample u of directional light `light`, only over the stretch [tMin, tMax] of
+// the light direction that dnsr's classifier bounded with the blockers the cascades show (it leans off the light
+// direction by the light's angular radius at most, so its own length grows by 1 / cos of the lean). Forward from
+// the surface, or reversed from the far end towards it (a blocker nearest the light is met first). Any occluder
+// ends it. True when occluded.
+bool shadowRayInterval(uint light, vec3 origin, vec3 n, vec2 u, float tMin, float tMax, bool reversed)
+{
+    float dist;
+    vec3 l = lightDirection(light, origin, dist);
+    if (dot(n, l) <= 0.0) return true;
+    float unused;
+    vec3 dir = shadowRayDirection(light, origin, l, u, unused);
+    float lean = 1.0 / max(dot(dir, l), 1e-3);
+    float start = tMin * lean, end = min(tMax * lean, kInfinity);
+    uint tri;
+    float hitT;
+    vec2 bary;
+    if (reversed && end < kInfinity)  // stops just short of the surface point it would end at
+        return traceRay(origin + dir * end, -dir, (end - start) * 0.9999, true, tri, hitT, bary);
+    return traceRay(origin + dir * start, dir, end - start, true, tri, hitT, bary);
 }

@@ -1,7 +1,8 @@
 #version 450
 // composite.comp: the final image, color = albedo * (ambient + sum over the lights of N.L * shadow), or one of the
 // debug views of light pc.light, into displayImage (RGBA8, gamma-encoded for the composite). pc.mode: 0 noisy 1-spp
-// shadow, 1 denoised shadow, 2 reference shadow, 3 composite, 4 hit-mask density per tile (of the traced pixels).
+// shadow, 1 denoised shadow, 2 reference shadow, 3 composite, 4 hit-mask density per tile (of the traced pixels),
+// 9 what decided each pixel in hybrid mode, 10 the fraction of each tile's pixels traced.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
@@ -58,6 +59,22 @@ void main()
         color = depth >= 1.0 ? frame.skyColor.rgb
                              : albedo * (ambient + (1.0 - ambient) * direct / float(frame.info.z));
         color = pow(color, vec3(1.0 / 2.2));
+    } else if (pc.mode == 9u) {
+        // Hybrid mode: pale = lit and dark blue = shadowed by the cascades' verdict; orange = lit and dark red =
+        // occluded by a ray. The tiles dnsr's classifier listed have their grid drawn.
+        uint traced = imageLoad(tracedImage, pixel / ivec2(8, 4)).r;
+        bool ray = ((traced >> tileBit(uvec2(pixel))) & 1u) != 0u;
+        bool lit = maskShadow(light, pixel) > 0.5;
+        vec3 tint = ray ? (lit ? vec3(1.0, 0.6, 0.15) : vec3(0.55, 0.1, 0.08))
+                        : (lit ? vec3(0.85, 0.85, 0.8) : vec3(0.15, 0.2, 0.45));
+        bool edge = traced != 0u && (pixel.x % 8 == 0 || pixel.y % 4 == 0);
+        color = depth >= 1.0 ? frame.skyColor.rgb * 0.7 : tint * (0.6 + 0.4 * nDotL) * (edge ? 0.7 : 1.0);
+    } else if (pc.mode == 10u) {
+        // Pixels traced per tile: grey none, dark red a few, through to yellow all 32.
+        uint traced = bitCount(imageLoad(tracedImage, pixel / ivec2(8, 4)).r);
+        vec3 heat = traced == 0u ? vec3(0.3) : mix(vec3(0.45, 0.05, 0.05), vec3(1.0, 0.95, 0.3), float(traced) / 32.0);
+        bool edge = pixel.x % 8 == 0 || pixel.y % 4 == 0;
+        color = heat * (depth >= 1.0 ? 0.6 : 1.0) * (edge ? 0.8 : 1.0);
     } else {
         // Occluded rays per tile: all lit (green) and all occluded (blue) tiles are the ones dnsr's tile
         // classification can skip; the mixed ones (orange, brighter = more occluded) go through the filter. Out of

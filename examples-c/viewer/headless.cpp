@@ -1,6 +1,7 @@
 // headless.cpp: see headless.h.
 #include "headless.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -119,6 +120,22 @@ void writeImages(const std::string &dir, const Renderer &renderer, const Measure
     if (hybrid) savePng(dir + "hybrid.png", w, h, 3, hybridImage(renderer, s));
 }
 
+ViewerTimings medianTimings(const std::vector<ViewerTimings> &frames)
+{
+    ViewerTimings out;
+    if (frames.empty()) return out;
+    double ViewerTimings::*fields[] = {&ViewerTimings::primary,   &ViewerTimings::cascades, &ViewerTimings::classify,
+                                       &ViewerTimings::shadow,    &ViewerTimings::reference, &ViewerTimings::dnsr,
+                                       &ViewerTimings::composite};
+    for (auto field : fields) {
+        std::vector<double> v;
+        for (const ViewerTimings &t : frames) v.push_back(t.*field);
+        std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+        out.*field = v[v.size() / 2];
+    }
+    return out;
+}
+
 void printSummary(const Session &s, const Measurements &m, const std::string &dir)
 {
     const ErrorStats &e = m.errors[0];
@@ -163,6 +180,7 @@ int runHeadless(VulkanContext &ctx, const Options &opt, const Scene &scene, cons
     ctx.create(contextOptions(opt));
     s.createRenderer();
 
+    std::vector<ViewerTimings> timings;  // per frame after the first
     for (uint32_t f = 0; f < opt.frames; f++) {
         bool last = f + 1 == opt.frames;
         Orbit o = s.orbit;
@@ -181,11 +199,14 @@ int runHeadless(VulkanContext &ctx, const Options &opt, const Scene &scene, cons
         if (last) s.renderer.recordReadback(cmd);
         ctx.submitAndWait(cmd);
         s.renderer.afterFrame();
+        if (f > 0) timings.push_back(s.renderer.viewerTimings);
     }
 
     std::filesystem::create_directories(opt.outDir);
     const std::string dir = opt.outDir + "/";
     Measurements m = measureLastFrame(s, reference);
+    m.medianTimings = medianTimings(timings);
+    m.medianFrames = timings.size();
     writeImages(dir, s.renderer, m, s.hybrid);
     writeReport(dir + "report.json", s, m);
     printSummary(s, m, dir);

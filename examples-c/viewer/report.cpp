@@ -123,6 +123,14 @@ void writeReport(const std::string &path, const Session &session, const Measurem
                           {"classify", rounded(v.classify, 4)}, {"shadow", rounded(v.shadow, 4)},
                           {"reference", rounded(v.reference, 4)}, {"dnsr", rounded(v.dnsr, 4)},
                           {"composite", rounded(v.composite, 4)}};
+    const ViewerTimings &med = m.medianTimings;
+    r["viewer_gpu_ms_median"] = {{"frames", m.medianFrames},
+                                 {"primary", rounded(med.primary, 4)},
+                                 {"cascades", rounded(med.cascades, 4)},
+                                 {"classify", rounded(med.classify, 4)},
+                                 {"shadow", rounded(med.shadow, 4)},
+                                 {"dnsr", rounded(med.dnsr, 4)},
+                                 {"composite", rounded(med.composite, 4)}};
     r["dnsr_memory_bytes"] = renderer.dnsrMemoryBytes();
 
     // A scene path need not be UTF-8: replace what is not, instead of failing the run.

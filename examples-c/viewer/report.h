@@ -14,6 +14,10 @@ struct Measurements {
     uint32_t referenceSamples = 0;  // rays per pixel of the reference measured against
     bool referenceLoaded = false;   // from --load-reference
     TracedStats traced;             // light 0's
+    // Each pass's median GPU time over the frames after the first (pipelines warm; the last one's too), and the
+    // frames it is over (0 with a single frame: the report then gives the last frame's alone).
+    ViewerTimings medianTimings;
+    size_t medianFrames = 0;
 };
 
 // Throws VulkanError when the file cannot be written.

@@ -163,8 +163,9 @@ pub struct ClassifierBuffers {
     pub counts: vk::Buffer,
 }
 
-/// The blocker-search taps in the unit disc: Mitchell's best candidate from a fixed seed, so every prefix (the
-/// first 8, 16, 24) is spread over the disc too. One table for the shader (generated GLSL) and the reference.
+/// The blocker-search taps in the unit disc: the centre, then Mitchell's best candidate from a fixed seed, so every
+/// prefix (the first 8, 16, 24) is spread over the disc too. One table for the shader (generated GLSL) and the
+/// reference.
 pub(crate) fn blocker_disc() -> [[f32; 2]; MAX_TAPS] {
     let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
     let mut next = move || {
@@ -173,7 +174,8 @@ pub(crate) fn blocker_disc() -> [[f32; 2]; MAX_TAPS] {
         state ^= state << 17;
         (state >> 40) as f64 / (1u64 << 24) as f64
     };
-    let mut points: Vec<[f64; 2]> = Vec::with_capacity(MAX_TAPS);
+    // The centre first: a thin blocker straight towards the light (a pole's umbra) is not left between taps.
+    let mut points: Vec<[f64; 2]> = vec![[0.0, 0.0]];
     while points.len() < MAX_TAPS {
         let mut best = ([0.0, 0.0], -1.0);
         for _ in 0..(8 * points.len() + 1) {

@@ -11,7 +11,8 @@ listed pixels only). Writes OUT/hybrid.json (every report.json) and OUT/hybrid.m
   classifier, the listed rays and dnsr for hybrid mode; the cascades apart (an engine renders its shadow maps anyway,
   the viewer traces them);
 - RMSE of the denoised shadow against the reference (REFERENCE_RAYS rays per pixel), both runs against the same one
-  (the full run saves it, the hybrid run loads it: the viewer checks their last frames' depth is the same).
+  (the full run saves it, the hybrid run loads it: the viewer checks their last frames' depth is the same); and
+  that of a third run, full tracing with penumbra guidance (the viewer's default, which hybrid mode gives up).
 
 usage: hybrid.py VIEWER OUT_DIR [--sizes 1920x1080,3840x2160] [--suns 0.27,3] [--reference-rays 1024] SCENE...
 """
@@ -32,7 +33,7 @@ def run(viewer, scene, size, sun, out, extra):
     return json.loads((Path(out) / "report.json").read_text())
 
 
-def row(scene, size, sun, full, hybrid):
+def row(scene, size, sun, full, hybrid, guided):
     f, h = full["viewer_gpu_ms_median"], hybrid["viewer_gpu_ms_median"]
     t = hybrid["traced"]
     full_ms = f["shadow"] + f["dnsr"]
@@ -45,6 +46,7 @@ def row(scene, size, sun, full, hybrid):
         "hybrid_ms": {"cascades": h["cascades"], "classify": h["classify"], "rays": h["shadow"], "dnsr": h["dnsr"],
                       "total": hybrid_ms},
         "rmse": {"full": full["rmse"]["denoised"], "hybrid": hybrid["rmse"]["denoised"],
+                 "full_guided": guided["rmse"]["denoised"],
                  "noisy_full": full["rmse"]["noisy"], "noisy_hybrid": hybrid["rmse"]["noisy"]},
     }
 
@@ -53,14 +55,16 @@ def markdown(rows, device, reference_rays):
     out = [f"Device: {device}. {FRAMES} frames, orbiting camera; GPU ms are medians over frames 2..{FRAMES}; RMSE of "
            f"the last frame's denoised shadow against a {reference_rays}-ray reference.", "",
            "| scene | size | sun radius | traced | rays saved | decided wrong | full: rays + dnsr ms | "
-           "hybrid: classify + rays + dnsr ms | speed-up | cascades ms | RMSE full | RMSE hybrid |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+           "hybrid: classify + rays + dnsr ms | speed-up | cascades ms | RMSE full | RMSE hybrid | "
+           "RMSE full, guided |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         f, h, e = r["full_ms"], r["hybrid_ms"], r["rmse"]
         out.append(f"| {r['scene']} | {r['size']} | {r['sun_deg']:g} deg | {r['traced_fraction']:.1%} | "
                    f"{r['rays_saved']:,} | {r['decided_wrong']} | {f['rays']:.2f} + {f['dnsr']:.2f} = {f['total']:.2f} | "
                    f"{h['classify']:.2f} + {h['rays']:.2f} + {h['dnsr']:.2f} = {h['total']:.2f} | "
-                   f"{f['total'] / h['total']:.2f}x | {h['cascades']:.2f} | {e['full']:.4f} | {e['hybrid']:.4f} |")
+                   f"{f['total'] / h['total']:.2f}x | {h['cascades']:.2f} | {e['full']:.4f} | {e['hybrid']:.4f} "
+                   f"({e['hybrid'] / e['full'] - 1:+.1%}) | {e['full_guided']:.4f} |")
     return "\n".join(out) + "\n"
 
 
@@ -84,9 +88,10 @@ def main():
                 full = run(a.viewer, scene, size, sun, str(out / "full"),
                            ["--hit-distance", "off", "--reference-samples", a.reference_rays, "--save-reference", ref])
                 hybrid = run(a.viewer, scene, size, sun, str(out / "hybrid"), ["--hybrid", "--load-reference", ref])
+                guided = run(a.viewer, scene, size, sun, str(out / "guided"), ["--load-reference", ref])
                 device = full["device"]
-                reports.append({"full": full, "hybrid": hybrid})
-                rows.append(row(scene, size, sun, full, hybrid))
+                reports.append({"full": full, "hybrid": hybrid, "full_guided": guided})
+                rows.append(row(scene, size, sun, full, hybrid, guided))
                 print(f"{time.monotonic() - start:6.1f} s {Path(scene).stem} {size} sun {sun}: "
                       f"traced {rows[-1]['traced_fraction']:.1%}, {rows[-1]['full_ms']['total']:.2f} -> "
                       f"{rows[-1]['hybrid_ms']['total']:.2f} ms, RMSE {rows[-1]['rmse']['full']:.4f} -> "

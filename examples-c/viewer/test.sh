@@ -235,7 +235,7 @@ done
 # on its counts), against the 1-ray run without penumbra guidance (hybrid mode has none) of the same size, frames
 # and camera: validation clean; part of the receivers traced, the rest decided; every traced pixel's ray the full
 # run's (the same sample, and the classifier's interval must not cut off its occluder); hardly any decided pixel
-# against the reference's majority; the denoised RMSE within 10% of full tracing's (3% measured on lavapipe: the
+# against the reference's majority; the denoised RMSE within 10% of full tracing's (2% measured on lavapipe: the
 # cascades' verdicts are exact, but a few outer-penumbra pixels whose blockers fall between the taps are decided
 # lit every frame instead of averaging their rays). Unsupported combinations and bad settings are usage errors ----
 for mode in "--hit-distance off" "--hybrid" "--hybrid --reverse-rays --cascades 1 --taps 8 --tile-cutoff 2"; do

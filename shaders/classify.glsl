@@ -1,21 +1,22 @@
-// classify (hybrid shadows): decides from the cascaded shadow maps which pixels are surely lit or surely shadowed,
-// so that the engine traces rays only for the others. One workgroup per 8x4 tile. Per pixel: sky is lit, a
+// classify (hybrid shadows): decides from the cascaded shadow maps which pixels are surely lit or surely shadowed, so
+// that the engine traces rays only for the others. One workgroup per column of 4 8x4 tiles. Per pixel: sky is lit, a
 // surface facing away from the light is shadowed; otherwise the first cascade containing the pixel is searched for
-// blockers at DNSR_CLASSIFY_DISC taps within the penumbra the light's angular size allows (its radius grows with
-// the distance from the cascade's near plane, the farthest a blocker can be). Every tap in front of the receiver:
-// shadowed; none (when lit pixels may be rejected): lit; else the pixel needs a ray. The tile's mask of pixels to
-// trace, with the ray interval the blockers bound, is appended to the tile list when it has more than the cut-off;
-// the hit mask gets the verdicts (pixels to trace of a listed tile: bit 0, for the engine's trace to OR into; of a
-// tile below the cut-off: the majority of their taps). The reference is src/reference/classify.rs.
+// blockers at DNSR_CLASSIFY_DISC taps within the penumbra the light's angular size allows (its radius grows with the
+// distance from the cascade's near plane, the farthest a blocker can be). Every tap in front of the receiver: shadowed;
+// none (when lit pixels may be rejected): lit; else the pixel needs a ray. The tile's mask of pixels to trace, with the
+// ray interval the blockers bound, is appended to the tile list when it has more than the cut-off; the hit mask gets
+// the verdicts (pixels to trace of a listed tile: bit 0, for the engine's trace to OR into; of a tile below the
+// cut-off: the majority of their taps). The reference is src/reference/classify.rs.
 #ifndef DNSR_CLASSIFY_GLSL
 #define DNSR_CLASSIFY_GLSL
 
-shared uint s_inside;
-shared uint s_lit;
-shared uint s_trace;
-shared uint s_guess_lit;
+// Per tile of the workgroup.
+shared uint s_inside[DNSR_CLASSIFY_TILES_PER_GROUP];
+shared uint s_lit[DNSR_CLASSIFY_TILES_PER_GROUP];
+shared uint s_trace[DNSR_CLASSIFY_TILES_PER_GROUP];
+shared uint s_guess_lit[DNSR_CLASSIFY_TILES_PER_GROUP];
 // Non-negative floats order like their bit patterns, so the interval's end is a uint atomic.
-shared uint s_max_t;
+shared uint s_max_t[DNSR_CLASSIFY_TILES_PER_GROUP];
 
 const uint DNSR_VERDICT_LIT = 0u;
 const uint DNSR_VERDICT_SHADOWED = 1u;
@@ -70,11 +71,17 @@ DnsrVerdict dnsr_classify_pixel(ivec2 p) {
     vec2 centre = s.xy * vec2(size);
     // The receiver's tangent plane: a tap is compared with the plane's depth under it, not the receiver's, so that
     // a surface sloping away from the light is not its own blocker across the search disc (a slope-scaled bias).
-    // Steeper than DNSR_CLASSIFY_MAX_SLOPE, the plane is clamped: the uphill side then counts as a blocker and the
+    // `plane` is how much deeper the plane lies per texel along u and v. A slope (tan of the angle between normal
+    // and light) beyond DNSR_CLASSIFY_MAX_SLOPE is flattened to it: the uphill side then counts as a blocker and the
     // pixel is traced rather than guessed.
-    vec3 axis_u = dnsr_get_cascade_axis_u(cascade);
-    vec3 axis_v = dnsr_get_cascade_axis_v(cascade);
-    float facing = n == vec3(0.0) ? 0.0 : dot(n, to_light);
+    vec2 plane = vec2(0.0);
+    if (n != vec3(0.0)) {
+        float facing = dot(n, to_light);
+        float across = length(n - facing * to_light);
+        vec2 rise = vec2(dot(n, dnsr_get_cascade_axis_u(cascade)), dot(n, dnsr_get_cascade_axis_v(cascade)));
+        plane = rise / max(facing, across / DNSR_CLASSIFY_MAX_SLOPE) * units.x / vec2(size);
+    }
+    float limit = z - units.w;
     float nearest_light = infinity;
     int valid = 0;
     int blocking = 0;
@@ -86,12 +93,7 @@ DnsrVerdict dnsr_classify_pixel(ivec2 p) {
         float d = dnsr_read_cascade_depth(cascade, texel);
         d = inverted ? 1.0 - d : d;
         valid += 1;
-        vec2 offset = (vec2(texel) + 0.5 - centre) / vec2(size);
-        vec3 across = axis_u * offset.x + axis_v * offset.y;
-        float bound = DNSR_CLASSIFY_MAX_SLOPE * length(across);
-        float rise = facing > 0.0 ? clamp(dot(n, across) / facing, -bound, bound) : 0.0;
-        float limit = z + rise * units.x - units.w;
-        if (d < limit) {
+        if (d < limit + dot(plane, vec2(texel) + 0.5 - centre)) {
             blocking += 1;
             nearest_light = min(nearest_light, d);
         }
@@ -115,38 +117,45 @@ DnsrVerdict dnsr_classify_pixel(ivec2 p) {
     return v;
 }
 
-void dnsr_classify(ivec2 tile, ivec2 lid) {
-    bool first = lid == ivec2(0);
+// Group `group` holds tiles (group.x, group.y * DNSR_CLASSIFY_TILES_PER_GROUP + k); invocation `lid` is pixel
+// lid % tile size of tile k = lid.y / tile height.
+void dnsr_classify(ivec2 group, ivec2 lid) {
+    int k = lid.y / DNSR_TILE_HEIGHT;
+    ivec2 tile = ivec2(group.x, group.y * DNSR_CLASSIFY_TILES_PER_GROUP + k);
+    ivec2 in_tile = ivec2(lid.x, lid.y % DNSR_TILE_HEIGHT);
+    bool first = in_tile == ivec2(0);
     if (first) {
-        s_inside = 0u;
-        s_lit = 0u;
-        s_trace = 0u;
-        s_guess_lit = 0u;
-        s_max_t = 0u;
+        s_inside[k] = 0u;
+        s_lit[k] = 0u;
+        s_trace[k] = 0u;
+        s_guess_lit[k] = 0u;
+        s_max_t[k] = 0u;
     }
     barrier();
-    ivec2 p = tile * DNSR_TILE_SIZE + lid;
+    ivec2 p = tile * DNSR_TILE_SIZE + in_tile;
     if (dnsr_inside(p)) {
         DnsrVerdict v = dnsr_classify_pixel(p);
         uint bit = 1u << dnsr_tile_bit(p);
-        atomicOr(s_inside, bit);
+        atomicOr(s_inside[k], bit);
         if (v.kind == DNSR_VERDICT_LIT) {
-            atomicOr(s_lit, bit);
+            atomicOr(s_lit[k], bit);
         } else if (v.kind == DNSR_VERDICT_TRACE) {
-            atomicOr(s_trace, bit);
-            if (v.guess_lit) atomicOr(s_guess_lit, bit);
-            atomicMax(s_max_t, floatBitsToUint(v.max_t));
+            atomicOr(s_trace[k], bit);
+            if (v.guess_lit) atomicOr(s_guess_lit[k], bit);
+            atomicMax(s_max_t[k], floatBitsToUint(v.max_t));
         }
     }
     barrier();
-    if (first) {
-        bool listed = uint(bitCount(s_trace)) > dnsr_get_tile_cutoff();
-        uint traced = listed ? s_trace : 0u;
-        uint lit = s_lit | (listed ? 0u : s_guess_lit);
-        dnsr_write_hit_mask(tile, dnsr_get_is_lit_bit_mask() ? lit : s_inside & ~lit & ~traced);
+    // A tile with no pixel inside the render rectangle lies below it (the last row of groups): nothing to write.
+    if (first && s_inside[k] != 0u) {
+        uint trace = s_trace[k];
+        bool listed = uint(bitCount(trace)) > dnsr_get_tile_cutoff();
+        uint traced = listed ? trace : 0u;
+        uint lit = s_lit[k] | (listed ? 0u : s_guess_lit[k]);
+        dnsr_write_hit_mask(tile, dnsr_get_is_lit_bit_mask() ? lit : s_inside[k] & ~lit & ~traced);
         if (listed) {
             ivec2 t = tile + dnsr_get_tile_offset();
-            dnsr_append_tile(uvec4(uint(t.x) | (uint(t.y) << 16), s_trace, 0u, s_max_t));
+            dnsr_append_tile(uvec4(uint(t.x) | (uint(t.y) << 16), trace, 0u, s_max_t[k]));
         }
     }
 }

@@ -26,7 +26,7 @@ pub const CLASSIFY_TAP_COUNTS: [u32; 4] = [8, 16, 24, 32];
 /// Most blocker-search taps.
 pub(crate) const MAX_TAPS: usize = 32;
 /// Steepest receiver slope (tangent of the angle between its normal and the light) the blocker search follows
-/// with the receiver's tangent plane; steeper receivers compare with a plane clamped to this slope.
+/// with the receiver's tangent plane; a steeper receiver's plane is flattened to this slope.
 pub(crate) const MAX_SLOPE: f32 = 4.0;
 /// Bytes of one tile record in `ClassifierBuffers::tiles`: uvec4 (x | y << 16 in tiles, mask of pixels to trace
 /// with bit (y % 4) * 8 + (x % 8), min t, max t as float bits). Min t is 0 (the FidelityFX record's field): a ray

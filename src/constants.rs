@@ -177,6 +177,7 @@ pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
     ("DNSR_GROUP_HEIGHT", crate::passes::GROUP[1]),
     ("DNSR_WIDE_GROUP_WIDTH", crate::passes::WIDE_GROUP[0]),
     ("DNSR_WIDE_GROUP_HEIGHT", crate::passes::WIDE_GROUP[1]),
+    ("DNSR_CLASSIFY_TILES_PER_GROUP", crate::passes::classify::TILES_PER_GROUP),
     ("DNSR_MOMENT_RADIUS", crate::passes::MOMENT_RADIUS),
     ("DNSR_MAX_SAMPLE_RUN", crate::passes::MAX_SAMPLE_RUN),
     ("DNSR_RUN_CLAMP_SAMPLES", crate::passes::RUN_CLAMP_SAMPLES),

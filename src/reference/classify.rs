@@ -114,10 +114,18 @@ fn classify_pixel(inp: &ClassifyInputs, c: &ClassifyConstants, x: u32, y: u32) -
     let size = DVec2::new(map.width as f64, map.height as f64);
     let reach = radius * DVec2::new(units[1], units[2]) * size + 1.0;
     let centre = DVec2::new(s.x, s.y) * size;
-    // Taps compare with the receiver's tangent plane under them, its slope clamped to MAX_SLOPE.
+    // Taps compare with the receiver's tangent plane under them (how much deeper per texel along u and v), its slope
+    // flattened to MAX_SLOPE.
     let axis = |m: &[[f32; 4]; 4]| DVec3::new(m[k][0] as f64, m[k][1] as f64, m[k][2] as f64);
-    let (axis_u, axis_v) = (axis(&c.cascade_axes_u), axis(&c.cascade_axes_v));
-    let facing = if n == DVec3::ZERO { 0.0 } else { n.dot(to_light) };
+    let plane = if n == DVec3::ZERO {
+        DVec2::ZERO
+    } else {
+        let facing = n.dot(to_light);
+        let across = (n - facing * to_light).length();
+        let rise = DVec2::new(n.dot(axis(&c.cascade_axes_u)), n.dot(axis(&c.cascade_axes_v)));
+        rise / facing.max(across / MAX_SLOPE as f64) * units[0] / size
+    };
+    let limit = z - units[3];
     let (mut valid, mut blocking) = (0u32, 0u32);
     let mut nearest_light = f64::INFINITY;
     for tap in blocker_disc().iter().take(d.tap_count as usize) {
@@ -130,11 +138,7 @@ fn classify_pixel(inp: &ClassifyInputs, c: &ClassifyConstants, x: u32, y: u32) -
         let stored = map.depth[(t.y as u32 * map.width + t.x as u32) as usize] as f64;
         let depth = if inverted { 1.0 - stored } else { stored };
         valid += 1;
-        let offset = (t + 0.5 - centre) / size;
-        let across = axis_u * offset.x + axis_v * offset.y;
-        let bound = MAX_SLOPE as f64 * across.length();
-        let rise = if facing > 0.0 { (n.dot(across) / facing).clamp(-bound, bound) } else { 0.0 };
-        let limit = z + rise * units[0] - units[3];
+        let limit = limit + plane.dot(t + 0.5 - centre);
         fragile |= (depth - limit).abs() < EPS;
         if depth < limit {
             blocking += 1;

@@ -150,7 +150,7 @@ void printSummary(const Session &s, const Measurements &m, const std::string &di
                     s.renderer.viewerTimings.classify, s.renderer.viewerTimings.shadow);
     std::printf("viewer: %u frames, penumbra guidance %s; RMSE vs %u-ray reference over %zu pixels: noisy %.4f "
                 "(%.1f dB), denoised %.4f (%.1f dB)\n",
-                s.opt.frames, s.light.hitDistance && !s.hybrid ? "on" : "off", m.referenceSamples, e.pixels, e.rmseNoisy,
+                s.opt.frames, s.light.hitDistance ? "on" : "off", m.referenceSamples, e.pixels, e.rmseNoisy,
                 psnr(e.rmseNoisy), e.rmseDenoised, psnr(e.rmseDenoised));
     std::printf("viewer: lit pixels within %d px of a shadowed one (%zu): darkening vs the reference, worst "
                 "%.2f, mean %.2f (1/255)\n",

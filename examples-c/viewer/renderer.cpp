@@ -30,6 +30,9 @@ const uint32_t kCascadeSpv[] =
 const uint32_t kShadowListedSpv[] =
 #include "shadow_listed.comp.inc"
     ;
+const uint32_t kShadowListedR32fSpv[] =  // R32F hit distance, as shadow_r32f
+#include "shadow_listed_r32f.comp.inc"
+    ;
 // Host copy of shaders/common.glsl's FrameConstants (std140: vec4-aligned members only, so no padding rules).
 struct FrameConstants {
     Mat4 viewProj, invViewProj, prevViewProj;
@@ -270,7 +273,9 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
     composite_ = ctx.createComputePipeline(pipelineLayout_, kCompositeSpv, sizeof kCompositeSpv);
     if (hybrid.enabled) {
         cascade_ = ctx.createComputePipeline(pipelineLayout_, kCascadeSpv, sizeof kCascadeSpv);
-        shadowListed_ = ctx.createComputePipeline(pipelineLayout_, kShadowListedSpv, sizeof kShadowListedSpv);
+        shadowListed_ = ctx.storageImageExtendedFormats
+                            ? ctx.createComputePipeline(pipelineLayout_, kShadowListedSpv, sizeof kShadowListedSpv)
+                            : ctx.createComputePipeline(pipelineLayout_, kShadowListedR32fSpv, sizeof kShadowListedR32fSpv);
     }
 
     auto queryInfo = vkStruct<VkQueryPoolCreateInfo>(VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO);
@@ -406,7 +411,8 @@ void Renderer::recordHybridShadows(VkCommandBuffer cmd, const FrameInput &in, co
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterClassify);
 
     // One workgroup per listed tile: the classifier wrote the group count into its counts buffer (word 0..2).
-    bind(cmd, shadowListed_, h.reverseRays ? 1u : 0u);
+    // Mode bit 0: reversed rays; bit 1: penumbra guidance (forward rays to the nearest occluder, its distance).
+    bind(cmd, shadowListed_, (h.reverseRays ? 1u : 0u) | (in.hitDistance ? 2u : 0u));
     vkCmdDispatchIndirect(cmd, tileCounts_, 0);
 }
 
@@ -427,7 +433,7 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
     tracedBits_ = !settings_.checkerboard ? ~0u : phase == 0 ? 0xAA55AA55u : 0x55AA55AAu;
     if (in.hybrid && !settings_.hybrid.enabled) throw VulkanError("hybrid mode was not enabled at creation");
     const bool hybrid = in.hybrid;
-    const bool guidance = in.hitDistance && !hybrid;  // the cascades' verdicts come without a hit distance
+    const bool guidance = in.hitDistance;
     if (hybrid)
         cascadeSet_ = fitCascades(invViewProj, in.eye, in.lights[0], settings_.sceneCenter, settings_.sceneRadius,
                                   settings_.hybrid.cascades, cascadeSize_);
@@ -489,6 +495,12 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
     traced.uint32[0] = hybrid ? 0u : tracedBits_;
     VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     vkCmdClearColorImage(cmd, traced_.image, VK_IMAGE_LAYOUT_GENERAL, &traced, 1, &range);
+    // Hybrid mode with penumbra guidance: only the traced pixels get a hit distance; the others' stay 0, which dnsr
+    // reads as unknown (it averages the known ones around each tile).
+    if (hybrid && guidance) {
+        VkClearColorValue zero{};
+        vkCmdClearColorImage(cmd, lights_[0].hitDistance.image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+    }
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps_, kStart);

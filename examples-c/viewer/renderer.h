@@ -56,7 +56,7 @@ struct HybridSettings {
     uint32_t taps = 24;        // the classifier's blocker-search taps: 8, 16, 24 or 32
     uint32_t tileCutoff = 0;   // a tile is listed with more pixels to trace than this (0..31)
     float blockerOffset = 0;   // world units a cascade depth must be in front of the receiver to block it
-    bool reverseRays = false;  // trace from the light's end of the classifier's interval towards the surface
+    bool reverseRays = false;  // trace from the light's end of the classifier's interval (not with guidance)
 };
 
 struct RendererSettings {
@@ -93,7 +93,7 @@ struct FrameInput {
     float lightAngularSize = 0.0f;
     bool cameraCut = false;          // discard dnsr's history (first frame, view reset)
     // Hybrid mode (needs RendererSettings::hybrid.enabled): rays only where dnsr's classifier cannot decide from
-    // the cascades. Penumbra guidance is off then (the pixels the cascades decide have no hit distance).
+    // the cascades. With penumbra guidance, only the traced pixels have a hit distance (the others 0: unknown).
     bool hybrid = false;
     View display = View::Composite;  // what composite.comp writes to the display image
     uint32_t shownLight = 0;         // the light the views other than the composite show (dnsr's included)

@@ -56,7 +56,7 @@ void writeReport(const std::string &path, const Session &session, const Measurem
     r["light_angle_deg"] = rounded(opt.lightAngleDeg, 2);
     // Penumbra guidance, and the angular diameter (radians) it passed to dnsr.
     FrameInput last = makeFrame(session.scene, session.orbit, session.light, opt.width, opt.height);
-    r["hit_distance"] = session.light.hitDistance && !session.hybrid;  // hybrid mode has no guidance
+    r["hit_distance"] = session.light.hitDistance;
     r["light_angular_size_rad"] = rounded(last.lightAngularSize, 6);
     const char *presets[] = {"fast", "balanced", "quality"};
     r["preset"] = presets[opt.preset];

@@ -301,7 +301,7 @@ private:
                       "dnsr viewer | %s%s%s | guidance %s%s | dnsr GPU ms: prepare %.2f, tiles %.2f, filter %.2f (%u "
                       "passes), total %.2f | rays ms: primary %.2f, shadow %.2f | %.1f fps",
                       view, shown, s_.light.moving ? " | light moving" : "",
-                      s_.light.hitDistance && !s_.hybrid ? "on" : "off", hybrid, t.prepareMs, t.tileClassificationMs,
+                      s_.light.hitDistance ? "on" : "off", hybrid, t.prepareMs, t.tileClassificationMs,
                       filter, t.filterPasses, t.totalMs, v.primary, v.shadow, fps);
         glfwSetWindowTitle(window_, title);
     }

@@ -290,9 +290,12 @@ float shadowSample(uint light, vec3 origin, vec3 n, vec2 u)
 // the light direction that dnsr's classifier bounded with the blockers the cascades show (it leans off the light
 // direction by the light's angular radius at most, so its own length grows by 1 / cos of the lean). Forward from
 // the surface, or reversed from the far end towards it (a blocker nearest the light is met first). Any occluder
-// ends it. True when occluded.
-bool shadowRayInterval(uint light, vec3 origin, vec3 n, vec2 u, float tMin, float tMax, bool reversed)
+// ends it, unless `closest`: then a forward ray finds the nearest and hitDistance is its distance from `origin` (0
+// when not occluded, or facing away from the light, as shadowRay). True when occluded.
+bool shadowRayInterval(uint light, vec3 origin, vec3 n, vec2 u, float tMin, float tMax, bool reversed, bool closest,
+                       out float hitDistance)
 {
+    hitDistance = 0.0;
     float dist;
     vec3 l = lightDirection(light, origin, dist);
     if (dot(n, l) <= 0.0) return true;
@@ -305,5 +308,7 @@ bool shadowRayInterval(uint light, vec3 origin, vec3 n, vec2 u, float tMin, floa
     vec2 bary;
     if (reversed && end < kInfinity)  // stops just short of the surface point it would end at
         return traceRay(origin + dir * end, -dir, (end - start) * 0.9999, true, tri, hitT, bary);
-    return traceRay(origin + dir * start, dir, end - start, true, tri, hitT, bary);
+    if (!traceRay(origin + dir * start, dir, end - start, !closest, tri, hitT, bary)) return false;
+    hitDistance = start + hitT;
+    return true;
 }

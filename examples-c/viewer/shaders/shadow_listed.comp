@@ -3,9 +3,17 @@
 // 8x4 tile (vkCmdDispatchIndirect on the classifier's counts), one invocation per pixel. The classifier prefilled
 // the hit mask (the listed pixels with 0); an occluded ray ORs its bit in (DNSR_HIT_MASK_OCCLUDED_BITS), so the
 // tile's other pixels keep the cascades' verdicts. The same per-pixel sample as shadow.comp's first ray, within the
-// classifier's interval (pc.mode 1: reversed). Also records the tile's traced pixels for the views and statistics.
+// classifier's interval (pc.mode bit 0: reversed). With penumbra guidance (bit 1) the rays go forward to the nearest
+// occluder and write its distance; the renderer cleared the other pixels' to 0, dnsr's "unknown". Also records the
+// tile's traced pixels for the views and statistics.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
+
+#ifdef HIT_DISTANCE_R32F
+layout(set = 0, binding = 13, r32f) uniform writeonly image2D hitDistanceImage;
+#else
+layout(set = 0, binding = 13, r16f) uniform writeonly image2D hitDistanceImage;
+#endif
 
 // DNSR_CLASSIFY_TILE_BYTES per listed tile: x | y << 16 (in tiles), the pixels to trace, min t, max t (float bits).
 layout(set = 0, binding = 26, std430) readonly buffer TileList { uvec4 tileList[]; };
@@ -24,6 +32,10 @@ void main()
     if (origin.w == 0.0) return;  // sky: the classifier lists receivers only
     vec3 n = imageLoad(normalImage, ivec2(pixel)).xyz;
     vec2 u = sample2D(pixel, frame.info.x, shadowSeed(0u));
-    if (shadowRayInterval(0u, origin.xyz, n, u, uintBitsToFloat(record.z), uintBitsToFloat(record.w), pc.mode == 1u))
+    bool guidance = (pc.mode & 2u) != 0u;
+    float hitDistance;
+    if (shadowRayInterval(0u, origin.xyz, n, u, uintBitsToFloat(record.z), uintBitsToFloat(record.w),
+                          !guidance && (pc.mode & 1u) != 0u, guidance, hitDistance))
         imageAtomicOr(hitMaskImage, ivec2(tile), 1u << bit);
+    if (guidance) imageStore(hitDistanceImage, ivec2(pixel), vec4(hitDistance));
 }

@@ -52,7 +52,7 @@ const char *kUsage =
     "  --tile-cutoff N         hybrid: a tile is traced only with more than N pixels to trace, 0..31 (default 0);\n"
     "                          the others keep the verdict most of their taps give\n"
     "  --blocker-offset F      hybrid: how far (in scene radii, 0..1) a cascade depth must be in front of a\n"
-    "                          receiver's tangent plane to block it (default 0.005)\n"
+    "                          receiver's tangent plane to block it (default: two texels of the finest cascade)\n"
     "  --reverse-rays          hybrid: trace from the light's end of the classifier's interval towards the surface\n"
     "                          (with --hit-distance off: guidance needs the occluder nearest the surface)\n"
     "  --preset NAME           dnsr's settings: fast, balanced (the FidelityFX defaults; default) or quality\n"

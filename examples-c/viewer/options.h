@@ -34,7 +34,7 @@ struct Options {
     // Hybrid shadows (RendererSettings::hybrid): start in hybrid mode, and its settings.
     bool hybrid = false;
     uint32_t cascades = 2, cascadeSize = 0, taps = 24, tileCutoff = 0;
-    float blockerOffset = 0.005f;  // in scene radii
+    float blockerOffset = -1.0f;  // in scene radii; negative: two texels of the finest cascade
     bool reverseRays = false;
 };
 

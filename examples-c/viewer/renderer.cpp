@@ -404,7 +404,10 @@ void Renderer::recordHybridShadows(VkCommandBuffer cmd, const FrameInput &in, co
     c.lightAngularSize = in.lightAngularSize;
     c.cascades = &cascadeSet_;
     for (uint32_t i = 0; i < cascadeSet_.count; i++) c.cascadeImages[i] = &cascades_[i];
-    c.blockerOffset = h.blockerOffset;
+    // A scene-sized offset hides low blockers in a large scene (the city's rails at 0.005 scene radii); a texel-sized
+    // one follows the cascade's own precision.
+    const Cascade &finest = cascadeSet_.cascades[0];
+    c.blockerOffset = h.blockerOffset >= 0 ? h.blockerOffset : 2.0f * length(finest.axisU) / float(cascadeSize_);
     c.taps = h.taps;
     c.tileCutoff = h.tileCutoff;
     denoiser_.recordClassify(frame, c);

@@ -55,7 +55,8 @@ struct HybridSettings {
     uint32_t cascadeSize = 0;  // texels per side; 0: the render size's larger side rounded up to a power of two
     uint32_t taps = 24;        // the classifier's blocker-search taps: 8, 16, 24 or 32
     uint32_t tileCutoff = 0;   // a tile is listed with more pixels to trace than this (0..31)
-    float blockerOffset = 0;   // world units a cascade depth must be in front of the receiver to block it
+    float blockerOffset = -1;  // world units a cascade depth must be in front of the receiver to block it;
+                               // negative: two texels of the finest cascade (it moves with the camera)
     bool reverseRays = false;  // trace from the light's end of the classifier's interval (not with guidance)
 };
 

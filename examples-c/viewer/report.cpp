@@ -71,7 +71,8 @@ void writeReport(const std::string &path, const Session &session, const Measurem
                                          {"cascade_size", rr.cascadeSize()},
                                          {"taps", opt.taps},
                                          {"tile_cutoff", opt.tileCutoff},
-                                         {"blocker_offset_scene_radii", rounded(opt.blockerOffset, 6)},
+                                         {"blocker_offset_scene_radii",
+                                          opt.blockerOffset < 0 ? Json("2 texels") : Json(rounded(opt.blockerOffset, 6))},
                                          {"reverse_rays", opt.reverseRays}};
     const TracedStats &ts = m.traced;
     r["traced"] = {{"receivers", ts.receivers},

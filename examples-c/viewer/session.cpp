@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
 VulkanContextOptions contextOptions(const Options &options)
 {
@@ -41,14 +42,15 @@ void Session::createRenderer()
     HybridSettings &h = rs.hybrid;
     h.enabled = hybridAvailable;
     h.cascades = opt.cascades, h.cascadeSize = opt.cascadeSize, h.taps = opt.taps, h.tileCutoff = opt.tileCutoff;
-    h.blockerOffset = opt.blockerOffset * scene.radius;
+    h.blockerOffset = opt.blockerOffset < 0 ? -1.0f : opt.blockerOffset * scene.radius;
     h.reverseRays = opt.reverseRays;
     renderer.create(ctx, *scene.scene, rs);
     std::printf("viewer: %s on %s, %ux%u, %u triangles, BVH %u nodes (depth %u), push descriptors %s\n",
                 opt.scene.c_str(), ctx.properties.deviceName, opt.width, opt.height, renderer.triangles,
                 renderer.bvhNodes, renderer.bvhDepth, ctx.pushDescriptorEnabled ? "on" : "off");
     if (hybridAvailable)
-        std::printf("viewer: hybrid shadows %s: %u cascades of %u^2, %u taps, tile cut-off %u, blocker offset %g%s\n",
+        std::printf("viewer: hybrid shadows %s: %u cascades of %u^2, %u taps, tile cut-off %u, blocker offset %s%s\n",
                     hybrid ? "on" : "available (key C)", opt.cascades, renderer.cascadeSize(), opt.taps, opt.tileCutoff,
-                    rs.hybrid.blockerOffset, opt.reverseRays ? ", reversed rays" : "");
+                    opt.blockerOffset < 0 ? "2 texels" : std::to_string(rs.hybrid.blockerOffset).c_str(),
+                    opt.reverseRays ? ", reversed rays" : "");
 }

@@ -7,7 +7,7 @@ CARGO ?= cargo
 # `make test DNSR_DEVICE=NVIDIA`.
 DNSR_DEVICE ?= llvmpipe
 
-.PHONY: all demo demo-synthetic viewer viewer-accuracy test bench bench-smoke accuracy generate shaders header deps clean
+.PHONY: all demo demo-synthetic viewer viewer-accuracy viewer-hybrid test bench bench-smoke accuracy generate shaders header deps clean
 
 all: test
 
@@ -52,6 +52,14 @@ test: deps
 # directional and point light, still and orbiting camera: writes docs/viewer-accuracy.md (a few minutes on lavapipe).
 viewer-accuracy: viewer
 	examples-c/viewer/accuracy.py build/viewer/dnsr_viewer docs/viewer-accuracy.md
+
+# Hybrid shadows against full tracing on the viewer's committed scenes (examples-c/viewer/hybrid.py): rays traced,
+# rays saved, GPU ms and RMSE against a 1024-ray reference, into out/hybrid/hybrid.md. docs/hybrid-shadows.md has the
+# H100 tables (with held-out scenes too); on lavapipe use a small size, e.g. HYBRID_SIZES=320x192.
+HYBRID_SIZES ?= 1920x1080,3840x2160
+viewer-hybrid: viewer
+	python3 examples-c/viewer/hybrid.py build/viewer/dnsr_viewer out/hybrid --sizes $(HYBRID_SIZES) --suns 0.27,3 \
+	  examples-c/viewer/scenes/default.gltf examples-c/viewer/scenes/fins.gltf examples-c/viewer/scenes/shells.gltf
 
 # Truth-known quality harness: writes docs/accuracy.md and docs/accuracy/*.png (presets, knob sweeps, images).
 accuracy: deps

@@ -258,40 +258,15 @@ vec3 shadowRayDirection(uint light, vec3 origin, vec3 l, vec2 u, out float tMax)
 }
 
 // One shadow ray from `origin` (a surface point already nudged off its surface) with shading normal n, towards
-// the point of light `light` sample u picks (shadowRayDirection). Returns true when occluded. A surface facing away
-// from the light counts as occluded, as a ray through the object would find. With `closest`, the traversal finds
-// the nearest occluder and hitDistance is its distance along the ray (the penumbra guidance dnsr reads); without
-// it the first occluder found ends the traversal (cheaper) and hitDistance is only some occluder's distance. It
-// is 0 when the ray is not occluded, and for a surface facing away from the light (no ray: distance unknown).
-bool shadowRay(uint light, vec3 origin, vec3 n, vec2 u, bool closest, out float hitDistance)
-{
-    hitDistance = 0.0;
-    float dist;
-    vec3 l = lightDirection(light, origin, dist);
-    if (dot(n, l) <= 0.0) return true;
-    float tMax;
-    vec3 dir = shadowRayDirection(light, origin, l, u, tMax);
-    uint tri;
-    float hitT;
-    vec2 bary;
-    if (!traceRay(origin, dir, tMax, !closest, tri, hitT, bary)) return false;
-    hitDistance = hitT;
-    return true;
-}
-
-// shadowRay as visibility: 1 when lit, 0 when occluded.
-float shadowSample(uint light, vec3 origin, vec3 n, vec2 u)
-{
-    float unused;
-    return shadowRay(light, origin, n, u, false, unused) ? 0.0 : 1.0;
-}
-
-// Hybrid mode: shadowRay's ray for sample u of directional light `light`, only over the stretch [tMin, tMax] of
-// the light direction that dnsr's classifier bounded with the blockers the cascades show (it leans off the light
-// direction by the light's angular radius at most, so its own length grows by 1 / cos of the lean). Forward from
-// the surface, or reversed from the far end towards it (a blocker nearest the light is met first). Any occluder
-// ends it, unless `closest`: then a forward ray finds the nearest and hitDistance is its distance from `origin` (0
-// when not occluded, or facing away from the light, as shadowRay). True when occluded.
+// the point of light `light` sample u picks (shadowRayDirection), over the stretch [tMin, tMax] of the direction to
+// the light (it leans off that direction by the light's angular radius at most, so its own length grows by 1 / cos
+// of the lean; a point light also ends it). Hybrid mode traces the stretch dnsr's classifier bounded with the
+// blockers the cascades show, forward from the surface or reversed from the far end towards it (a blocker nearest
+// the light is met first). Returns true when occluded. A surface facing away from the light counts as occluded, as a
+// ray through the object would find. With `closest`, a forward ray finds the nearest occluder and hitDistance is
+// its distance from `origin` (the penumbra guidance dnsr reads); otherwise the first occluder found ends the
+// traversal (cheaper) and hitDistance is only some occluder's distance. It is 0 when the ray is not occluded, and
+// for a surface facing away from the light (no ray: distance unknown).
 bool shadowRayInterval(uint light, vec3 origin, vec3 n, vec2 u, float tMin, float tMax, bool reversed, bool closest,
                        out float hitDistance)
 {
@@ -299,10 +274,10 @@ bool shadowRayInterval(uint light, vec3 origin, vec3 n, vec2 u, float tMin, floa
     float dist;
     vec3 l = lightDirection(light, origin, dist);
     if (dot(n, l) <= 0.0) return true;
-    float unused;
-    vec3 dir = shadowRayDirection(light, origin, l, u, unused);
+    float rayMax;
+    vec3 dir = shadowRayDirection(light, origin, l, u, rayMax);
     float lean = 1.0 / max(dot(dir, l), 1e-3);
-    float start = tMin * lean, end = min(tMax * lean, kInfinity);
+    float start = tMin * lean, end = min(tMax * lean, rayMax);
     uint tri;
     float hitT;
     vec2 bary;
@@ -311,4 +286,17 @@ bool shadowRayInterval(uint light, vec3 origin, vec3 n, vec2 u, float tMin, floa
     if (!traceRay(origin + dir * start, dir, end - start, !closest, tri, hitT, bary)) return false;
     hitDistance = start + hitT;
     return true;
+}
+
+// The whole ray: from the surface to the light.
+bool shadowRay(uint light, vec3 origin, vec3 n, vec2 u, bool closest, out float hitDistance)
+{
+    return shadowRayInterval(light, origin, n, u, 0.0, kInfinity, false, closest, hitDistance);
+}
+
+// shadowRay as visibility: 1 when lit, 0 when occluded.
+float shadowSample(uint light, vec3 origin, vec3 n, vec2 u)
+{
+    float unused;
+    return shadowRay(light, origin, n, u, false, unused) ? 0.0 : 1.0;
 }

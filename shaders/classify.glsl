@@ -112,7 +112,7 @@ DnsrVerdict dnsr_classify_pixel(ivec2 p) {
         // by up to that much). The ray starts at the receiver: a blocker nearer than the blocker offset, or thinner
         // than the taps' spacing, is invisible to the cascades, and only a ray from the surface finds it.
         float along = (z - nearest_light + units.w) / units.x;
-        v.max_t = max(sqrt(along * along + radius * radius), 0.0);
+        v.max_t = sqrt(along * along + radius * radius);
     }
     return v;
 }

@@ -143,7 +143,6 @@ public:
     // y): all of them, or with --checkerboard those of the pixels with (x + y) % 2 == the frame's phase.
     uint32_t tracedBits() const { return tracedBits_; }
     uint64_t dnsrMemoryBytes() const { return denoiser_.memoryBytes(); }
-    bool hybridAvailable() const { return settings_.hybrid.enabled; }
     uint32_t cascadeSize() const { return cascadeSize_; }
 
     DnsrPassTimings dnsrTimings{};  // dnsr's per-pass GPU times (valid when haveDnsrTimings)

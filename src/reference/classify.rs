@@ -155,7 +155,7 @@ fn classify_pixel(inp: &ClassifyInputs, c: &ClassifyConstants, x: u32, y: u32) -
     if blocking > 0 && d.cascades_bound_ray_interval {
         // The ray starts at the receiver: blockers nearer than the offset or between taps are invisible here.
         let along = (z - nearest_light + units[3]) / units[0];
-        let max_t = (along * along + radius * radius).sqrt().max(0.0);
+        let max_t = (along * along + radius * radius).sqrt();
         return (Verdict::Trace { guess_lit, max_t }, fragile);
     }
     (Verdict::Trace { guess_lit, max_t: f64::INFINITY }, fragile)

@@ -8,12 +8,7 @@
 // tile's traced pixels for the views and statistics.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
-
-#ifdef HIT_DISTANCE_R32F
-layout(set = 0, binding = 13, r32f) uniform writeonly image2D hitDistanceImage;
-#else
-layout(set = 0, binding = 13, r16f) uniform writeonly image2D hitDistanceImage;
-#endif
+#include "shadow_outputs.glsl"
 
 // DNSR_CLASSIFY_TILE_BYTES per listed tile: x | y << 16 (in tiles), the pixels to trace, min t, max t (float bits).
 layout(set = 0, binding = 26, std430) readonly buffer TileList { uvec4 tileList[]; };
@@ -37,5 +32,5 @@ void main()
     if (shadowRayInterval(0u, origin.xyz, n, u, uintBitsToFloat(record.z), uintBitsToFloat(record.w),
                           !guidance && (pc.mode & 1u) != 0u, guidance, hitDistance))
         imageAtomicOr(hitMaskImage, ivec2(tile), 1u << bit);
-    if (guidance) imageStore(hitDistanceImage, ivec2(pixel), vec4(hitDistance));
+    if (guidance) storeHitDistance(0u, ivec2(pixel), hitDistance);
 }

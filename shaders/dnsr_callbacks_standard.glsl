@@ -160,6 +160,7 @@ int dnsr_get_filter_step() { return int(dnsr_push.pass.x); }
 bool dnsr_get_write_internal() { return (dnsr_push.pass.y & DNSR_PASS_WRITE_INTERNAL) != 0u; }
 bool dnsr_get_skip_cleared() { return (dnsr_push.pass.y & DNSR_PASS_SKIP_CLEARED) != 0u; }
 bool dnsr_get_write_guide() { return (dnsr_push.pass.y & DNSR_PASS_WRITE_GUIDE) != 0u; }
+bool dnsr_get_write_guide_everywhere() { return (dnsr_push.pass.y & DNSR_PASS_WRITE_GUIDE_EVERYWHERE) != 0u; }
 // The filter's own per-pixel geometry, written by the first pass for the later ones: (linear depth or -1, normal).
 vec4 dnsr_read_guide(ivec2 p) { return texelFetch(dnsr_guide, p + dnsr_get_offset(), 0); }
 void dnsr_write_guide(ivec2 p, float linear_depth, vec3 normal) { imageStore(dnsr_guide_out, p + dnsr_get_offset(), vec4(linear_depth, normal)); }

@@ -269,8 +269,9 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
         // reprojection image): nothing to do.
         if (dnsr_get_skip_cleared()) return;
         bool receiver = dnsr_is_receiver(dnsr_read_depth(p));
-        // The guide is needed here only where a later pass taps this block from a tile it filters.
-        if (dnsr_get_write_guide() && dnsr_block_is_tapped(m)) {
+        // The guide is needed here only where a later pass taps this block from a tile it filters (of any light
+        // of the record, which this light's tiles do not tell: then everywhere).
+        if (dnsr_get_write_guide() && (dnsr_get_write_guide_everywhere() || dnsr_block_is_tapped(m))) {
             dnsr_write_guide(p, dnsr_tap_depth(p), receiver ? dnsr_read_normal(p) : vec3(0.0));
         }
         dnsr_filter_write(0, p, dnsr_cleared_value(receiver, meta), receiver, meta);

@@ -145,6 +145,10 @@ pub(crate) const PASS_WRITE_INTERNAL: u32 = 1 << 0;
 pub(crate) const PASS_SKIP_CLEARED: u32 = 1 << 1;
 /// Filter pass flag: write the guide (linear depth and normal) that the later passes read per tap.
 pub(crate) const PASS_WRITE_GUIDE: u32 = 1 << 2;
+/// Filter pass flag (with PASS_WRITE_GUIDE): write the guide in every block, not only where this light's later
+/// passes tap it. The first light of a record of several writes it for all of them, and the others' first passes
+/// write none (the guide is the same for every light: 16 B per pixel each of them no longer writes).
+pub(crate) const PASS_WRITE_GUIDE_EVERYWHERE: u32 = 1 << 3;
 
 /// Binding names shared by shaders and host. The host finds each binding's number through reflection.
 #[cfg_attr(not(test), allow(dead_code))]
@@ -156,6 +160,7 @@ pub(crate) const GLSL_FLAGS: &[(&str, u32)] = &[
     ("DNSR_PASS_WRITE_INTERNAL", PASS_WRITE_INTERNAL),
     ("DNSR_PASS_SKIP_CLEARED", PASS_SKIP_CLEARED),
     ("DNSR_PASS_WRITE_GUIDE", PASS_WRITE_GUIDE),
+    ("DNSR_PASS_WRITE_GUIDE_EVERYWHERE", PASS_WRITE_GUIDE_EVERYWHERE),
     ("DNSR_TILE_CLEARED", crate::passes::TILE_CLEARED),
     ("DNSR_TILE_LIT", crate::passes::TILE_LIT),
     ("DNSR_DEBUG_VIEW_NONE", crate::dispatch::DebugView::None as u32),

@@ -478,7 +478,7 @@ impl Context {
     }
 
     /// The bindings of light `d.light_index`, whose constants are in slot `slot` of the constants buffer.
-    fn frame_views(&self, d: &ShadowsDispatch, slot: usize, cur: usize) -> FrameViews {
+    fn frame_views(&self, d: &ShadowsDispatch, slot: usize, lights: usize, cur: usize) -> FrameViews {
         let light = &self.lights[d.light_index as usize];
         let host = |h: &crate::dispatch::HostImage| image(h.view, h.layout);
         FrameViews {
@@ -510,6 +510,7 @@ impl Context {
             guide: self.guide.as_ref().map_or(light.moments[cur].view, |g| g.view),
             engine: d.engine_images.map(|e| e.map_or(Binding::default(), |e| image(e.view, e.layout))),
             penumbra_tan_half_angle: penumbra_tan_half_angle(d),
+            guide_writes: crate::passes::GuideWrites::of(slot, lights),
         }
     }
 
@@ -587,7 +588,7 @@ impl Context {
         // Each light's views; its passes are built from them one at a time (a frame of passes is several KB, and
         // a record must not need eight of them on the host's stack).
         let views: [Option<FrameViews>; MAX_LIGHTS_PER_RECORD] =
-            std::array::from_fn(|i| ds.get(i).map(|d| self.frame_views(d, i, self.lights[d.light_index as usize].parity)));
+            std::array::from_fn(|i| ds.get(i).map(|d| self.frame_views(d, i, ds.len(), self.lights[d.light_index as usize].parity)));
         let views = &views[..ds.len()];
         let (filter_passes, debug_view) = (self.settings.filter_passes, shared.debug_view);
         let light_views = |light: usize| views[light].as_ref().expect("one per dispatch");

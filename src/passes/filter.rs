@@ -11,7 +11,8 @@
 use super::bindings::Resource;
 use super::{internal, FrameViews, Grid, Pass, Role, LIGHT_SLOTS, WIDE_GROUP};
 use crate::gpu::shader::SPEC_PENUMBRA_GUIDED;
-use crate::constants::{FilterPush, PASS_SKIP_CLEARED, PASS_WRITE_GUIDE, PASS_WRITE_INTERNAL};
+use crate::constants::{FilterPush, PASS_SKIP_CLEARED, PASS_WRITE_GUIDE, PASS_WRITE_GUIDE_EVERYWHERE, PASS_WRITE_INTERNAL};
+use super::GuideWrites;
 use crate::create_info::Precision;
 use crate::dispatch::DebugView;
 use crate::gpu::shader::variant_name;
@@ -106,6 +107,14 @@ pub(crate) fn lights_pass(lights: &[&FrameViews], pass: u32, passes: u32, debug_
     p
 }
 
+fn guide_flags(writes: GuideWrites) -> u32 {
+    match writes {
+        GuideWrites::Tapped => PASS_WRITE_GUIDE,
+        GuideWrites::Everywhere => PASS_WRITE_GUIDE | PASS_WRITE_GUIDE_EVERYWHERE,
+        GuideWrites::Nowhere => 0,
+    }
+}
+
 fn push_constants(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView) -> FilterPush {
     let last = is_final(pass, passes);
     let write_internal = pass == 0 || !last;
@@ -115,7 +124,7 @@ fn push_constants(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView)
     let output_in_place = !last || debug_view == DebugView::None;
     let flags = (if write_internal { PASS_WRITE_INTERNAL } else { 0 })
         | (if internal_in_place && output_in_place { PASS_SKIP_CLEARED } else { 0 })
-        | (if pass == 0 && passes > 1 { PASS_WRITE_GUIDE } else { 0 });
+        | (if pass == 0 && passes > 1 { guide_flags(v.guide_writes) } else { 0 });
     let view = if last { debug_view as u32 } else { 0 };
     FilterPush { pass: [1 << pass, flags, pass, view], ..Default::default() }
 }

@@ -218,6 +218,30 @@ pub(crate) struct FrameViews {
     pub engine: [Binding; crate::MAX_ENGINE_IMAGES],
     /// tan(light angular diameter / 2) of penumbra guidance (0 without): the one per-light filter constant.
     pub penumbra_tan_half_angle: f32,
+    /// Where this light's first filter pass writes the shared guide (when later passes read it).
+    pub guide_writes: GuideWrites,
+}
+
+/// Where a light's first filter pass writes the guide, which every light of a context shares.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum GuideWrites {
+    /// Where this light's later passes tap it: a record of one light.
+    Tapped,
+    /// Everywhere: the first light of a record of several, for all of them.
+    Everywhere,
+    /// Nowhere: the other lights of a record of several (the first wrote it).
+    Nowhere,
+}
+
+impl GuideWrites {
+    /// The guide writes of the light at `position` of a record of `lights` lights.
+    pub(crate) fn of(position: usize, lights: usize) -> GuideWrites {
+        match (lights, position) {
+            (1, _) => GuideWrites::Tapped,
+            (_, 0) => GuideWrites::Everywhere,
+            _ => GuideWrites::Nowhere,
+        }
+    }
 }
 
 impl FrameViews {

@@ -140,6 +140,71 @@ void dnsr_write_tile_blocker(ivec2 tile, float distance) { imageStore(dnsr_tile_
 // them).
 layout(set = 0, binding = 17, DNSR_OUTPUT_FORMAT) uniform writeonly image2D dnsr_output;
 void dnsr_write_output(ivec2 p, float shadow) { imageStore(dnsr_output, p + dnsr_get_offset(), vec4(shadow)); }
+
+#ifdef DNSR_LIGHT_SLOTS_VARIANT
+// Two lights per dispatch (the tile_classification_lights variants, which a record of several lights runs for
+// lights without penumbra guidance and a hit-mask input): slot 0 is the bindings above, slot 1 its own constants
+// (for its reset flag; everything else in them is the record's shared camera and settings) and per-light images
+// from binding 60, named with the suffix _1.
+#if DNSR_CLASSIFICATION_LIGHT_SLOTS != 2
+#error "the slot bindings below are written out for two slots"
+#endif
+layout(set = 0, binding = 60, std140) uniform DnsrConstantsBlock1 { DnsrFrameConstants dnsr_constants_1; };
+layout(set = 0, binding = 61) uniform utexture2D dnsr_tile_mask_1;
+layout(set = 0, binding = 62) uniform texture2D dnsr_previous_depth_1;
+layout(set = 0, binding = 63, r32f) uniform writeonly image2D dnsr_depth_copy_1;
+layout(set = 0, binding = 64) uniform texture2D dnsr_previous_moments_1;
+layout(set = 0, binding = 65, rgba32f) uniform writeonly image2D dnsr_moments_1;
+layout(set = 0, binding = 66) uniform sampler2D dnsr_history_1;
+layout(set = 0, binding = 67, DNSR_INTERMEDIATE_FORMAT) uniform writeonly image2D dnsr_reprojection_1;
+layout(set = 0, binding = 68, r32ui) uniform writeonly uimage2D dnsr_tile_meta_out_1;
+layout(set = 0, binding = 69, DNSR_OUTPUT_FORMAT) uniform writeonly image2D dnsr_output_1;
+
+// Slot l's expression (l is a constant where the loops over the slots unroll, so the choice folds away).
+#define DNSR_BY_CLASSIFICATION_SLOT(l, e0, e1) ((l) == 0 ? (e0) : (e1))
+
+bool dnsr_get_light_is_reset(int l) { return ((DNSR_BY_CLASSIFICATION_SLOT(l, dnsr_constants.flags.x, dnsr_constants_1.flags.x)) & DNSR_FLAG_RESET) != 0u; }
+uint dnsr_read_light_tile_mask(int l, ivec2 tile) {
+    ivec2 t = tile + dnsr_get_tile_offset();
+    return DNSR_BY_CLASSIFICATION_SLOT(l, texelFetch(dnsr_tile_mask, t, 0).r, texelFetch(dnsr_tile_mask_1, t, 0).r);
+}
+float dnsr_read_light_previous_depth(int l, ivec2 p) {
+    ivec2 q = p + dnsr_get_offset();
+    return DNSR_BY_CLASSIFICATION_SLOT(l, texelFetch(dnsr_previous_depth, q, 0).r, texelFetch(dnsr_previous_depth_1, q, 0).r);
+}
+vec4 dnsr_read_light_previous_moments(int l, ivec2 p) {
+    ivec2 q = p + dnsr_get_offset();
+    return DNSR_BY_CLASSIFICATION_SLOT(l, texelFetch(dnsr_previous_moments, q, 0), texelFetch(dnsr_previous_moments_1, q, 0));
+}
+float dnsr_read_light_history(int l, vec2 uv) {
+    vec2 texel = (uv * vec2(dnsr_get_extent()) + vec2(dnsr_get_offset())) / vec2(textureSize(dnsr_history, 0));
+    return DNSR_BY_CLASSIFICATION_SLOT(l, textureLod(dnsr_history, texel, 0.0).r, textureLod(dnsr_history_1, texel, 0.0).r);
+}
+float dnsr_read_light_history_texel(int l, ivec2 p) {
+    ivec2 q = p + dnsr_get_offset();
+    return DNSR_BY_CLASSIFICATION_SLOT(l, texelFetch(dnsr_history, q, 0).r, texelFetch(dnsr_history_1, q, 0).r);
+}
+void dnsr_write_light_depth_copy(int l, ivec2 p, float depth) {
+    if (l == 0) imageStore(dnsr_depth_copy, p + dnsr_get_offset(), vec4(depth));
+    else imageStore(dnsr_depth_copy_1, p + dnsr_get_offset(), vec4(depth));
+}
+void dnsr_write_light_moments(int l, ivec2 p, vec4 m) {
+    if (l == 0) imageStore(dnsr_moments, p + dnsr_get_offset(), m);
+    else imageStore(dnsr_moments_1, p + dnsr_get_offset(), m);
+}
+void dnsr_write_light_reprojection(int l, ivec2 p, vec2 mean_var) {
+    if (l == 0) imageStore(dnsr_reprojection, p + dnsr_get_offset(), vec4(mean_var, 0.0, 0.0));
+    else imageStore(dnsr_reprojection_1, p + dnsr_get_offset(), vec4(mean_var, 0.0, 0.0));
+}
+void dnsr_write_light_tile_meta(int l, ivec2 tile, uint meta) {
+    if (l == 0) imageStore(dnsr_tile_meta_out, tile + dnsr_get_tile_offset(), uvec4(meta));
+    else imageStore(dnsr_tile_meta_out_1, tile + dnsr_get_tile_offset(), uvec4(meta));
+}
+void dnsr_write_light_output(int l, ivec2 p, float shadow) {
+    if (l == 0) imageStore(dnsr_output, p + dnsr_get_offset(), vec4(shadow));
+    else imageStore(dnsr_output_1, p + dnsr_get_offset(), vec4(shadow));
+}
+#endif
 #endif
 
 #ifdef DNSR_PASS_FILTER

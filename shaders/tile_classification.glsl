@@ -1,47 +1,8 @@
 // tile classification: decides per 8x4 tile whether temporal work is needed at all (no receiver, or a uniform
 // +-8 px neighbourhood), and for the rest reprojects, tracks temporal moments and blends the clamped history with
 // the current 1-spp sample.
-//
-// The light-slot variant (DNSR_LIGHT_SLOTS_VARIANT, which a record of several lights runs) classifies
-// DNSR_CLASSIFICATION_LIGHT_SLOTS lights per dispatch: the depth, the quad vote, the velocity and the reprojection
-// of each pixel once, each light's window, moments and history per light. Each light's arithmetic is the
-// single-light one (the helpers below take the slot `l` they work on, always 0 in the single-light variants).
 #ifndef DNSR_TILE_CLASSIFICATION_GLSL
 #define DNSR_TILE_CLASSIFICATION_GLSL
-
-#extension GL_EXT_control_flow_attributes : require
-
-// Light l's resources: a slot of the light-slot variant, the single-light bindings otherwise.
-#ifdef DNSR_LIGHT_SLOTS_VARIANT
-#ifdef DNSR_VISIBILITY_INPUT
-#error "the light-slot variant takes a hit mask"
-#endif
-const int DNSR_SLOTS = DNSR_CLASSIFICATION_LIGHT_SLOTS;
-bool dnsr_slot_is_reset(int l) { return dnsr_get_light_is_reset(l); }
-uint dnsr_slot_tile_mask(int l, ivec2 tile) { return dnsr_read_light_tile_mask(l, tile); }
-float dnsr_slot_previous_depth(int l, ivec2 p) { return dnsr_read_light_previous_depth(l, p); }
-vec4 dnsr_slot_previous_moments(int l, ivec2 p) { return dnsr_read_light_previous_moments(l, p); }
-float dnsr_slot_history(int l, vec2 uv) { return dnsr_read_light_history(l, uv); }
-float dnsr_slot_history_texel(int l, ivec2 p) { return dnsr_read_light_history_texel(l, p); }
-void dnsr_slot_write_depth_copy(int l, ivec2 p, float depth) { dnsr_write_light_depth_copy(l, p, depth); }
-void dnsr_slot_write_moments(int l, ivec2 p, vec4 m) { dnsr_write_light_moments(l, p, m); }
-void dnsr_slot_write_reprojection(int l, ivec2 p, vec2 mean_var) { dnsr_write_light_reprojection(l, p, mean_var); }
-void dnsr_slot_write_tile_meta(int l, ivec2 tile, uint meta) { dnsr_write_light_tile_meta(l, tile, meta); }
-void dnsr_slot_write_output(int l, ivec2 p, float shadow) { dnsr_write_light_output(l, p, shadow); }
-#else
-const int DNSR_SLOTS = 1;
-bool dnsr_slot_is_reset(int l) { return dnsr_get_is_reset(); }
-uint dnsr_slot_tile_mask(int l, ivec2 tile) { return dnsr_read_tile_mask(tile); }
-float dnsr_slot_previous_depth(int l, ivec2 p) { return dnsr_read_previous_depth(p); }
-vec4 dnsr_slot_previous_moments(int l, ivec2 p) { return dnsr_read_previous_moments(p); }
-float dnsr_slot_history(int l, vec2 uv) { return dnsr_read_history(uv); }
-float dnsr_slot_history_texel(int l, ivec2 p) { return dnsr_read_history_texel(p); }
-void dnsr_slot_write_depth_copy(int l, ivec2 p, float depth) { dnsr_write_depth_copy(p, depth); }
-void dnsr_slot_write_moments(int l, ivec2 p, vec4 m) { dnsr_write_moments(p, m); }
-void dnsr_slot_write_reprojection(int l, ivec2 p, vec2 mean_var) { dnsr_write_reprojection(p, mean_var); }
-void dnsr_slot_write_tile_meta(int l, ivec2 tile, uint meta) { dnsr_write_tile_meta(tile, meta); }
-void dnsr_slot_write_output(int l, ivec2 p, float shadow) { dnsr_write_output(p, shadow); }
-#endif
 
 // Local moments use a 17x17 window (radius DNSR_MOMENT_RADIUS = 8, generated from the host's constant). Not a
 // runtime setting: the shared tile window below is sized for it, and the uniform-tile test looks at exactly this
@@ -53,8 +14,8 @@ const ivec2 DNSR_GROUP_TILES = DNSR_WIDE_GROUP_SIZE / DNSR_TILE_SIZE;
 const ivec2 DNSR_WINDOW_TILES = DNSR_GROUP_TILES + ivec2(2, 4);
 const int DNSR_WINDOW_ROWS = DNSR_WIDE_GROUP_SIZE.y + 2 * DNSR_MOMENT_RADIUS;
 
-// Lit bits of the window's tiles, per light: exactly lit pixels (v = 1) with a visibility input.
-shared uint s_words[DNSR_SLOTS][DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
+// Lit bits of the window's tiles: exactly lit pixels (v = 1) with a visibility input.
+shared uint s_words[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
 #ifdef DNSR_VISIBILITY_INPUT
 // Visibility input (DNSR_VISIBILITY_INPUT): each window pixel's visibility in [0, 1] (0 outside the rectangle),
 // and the bits of exactly shadowed pixels (v = 0) for the uniform test. The window is as many pixels wide as tall.
@@ -65,13 +26,13 @@ shared uint s_dark[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
 // Horizontal pass of the separable Gaussian for the group's columns over its window rows:
 // x = weighted lit count, y = weight of the taps inside the render rectangle. With a visibility input:
 // x = weighted sum of visibilities, y = of their squares (the weight is the column's g_inside_weight).
-shared vec2 s_hsum[DNSR_SLOTS][DNSR_WINDOW_ROWS][DNSR_WIDE_GROUP_WIDTH];
+shared vec2 s_hsum[DNSR_WINDOW_ROWS][DNSR_WIDE_GROUP_WIDTH];
 // Closeness key (smaller = closer to the camera) and velocity of each pixel, for the 2x2 quad vote.
 shared float s_quad_key[DNSR_WIDE_GROUP_HEIGHT][DNSR_WIDE_GROUP_WIDTH];
 shared vec2 s_quad_velocity[DNSR_WIDE_GROUP_HEIGHT][DNSR_WIDE_GROUP_WIDTH];
 shared uint s_tile_has_receiver[DNSR_GROUP_TILES.y][DNSR_GROUP_TILES.x];
-// dnsr_uniform_state of the group's tiles (the receiver test aside) per light, computed once per tile.
-shared uint s_uniform[DNSR_SLOTS][DNSR_GROUP_TILES.y][DNSR_GROUP_TILES.x];
+// dnsr_uniform_state of the group's tiles (the receiver test aside), computed once per tile.
+shared uint s_uniform[DNSR_GROUP_TILES.y][DNSR_GROUP_TILES.x];
 // First tile of the group's window (same for every invocation of the group).
 ivec2 g_window_base;
 
@@ -83,8 +44,8 @@ const int DNSR_HIT_PARTS = DNSR_WIDE_GROUP_INVOCATIONS / DNSR_WINDOW_TILE_COUNT;
 const int DNSR_HIT_PIXELS = DNSR_TILE_WIDTH * DNSR_TILE_HEIGHT / DNSR_HIT_PARTS;
 shared vec2 s_hit[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
 
-void dnsr_store_hit_part(int i, vec2 part) { s_hsum[0][i / DNSR_WIDE_GROUP_WIDTH][i % DNSR_WIDE_GROUP_WIDTH] = part; }
-vec2 dnsr_load_hit_part(int i) { return s_hsum[0][i / DNSR_WIDE_GROUP_WIDTH][i % DNSR_WIDE_GROUP_WIDTH]; }
+void dnsr_store_hit_part(int i, vec2 part) { s_hsum[i / DNSR_WIDE_GROUP_WIDTH][i % DNSR_WIDE_GROUP_WIDTH] = part; }
+vec2 dnsr_load_hit_part(int i) { return s_hsum[i / DNSR_WIDE_GROUP_WIDTH][i % DNSR_WIDE_GROUP_WIDTH]; }
 
 ivec2 dnsr_tile_count() { return (dnsr_get_extent() + DNSR_TILE_SIZE - 1) / DNSR_TILE_SIZE; }
 
@@ -111,10 +72,10 @@ float dnsr_window_sample(ivec2 lid) { return s_visibility[lid.y + DNSR_MOMENT_RA
 // Only exact samples (0 or 1) extend runs of identical samples: a pixel whose rays disagreed lies in a penumbra.
 bool dnsr_is_exact(float x) { return x == 0.0 || x == 1.0; }
 #else
-// Light l's lit bit of a pixel in the group's window. The caller ensures the pixel is inside the render rectangle.
-float dnsr_window_lit(int l, ivec2 p, ivec2 base_tile) {
+// Lit bit of a pixel in the group's window. The caller ensures the pixel is inside the render rectangle.
+float dnsr_window_lit(ivec2 p, ivec2 base_tile) {
     ivec2 w = (p >> ivec2(3, 2)) - base_tile;
-    return float((s_words[l][w.y][w.x] >> dnsr_tile_bit(p)) & 1u);
+    return float((s_words[w.y][w.x] >> dnsr_tile_bit(p)) & 1u);
 }
 #endif
 
@@ -141,7 +102,7 @@ vec2 dnsr_local_moments(ivec2 p, ivec2 lid) {
     float rows = 0.0;
     for (int j = -DNSR_MOMENT_RADIUS; j <= DNSR_MOMENT_RADIUS; ++j) {
         float w = dnsr_moment_weight(j);
-        sum += w * s_hsum[0][lid.y + DNSR_MOMENT_RADIUS + j][lid.x];
+        sum += w * s_hsum[lid.y + DNSR_MOMENT_RADIUS + j][lid.x];
         int y = p.y + j;
         rows += y >= 0 && y < dnsr_get_extent().y ? w : 0.0;
     }
@@ -150,24 +111,24 @@ vec2 dnsr_local_moments(ivec2 p, ivec2 lid) {
     return vec2(mean, max(sum.y / weight - mean * mean, 0.0));
 }
 #else
-// Spatial mean and variance of light l's binary mask around p (normalised over taps inside the rectangle).
-vec2 dnsr_local_moments(int l, ivec2 lid) {
+// Spatial mean and variance of the binary mask around p (normalised over taps inside the rectangle).
+vec2 dnsr_local_moments(ivec2 lid) {
     vec2 sum = vec2(0.0);
     for (int j = -DNSR_MOMENT_RADIUS; j <= DNSR_MOMENT_RADIUS; ++j) {
-        sum += dnsr_moment_weight(j) * s_hsum[l][lid.y + DNSR_MOMENT_RADIUS + j][lid.x];
+        sum += dnsr_moment_weight(j) * s_hsum[lid.y + DNSR_MOMENT_RADIUS + j][lid.x];
     }
     float mean = sum.x / max(sum.y, 1e-20);
     return vec2(mean, max(mean - mean * mean, 0.0));
 }
 #endif
 
-// 0: mixed, 1: every valid pixel within +-8 px of the group's tile `t` is exactly lit for light l, 2: every one is
-// exactly shadowed.
-uint dnsr_uniform_state(int l, ivec2 t) {
+// 0: mixed, 1: every valid pixel within +-8 px of the group's tile `t` is exactly lit, 2: every one is exactly
+// shadowed.
+uint dnsr_uniform_state(ivec2 t) {
     bool all_lit = true, all_shadow = true;
     for (int r = 0; r < 5; ++r) {
         for (int c = 0; c < 3; ++c) {
-            uint word = s_words[l][t.y + r][t.x + c];
+            uint word = s_words[t.y + r][t.x + c];
             uint valid = dnsr_tile_valid_bits(g_window_base + t + ivec2(c, r));
             all_lit = all_lit && (word & valid) == valid;
 #ifdef DNSR_VISIBILITY_INPUT
@@ -180,9 +141,8 @@ uint dnsr_uniform_state(int l, ivec2 t) {
     return all_lit ? 1u : (all_shadow ? 2u : 0u);
 }
 
-// 0: the group's tile `t` needs temporal work for light l, 1: cleared lit (no receiver, or all lit), 2: cleared
-// shadowed.
-uint dnsr_tile_state(int l, ivec2 t) { return s_tile_has_receiver[t.y][t.x] == 0u ? 1u : s_uniform[l][t.y][t.x]; }
+// 0: the group's tile `t` needs temporal work, 1: cleared lit (no receiver, or all lit), 2: cleared shadowed.
+uint dnsr_tile_state(ivec2 t) { return s_tile_has_receiver[t.y][t.x] == 0u ? 1u : s_uniform[t.y][t.x]; }
 
 // Scales a Welford state (mean kept) to represent `f` times as many samples.
 void dnsr_scale_moments(inout vec4 m, float f) { m.y *= f; m.z *= f; }
@@ -223,7 +183,7 @@ void dnsr_sum_hit_part(int thread) {
     ivec2 w = ivec2(k % DNSR_WINDOW_TILES.x, k / DNSR_WINDOW_TILES.x);
     ivec2 tile = g_window_base + w;
     // Pixels with a ray that hit: not exactly lit.
-    uint shadowed = ~s_words[0][w.y][w.x] & dnsr_tile_valid_bits(tile);
+    uint shadowed = ~s_words[w.y][w.x] & dnsr_tile_valid_bits(tile);
     vec2 part = vec2(0.0);
     for (int i = 0; i < DNSR_HIT_PIXELS; ++i) {
         int bit = (thread % DNSR_HIT_PARTS) * DNSR_HIT_PIXELS + i;
@@ -260,30 +220,155 @@ bool dnsr_stable_agreeing(float run, float x, float stable_after) {
     return stable_after > 0.0 && abs(run) >= stable_after && (x >= 0.5 ? run > 0.0 : run < 0.0);
 }
 
-// A pixel of a tile cleared for light l: its value is known exactly; keep the state of the next frame consistent
-// with it.
-void dnsr_write_cleared(int l, ivec2 p, bool receiver, uint state, bool tile_writer) {
+// A pixel of a cleared tile: its value is known exactly; keep the state of the next frame consistent with it.
+void dnsr_write_cleared(ivec2 p, bool receiver, uint state, bool tile_writer) {
     float value = state == 1u ? 1.0 : 0.0;
-    if (tile_writer) dnsr_slot_write_tile_meta(l, p / DNSR_TILE_SIZE, DNSR_TILE_CLEARED | (state == 1u ? DNSR_TILE_LIT : 0u));
-    dnsr_slot_write_reprojection(l, p, receiver ? vec2(value, 0.0) : DNSR_SKY_SIGNAL);
+    if (tile_writer) dnsr_write_tile_meta(p / DNSR_TILE_SIZE, DNSR_TILE_CLEARED | (state == 1u ? DNSR_TILE_LIT : 0u));
+    dnsr_write_reprojection(p, receiver ? vec2(value, 0.0) : DNSR_SKY_SIGNAL);
     float run = state == 1u ? float(DNSR_MAX_SAMPLE_RUN) : -float(DNSR_MAX_SAMPLE_RUN);
-    dnsr_slot_write_moments(l, p, receiver ? vec4(value, 0.0, dnsr_get_temporal_settings().z, run) : vec4(0.0));
-    dnsr_slot_write_output(l, p, receiver ? value : 1.0);
+    dnsr_write_moments(p, receiver ? vec4(value, 0.0, dnsr_get_temporal_settings().z, run) : vec4(0.0));
+    dnsr_write_output(p, receiver ? value : 1.0);
 }
 
-// Where receiver p's surface was last frame, from the camera motion and the quad's velocity: what every light's
-// disocclusion test and history read share.
-struct DnsrReprojection {
-    vec2 history_uv;
-    // Last frame's ndc xy, the texel of the previous depth to compare with, and the depth expected there.
-    vec2 prev_ndc;
-    ivec2 prev_p;
-    float expected;
-    float threshold;
-    bool on_screen;
-};
+void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
+    ivec2 origin = gid * DNSR_WIDE_GROUP_SIZE;
+    ivec2 p = origin + lid;
+    int thread = lid.y * DNSR_WIDE_GROUP_WIDTH + lid.x;
+    g_window_base = dnsr_window_base_tile(origin);
+    bool inside = dnsr_inside(p);
+    bool inverted = dnsr_get_is_depth_inverted();
+    ivec2 own_tile = lid / DNSR_TILE_SIZE;
+    bool tile_writer = all(equal(lid % DNSR_TILE_SIZE, ivec2(0)));
 
-DnsrReprojection dnsr_reproject(ivec2 p, ivec2 lid, float depth) {
+    if (thread < DNSR_WINDOW_TILES.x * DNSR_WINDOW_TILES.y) {
+        ivec2 w = ivec2(thread % DNSR_WINDOW_TILES.x, thread / DNSR_WINDOW_TILES.x);
+        ivec2 tile = g_window_base + w;
+        s_words[w.y][w.x] = dnsr_tile_valid_bits(tile) != 0u ? dnsr_read_tile_mask(tile) : 0u;
+#ifdef DNSR_VISIBILITY_INPUT
+        s_dark[w.y][w.x] = dnsr_tile_valid_bits(tile) != 0u ? dnsr_read_tile_dark(tile) : 0u;
+#endif
+    }
+#ifdef DNSR_VISIBILITY_INPUT
+    // The window's visibilities, loaded with the words (behind the same barrier) although a group whose tiles are
+    // all cleared does not use them: after the clearing decision they would cost the group another round trip
+    // to memory (an H100 at 4K: classification 0.611 ms that way).
+    for (int i = thread; i < DNSR_WINDOW_ROWS * DNSR_WINDOW_COLUMNS; i += DNSR_WIDE_GROUP_INVOCATIONS) {
+        ivec2 w = ivec2(i % DNSR_WINDOW_COLUMNS, i / DNSR_WINDOW_COLUMNS);
+        ivec2 q = g_window_base * DNSR_TILE_SIZE + w;
+        s_visibility[w.y][w.x] = dnsr_inside(q) ? dnsr_sanitize_visibility(dnsr_read_visibility(q)) : 0.0;
+    }
+#endif
+    if (tile_writer) s_tile_has_receiver[own_tile.y][own_tile.x] = 0u;
+
+    float depth = inside ? dnsr_read_depth(p) : 0.0;
+    bool receiver = inside && dnsr_is_receiver(depth);
+    if (inside) dnsr_write_depth_copy(p, depth);
+    s_quad_key[lid.y][lid.x] = receiver ? (inverted ? -depth : depth) : 1e30;
+    barrier();
+    if (receiver) atomicOr(s_tile_has_receiver[own_tile.y][own_tile.x], 1u);
+    if (tile_writer) s_uniform[own_tile.y][own_tile.x] = dnsr_uniform_state(own_tile);
+    barrier();
+    // Every tile of the group cleared (no receiver, or a uniform neighbourhood): their values are known exactly
+    // and no moments are needed. Same condition for the whole group, so the barrier below stays uniform.
+    bool all_cleared = true;
+    for (int ty = 0; ty < DNSR_GROUP_TILES.y; ++ty) {
+        for (int tx = 0; tx < DNSR_GROUP_TILES.x; ++tx) all_cleared = all_cleared && dnsr_tile_state(ivec2(tx, ty)) != 0u;
+    }
+    if (all_cleared) {
+        if (inside) dnsr_write_cleared(p, receiver, dnsr_tile_state(own_tile), tile_writer);
+        return;
+    }
+
+    // Read by the quad vote after the next barrier.
+    s_quad_velocity[lid.y][lid.x] = receiver ? dnsr_read_velocity(p) : vec2(0.0);
+
+    bool guided = DNSR_SPEC_PENUMBRA_GUIDED;
+    if (guided) {
+        dnsr_sum_hit_part(thread);
+        barrier();
+        dnsr_reduce_hit_parts(thread);
+        // The partial sums are read before s_hsum is overwritten; s_hit is read after the barrier that follows the
+        // moment sums.
+        barrier();
+    }
+
+    // Horizontal Gaussian over DNSR_WINDOW_ROWS / height window rows per invocation.
+    dnsr_init_moment_weights();
+    // Window pixel columns origin.x - 8 .. origin.x + width + 7 as the bits of a row; pixel columns outside the
+    // render rectangle are masked out of both the lit count and the weight.
+    int first_column = max(DNSR_MOMENT_RADIUS - origin.x, 0);
+    int end_column = min(dnsr_get_extent().x - origin.x + DNSR_MOMENT_RADIUS, 32);
+    uint below_end = end_column >= 32 ? 0xFFFFFFFFu : (1u << uint(end_column)) - 1u;
+    uint columns_inside = below_end & ~((1u << uint(first_column)) - 1u);
+    // Weight of the taps inside the rectangle: the same for every row, and the full window away from its edges.
+    uint own = uint(lid.x + DNSR_MOMENT_RADIUS);
+    float inside_weight = 0.0;
+    for (int i = -DNSR_MOMENT_RADIUS; i <= DNSR_MOMENT_RADIUS; ++i) {
+        inside_weight += dnsr_moment_weight(i) * float((columns_inside >> uint(int(own) + i)) & 1u);
+    }
+#ifdef DNSR_VISIBILITY_INPUT
+    g_inside_weight = inside_weight;
+#endif
+    for (int row = lid.y; row < DNSR_WINDOW_ROWS; row += DNSR_WIDE_GROUP_HEIGHT) {
+        int y = origin.y - DNSR_MOMENT_RADIUS + row;
+        vec2 sum = vec2(0.0);
+        if (y >= 0 && y < dnsr_get_extent().y) {
+#ifdef DNSR_VISIBILITY_INPUT
+            // Columns outside the rectangle hold 0: they add nothing, and inside_weight leaves them out.
+            for (int i = -DNSR_MOMENT_RADIUS; i <= DNSR_MOMENT_RADIUS; ++i) {
+                float v = s_visibility[row][int(own) + i];
+                sum += dnsr_moment_weight(i) * vec2(v, v * v);
+            }
+#else
+            int wy = (y >> 2) - g_window_base.y;
+            uint shift = uint(8 * (y & 3));
+            uint lit = 0u;
+            for (int c = 0; c < DNSR_WINDOW_TILES.x; ++c) lit |= ((s_words[wy][c] >> shift) & 0xFFu) << uint(8 * c);
+            lit &= columns_inside;
+            // Symmetric weights: one multiply per distance.
+            float lit_sum = dnsr_moment_weight(0) * float((lit >> own) & 1u);
+            for (int i = 1; i <= DNSR_MOMENT_RADIUS; ++i) {
+                float pair = float(((lit >> (own - uint(i))) & 1u) + ((lit >> (own + uint(i))) & 1u));
+                lit_sum += dnsr_moment_weight(i) * pair;
+            }
+            sum = vec2(lit_sum, inside_weight);
+#endif
+        }
+        s_hsum[row][lid.x] = sum;
+    }
+    barrier();
+    if (!inside) return;
+
+    uint uniform_state = dnsr_tile_state(own_tile);
+    float max_samples = dnsr_get_temporal_settings().z;
+
+    if (uniform_state != 0u) {
+        dnsr_write_cleared(p, receiver, uniform_state, tile_writer);
+        return;
+    }
+    if (tile_writer) {
+        dnsr_write_tile_meta(p / DNSR_TILE_SIZE, 0u);
+        if (guided) dnsr_write_tile_blocker(p / DNSR_TILE_SIZE, dnsr_tile_blocker(own_tile));
+    }
+    if (!receiver) {
+        dnsr_write_reprojection(p, DNSR_SKY_SIGNAL);
+        dnsr_write_moments(p, vec4(0.0));
+        return;
+    }
+
+    vec4 disocc = dnsr_get_disocclusion_settings();
+    vec4 reject = dnsr_get_rejection_settings();
+    vec4 temporal = dnsr_get_temporal_settings();
+#ifdef DNSR_VISIBILITY_INPUT
+    vec2 local = dnsr_local_moments(p, lid);
+    float x = dnsr_window_sample(lid);
+    // Checkerboard input: a pixel not traced this frame holds its neighbours' mean, not a sample of its own.
+    bool untraced = dnsr_get_is_checkerboard() && !dnsr_is_traced(p);
+#else
+    vec2 local = dnsr_local_moments(lid);
+    float x = dnsr_window_lit(p, g_window_base);
+#endif
+
     // Velocity of the closest receiver of the 2x2 quad: thin foreground keeps its own motion at silhouettes.
     ivec2 q = lid & ~1;
     ivec2 best = lid;
@@ -292,11 +377,9 @@ DnsrReprojection dnsr_reproject(ivec2 p, ivec2 lid, float depth) {
             if (s_quad_key[q.y + j][q.x + i] < s_quad_key[best.y][best.x]) best = q + ivec2(i, j);
         }
     }
-    DnsrReprojection r;
-    vec4 disocc = dnsr_get_disocclusion_settings();
     vec2 uv = dnsr_pixel_uv(p);
     vec2 ndc = dnsr_uv_to_ndc(uv);
-    r.history_uv = uv + s_quad_velocity[best.y][best.x];
+    vec2 history_uv = uv + s_quad_velocity[best.y][best.x];
 
     // Disocclusion: where the camera motion puts this surface last frame, was the same depth there?
     vec4 prev_clip = dnsr_get_reprojection_matrix() * vec4(ndc, depth, 1.0);
@@ -305,74 +388,18 @@ DnsrReprojection dnsr_reproject(ivec2 p, ivec2 lid, float depth) {
     vec4 world = dnsr_get_view_projection_inverse() * vec4(ndc, depth, 1.0);
     vec3 view_dir = normalize(dnsr_get_eye() - world.xyz / world.w);
     float n_dot_v = clamp(dot(dnsr_read_normal(p), view_dir), 0.0, 1.0);
-    r.threshold = mix(disocc.x, disocc.y, pow(1.0 - n_dot_v, disocc.z));
-    r.on_screen = dnsr_finite(prev_uv) && dnsr_finite(r.history_uv) && prev_clip.w > 0.0
+    float threshold = mix(disocc.x, disocc.y, pow(1.0 - n_dot_v, disocc.z));
+    bool on_screen = dnsr_finite(prev_uv) && dnsr_finite(history_uv) && prev_clip.w > 0.0
         && all(greaterThanEqual(prev_uv, vec2(0.0))) && all(lessThan(prev_uv, vec2(1.0)))
-        && all(greaterThanEqual(r.history_uv, vec2(0.0))) && all(lessThan(r.history_uv, vec2(1.0)));
-    r.prev_ndc = prev_ndc.xy;
-    r.prev_p = r.on_screen ? clamp(ivec2(prev_uv * vec2(dnsr_get_extent())), ivec2(0), dnsr_get_extent() - 1) : ivec2(0);
-    r.expected = dnsr_linear_depth(prev_ndc.xy, prev_ndc.z);
-    return r;
-}
-
-// Whether light l's history of the surface is lost: its reset, off screen, or another depth there last frame.
-bool dnsr_disoccluded(int l, DnsrReprojection r) {
-    bool disoccluded = dnsr_slot_is_reset(l) || !r.on_screen;
+        && all(greaterThanEqual(history_uv, vec2(0.0))) && all(lessThan(history_uv, vec2(1.0)));
+    bool disoccluded = dnsr_get_is_reset() || !on_screen;
     if (!disoccluded) {
-        float previous = dnsr_linear_depth(r.prev_ndc, dnsr_slot_previous_depth(l, r.prev_p));
+        ivec2 prev_p = clamp(ivec2(prev_uv * vec2(dnsr_get_extent())), ivec2(0), dnsr_get_extent() - 1);
+        float previous = dnsr_linear_depth(prev_ndc.xy, dnsr_read_previous_depth(prev_p));
+        float expected = dnsr_linear_depth(prev_ndc.xy, prev_ndc.z);
         // Written so that NaN or infinite depths count as disoccluded.
-        disoccluded = !(abs(previous - r.expected) < r.threshold * r.expected);
+        disoccluded = !(abs(previous - expected) < threshold * expected);
     }
-    return disoccluded;
-}
-
-// Light l's horizontal Gaussian of window row `row` at the invocation's column `own`: (weighted lit count, weight
-// inside the rectangle); with a visibility input (weighted sum of visibilities, of their squares).
-vec2 dnsr_window_row(int l, int row, ivec2 origin, uint own, uint columns_inside, float inside_weight) {
-    int y = origin.y - DNSR_MOMENT_RADIUS + row;
-    vec2 sum = vec2(0.0);
-    if (y >= 0 && y < dnsr_get_extent().y) {
-#ifdef DNSR_VISIBILITY_INPUT
-        // Columns outside the rectangle hold 0: they add nothing, and inside_weight leaves them out.
-        for (int i = -DNSR_MOMENT_RADIUS; i <= DNSR_MOMENT_RADIUS; ++i) {
-            float v = s_visibility[row][int(own) + i];
-            sum += dnsr_moment_weight(i) * vec2(v, v * v);
-        }
-#else
-        int wy = (y >> 2) - g_window_base.y;
-        uint shift = uint(8 * (y & 3));
-        uint lit = 0u;
-        for (int c = 0; c < DNSR_WINDOW_TILES.x; ++c) lit |= ((s_words[l][wy][c] >> shift) & 0xFFu) << uint(8 * c);
-        lit &= columns_inside;
-        // Symmetric weights: one multiply per distance.
-        float lit_sum = dnsr_moment_weight(0) * float((lit >> own) & 1u);
-        for (int i = 1; i <= DNSR_MOMENT_RADIUS; ++i) {
-            float pair = float(((lit >> (own - uint(i))) & 1u) + ((lit >> (own + uint(i))) & 1u));
-            lit_sum += dnsr_moment_weight(i) * pair;
-        }
-        sum = vec2(lit_sum, inside_weight);
-#endif
-    }
-    return sum;
-}
-
-// Light l at receiver p of a tile it does not clear: temporal moments and the history blend, written out.
-void dnsr_temporal(int l, ivec2 p, ivec2 lid, DnsrReprojection r) {
-    vec4 disocc = dnsr_get_disocclusion_settings();
-    vec4 reject = dnsr_get_rejection_settings();
-    vec4 temporal = dnsr_get_temporal_settings();
-    float max_samples = temporal.z;
-#ifdef DNSR_VISIBILITY_INPUT
-    vec2 local = dnsr_local_moments(p, lid);
-    float x = dnsr_window_sample(lid);
-    // Checkerboard input: a pixel not traced this frame holds its neighbours' mean, not a sample of its own.
-    bool untraced = dnsr_get_is_checkerboard() && !dnsr_is_traced(p);
-#else
-    vec2 local = dnsr_local_moments(l, lid);
-    float x = dnsr_window_lit(l, p, g_window_base);
-#endif
-    vec2 history_uv = r.history_uv;
-    bool disoccluded = dnsr_disoccluded(l, r);
 
     // Temporal moments (Welford), restarted on disocclusion, count bounded by max_samples.
     float stable_after = dnsr_get_run_settings().x;
@@ -381,7 +408,7 @@ void dnsr_temporal(int l, ivec2 p, ivec2 lid, DnsrReprojection r) {
     vec2 run_history = vec2(0.0);
     if (!disoccluded) {
         ivec2 hp = clamp(ivec2(history_uv * vec2(dnsr_get_extent())), ivec2(0), dnsr_get_extent() - 1);
-        m = dnsr_slot_previous_moments(l, hp);
+        m = dnsr_read_previous_moments(hp);
 #ifdef DNSR_VISIBILITY_INPUT
         // The neighbours' mean says nothing about the edge a stable pixel resolves: an untraced stable pixel takes
         // its run's value as this frame's sample (and keeps its run, below), unless its neighbours' mean lies more
@@ -405,10 +432,10 @@ void dnsr_temporal(int l, ivec2 p, ivec2 lid, DnsrReprojection r) {
                 float weight = ((k & 1) != 0 ? f.x : 1.0 - f.x) * ((k & 2) != 0 ? f.y : 1.0 - f.y);
                 ivec2 q = clamp(ivec2(floor(t)) + ivec2(k & 1, k >> 1), ivec2(0), dnsr_get_extent() - 1);
                 if (weight < 1.0 / 16.0) continue;
-                vec4 mq = dnsr_slot_previous_moments(l, q);
+                vec4 mq = dnsr_read_previous_moments(q);
                 all_weight += weight;
                 if (!dnsr_stable_agreeing(mq.w, x, stable_after)) continue;
-                run_history += vec2(weight * dnsr_slot_history_texel(l, q), weight);
+                run_history += vec2(weight * dnsr_read_history_texel(q), weight);
             }
             // Only where the footprint is split: elsewhere the plain blend stands.
             if (!(run_history.y > 0.0 && run_history.y < all_weight)) run_history = vec2(0.0);
@@ -459,7 +486,7 @@ void dnsr_temporal(int l, ivec2 p, ivec2 lid, DnsrReprojection r) {
     // History clamped to the local distribution; a history far outside it loses its sample count.
     float sigma = sqrt(local.y);
     float history = disoccluded ? local.x
-                  : (run_history.y > 0.0 ? run_history.x / run_history.y : dnsr_slot_history(l, history_uv));
+                  : (run_history.y > 0.0 ? run_history.x / run_history.y : dnsr_read_history(history_uv));
     if (!dnsr_finite(history)) history = local.x;
     // A stable pixel's history is clamped to what its run allows instead: after n identical samples the
     // visibility lies within DNSR_RUN_CLAMP_SAMPLES / n of them (the rule of three: 95% confidence for 3).
@@ -477,134 +504,8 @@ void dnsr_temporal(int l, ivec2 p, ivec2 lid, DnsrReprojection r) {
     float history_weight = sqrt(max(temporal.x - m.z, 0.0) / temporal.x);
     float shadow = mix(clamped, x, mix(temporal.y, 1.0, history_weight));
 
-    dnsr_slot_write_moments(l, p, m);
-    dnsr_slot_write_reprojection(l, p, vec2(shadow, variance));
-}
-
-
-void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
-    ivec2 origin = gid * DNSR_WIDE_GROUP_SIZE;
-    ivec2 p = origin + lid;
-    int thread = lid.y * DNSR_WIDE_GROUP_WIDTH + lid.x;
-    g_window_base = dnsr_window_base_tile(origin);
-    bool inside = dnsr_inside(p);
-    bool inverted = dnsr_get_is_depth_inverted();
-    ivec2 own_tile = lid / DNSR_TILE_SIZE;
-    bool tile_writer = all(equal(lid % DNSR_TILE_SIZE, ivec2(0)));
-
-    if (thread < DNSR_WINDOW_TILES.x * DNSR_WINDOW_TILES.y) {
-        ivec2 w = ivec2(thread % DNSR_WINDOW_TILES.x, thread / DNSR_WINDOW_TILES.x);
-        ivec2 tile = g_window_base + w;
-        bool valid = dnsr_tile_valid_bits(tile) != 0u;
-        [[unroll]] for (int l = 0; l < DNSR_SLOTS; ++l) s_words[l][w.y][w.x] = valid ? dnsr_slot_tile_mask(l, tile) : 0u;
-#ifdef DNSR_VISIBILITY_INPUT
-        s_dark[w.y][w.x] = valid ? dnsr_read_tile_dark(tile) : 0u;
-#endif
-    }
-#ifdef DNSR_VISIBILITY_INPUT
-    // The window's visibilities, loaded with the words (behind the same barrier) although a group whose tiles are
-    // all cleared does not use them: after the clearing decision they would cost the group another round trip
-    // to memory (an H100 at 4K: classification 0.611 ms that way).
-    for (int i = thread; i < DNSR_WINDOW_ROWS * DNSR_WINDOW_COLUMNS; i += DNSR_WIDE_GROUP_INVOCATIONS) {
-        ivec2 w = ivec2(i % DNSR_WINDOW_COLUMNS, i / DNSR_WINDOW_COLUMNS);
-        ivec2 q = g_window_base * DNSR_TILE_SIZE + w;
-        s_visibility[w.y][w.x] = dnsr_inside(q) ? dnsr_sanitize_visibility(dnsr_read_visibility(q)) : 0.0;
-    }
-#endif
-    if (tile_writer) s_tile_has_receiver[own_tile.y][own_tile.x] = 0u;
-
-    float depth = inside ? dnsr_read_depth(p) : 0.0;
-    bool receiver = inside && dnsr_is_receiver(depth);
-    if (inside) {
-        [[unroll]] for (int l = 0; l < DNSR_SLOTS; ++l) dnsr_slot_write_depth_copy(l, p, depth);
-    }
-    s_quad_key[lid.y][lid.x] = receiver ? (inverted ? -depth : depth) : 1e30;
-    barrier();
-    if (receiver) atomicOr(s_tile_has_receiver[own_tile.y][own_tile.x], 1u);
-    if (tile_writer) {
-        [[unroll]] for (int l = 0; l < DNSR_SLOTS; ++l) s_uniform[l][own_tile.y][own_tile.x] = dnsr_uniform_state(l, own_tile);
-    }
-    barrier();
-    // A light whose tiles of the group are all cleared (no receiver, or a uniform neighbourhood): their values are
-    // known exactly and no moments are needed. Same condition for the whole group, so the barrier below stays
-    // uniform.
-    bool group_cleared[DNSR_SLOTS];
-    bool any_active = false;
-    [[unroll]] for (int l = 0; l < DNSR_SLOTS; ++l) {
-        bool all_cleared = true;
-        for (int ty = 0; ty < DNSR_GROUP_TILES.y; ++ty) {
-            for (int tx = 0; tx < DNSR_GROUP_TILES.x; ++tx) all_cleared = all_cleared && dnsr_tile_state(l, ivec2(tx, ty)) != 0u;
-        }
-        group_cleared[l] = all_cleared;
-        any_active = any_active || !all_cleared;
-        if (all_cleared && inside) dnsr_write_cleared(l, p, receiver, dnsr_tile_state(l, own_tile), tile_writer);
-    }
-    if (!any_active) return;
-
-    // Read by the quad vote after the next barrier.
-    s_quad_velocity[lid.y][lid.x] = receiver ? dnsr_read_velocity(p) : vec2(0.0);
-
-    // Penumbra guidance: one light per dispatch (the light-slot variant has none).
-    bool guided = DNSR_SPEC_PENUMBRA_GUIDED;
-    if (guided) {
-        dnsr_sum_hit_part(thread);
-        barrier();
-        dnsr_reduce_hit_parts(thread);
-        // The partial sums are read before s_hsum is overwritten; s_hit is read after the barrier that follows the
-        // moment sums.
-        barrier();
-    }
-
-    // Horizontal Gaussian over DNSR_WINDOW_ROWS / height window rows per invocation.
-    dnsr_init_moment_weights();
-    // Window pixel columns origin.x - 8 .. origin.x + width + 7 as the bits of a row; pixel columns outside the
-    // render rectangle are masked out of both the lit count and the weight.
-    int first_column = max(DNSR_MOMENT_RADIUS - origin.x, 0);
-    int end_column = min(dnsr_get_extent().x - origin.x + DNSR_MOMENT_RADIUS, 32);
-    uint below_end = end_column >= 32 ? 0xFFFFFFFFu : (1u << uint(end_column)) - 1u;
-    uint columns_inside = below_end & ~((1u << uint(first_column)) - 1u);
-    // Weight of the taps inside the rectangle: the same for every row, and the full window away from its edges.
-    uint own = uint(lid.x + DNSR_MOMENT_RADIUS);
-    float inside_weight = 0.0;
-    for (int i = -DNSR_MOMENT_RADIUS; i <= DNSR_MOMENT_RADIUS; ++i) {
-        inside_weight += dnsr_moment_weight(i) * float((columns_inside >> uint(int(own) + i)) & 1u);
-    }
-#ifdef DNSR_VISIBILITY_INPUT
-    g_inside_weight = inside_weight;
-#endif
-    for (int row = lid.y; row < DNSR_WINDOW_ROWS; row += DNSR_WIDE_GROUP_HEIGHT) {
-        [[unroll]] for (int l = 0; l < DNSR_SLOTS; ++l) {
-            if (!group_cleared[l]) s_hsum[l][row][lid.x] = dnsr_window_row(l, row, origin, own, columns_inside, inside_weight);
-        }
-    }
-    barrier();
-    if (!inside) return;
-
-    // The reprojection is the same for every light: computed once, where a light needs it.
-    bool reprojected = false;
-    DnsrReprojection r;
-    [[unroll]] for (int l = 0; l < DNSR_SLOTS; ++l) {
-        if (group_cleared[l]) continue;
-        uint uniform_state = dnsr_tile_state(l, own_tile);
-        if (uniform_state != 0u) {
-            dnsr_write_cleared(l, p, receiver, uniform_state, tile_writer);
-            continue;
-        }
-        if (tile_writer) {
-            dnsr_slot_write_tile_meta(l, p / DNSR_TILE_SIZE, 0u);
-            if (guided) dnsr_write_tile_blocker(p / DNSR_TILE_SIZE, dnsr_tile_blocker(own_tile));
-        }
-        if (!receiver) {
-            dnsr_slot_write_reprojection(l, p, DNSR_SKY_SIGNAL);
-            dnsr_slot_write_moments(l, p, vec4(0.0));
-            continue;
-        }
-        if (!reprojected) {
-            r = dnsr_reproject(p, lid, depth);
-            reprojected = true;
-        }
-        dnsr_temporal(l, p, lid, r);
-    }
+    dnsr_write_moments(p, m);
+    dnsr_write_reprojection(p, vec2(shadow, variance));
 }
 
 #endif

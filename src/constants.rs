@@ -189,7 +189,6 @@ pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
     ("DNSR_SPEC_ID_PENUMBRA_GUIDED", crate::gpu::shader::SPEC_PENUMBRA_GUIDED),
     ("DNSR_SPEC_ID_STABLE_HISTORY", crate::gpu::shader::SPEC_STABLE_HISTORY),
     ("DNSR_LIGHT_SLOTS", crate::passes::LIGHT_SLOTS as u32),
-    ("DNSR_CLASSIFICATION_LIGHT_SLOTS", crate::passes::CLASSIFICATION_LIGHT_SLOTS as u32),
     ("DNSR_MAX_CASCADES", crate::classify::MAX_CASCADES as u32),
     ("DNSR_MAX_CLASSIFY_TAPS", crate::classify::MAX_TAPS as u32),
 ];

@@ -64,9 +64,6 @@ struct Pipelines {
     /// The light-slot variants of the later filter passes (intermediate, final), which filter up to LIGHT_SLOTS
     /// lights per dispatch: a context of several lights without shader overrides has them.
     filter_lights: Option<[Pipeline; 2]>,
-    /// The light-slot variant of tile classification (CLASSIFICATION_LIGHT_SLOTS lights per dispatch): a context
-    /// of several lights with a hit-mask input and without shader overrides has it.
-    classification_lights: Option<Pipeline>,
 }
 
 impl Pipelines {
@@ -81,7 +78,6 @@ impl Pipelines {
         ]
         .into_iter()
         .chain(self.filter_lights.iter_mut().flatten())
-        .chain(self.classification_lights.iter_mut())
     }
 
     fn for_role(&self, role: Role) -> &Pipeline {
@@ -96,7 +92,6 @@ impl Pipelines {
             // later passes' layouts.
             Role::FilterLights(_) => self.filter_lights.as_ref().map_or(&self.filter_later, |l| &l[0]),
             Role::FilterLightsFinal => self.filter_lights.as_ref().map_or(&self.filter_final, |l| &l[1]),
-            Role::ClassificationLights => self.classification_lights.as_ref().unwrap_or(&self.classification),
         }
     }
 }
@@ -278,13 +273,7 @@ impl Context {
         // Several lights per dispatch only with dnsr's own variants: an engine's override of the later pass would
         // not be the one that runs for several lights (and light-slot variants are never overridden).
         let light_slots = if self.light_count > 1 && overrides.is_empty() { &self.light_slot_names()[..] } else { &[] };
-        // (Tile classification's takes a hit mask only: a visibility or checkerboard input classifies a light per
-        // dispatch.)
-        let classification_slots = match light_slots.is_empty() || self.shadow_input != ShadowInput::HitMask {
-            true => None,
-            false => Some(tile_classification::lights_shader(self.precision, self.output_format).expect("output format checked")),
-        };
-        let names = self.pipeline_names().into_iter().chain(light_slots.iter().copied()).chain(classification_slots);
+        let names = self.pipeline_names().into_iter().chain(light_slots.iter().copied());
         let mut made: Vec<Pipeline> = Vec::with_capacity(8);
         for name in names {
             let spirv = overrides.iter().find(|o| o.variant == name).map_or(variant(name).spirv, |o| &o.spirv[..]);
@@ -306,12 +295,10 @@ impl Context {
             filter_final: next(),
             filter_only: next(),
             filter_lights: None,
-            classification_lights: None,
         };
         if let (Some(a), Some(b)) = (it.next(), it.next()) {
             pipelines.filter_lights = Some([a, b]);
         }
-        pipelines.classification_lights = it.next();
         Ok(pipelines)
     }
 
@@ -607,35 +594,19 @@ impl Context {
         let light_views = |light: usize| views[light].as_ref().expect("one per dispatch");
         // The engine images are the shared dispatch's, and every light runs the same passes.
         self.check_engine_images(shared, &crate::passes::frame(light_views(0), filter_passes, run_prepare, debug_view))?;
-        // The later filter passes of several lights run LIGHT_SLOTS lights per dispatch and tile classification
-        // pairs of lights without penumbra guidance where the context has the light-slot variants; every other
-        // pass runs a dispatch per light.
+        // The later filter passes of several lights run LIGHT_SLOTS lights per dispatch where the context has the
+        // light-slot variants; every other pass runs a dispatch per light.
         let pipelines = self.pipelines.as_ref().expect("created");
-        // (index 1: classification; index 3 on: the filter passes after the first.)
-        let later_grouped = |index: usize| index >= 3 && pipelines.filter_lights.is_some();
-        let (pairs, pair_count) = match pipelines.classification_lights {
-            Some(_) => crate::passes::classification_groups(ds.len(), |i| light_views(i).spec & (1 << SPEC_PENUMBRA_GUIDED) != 0),
-            None => (std::array::from_fn(|i| i..i + 1), ds.len()),
-        };
-        let group = |index: usize, k: usize| match index {
-            1 => pairs[k].clone(),
-            _ if later_grouped(index) => crate::passes::light_group(ds.len(), k),
-            _ => k..k + 1,
-        };
-        let dispatch_count = |index: usize| match index {
-            1 => pair_count,
-            _ if later_grouped(index) => crate::passes::light_group_count(ds.len()),
-            _ => ds.len(),
-        };
+        // (index 3 on: the filter passes after the first.)
+        let grouped = |index: usize| index >= 3 && pipelines.filter_lights.is_some();
+        let group = |index: usize, k: usize| if grouped(index) { crate::passes::light_group(ds.len(), k) } else { k..k + 1 };
+        let dispatch_count = |index: usize| if grouped(index) { crate::passes::light_group_count(ds.len()) } else { ds.len() };
         // The light whose descriptor ring slot holds dispatch k's sets: its first.
         let first_light = |index: usize, k: usize| group(index, k).start;
         let build = |index: usize, k: usize| -> Pass {
             let lights = group(index, k);
             if lights.len() == 1 {
                 return crate::passes::pass(light_views(lights.start), index, filter_passes, run_prepare, debug_view);
-            }
-            if index == 1 {
-                return tile_classification::lights_pass(&std::array::from_fn(|s| light_views(lights.start + s)));
             }
             let members: [&FrameViews; LIGHT_SLOTS] = std::array::from_fn(|s| light_views((lights.start + s).min(lights.end - 1)));
             filter::lights_pass(&members[..lights.len()], index as u32 - 2, filter_passes, debug_view)

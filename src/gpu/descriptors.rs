@@ -20,11 +20,8 @@ use ash::vk;
 pub(crate) const MAX_BINDINGS: usize = 32;
 
 /// The descriptor sets one record writes, one per pipeline role: every pass of the longest frame, the single
-/// pass of a one-pass frame, the later passes of several lights (intermediate ones and the final one) and the
-/// classification of several lights.
-pub(crate) const SETS_PER_RECORD: usize = MAX_PASSES + MAX_FILTER_PASSES as usize + 1;
-/// Where the later passes of several lights end in the sets of a record (the classification of several follows).
-const FILTER_LIGHTS_END: usize = MAX_PASSES + MAX_FILTER_PASSES as usize;
+/// pass of a one-pass frame, and the later passes of several lights (intermediate ones and the final one).
+pub(crate) const SETS_PER_RECORD: usize = MAX_PASSES + MAX_FILTER_PASSES as usize;
 
 /// The set of a ring slot that a pipeline role uses.
 fn set_index(role: Role) -> usize {
@@ -35,22 +32,19 @@ fn set_index(role: Role) -> usize {
         Role::FilterFinal => MAX_PASSES - 1,
         Role::FilterOnly => MAX_PASSES,
         Role::FilterLights(pass) => MAX_PASSES + pass as usize,
-        Role::FilterLightsFinal => FILTER_LIGHTS_END - 1,
-        Role::ClassificationLights => FILTER_LIGHTS_END,
+        Role::FilterLightsFinal => SETS_PER_RECORD - 1,
     }
 }
 
 /// Every role, in set order: every filter pass but the last can be an intermediate pass, one final pass after
-/// them, the single pass of a one-pass frame, then the later passes of several lights alike, then their
-/// classification.
+/// them, the single pass of a one-pass frame, then the later passes of several lights alike.
 pub(crate) fn roles() -> [Role; SETS_PER_RECORD] {
     std::array::from_fn(|i| match i {
         0 => Role::Prepare,
         1 => Role::Classification,
         _ if i == MAX_PASSES - 1 => Role::FilterFinal,
         _ if i == MAX_PASSES => Role::FilterOnly,
-        _ if i == FILTER_LIGHTS_END => Role::ClassificationLights,
-        _ if i == FILTER_LIGHTS_END - 1 => Role::FilterLightsFinal,
+        _ if i == SETS_PER_RECORD - 1 => Role::FilterLightsFinal,
         _ if i > MAX_PASSES => Role::FilterLights((i - MAX_PASSES) as u32),
         _ => Role::Filter(i as u32 - 2),
     })

@@ -53,17 +53,6 @@ pub(crate) enum Resource {
     DebugMoments1,
     DebugMoments2,
     DebugMoments3,
-    /// Slot 1 of tile classification's light-slot variant (slot 0 is the resource without a number; its output
-    /// is Output1).
-    Constants1,
-    TileMask1,
-    PreviousDepth1,
-    DepthCopy1,
-    PreviousMoments1,
-    Moments1,
-    History1,
-    Reprojection1,
-    TileMetaOut1,
     /// The hybrid-shadows classifier's own.
     ClassifyConstants,
     HitMaskOut,
@@ -109,27 +98,6 @@ impl Resource {
             _ => return None,
         };
         const _: () = assert!(crate::passes::LIGHT_SLOTS == 4);
-        slots.get(slot).copied()
-    }
-
-    /// This per-light resource of tile classification's light-slot variant in slot `slot`
-    /// (0..CLASSIFICATION_LIGHT_SLOTS); None for a resource the slots do not repeat.
-    pub(crate) fn in_classification_slot(self, slot: usize) -> Option<Resource> {
-        use Resource::*;
-        let slots = match self {
-            Constants => [Constants, Constants1],
-            TileMask => [TileMask, TileMask1],
-            PreviousDepth => [PreviousDepth, PreviousDepth1],
-            DepthCopy => [DepthCopy, DepthCopy1],
-            PreviousMoments => [PreviousMoments, PreviousMoments1],
-            Moments => [Moments, Moments1],
-            History => [History, History1],
-            Reprojection => [Reprojection, Reprojection1],
-            TileMetaOut => [TileMetaOut, TileMetaOut1],
-            Output => [Output, Output1],
-            _ => return None,
-        };
-        const _: () = assert!(crate::passes::CLASSIFICATION_LIGHT_SLOTS == 2);
         slots.get(slot).copied()
     }
 
@@ -187,15 +155,6 @@ const TABLE: [(&str, Resource, vk::DescriptorType); NAMED_COUNT] = [
     ("dnsr_debug_moments_1", Resource::DebugMoments1, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_debug_moments_2", Resource::DebugMoments2, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_debug_moments_3", Resource::DebugMoments3, vk::DescriptorType::SAMPLED_IMAGE),
-    ("DnsrConstantsBlock1", Resource::Constants1, vk::DescriptorType::UNIFORM_BUFFER),
-    ("dnsr_tile_mask_1", Resource::TileMask1, vk::DescriptorType::SAMPLED_IMAGE),
-    ("dnsr_previous_depth_1", Resource::PreviousDepth1, vk::DescriptorType::SAMPLED_IMAGE),
-    ("dnsr_depth_copy_1", Resource::DepthCopy1, vk::DescriptorType::STORAGE_IMAGE),
-    ("dnsr_previous_moments_1", Resource::PreviousMoments1, vk::DescriptorType::SAMPLED_IMAGE),
-    ("dnsr_moments_1", Resource::Moments1, vk::DescriptorType::STORAGE_IMAGE),
-    ("dnsr_history_1", Resource::History1, vk::DescriptorType::COMBINED_IMAGE_SAMPLER),
-    ("dnsr_reprojection_1", Resource::Reprojection1, vk::DescriptorType::STORAGE_IMAGE),
-    ("dnsr_tile_meta_out_1", Resource::TileMetaOut1, vk::DescriptorType::STORAGE_IMAGE),
     ("DnsrClassifyBlock", Resource::ClassifyConstants, vk::DescriptorType::UNIFORM_BUFFER),
     ("dnsr_hit_mask_out", Resource::HitMaskOut, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_tile_list", Resource::TileList, vk::DescriptorType::STORAGE_TEXEL_BUFFER),

@@ -51,8 +51,6 @@ const _: () = assert!(1 << (MAX_FILTER_PASSES - 1) <= GROUP[0] && 1 << (MAX_FILT
 pub(crate) enum Role {
     Prepare,
     Classification,
-    /// Tile classification for several lights at once (the light-slot variant).
-    ClassificationLights,
     Filter(u32),
     /// The last of two or more passes.
     FilterFinal,
@@ -67,10 +65,6 @@ pub(crate) enum Role {
 /// Lights one dispatch of the filter's light-slot variants filters (a record of more lights runs several).
 /// Generated into GLSL as DNSR_LIGHT_SLOTS.
 pub(crate) const LIGHT_SLOTS: usize = 4;
-/// Lights one dispatch of tile classification's light-slot variant classifies. Two, because each light binds nine
-/// images and its constants of its own there: a third would pass the 32 bindings push descriptors allow.
-/// Generated into GLSL as DNSR_CLASSIFICATION_LIGHT_SLOTS.
-pub(crate) const CLASSIFICATION_LIGHT_SLOTS: usize = 2;
 /// Fewer lights than this left over after the full groups run a single-light dispatch each. Two lights in one
 /// dispatch of the later passes were slower than two dispatches on an H100 at 4K (typical scene: 0.344 / 0.338
 /// against 0.325 / 0.305 ms), three and four faster (BENCHMARKS.md "Several lights per record").
@@ -89,22 +83,6 @@ pub(crate) fn light_group(n: usize, k: usize) -> std::ops::Range<usize> {
     let start = if k <= full { k * LIGHT_SLOTS } else { k - full + full * LIGHT_SLOTS };
     let len = if k < full { LIGHT_SLOTS } else if n % LIGHT_SLOTS >= MIN_LIGHTS_PER_GROUP { n % LIGHT_SLOTS } else { 1 };
     start..start + len
-}
-
-/// The dispatches of tile classification for `n` lights (record order), where `guided(i)` says light i has penumbra
-/// guidance: two neighbours without it share a dispatch of the light-slot variant, every other light has its own.
-/// Returns the lights of each dispatch and how many dispatches there are.
-pub(crate) fn classification_groups(n: usize, guided: impl Fn(usize) -> bool) -> ([std::ops::Range<usize>; crate::MAX_LIGHTS_PER_RECORD], usize) {
-    let mut groups: [std::ops::Range<usize>; crate::MAX_LIGHTS_PER_RECORD] = std::array::from_fn(|i| i..i + 1);
-    let (mut count, mut i) = (0, 0);
-    while i < n {
-        let pair = i + 1 < n && !guided(i) && !guided(i + 1);
-        let len = if pair { CLASSIFICATION_LIGHT_SLOTS } else { 1 };
-        groups[count] = i..i + len;
-        count += 1;
-        i += len;
-    }
-    (groups, count)
 }
 
 /// What one invocation of a pass covers.
@@ -304,14 +282,5 @@ mod tests {
         assert_eq!(light_group_count(2), 2);
         assert_eq!(light_group_count(7), 2);
         assert_eq!(light_group(6, 2), 5..6);
-    }
-
-    #[test]
-    fn classification_pairs_neighbours_without_guidance() {
-        let (groups, count) = classification_groups(7, |i| i == 2 || i == 4);
-        assert_eq!(&groups[..count], &[0..2, 2..3, 3..4, 4..5, 5..7]);
-        let (groups, count) = classification_groups(3, |_| false);
-        assert_eq!(&groups[..count], &[0..2, 2..3]);
-        assert_eq!(classification_groups(1, |_| false).1, 1);
     }
 }

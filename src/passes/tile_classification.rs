@@ -2,8 +2,7 @@
 //! Shader: shaders/tile_classification.comp (core in shaders/tile_classification.glsl).
 
 use super::bindings::Resource;
-use super::{internal, FrameViews, Grid, Pass, Role, CLASSIFICATION_LIGHT_SLOTS};
-use crate::gpu::shader::SPEC_PENUMBRA_GUIDED;
+use super::{internal, FrameViews, Grid, Pass, Role};
 use crate::create_info::{Precision, ShadowInput};
 use ash::vk;
 
@@ -16,11 +15,6 @@ pub(crate) fn shader(precision: Precision, output: vk::Format, input: ShadowInpu
         ShadowInput::Visibility | ShadowInput::Checkerboard => "tile_classification_visibility",
     };
     crate::gpu::shader::variant_name(stem, Some(output), precision)
-}
-
-/// The light-slot variant (CLASSIFICATION_LIGHT_SLOTS lights per dispatch, a hit-mask input, no penumbra guidance).
-pub(crate) fn lights_shader(precision: Precision, output: vk::Format) -> Option<&'static str> {
-    crate::gpu::shader::variant_name("tile_classification_lights", Some(output), precision)
 }
 
 /// One invocation per pixel, groups of `WIDE_GROUP` pixels (2x2 blocks of two tiles each).
@@ -41,32 +35,4 @@ pub(crate) fn pass(v: &FrameViews) -> Pass {
     t[Resource::TileBlockerOut as usize] = internal(v.tile_blocker);
     t[Resource::Output as usize] = internal(v.output);
     Pass { role: Role::Classification, bindings: t, grid: Grid::Pixels, group: super::WIDE_GROUP, push: None, spec: v.spec, enabled: true }
-}
-
-/// CLASSIFICATION_LIGHT_SLOTS lights at once, light k in slot k: slot 0's bindings are light 0's single-light ones
-/// (which also give the shared G-buffer), slot 1 takes light 1's per-light images and constants (for its reset).
-/// Neither light has penumbra guidance.
-pub(crate) fn lights_pass(lights: &[&FrameViews; CLASSIFICATION_LIGHT_SLOTS]) -> Pass {
-    let mut p = pass(lights[0]);
-    const PER_LIGHT: [Resource; 10] = [
-        Resource::Constants,
-        Resource::TileMask,
-        Resource::PreviousDepth,
-        Resource::DepthCopy,
-        Resource::PreviousMoments,
-        Resource::Moments,
-        Resource::History,
-        Resource::Reprojection,
-        Resource::TileMetaOut,
-        Resource::Output,
-    ];
-    for (slot, v) in lights.iter().enumerate().skip(1) {
-        let single = pass(v).bindings;
-        for r in PER_LIGHT {
-            p.bindings[r.in_classification_slot(slot).expect("a per-light resource") as usize] = single[r as usize];
-        }
-    }
-    debug_assert!(lights.iter().all(|v| v.spec & (1 << SPEC_PENUMBRA_GUIDED) == 0));
-    p.role = Role::ClassificationLights;
-    p
 }

@@ -982,6 +982,12 @@ typedef struct DnsrClassifyDispatch {
    */
   float viewProjectionInverse[16];
   /**
+   * Optional (zero if unused). Current clip -> view (as DnsrShadowsDispatch::projection_inverse). dnsr's own
+   * classifier does not read it; an engine's classifier variant (pShaderOverrides) whose callbacks decode depth
+   * with dnsr_get_projection_inverse() does. Must be finite.
+   */
+  float projectionInverse[16];
+  /**
    * World-space direction from the surfaces toward the light (the sun); any non-zero length.
    */
   float lightDirection[3];

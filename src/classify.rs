@@ -70,6 +70,10 @@ pub struct ClassifyDispatch {
     pub normals_unpack_add: f32,
     /// Current clip space -> world space (the space the cascades' matrices take).
     pub view_projection_inverse: Mat4,
+    /// Current clip space -> view space (`ShadowsDispatch::projection_inverse`). dnsr's own classifier does not
+    /// read it; an engine's classifier variant (`ContextCreateInfo::shader_overrides`) whose callbacks decode
+    /// depth with it (`dnsr_get_projection_inverse`, e.g. from linear view depth) does.
+    pub projection_inverse: Mat4,
     /// World-space direction from the surfaces toward the light (the sun); any length but zero.
     pub light_direction: Vec3,
     /// The light's angular diameter in radians (the sun: about 0.0093), in [0, pi): sets the blocker search
@@ -129,6 +133,7 @@ impl Default for ClassifyDispatch {
             normals_unpack_mul: 1.0,
             normals_unpack_add: 0.0,
             view_projection_inverse: Mat4::IDENTITY,
+            projection_inverse: Mat4::IDENTITY,
             light_direction: Vec3::Z,
             light_angular_size: 0.0093,
             cascade_count: 0,
@@ -316,6 +321,9 @@ pub(crate) struct Classifier {
     counts: OwnedBuffer,
     uniforms: OwnedBuffer,
     tile_capacity: u32,
+    /// Per pipeline: an engine's variant (`ContextCreateInfo::shader_overrides`) runs, whose callbacks decode the
+    /// G-buffer (its formats are the engine's).
+    engine_decodes: [bool; 2],
     /// Without push descriptors: per pipeline, a ring of `max_frames_in_flight` sets.
     pool: vk::DescriptorPool,
     sets: Vec<[vk::DescriptorSet; 2]>,
@@ -325,9 +333,11 @@ pub(crate) struct Classifier {
 const PIPELINE_NAMES: [&str; 2] = ["classify", "classify_cascade_array"];
 
 impl Classifier {
-    pub(crate) fn new(vk: &Vk, size: [u32; 2], push: bool, slots: u32) -> Result<Classifier> {
+    /// The classifier of a context; `overrides` (checked) may replace either variant.
+    pub(crate) fn new(vk: &Vk, size: [u32; 2], push: bool, slots: u32, overrides: &[crate::ShaderOverride]) -> Result<Classifier> {
         let mut c = Classifier {
             pipelines: Vec::new(),
+            engine_decodes: [false; 2],
             tiles: OwnedBuffer::default(),
             counts: OwnedBuffer::default(),
             uniforms: OwnedBuffer::default(),
@@ -336,7 +346,7 @@ impl Classifier {
             sets: Vec::new(),
             next_set: 0,
         };
-        match c.create(vk, size, push, slots) {
+        match c.create(vk, size, push, slots, overrides) {
             Ok(()) => Ok(c),
             Err(e) => {
                 c.destroy(vk);
@@ -345,10 +355,12 @@ impl Classifier {
         }
     }
 
-    fn create(&mut self, vk: &Vk, size: [u32; 2], push: bool, slots: u32) -> Result<()> {
-        for name in PIPELINE_NAMES {
+    fn create(&mut self, vk: &Vk, size: [u32; 2], push: bool, slots: u32, overrides: &[crate::ShaderOverride]) -> Result<()> {
+        for (i, name) in PIPELINE_NAMES.into_iter().enumerate() {
+            let engine = overrides.iter().find(|o| o.variant == name);
+            self.engine_decodes[i] = engine.is_some();
             // Pipeline::new checks both constants blocks' sizes against the host's.
-            self.pipelines.push(Pipeline::new(vk, name, variant(name).spirv, push)?);
+            self.pipelines.push(Pipeline::new(vk, name, engine.map_or(variant(name).spirv, |o| &o.spirv[..]), push)?);
         }
         self.allocate(vk, size)?;
         let uniform = vk::BufferUsageFlags::UNIFORM_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
@@ -413,6 +425,12 @@ impl Classifier {
 
     pub(crate) fn has_buffers(&self) -> bool {
         self.tiles.buffer != vk::Buffer::null()
+    }
+
+    /// Whether the variant a dispatch with (`array`) or without a cascade array runs is an engine's, which decodes
+    /// the G-buffer itself.
+    pub(crate) fn engine_decodes(&self, array: bool) -> bool {
+        self.engine_decodes[array as usize]
     }
 
     /// Records a validated dispatch (its constants from `constants`): the counters' reset and the constants, the

@@ -244,7 +244,7 @@ impl Context {
         }
         ctx.allocate_lights()?;
         if info.enable_classifier {
-            ctx.classifier = Some(crate::classify::Classifier::new(&ctx.vk, ctx.size, push_descriptors, info.max_frames_in_flight)?);
+            ctx.classifier = Some(crate::classify::Classifier::new(&ctx.vk, ctx.size, push_descriptors, info.max_frames_in_flight, &info.shader_overrides)?);
         }
         Ok(ctx)
     }
@@ -446,7 +446,8 @@ impl Context {
         if !classifier.has_buffers() {
             return Err(Error::NotResized);
         }
-        let rect = validate::classify(&self.vk, d, self.size, self.supported_stages)?;
+        let engine_decodes = classifier.engine_decodes(d.cascade_array.is_some());
+        let rect = validate::classify(&self.vk, d, self.size, self.supported_stages, engine_decodes)?;
         let classify = crate::classify::constants(d)?;
         let shadows = ShadowsDispatch {
             depth: d.depth,
@@ -454,6 +455,7 @@ impl Context {
             normals_unpack_mul: d.normals_unpack_mul,
             normals_unpack_add: d.normals_unpack_add,
             view_projection_inverse: d.view_projection_inverse,
+            projection_inverse: d.projection_inverse,
             hit_mask_convention: d.hit_mask_convention,
             ..Default::default()
         };

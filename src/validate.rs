@@ -236,12 +236,15 @@ fn render_rect(rect: Option<Rect>, size: [u32; 2]) -> Result<Rect> {
 }
 
 /// Validates a classify dispatch for a context of render size `size`; returns the effective render rect.
-pub(crate) fn classify(vk: &Vk, d: &crate::ClassifyDispatch, size: [u32; 2], supported_stages: vk::PipelineStageFlags) -> Result<Rect> {
+/// A classify dispatch; `engine_decodes`: the variant it runs is an engine's, which decodes depth and normals of
+/// any sampled format.
+pub(crate) fn classify(vk: &Vk, d: &crate::ClassifyDispatch, size: [u32; 2], supported_stages: vk::PipelineStageFlags, engine_decodes: bool) -> Result<Rect> {
     use crate::classify::{CLASSIFY_TAP_COUNTS, MAX_CASCADES};
     let sampled = vk::FormatFeatureFlags::SAMPLED_IMAGE;
     let tiles = [size[0].div_ceil(8), size[1].div_ceil(4)];
-    host_image(vk, ImageRole::Depth, &d.depth, DEPTH_FORMATS, DEPTH_LAYOUTS, size, sampled)?;
-    host_image(vk, ImageRole::Normals, &d.normals, NORMAL_FORMATS, SAMPLED_LAYOUTS, size, sampled)?;
+    let decoded = |formats: &'static [F]| if engine_decodes { &[][..] } else { formats };
+    host_image(vk, ImageRole::Depth, &d.depth, decoded(DEPTH_FORMATS), DEPTH_LAYOUTS, size, sampled)?;
+    host_image(vk, ImageRole::Normals, &d.normals, decoded(NORMAL_FORMATS), SAMPLED_LAYOUTS, size, sampled)?;
     host_image(vk, ImageRole::HitMask, &d.hit_mask, &[F::R32_UINT], &[L::GENERAL], tiles, vk::FormatFeatureFlags::STORAGE_IMAGE)?;
     let invalid = |field: &'static str, value: String, allowed: &'static str| Err(Error::InvalidValue { field, value, allowed });
     if !(1..=MAX_CASCADES as u32).contains(&d.cascade_count) {
@@ -295,6 +298,7 @@ pub(crate) fn classify(vk: &Vk, d: &crate::ClassifyDispatch, size: [u32; 2], sup
         return invalid("tile_cutoff", d.tile_cutoff.to_string(), "it must be in [0, 31]: a tile is listed with more pixels to trace than this");
     }
     finite_mat("view_projection_inverse", &d.view_projection_inverse)?;
+    finite_mat("projection_inverse", &d.projection_inverse)?;
     if !d.light_direction.is_finite() {
         return Err(Error::NonFinite("light_direction"));
     }

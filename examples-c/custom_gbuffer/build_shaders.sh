@@ -5,7 +5,8 @@
 # writes OUT_DIR/<variant>.spv, or with `c` OUT_DIR/<variant>.inc (C initialiser lists, glslc -mfmt=c, which the
 # viewer's build embeds).
 # The variants are those of an FP32 context with an R32_SFLOAT output (dnsr_get_shader_variants lists every
-# variant with its entry file and definitions); prepare reads no G-buffer and keeps dnsr's own SPIR-V.
+# variant with its entry file and definitions), and the classifier's variant for separate cascade images; prepare
+# reads no G-buffer and keeps dnsr's own SPIR-V.
 set -euo pipefail
 shaders=$1 out=$2 format=${3:-spv}
 case $format in
@@ -27,4 +28,6 @@ compile filter filter.comp
 compile filter_later filter.comp -DDNSR_LATER_PASS
 compile filter_final_r32f filter.comp -DDNSR_FINAL_PASS -DDNSR_OUTPUT_FORMAT=r32f
 compile filter_later_final_r32f filter.comp -DDNSR_LATER_PASS -DDNSR_FINAL_PASS -DDNSR_OUTPUT_FORMAT=r32f
-echo "custom_gbuffer: 5 variants compiled into $out"
+# The hybrid-shadows classifier reads depth and normals too (the viewer's --hybrid --gbuffer packed uses it).
+compile classify classify.comp
+echo "custom_gbuffer: 6 variants compiled into $out"

@@ -5,8 +5,8 @@
 #define DNSR_ENGINE_DEPTH_NORMALS
 #include "dnsr_callbacks_standard.glsl"
 
-#if defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER)
-// dnsr binds the host's depth and normals at 4 and 6, whatever their formats.
+#if defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER) || defined(DNSR_PASS_CLASSIFY)
+// dnsr binds the host's depth and normals at 4 and 6, whatever their formats (the hybrid-shadows classifier too).
 layout(set = 0, binding = 4) uniform texture2D dnsr_depth;
 layout(set = 0, binding = 6) uniform texture2D dnsr_normals;
 

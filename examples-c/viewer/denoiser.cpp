@@ -24,12 +24,16 @@ const uint32_t kDnsrFilterFinal[] =
 const uint32_t kDnsrFilterLaterFinal[] =
 #include "dnsr_engine/filter_later_final_r32f.inc"
     ;
+const uint32_t kDnsrClassify[] =
+#include "dnsr_engine/classify.inc"
+    ;
 const DnsrShaderOverride kPackedOverrides[] = {
     {"tile_classification_r32f", kDnsrClassification, sizeof kDnsrClassification},
     {"filter", kDnsrFilter, sizeof kDnsrFilter},
     {"filter_later", kDnsrFilterLater, sizeof kDnsrFilterLater},
     {"filter_final_r32f", kDnsrFilterFinal, sizeof kDnsrFilterFinal},
     {"filter_later_final_r32f", kDnsrFilterLaterFinal, sizeof kDnsrFilterLaterFinal},
+    {"classify", kDnsrClassify, sizeof kDnsrClassify},  // --hybrid: the classifier reads the packed G-buffer too
 };
 
 // Every dnsr call returns a DnsrResult; dnsr_last_error_message() says which field was wrong and why.
@@ -195,6 +199,8 @@ void Denoiser::recordClassify(const DenoiserFrame &f, const DenoiserClassify &c)
     d.normalsUnpackMul = 1.0f;
     d.normalsUnpackAdd = 0.0f;
     std::memcpy(d.viewProjectionInverse, f.viewProjectionInverse.m, sizeof d.viewProjectionInverse);
+    // The packed G-buffer's callbacks turn linear depth back into hardware depth with it.
+    std::memcpy(d.projectionInverse, f.projectionInverse.m, sizeof d.projectionInverse);
     d.lightDirection[0] = c.toLight.x, d.lightDirection[1] = c.toLight.y, d.lightDirection[2] = c.toLight.z;
     d.lightAngularSize = c.lightAngularSize;
     d.cascadeCount = c.cascades->count;

@@ -228,6 +228,5 @@ std::string hybridUnsupported(const Options &o)
     if (o.lights > 1) return "takes one light (--lights 1): the viewer traces cascades for one sun";
     if (o.rays > 1 || o.checkerboard)
         return "takes one ray per pixel (--rays 1, no --checkerboard): the classifier prefills a full hit mask";
-    if (o.packedGbuffer) return "takes --gbuffer default (dnsr's classifier has no custom-callback build yet)";
     return "";
 }

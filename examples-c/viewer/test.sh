@@ -240,7 +240,8 @@ done
 # blockers fall between the taps are decided lit every frame instead of averaging their rays). Then without
 # guidance, reversed rays, one cascade, 8 taps and a cut-off. Unsupported combinations and bad settings are usage
 # errors ----
-for mode in "--hit-distance off" "--hybrid" "--hybrid --hit-distance off --reverse-rays --cascades 1 --taps 8 --tile-cutoff 2"; do
+for mode in "--hit-distance off" "--hybrid" "--hybrid --hit-distance off --reverse-rays --cascades 1 --taps 8 --tile-cutoff 2" \
+            "--hybrid --gbuffer packed"; do
   status=0
   name=$(echo "$mode" | tr -dc 'a-z0-9')
   # $mode unquoted: several words.
@@ -281,8 +282,20 @@ print(f"{hybrid['traced']['fraction']:.1%} of the receivers traced ({other['trac
 PY
 ) || fail "--hybrid check failed"
 echo "hybrid: $hybrid"
+# The classifier compiled against the packed G-buffer's callbacks (linear depth, octahedral RG16 normals) decides
+# what dnsr's own does on the default G-buffer, up to the normals' rounding in its tangent-plane test.
+python3 - "$tmp/hybrid/report.json" "$tmp/hybridgbufferpacked/report.json" <<'PY' || fail "--hybrid --gbuffer packed check failed"
+import json, sys
+default, packed = (json.load(open(p)) for p in sys.argv[1:])
+assert packed["gbuffer"] == "packed" and packed["hybrid"], "packed hybrid run not recorded"
+rd, rp = default["traced"]["rays"], packed["traced"]["rays"]
+assert abs(rp - rd) <= max(2, 0.01 * rd), f"{rp} rays traced with the engine's classifier callbacks, {rd} with dnsr's"
+d, p = default["rmse"]["denoised"], packed["rmse"]["denoised"]
+assert abs(p - d) <= 1e-3, f"denoised RMSE {d:.5f} with dnsr's callbacks, {p:.5f} with the engine's"
+print(f"hybrid, packed G-buffer: {rp} rays traced (default {rd}), denoised RMSE {p:.5f} (default {d:.5f})")
+PY
 for bad in "--point-light:--hybrid takes the directional light" "--lights 2:--hybrid takes one light" \
-           "--rays 2:--hybrid takes one ray per pixel" "--gbuffer packed:--hybrid takes --gbuffer default" \
+           "--rays 2:--hybrid takes one ray per pixel" \
            "--taps 12:--taps wants 8, 16, 24 or 32, got '12'" "--cascades 5:--cascades wants a number in 1..4" \
            "--blocker-offset -1:--blocker-offset wants scene radii in 0..1"; do
   status=0

@@ -277,6 +277,7 @@ pub(crate) fn classify_from_c(c: &DnsrClassifyDispatch) -> Result<(vk::CommandBu
         normals_unpack_mul: c.normals_unpack_mul,
         normals_unpack_add: c.normals_unpack_add,
         view_projection_inverse: Mat4::from_cols_array(&c.view_projection_inverse),
+        projection_inverse: Mat4::from_cols_array(&c.projection_inverse),
         light_direction: Vec3::from_array(c.light_direction),
         light_angular_size: c.light_angular_size,
         cascade_count: c.cascade_count,

@@ -771,6 +771,10 @@ pub struct DnsrClassifyDispatch {
     pub normals_unpack_add: f32,
     /// Current clip -> world (the space the cascades' matrices take).
     pub view_projection_inverse: [f32; 16],
+    /// Optional (zero if unused). Current clip -> view (as DnsrShadowsDispatch::projection_inverse). dnsr's own
+    /// classifier does not read it; an engine's classifier variant (pShaderOverrides) whose callbacks decode depth
+    /// with dnsr_get_projection_inverse() does. Must be finite.
+    pub projection_inverse: [f32; 16],
     /// World-space direction from the surfaces toward the light (the sun); any non-zero length.
     pub light_direction: [f32; 3],
     /// The light's angular diameter in radians, in [0, pi) (the sun: about 0.0093): the blocker search radius

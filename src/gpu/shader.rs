@@ -125,7 +125,7 @@ pub struct ShaderVariantInfo {
 /// select. (The light-slot variants, which filter several lights per dispatch, are dnsr's alone: see
 /// docs/callbacks.md "Several lights".)
 pub fn shader_variants() -> impl Iterator<Item = ShaderVariantInfo> {
-    VARIANTS.iter().filter(|v| !is_light_slot_variant(v.name) && !is_classify_variant(v.name)).map(|v| ShaderVariantInfo { name: v.name, source: v.source, defines: v.defines })
+    VARIANTS.iter().filter(|v| !is_light_slot_variant(v.name)).map(|v| ShaderVariantInfo { name: v.name, source: v.source, defines: v.defines })
 }
 
 /// A light-slot variant (several lights per dispatch), which no engine overrides.
@@ -133,7 +133,8 @@ pub(crate) fn is_light_slot_variant(name: &str) -> bool {
     name.starts_with("filter_later_lights")
 }
 
-/// A variant of the hybrid-shadows classifier, which no engine overrides (yet: its dispatch has no engine images).
+/// A variant of the hybrid-shadows classifier: an engine may override it, but without engine images (its dispatch
+/// has none).
 pub(crate) fn is_classify_variant(name: &str) -> bool {
     name.starts_with("classify")
 }
@@ -257,6 +258,9 @@ pub(crate) fn check_override(name: &str, spirv: &[u8]) -> Result<()> {
         if b.binding != expected.binding {
             return Err(fail(format!("{:?} is binding {}; dnsr binds it at {}", b.resource, b.binding, expected.binding)));
         }
+    }
+    if let Some(b) = theirs.bindings.iter().find(|b| is_classify_variant(name) && b.resource.engine_slot().is_some()) {
+        return Err(fail(format!("declares an engine image at binding {}; the classifier's dispatch has no engine images", b.binding)));
     }
     if theirs.push_constant_bytes != ours.push_constant_bytes {
         return Err(fail(format!("push constants of {} bytes; dnsr pushes {}", theirs.push_constant_bytes, ours.push_constant_bytes)));

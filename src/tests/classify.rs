@@ -5,7 +5,7 @@
 use crate::reference::classify::{classify, orthographic_cascade, ClassifyInputs, ShadowMap};
 use crate::testing::gpu::{full_barrier, Gpu, GpuOptions, TestImage};
 use crate::testing::scene::FrameInputs;
-use crate::{ClassifyDispatch, Context, Error, HitMaskConvention, ShadowCascade};
+use crate::{ClassifyDispatch, Context, Error, HitMaskConvention, ShaderOverride, ShadowCascade};
 use ash::vk;
 use glam::{DMat4, DVec3, DVec4};
 
@@ -138,15 +138,23 @@ fn array_image(g: &Gpu, size: u32, layers: u32, data: &[f32]) -> (vk::Image, vk:
 }
 
 fn run(g: &Gpu, cfg: &Config) {
+    run_with(g, cfg, None);
+}
+
+/// `run`, the classifier's variant replaced by `engine`, whose callbacks decode the normals negated (the upload
+/// negates them, so the reference's decisions stand).
+fn run_with(g: &Gpu, cfg: &Config, engine: Option<&ShaderOverride>) {
     let f = frame();
     let mut info = g.create_info(W, H);
     info.enable_classifier = true;
+    info.shader_overrides = engine.into_iter().cloned().collect();
     let mut ctx = Context::new(&info).expect("context with classifier");
     let depth = g.image(vk::Format::R32_SFLOAT, W, H, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL);
     let normals = g.image(vk::Format::R32G32B32A32_SFLOAT, W, H, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL);
     let mask = g.image(vk::Format::R32_UINT, W.div_ceil(8), H.div_ceil(4), vk::ImageLayout::GENERAL);
     g.upload(&depth, bytemuck::cast_slice(&f.depth));
-    g.upload(&normals, bytemuck::cast_slice(&f.normals));
+    let stored: Vec<[f32; 4]> = f.normals.iter().map(|n| if engine.is_some() { n.map(|c| -c) } else { *n }).collect();
+    g.upload(&normals, bytemuck::cast_slice(&stored));
     let setup = cascade_setup();
     let maps: Vec<Vec<f32>> = setup.iter().map(|&(m, size)| shadow_map(m, size, cfg.inverted)).collect();
     let mut d = ClassifyDispatch {
@@ -272,6 +280,17 @@ fn run(g: &Gpu, cfg: &Config) {
     assert!(n > 0 && n < tiles as usize, "{n} of {tiles} tiles listed");
     eprintln!("{n} of {tiles} tiles listed, {fragile} fragile");
 
+    // The G-buffer's formats are the engine's when its variant decodes it: normals dnsr's decode does not take.
+    let other = g.image(vk::Format::R16G16_SFLOAT, W, H, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL);
+    let mut with_other = d;
+    with_other.normals = other.host();
+    let result = g.submit(|cmd| ctx.record_classify(cmd, &with_other));
+    match engine {
+        Some(_) => result.expect("the engine's variant decodes RG16F normals"),
+        None => assert!(matches!(result, Err(Error::UnsupportedFormat { .. })), "dnsr's decode took RG16F normals: {result:?}"),
+    }
+    g.destroy_image(&other);
+
     g.destroy_staging(&staging);
     for img in [&depth, &normals, &mask].into_iter().chain(&cascade_images) {
         g.destroy_image(img);
@@ -301,6 +320,32 @@ fn classifier_matches_reference() {
         }
         g.assert_clean();
     }
+}
+
+/// An engine's classifier variant (its callbacks compiled from dnsr's sources) is what runs, and the G-buffer's
+/// formats are then its own; one that declares an engine image is refused (the dispatch has none).
+#[test]
+fn an_engine_classifier_variant_is_what_runs() {
+    use super::shader_overrides::{compile, sources};
+    let g = super::gpu();
+    let decode = "vec3 n = texelFetch(dnsr_normals, p + dnsr_get_offset(), 0).xyz * dnsr_constants.motion_normals.z\n           + dnsr_constants.motion_normals.w;";
+    let dir = sources(&|s| {
+        assert!(s.contains(decode), "the standard normal decode moved");
+        s.replace(decode, "vec3 n = -(texelFetch(dnsr_normals, p + dnsr_get_offset(), 0).xyz * dnsr_constants.motion_normals.z\n           + dnsr_constants.motion_normals.w);")
+    });
+    let engine = compile(&dir, "classify", &[]);
+    let cfg = Config { convention: HitMaskConvention::OccludedBits, taps: 24, cutoff: 0, reject_lit: true, bound: true, inverted: false, array: false, blocker_offset: 0.01 };
+    run_with(&g, &cfg, Some(&engine));
+    let dir = sources(&|s| s + "\n#ifdef DNSR_PASS_CLASSIFY\nlayout(set = 0, binding = 32) uniform texture2D engine_extra;\n#endif\n");
+    let with_image = compile(&dir, "classify", &[]);
+    let mut info = g.create_info(W, H);
+    info.enable_classifier = true;
+    info.shader_overrides = vec![with_image];
+    match Context::new(&info) {
+        Err(Error::ShaderInterface(m)) => assert!(m.contains("engine image") && m.contains("\"classify\""), "{m}"),
+        other => panic!("an engine image in the classifier's variant: {:?}", other.map(|_| ())),
+    }
+    g.assert_clean();
 }
 
 #[test]

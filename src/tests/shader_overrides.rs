@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// dnsr's shader sources copied to a fresh directory, the standard callbacks edited by `edit`.
-fn sources(edit: &dyn Fn(String) -> String) -> PathBuf {
+pub(super) fn sources(edit: &dyn Fn(String) -> String) -> PathBuf {
     static N: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
     let n = N.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let dir = std::env::temp_dir().join(format!("dnsr-overrides-{}-{n}", std::process::id()));
@@ -30,7 +30,7 @@ fn sources(edit: &dyn Fn(String) -> String) -> PathBuf {
 
 /// A variant compiled as an engine would: its entry file and definitions (shader_variants) and
 /// SHADER_COMPILE_ARGS, plus `extra` arguments.
-fn compile(dir: &Path, name: &str, extra: &[&str]) -> ShaderOverride {
+pub(super) fn compile(dir: &Path, name: &str, extra: &[&str]) -> ShaderOverride {
     let v = crate::shader_variants().find(|v| v.name == name).unwrap();
     let out = dir.join(format!("{name}.spv"));
     let mut cmd = Command::new("glslc");

@@ -33,7 +33,7 @@ int main(void)
     DnsrContextCreateInfo info = host_create_info(&host, W, H);
     DnsrContext plain = NULL, ctx = NULL;
     DNSR_CHECK(dnsr_context_create(&info, &plain));
-    info.flags |= DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER;
+    info.flags |= DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER | DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS;
     DNSR_CHECK(dnsr_context_create(&info, &ctx));
 
     HostImage depth, normals, mask, cascade;
@@ -120,6 +120,19 @@ int main(void)
         CHECK(mask_words[ty * TILES_X + TILES_X - 1] == 0u, "right tile row %u: %#x, want all lit", ty, mask_words[ty * TILES_X + TILES_X - 1]);
     }
     printf("classify: %u of %u tiles listed\n", listed, TILES_X * TILES_Y);
+
+    /* The classifier's GPU time (the context records timestamps). */
+    DnsrClassifierTimings timings;
+    memset(&timings, 0, sizeof timings);
+    expect_refused("timings: wrong sType", dnsr_context_get_classifier_timings(ctx, &timings), DNSR_ERROR_INVALID_STRUCTURE, "pTimings");
+    expect_refused("timings: NULL pTimings", dnsr_context_get_classifier_timings(ctx, NULL), DNSR_ERROR_INVALID_ARGUMENT, "pTimings");
+    timings.sType = DNSR_STRUCTURE_TYPE_CLASSIFIER_TIMINGS;
+    expect_refused("timings: no classifier", dnsr_context_get_classifier_timings(plain, &timings), DNSR_ERROR_CLASSIFIER_NOT_ENABLED,
+                   "classifier");
+    DNSR_CHECK(dnsr_context_get_classifier_timings(ctx, &timings));
+    CHECK(timings.dispatch == 1 && timings.classifyMs > 0.0 && isfinite(timings.classifyMs), "classifier timings: dispatch %llu, %g ms",
+          (unsigned long long)timings.dispatch, timings.classifyMs);
+    printf("classify: %.4f ms of GPU time (dispatch %llu)\n", timings.classifyMs, (unsigned long long)timings.dispatch);
 
     cmd = host_begin(&host);
     DnsrClassifyDispatch bad = d;

@@ -1126,6 +1126,28 @@ typedef struct DnsrPassTimings {
 } DnsrPassTimings;
 
 /**
+ * GPU time of one completed hybrid-shadows classifier dispatch (`dnsr_classify_record`), in milliseconds.
+ */
+typedef struct DnsrClassifierTimings {
+  /**
+   * Must be DNSR_STRUCTURE_TYPE_CLASSIFIER_TIMINGS (set it before the call).
+   */
+  DnsrStructureType sType;
+  /**
+   * Must be NULL.
+   */
+  void *pNext;
+  /**
+   * Which classifier dispatch (counting dnsr_classify_record calls from 1).
+   */
+  uint64_t dispatch;
+  /**
+   * From before the classifier's first command (its counters' reset) to after its dispatch.
+   */
+  double classifyMs;
+} DnsrClassifierTimings;
+
+/**
  * What the host must create its instance and device with.
  */
 typedef struct DnsrDeviceRequirements {
@@ -1447,6 +1469,11 @@ typedef struct DnsrDiagnosis {
  * `DnsrClassifierBuffers`.
  */
 #define DNSR_STRUCTURE_TYPE_CLASSIFIER_BUFFERS 8
+
+/**
+ * `DnsrClassifierTimings`.
+ */
+#define DNSR_STRUCTURE_TYPE_CLASSIFIER_TIMINGS 9
 
 /**
  * Forces 32 bits.
@@ -1805,6 +1832,14 @@ DnsrResult dnsr_context_set_settings(DnsrContext context,
  */
 DnsrResult dnsr_context_get_timings(DnsrContext context,
                                     struct DnsrPassTimings *pTimings);
+
+/**
+ * GPU time of the most recent completed classifier dispatch (needs DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS and
+ * DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER). Returns DNSR_NOT_READY when none has completed yet (or timestamps are
+ * off), DNSR_ERROR_CLASSIFIER_NOT_ENABLED for a context without the classifier.
+ */
+DnsrResult dnsr_context_get_classifier_timings(DnsrContext context,
+                                               struct DnsrClassifierTimings *pTimings);
 
 /**
  * Bytes of device memory the context allocated (driver padding included).

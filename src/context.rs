@@ -16,7 +16,7 @@ use crate::passes::{FrameViews, Pass, Role, LIGHT_SLOTS};
 use crate::passes::{filter, prepare, tile_classification};
 use crate::settings::{check_filter_passes, Settings};
 use crate::state::{intermediate_format, LightState, DEPTH_FORMAT, MOMENTS_FORMAT, TILE_FORMAT};
-use crate::timestamps::{PassTimings, Timestamps};
+use crate::timestamps::{ClassifierTimings, PassTimings, Timestamps};
 use crate::validate;
 use ash::vk;
 
@@ -122,6 +122,8 @@ pub struct Context {
     guide_initialized: bool,
     timestamps: Option<Timestamps>,
     frames_recorded: u64,
+    /// `record_classify` calls recorded (numbers the classifier's timestamps).
+    classify_dispatches: u64,
     /// Stages `HostSync` may name on this device and queue family.
     supported_stages: vk::PipelineStageFlags,
     /// Engine-compiled classification or filter variants decode the G-buffer: its formats are theirs to choose.
@@ -226,6 +228,7 @@ impl Context {
             guide_initialized: false,
             timestamps: None,
             frames_recorded: 0,
+            classify_dispatches: 0,
             supported_stages,
             engine_reads: false,
             engine_images_declared: false,
@@ -462,8 +465,30 @@ impl Context {
         let frame = self.frame_constants(&shadows, rect, false);
         let binder = binder_ref(&self.binder);
         let classifier = self.classifier.as_mut().expect("checked above");
+        self.classify_dispatches += 1;
+        let dev = &self.vk.device;
+        let first_query = self.timestamps.as_mut().map(|t| t.begin_classify(dev, cmd, self.classify_dispatches));
+        let pool = self.timestamps.as_ref().map_or(vk::QueryPool::null(), |t| t.pool);
+        let stamp = |query: Option<u32>| {
+            if let Some(q) = query {
+                unsafe { dev.cmd_write_timestamp(cmd, vk::PipelineStageFlags::BOTTOM_OF_PIPE, pool, q) };
+            }
+        };
+        stamp(first_query);
         classifier.record(&self.vk, binder, cmd, d, &frame, &classify, rect);
+        stamp(first_query.map(|q| q + 1));
         Ok(())
+    }
+
+    /// GPU time of the most recent classifier dispatch that has completed, if timestamps are enabled and one has.
+    pub fn classifier_timings(&self) -> Result<Option<ClassifierTimings>> {
+        if self.classifier.is_none() {
+            return Err(Error::ClassifierNotEnabled);
+        }
+        match &self.timestamps {
+            Some(t) => t.latest_classify(&self.vk.device),
+            None => Ok(None),
+        }
     }
 
     /// Features the context was created with.

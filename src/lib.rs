@@ -41,7 +41,7 @@ pub use error::{Error, ImageRole, Result};
 pub use glam;
 pub use host::{DebugNamer, GpuAllocation, GpuMemoryAllocator, HostHooks, ResourceKind};
 pub use settings::{Preset, Settings, MAX_FILTER_PASSES};
-pub use timestamps::PassTimings;
+pub use timestamps::{ClassifierTimings, PassTimings};
 
 #[cfg(any(test, feature = "demo"))]
 #[doc(hidden)]

@@ -9,6 +9,9 @@ use ash::vk;
 pub(crate) const QUERIES_PER_FRAME: u32 = 3 + MAX_FILTER_PASSES;
 /// Frames whose timestamps are kept; timings stay readable while fewer frames than this are in flight.
 pub(crate) const FRAME_SLOTS: u32 = 4;
+/// Before and after one classifier dispatch (`Context::record_classify`), in FRAME_SLOTS slots after the frames'.
+const CLASSIFY_QUERIES: u32 = 2;
+const CLASSIFY_BASE: u32 = QUERIES_PER_FRAME * FRAME_SLOTS;
 
 /// GPU time of each pass of one recorded frame, in milliseconds.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -27,12 +30,23 @@ pub struct PassTimings {
     pub total_ms: f64,
 }
 
+/// GPU time of one hybrid-shadows classifier dispatch, in milliseconds.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ClassifierTimings {
+    /// Which classifier dispatch these are from (counts `record_classify` calls from 1).
+    pub dispatch: u64,
+    /// From before the classifier's first command (its counters' reset) to after its dispatch.
+    pub classify_ms: f64,
+}
+
 pub(crate) struct Timestamps {
     pub pool: vk::QueryPool,
     period_ns: f64,
     valid_mask: u64,
     /// Frame number and filter pass count recorded into each slot (frame 0: never used).
     slots: [(u64, u32); FRAME_SLOTS as usize],
+    /// Classifier dispatch recorded into each classifier slot (0: never used).
+    classify_slots: [u64; FRAME_SLOTS as usize],
 }
 
 impl Timestamps {
@@ -45,14 +59,51 @@ impl Timestamps {
         let props = unsafe { vk.instance.get_physical_device_properties(vk.physical_device) };
         let info = vk::QueryPoolCreateInfo::default()
             .query_type(vk::QueryType::TIMESTAMP)
-            .query_count(QUERIES_PER_FRAME * FRAME_SLOTS);
+            .query_count(CLASSIFY_BASE + CLASSIFY_QUERIES * FRAME_SLOTS);
         let pool = vk_check("vkCreateQueryPool", unsafe { vk.device.create_query_pool(&info, vk.alloc()) })?;
         Ok(Timestamps {
             pool,
             period_ns: props.limits.timestamp_period as f64,
             valid_mask: if bits >= 64 { u64::MAX } else { (1u64 << bits) - 1 },
             slots: [(0, 0); FRAME_SLOTS as usize],
+            classify_slots: [0; FRAME_SLOTS as usize],
         })
+    }
+
+    /// Claims the classifier slot for `dispatch` and records the reset of its queries. Returns its first query.
+    pub(crate) fn begin_classify(&mut self, d: &ash::Device, cmd: vk::CommandBuffer, dispatch: u64) -> u32 {
+        let slot = (dispatch % FRAME_SLOTS as u64) as usize;
+        self.classify_slots[slot] = dispatch;
+        let first = CLASSIFY_BASE + slot as u32 * CLASSIFY_QUERIES;
+        unsafe { d.cmd_reset_query_pool(cmd, self.pool, first, CLASSIFY_QUERIES) };
+        first
+    }
+
+    /// Timings of the most recent classifier dispatch whose queries are available.
+    pub(crate) fn latest_classify(&self, d: &ash::Device) -> Result<Option<ClassifierTimings>> {
+        let mut order: Vec<usize> = (0..FRAME_SLOTS as usize).filter(|&s| self.classify_slots[s] != 0).collect();
+        order.sort_by_key(|&s| std::cmp::Reverse(self.classify_slots[s]));
+        for slot in order {
+            let mut data = [[0u64; 2]; CLASSIFY_QUERIES as usize];
+            if self.read(d, CLASSIFY_BASE + slot as u32 * CLASSIFY_QUERIES, &mut data)? {
+                return Ok(Some(ClassifierTimings { dispatch: self.classify_slots[slot], classify_ms: self.ms(&data, 0, 1) }));
+            }
+        }
+        Ok(None)
+    }
+
+    /// Reads `data.len()` queries from `first` with their availability; true when all of them are available.
+    fn read(&self, d: &ash::Device, first: u32, data: &mut [[u64; 2]]) -> Result<bool> {
+        let r = unsafe { d.get_query_pool_results(self.pool, first, data, vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WITH_AVAILABILITY) };
+        match r {
+            Ok(()) | Err(vk::Result::NOT_READY) => Ok(data.iter().all(|q| q[1] != 0)),
+            Err(result) => Err(Error::Vulkan { call: "vkGetQueryPoolResults", result }),
+        }
+    }
+
+    /// Milliseconds from query `a` to query `b` of `data`.
+    fn ms(&self, data: &[[u64; 2]], a: usize, b: usize) -> f64 {
+        (data[b][0] & self.valid_mask).wrapping_sub(data[a][0] & self.valid_mask) as f64 * self.period_ns * 1e-6
     }
 
     /// Claims the slot for `frame` and records the reset of its queries. Returns the slot's first query.
@@ -71,25 +122,11 @@ impl Timestamps {
         for slot in order {
             let (frame, passes) = self.slots[slot];
             let mut data = [[0u64; 2]; QUERIES_PER_FRAME as usize];
-            let r = unsafe {
-                d.get_query_pool_results(
-                    self.pool,
-                    slot as u32 * QUERIES_PER_FRAME,
-                    &mut data,
-                    vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WITH_AVAILABILITY,
-                )
-            };
-            match r {
-                Ok(()) | Err(vk::Result::NOT_READY) => {}
-                Err(result) => return Err(Error::Vulkan { call: "vkGetQueryPoolResults", result }),
-            }
             let used = 3 + passes as usize;
-            if data[..used].iter().any(|q| q[1] == 0) {
+            if !self.read(d, slot as u32 * QUERIES_PER_FRAME, &mut data[..used])? {
                 continue;
             }
-            let ms = |a: usize, b: usize| {
-                (data[b][0] & self.valid_mask).wrapping_sub(data[a][0] & self.valid_mask) as f64 * self.period_ns * 1e-6
-            };
+            let ms = |a: usize, b: usize| self.ms(&data, a, b);
             let mut t = PassTimings {
                 frame,
                 prepare_ms: ms(0, 1),

@@ -242,6 +242,17 @@ bool Denoiser::fetchTimings(DnsrPassTimings &timings)
     return true;
 }
 
+bool Denoiser::fetchClassifierTimings(double &classifyMs)
+{
+    DnsrClassifierTimings t{};
+    t.sType = DNSR_STRUCTURE_TYPE_CLASSIFIER_TIMINGS;
+    DnsrResult r = dnsr_context_get_classifier_timings(context_, &t);
+    if (r == DNSR_NOT_READY) return false;  // no classifier dispatch has completed yet
+    if (r != DNSR_SUCCESS) dnsrFail("dnsr_context_get_classifier_timings", r);
+    classifyMs = t.classifyMs;
+    return true;
+}
+
 uint64_t Denoiser::memoryBytes() const
 {
     uint64_t bytes = 0;

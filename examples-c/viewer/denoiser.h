@@ -8,7 +8,8 @@
 //                        for several lights in one call. In hybrid mode, before the rays: Denoiser::recordClassify
 //                        (dnsr_classify_record) prefills the hit mask from the cascaded shadow maps and lists the
 //                        tiles still to trace (Denoiser::classifierBuffers: dnsr_context_get_classifier_buffers)
-//   4. after the frame   Denoiser::fetchTimings: dnsr's per-pass GPU times (dnsr_context_get_timings)
+//   4. after the frame   Denoiser::fetchTimings: dnsr's per-pass GPU times (dnsr_context_get_timings), and in
+//                        hybrid mode Denoiser::fetchClassifierTimings (dnsr_context_get_classifier_timings)
 //   5. at the end        Denoiser::destroy, once the GPU is idle (dnsr_context_destroy)
 //
 // Another dnsr dispatch of the frame (one recorded before the shadow rays, say) goes next to recordDenoise: it
@@ -93,6 +94,9 @@ public:
 
     // After the GPU finished a frame: dnsr's per-pass GPU times. False until a frame's timings are available.
     bool fetchTimings(DnsrPassTimings &timings);
+    // The GPU time of dnsr's most recent completed classifier dispatch (dnsr_context_get_classifier_timings;
+    // the context must have the classifier); false before one has completed.
+    bool fetchClassifierTimings(double &classifyMs);
     uint64_t memoryBytes() const;
 
 private:

@@ -581,6 +581,7 @@ void Renderer::afterFrame()
                          span(kAfterDnsr, kAfterComposite)};
     }
     if (denoiser_.fetchTimings(dnsrTimings)) haveDnsrTimings = true;
+    if (tileList_ != VK_NULL_HANDLE) denoiser_.fetchClassifierTimings(dnsrClassifyMs);  // the classifier exists
 }
 
 void Renderer::recordReadback(VkCommandBuffer cmd)

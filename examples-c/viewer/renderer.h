@@ -147,6 +147,7 @@ public:
 
     DnsrPassTimings dnsrTimings{};  // dnsr's per-pass GPU times (valid when haveDnsrTimings)
     bool haveDnsrTimings = false;
+    double dnsrClassifyMs = 0.0;  // dnsr's own GPU time of its classifier (hybrid mode; 0 until one completed)
     ViewerTimings viewerTimings;
     uint32_t bvhNodes = 0, bvhDepth = 0, triangles = 0;
 

@@ -118,7 +118,8 @@ void writeReport(const std::string &path, const Session &session, const Measurem
                         {"prepare", rounded(t.prepareMs, 4)},
                         {"tile_classification", rounded(t.tileClassificationMs, 4)},
                         {"filter", filters},
-                        {"total", rounded(t.totalMs, 4)}};
+                        {"total", rounded(t.totalMs, 4)},
+                        {"classify", rounded(renderer.dnsrClassifyMs, 4)}};
     const ViewerTimings &v = renderer.viewerTimings;
     r["viewer_gpu_ms"] = {{"primary", rounded(v.primary, 4)},   {"cascades", rounded(v.cascades, 4)},
                           {"classify", rounded(v.classify, 4)}, {"shadow", rounded(v.shadow, 4)},

@@ -264,6 +264,7 @@ for r in (hybrid, other):
     assert 0.05 < t["fraction"] < 0.9 and t["rays_saved"] > 0 and t["tiles_traced"] < t["tiles"], f"traced {t}"
     assert t["decided_wrong"] <= 0.002 * t["receivers"], f"{t['decided_wrong']} decided pixels against the reference"
     assert r["viewer_gpu_ms"]["classify"] > 0 and r["viewer_gpu_ms"]["cascades"] > 0, "no hybrid timings"
+    assert r["dnsr_gpu_ms"]["classify"] > 0, "no classifier time from dnsr_context_get_classifier_timings"
 # Traced pixels (orange or dark red in hybrid.png, the grid darker) took the full run's ray.
 w, h = hybrid["width"], hybrid["height"]
 colours = viewer_png.read_png(f"{tmp}/hybrid/hybrid.png")  # RGB

@@ -262,6 +262,24 @@ pub extern "C" fn dnsr_context_get_timings(context: DnsrContext, p_timings: *mut
     })
 }
 
+/// GPU time of the most recent completed classifier dispatch (needs DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS and
+/// DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER). Returns DNSR_NOT_READY when none has completed yet (or timestamps are
+/// off), DNSR_ERROR_CLASSIFIER_NOT_ENABLED for a context without the classifier.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_context_get_classifier_timings(context: DnsrContext, p_timings: *mut DnsrClassifierTimings) -> DnsrResult {
+    guard(|sink| {
+        let entry = handles::get(context)?;
+        *sink = entry.log;
+        let out = unsafe { p_timings.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pTimings is NULL".into()))?;
+        check_type(out.s_type, DNSR_STRUCTURE_TYPE_CLASSIFIER_TIMINGS, "DNSR_STRUCTURE_TYPE_CLASSIFIER_TIMINGS", "pTimings")?;
+        check_no_next(out.p_next, "pTimings")?;
+        let Some(t) = entry.lock()?.classifier_timings()? else { return Ok(DnsrResult::DNSR_NOT_READY) };
+        out.dispatch = t.dispatch;
+        out.classify_ms = t.classify_ms;
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
 /// Bytes of device memory the context allocated (driver padding included).
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_context_get_memory_usage(context: DnsrContext, p_bytes: *mut u64) -> DnsrResult {

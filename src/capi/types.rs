@@ -124,6 +124,8 @@ pub const DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH: DnsrStructureType = 6;
 pub const DNSR_STRUCTURE_TYPE_CLASSIFY_DISPATCH: DnsrStructureType = 7;
 /// `DnsrClassifierBuffers`.
 pub const DNSR_STRUCTURE_TYPE_CLASSIFIER_BUFFERS: DnsrStructureType = 8;
+/// `DnsrClassifierTimings`.
+pub const DNSR_STRUCTURE_TYPE_CLASSIFIER_TIMINGS: DnsrStructureType = 9;
 /// Forces 32 bits.
 pub const DNSR_STRUCTURE_TYPE_MAX_ENUM: DnsrStructureType = 0x7FFF_FFFF;
 
@@ -684,6 +686,20 @@ pub struct DnsrPassTimings {
     pub filter_passes: u32,
     /// From before the first pass to after the last.
     pub total_ms: f64,
+}
+
+/// GPU time of one completed hybrid-shadows classifier dispatch (`dnsr_classify_record`), in milliseconds.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct DnsrClassifierTimings {
+    /// Must be DNSR_STRUCTURE_TYPE_CLASSIFIER_TIMINGS (set it before the call).
+    pub s_type: DnsrStructureType,
+    /// Must be NULL.
+    pub p_next: *mut c_void,
+    /// Which classifier dispatch (counting dnsr_classify_record calls from 1).
+    pub dispatch: u64,
+    /// From before the classifier's first command (its counters' reset) to after its dispatch.
+    pub classify_ms: f64,
 }
 
 /// What the host must create its instance and device with.

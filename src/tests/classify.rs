@@ -147,6 +147,7 @@ fn run_with(g: &Gpu, cfg: &Config, engine: Option<&ShaderOverride>) {
     let f = frame();
     let mut info = g.create_info(W, H);
     info.enable_classifier = true;
+    info.enable_timestamps = true;
     info.shader_overrides = engine.into_iter().cloned().collect();
     let mut ctx = Context::new(&info).expect("context with classifier");
     let depth = g.image(vk::Format::R32_SFLOAT, W, H, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL);
@@ -227,6 +228,8 @@ fn run_with(g: &Gpu, cfg: &Config, engine: Option<&ShaderOverride>) {
             full_barrier(&g.device, cmd);
         });
     }
+    let t = ctx.classifier_timings().unwrap().expect("the classifier's timings after two completed dispatches");
+    assert!(t.dispatch == 2 && t.classify_ms > 0.0 && t.classify_ms.is_finite(), "{t:?}");
     let counts: Vec<u32> = bytemuck::cast_slice(&staging.read(tile_bytes as usize, 32)).to_vec();
     let records: Vec<[u32; 4]> = bytemuck::cast_slice(&staging.read(0, tile_bytes as usize)).to_vec();
     let words: Vec<u32> = bytemuck::cast_slice(&g.download(&mask)).to_vec();
@@ -355,6 +358,8 @@ fn classifier_bad_input_is_refused() {
     let mut plain = Context::new(&info).unwrap();
     info.enable_classifier = true;
     let mut ctx = Context::new(&info).unwrap();
+    assert!(matches!(plain.classifier_timings(), Err(Error::ClassifierNotEnabled)));
+    assert_eq!(ctx.classifier_timings().unwrap(), None, "no timestamps, no timings");
     let depth = g.image(vk::Format::R32_SFLOAT, W, H, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL);
     let normals = g.image(vk::Format::R32G32B32A32_SFLOAT, W, H, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL);
     let mask = g.image(vk::Format::R32_UINT, W.div_ceil(8), H.div_ceil(4), vk::ImageLayout::GENERAL);

@@ -1501,7 +1501,8 @@ typedef struct DnsrDiagnosis {
 #define DNSR_CONTEXT_CREATE_DEPTH_INVERTED (1 << 0)
 
 /**
- * Record GPU timestamps around each pass (read with `dnsr_context_get_timings`).
+ * Record GPU timestamps around each pass and the classifier's dispatch (read with `dnsr_context_get_timings`,
+ * `dnsr_context_get_classifier_timings`).
  */
 #define DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS (1 << 2)
 

@@ -100,7 +100,8 @@ pub struct ContextCreateInfo {
     /// of that light is recorded. Without push descriptors dnsr rewrites a ring of this many descriptor-set slots
     /// per light, so host image views need to live only until the command buffer that used them completes.
     pub max_frames_in_flight: u32,
-    /// Record GPU timestamps around each pass; read them with `Context::timings`.
+    /// Record GPU timestamps around each pass and around the classifier's dispatch; read them with
+    /// `Context::timings` and `Context::classifier_timings`.
     pub enable_timestamps: bool,
     /// Create the hybrid-shadows classifier (`Context::record_classify`): its pipelines and its tile list and
     /// counts buffers (16 B per 8x4 tile, about 0.5 B/px, plus 1 KiB).

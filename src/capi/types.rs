@@ -144,7 +144,8 @@ pub type DnsrContextCreateFlags = u32;
 /// Reverse-Z: depth 1 is near, 0 is far (sky).
 pub const DNSR_CONTEXT_CREATE_DEPTH_INVERTED: DnsrContextCreateFlags = 1 << 0;
 // 1 << 1 was DNSR_CONTEXT_CREATE_INFINITE_FAR (dnsr 0.1.0): an infinite far plane needs no flag.
-/// Record GPU timestamps around each pass (read with `dnsr_context_get_timings`).
+/// Record GPU timestamps around each pass and the classifier's dispatch (read with `dnsr_context_get_timings`,
+/// `dnsr_context_get_classifier_timings`).
 pub const DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS: DnsrContextCreateFlags = 1 << 2;
 /// Create the hybrid-shadows classifier (`dnsr_classify_record`): its pipelines and its tile list and counts
 /// buffers (16 B per 8x4 tile, about 0.5 B/px, plus 1 KiB).

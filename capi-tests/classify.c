@@ -145,6 +145,10 @@ int main(void)
     expect_refused("cascade matrix with NaN", dnsr_classify_record(ctx, &bad), DNSR_ERROR_NON_FINITE, "cascades[0]");
     bad = d;
     bad.commandBuffer = cmd;
+    bad.projectionInverse[10] = INFINITY;
+    expect_refused("projection inverse with infinity", dnsr_classify_record(ctx, &bad), DNSR_ERROR_NON_FINITE, "projectionInverse");
+    bad = d;
+    bad.commandBuffer = cmd;
     bad.tapCount = 7;
     expect_refused("tap count 7", dnsr_classify_record(ctx, &bad), DNSR_ERROR_INVALID_ARGUMENT, "tapCount");
     bad = d;

@@ -387,6 +387,11 @@ fn classifier_bad_input_is_refused() {
             Box::new(|e: &Error| *e == Error::NonFinite("cascades[0].world_to_shadow")),
         ),
         (
+            "projection inverse with infinity",
+            ClassifyDispatch { projection_inverse: glam::Mat4::from_cols_array(&[f32::INFINITY; 16]), ..good },
+            Box::new(|e: &Error| *e == Error::NonFinite("projection_inverse")),
+        ),
+        (
             "perspective cascade",
             ClassifyDispatch { cascades: [ShadowCascade { world_to_shadow: glam::Mat4::from_cols(glam::Vec4::X, glam::Vec4::Y, glam::Vec4::new(0.0, 0.0, 1.0, 1.0), glam::Vec4::ZERO) }; 4], ..good },
             Box::new(invalid("cascades[0].world_to_shadow")),

@@ -468,15 +468,15 @@ impl Context {
         self.classify_dispatches += 1;
         let dev = &self.vk.device;
         let first_query = self.timestamps.as_mut().map(|t| t.begin_classify(dev, cmd, self.classify_dispatches));
-        let pool = self.timestamps.as_ref().map_or(vk::QueryPool::null(), |t| t.pool);
-        let stamp = |query: Option<u32>| {
-            if let Some(q) = query {
-                unsafe { dev.cmd_write_timestamp(cmd, vk::PipelineStageFlags::BOTTOM_OF_PIPE, pool, q) };
+        let timestamps = self.timestamps.as_ref();
+        let stamp = |index: u32| {
+            if let (Some(t), Some(first)) = (timestamps, first_query) {
+                t.stamp(dev, cmd, first + index);
             }
         };
-        stamp(first_query);
+        stamp(0);
         classifier.record(&self.vk, binder, cmd, d, &frame, &classify, rect);
-        stamp(first_query.map(|q| q + 1));
+        stamp(1);
         Ok(())
     }
 
@@ -666,10 +666,10 @@ impl Context {
         let dev = &self.vk.device;
         self.frames_recorded += 1;
         let first_query = self.timestamps.as_mut().map(|t| t.begin(dev, cmd, self.frames_recorded, self.settings.filter_passes));
-        let pool = self.timestamps.as_ref().map_or(vk::QueryPool::null(), |t| t.pool);
+        let timestamps = self.timestamps.as_ref();
         let stamp = |index: u32| {
-            if let Some(first) = first_query {
-                unsafe { dev.cmd_write_timestamp(cmd, vk::PipelineStageFlags::BOTTOM_OF_PIPE, pool, first + index) };
+            if let (Some(t), Some(first)) = (timestamps, first_query) {
+                t.stamp(dev, cmd, first + index);
             }
         };
 
@@ -716,8 +716,9 @@ impl Context {
 
         // The frame's passes in order, each for every light; a barrier wherever a dispatch touches what an earlier
         // one wrote, or writes what an earlier one read, since the last barrier. The lights' dispatches of one pass
-        // touch only their own images and run together, except the first filter passes, which write the shared
-        // guide one after the other.
+        // touch only their own images and run together, except the first filter passes: all bind the shared guide
+        // as a storage image (the first light writes it, the others' variant declares it), so they run one after
+        // the other.
         let binder = binder_ref(&self.binder);
         let mut hazards = Hazards::default();
         stamp(0);

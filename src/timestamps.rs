@@ -81,15 +81,18 @@ impl Timestamps {
 
     /// Timings of the most recent classifier dispatch whose queries are available.
     pub(crate) fn latest_classify(&self, d: &ash::Device) -> Result<Option<ClassifierTimings>> {
-        let mut order: Vec<usize> = (0..FRAME_SLOTS as usize).filter(|&s| self.classify_slots[s] != 0).collect();
-        order.sort_by_key(|&s| std::cmp::Reverse(self.classify_slots[s]));
-        for slot in order {
+        for slot in newest_first(&self.classify_slots) {
             let mut data = [[0u64; 2]; CLASSIFY_QUERIES as usize];
             if self.read(d, CLASSIFY_BASE + slot as u32 * CLASSIFY_QUERIES, &mut data)? {
                 return Ok(Some(ClassifierTimings { dispatch: self.classify_slots[slot], classify_ms: self.ms(&data, 0, 1) }));
             }
         }
         Ok(None)
+    }
+
+    /// Writes query `query` once everything recorded before it has completed.
+    pub(crate) fn stamp(&self, d: &ash::Device, cmd: vk::CommandBuffer, query: u32) {
+        unsafe { d.cmd_write_timestamp(cmd, vk::PipelineStageFlags::BOTTOM_OF_PIPE, self.pool, query) };
     }
 
     /// Reads `data.len()` queries from `first` with their availability; true when all of them are available.
@@ -117,9 +120,7 @@ impl Timestamps {
 
     /// Timings of the most recent frame whose queries are all available.
     pub(crate) fn latest(&self, d: &ash::Device) -> Result<Option<PassTimings>> {
-        let mut order: Vec<usize> = (0..FRAME_SLOTS as usize).filter(|&s| self.slots[s].0 != 0).collect();
-        order.sort_by_key(|&s| std::cmp::Reverse(self.slots[s].0));
-        for slot in order {
+        for slot in newest_first(&self.slots.map(|s| s.0)) {
             let (frame, passes) = self.slots[slot];
             let mut data = [[0u64; 2]; QUERIES_PER_FRAME as usize];
             let used = 3 + passes as usize;
@@ -142,4 +143,11 @@ impl Timestamps {
         }
         Ok(None)
     }
+}
+
+/// The used slots (recorded number not 0), the most recent first.
+fn newest_first(recorded: &[u64; FRAME_SLOTS as usize]) -> impl Iterator<Item = usize> {
+    let mut order: Vec<usize> = (0..FRAME_SLOTS as usize).filter(|&s| recorded[s] != 0).collect();
+    order.sort_by_key(|&s| std::cmp::Reverse(recorded[s]));
+    order.into_iter()
 }

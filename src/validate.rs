@@ -142,10 +142,16 @@ fn unused_input(img: &HostImage, field: &'static str, allowed: &'static str) -> 
     Ok(())
 }
 
+/// The formats a G-buffer image may have: dnsr's `formats`, or any (an empty list) when the engine's callbacks
+/// decode it.
+fn decoded_formats(engine_decodes: bool, formats: &'static [F]) -> &'static [F] {
+    if engine_decodes { &[] } else { formats }
+}
+
 /// Validates a dispatch for a context with `rules`; returns the effective render rect.
 pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, rules: &DispatchRules) -> Result<Rect> {
     let DispatchRules { size, output_format, lights, supported_stages, engine_reads, shadow_input } = *rules;
-    let decoded = |formats: &'static [F]| if engine_reads { &[][..] } else { formats };
+    let decoded = |formats| decoded_formats(engine_reads, formats);
     if d.light_index >= lights {
         return Err(Error::InvalidLightIndex { index: d.light_index, count: lights });
     }
@@ -242,7 +248,7 @@ pub(crate) fn classify(vk: &Vk, d: &crate::ClassifyDispatch, size: [u32; 2], sup
     use crate::classify::{CLASSIFY_TAP_COUNTS, MAX_CASCADES};
     let sampled = vk::FormatFeatureFlags::SAMPLED_IMAGE;
     let tiles = [size[0].div_ceil(8), size[1].div_ceil(4)];
-    let decoded = |formats: &'static [F]| if engine_decodes { &[][..] } else { formats };
+    let decoded = |formats| decoded_formats(engine_decodes, formats);
     host_image(vk, ImageRole::Depth, &d.depth, decoded(DEPTH_FORMATS), DEPTH_LAYOUTS, size, sampled)?;
     host_image(vk, ImageRole::Normals, &d.normals, decoded(NORMAL_FORMATS), SAMPLED_LAYOUTS, size, sampled)?;
     host_image(vk, ImageRole::HitMask, &d.hit_mask, &[F::R32_UINT], &[L::GENERAL], tiles, vk::FormatFeatureFlags::STORAGE_IMAGE)?;

@@ -380,6 +380,13 @@ typedef struct DnsrSettings {
    * 0 disables; needs stableHistorySamples > 0. Default 0; 3 in the Quality preset.
    */
   float historyFlipSamples;
+  /**
+   * A pixel whose last n >= this-many samples were identical (each exactly 0 or 1) is converged: it outputs
+   * its run's value and no spatial filter touches it (its 1-spp input already resolves it: hard shadows, faces
+   * turned from the light, creases, thin stripes). Range [0, 4096]; 0 disables. Default 0; 8 in the Quality
+   * preset.
+   */
+  float convergedSamples;
 } DnsrSettings;
 
 /**

@@ -170,19 +170,22 @@ void dnsr_tap(int l, ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal
 
 
 // 1 / sigma of the shadow edge stop: the variances of the 3x3 receivers (told apart by their signal, see
-// DNSR_SKY_SIGNAL) blurred, at least the floor `sigma_floor`.
+// DNSR_SKY_SIGNAL) blurred, at least the floor `sigma_floor`. With converged pixels (Settings::converged_samples)
+// a variance of exactly 0 is left out too: a converged neighbour knows its value, which says nothing of this
+// pixel's noise, and its zeros would drive sigma to the floor (an edge stop that float rounding can flip).
 float dnsr_inv_shadow_sigma(float v[9], float sigma_floor) {
+    bool skip_zero = dnsr_converged_on();
     float vsum = 0.0, vweight = 0.0;
     for (int j = -1; j <= 1; ++j) {
         for (int i = -1; i <= 1; ++i) {
             float s = v[(j + 1) * 3 + i + 1];
-            if (!dnsr_is_receiver_signal(vec2(0.0, s))) continue;
+            if (!dnsr_is_receiver_signal(vec2(0.0, s)) || (skip_zero && s == 0.0)) continue;
             float w = 1.0 / float(4 << (abs(i) + abs(j)));
             vsum += w * s;
             vweight += w;
         }
     }
-    return 1.0 / max(sqrt(max(vsum / vweight, 0.0)), sigma_floor);
+    return 1.0 / max(sqrt(max(vweight > 0.0 ? vsum / vweight : 0.0, 0.0)), sigma_floor);
 }
 
 // The filtered (mean, variance) of receiver p (linear depth zc, normal nc) in a tile that is not cleared.
@@ -191,6 +194,7 @@ vec2 dnsr_filter_receiver(int l, ivec2 p, ivec2 lid, int step, float zc, vec3 nc
     float kernel[2] = float[2](1.0, settings.x);
     float normal_power = settings.y;
     vec2 c = dnsr_center_signal(l, p, lid);
+    if (dnsr_converged_on() && dnsr_converged_signal(c)) return c;
     float v[9];
     dnsr_variance_neighbourhood(l, p, lid, c, v);
     float inv_sigma = dnsr_inv_shadow_sigma(v, settings.w);
@@ -218,7 +222,7 @@ vec2 dnsr_filter_receiver(int l, ivec2 p, ivec2 lid, int step, float zc, vec3 nc
             var_sum += w * w * n.y;
         }
     }
-    return vec2(clamp(mean_sum / weight_sum, 0.0, 1.0), max(var_sum / (weight_sum * weight_sum), 0.0));
+    return vec2(clamp(mean_sum / weight_sum, 0.0, 1.0), dnsr_unconverged_variance(max(var_sum / (weight_sum * weight_sum), 0.0)));
 }
 
 // Pixel p of a block that is not cleared (its tile's metadata `meta`, its guide).
@@ -353,16 +357,23 @@ void dnsr_filter_lights(ivec2 gid, ivec2 lid) {
     float inv_depth_sigma = 1.0 / dnsr_get_depth_similarity_sigma();
 
     // The lights this pixel filters, and each one's centre, edge-stop sigma and penumbra falloff.
-    bool filtering[DNSR_LIGHT_SLOTS];
+    bool filtering[DNSR_LIGHT_SLOTS], converged[DNSR_LIGHT_SLOTS];
     vec2 c[DNSR_LIGHT_SLOTS];
     float inv_sigma[DNSR_LIGHT_SLOTS], falloff[DNSR_LIGHT_SLOTS];
     float weight_sum[DNSR_LIGHT_SLOTS], mean_sum[DNSR_LIGHT_SLOTS], var_sum[DNSR_LIGHT_SLOTS];
     [[unroll]] for (int l = 0; l < DNSR_LIGHT_SLOTS; ++l) {
         filtering[l] = l < count && !block_cleared[l] && zc >= 0.0 && (meta[l] & DNSR_TILE_CLEARED) == 0u;
+        converged[l] = false;
         c[l] = vec2(0.0);
         inv_sigma[l] = falloff[l] = 0.0;
         if (!filtering[l]) continue;
         c[l] = dnsr_center_signal(l, p, lid);
+        // A converged pixel passes through (dnsr_filter_receiver): the result below is its centre alone.
+        if (dnsr_converged_on() && dnsr_converged_signal(c[l])) {
+            filtering[l] = false;
+            converged[l] = true;
+            continue;
+        }
         float v[9];
         dnsr_variance_neighbourhood(l, p, lid, c[l], v);
         inv_sigma[l] = dnsr_inv_shadow_sigma(v, settings.w);
@@ -399,9 +410,10 @@ void dnsr_filter_lights(ivec2 gid, ivec2 lid) {
     [[unroll]] for (int l = 0; l < DNSR_LIGHT_SLOTS; ++l) {
         if (l >= count || block_cleared[l]) continue;
         vec2 result = zc < 0.0 ? DNSR_SKY_SIGNAL
+                    : converged[l] ? c[l]
                     : (!filtering[l] ? dnsr_cleared_value(true, meta[l])
                                      : vec2(clamp(mean_sum[l] / weight_sum[l], 0.0, 1.0),
-                                            max(var_sum[l] / (weight_sum[l] * weight_sum[l]), 0.0)));
+                                            dnsr_unconverged_variance(max(var_sum[l] / (weight_sum[l] * weight_sum[l]), 0.0))));
         dnsr_filter_write(l, p, result, zc >= 0.0, meta[l]);
     }
 }

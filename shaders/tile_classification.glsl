@@ -220,6 +220,13 @@ bool dnsr_stable_agreeing(float run, float x, float stable_after) {
     return stable_after > 0.0 && abs(run) >= stable_after && (x >= 0.5 ? run > 0.0 : run < 0.0);
 }
 
+// A run of at least `converged_after` (> 0) identical samples that this frame's x does not contradict (x is the
+// run's value, or with a checkerboard input an untraced pixel's neighbour mean on the run's side of 0.5: never
+// compared for equality, which float rounding of that mean could flip).
+bool dnsr_converged(float run, float x, float converged_after) {
+    return converged_after > 0.0 && abs(run) >= converged_after && abs(x - (run > 0.0 ? 1.0 : 0.0)) < 0.5;
+}
+
 // A pixel of a cleared tile: its value is known exactly; keep the state of the next frame consistent with it.
 void dnsr_write_cleared(ivec2 p, bool receiver, uint state, bool tile_writer) {
     float value = state == 1u ? 1.0 : 0.0;
@@ -424,21 +431,34 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         // the history from them alone. (A texel weighed at under 1/16 does not count; the bound also keeps float
         // rounding at texel centres out. Taking their moments too, instead of the nearest texel's, left the
         // viewer's orbiting fins at RMSE 0.036 after 64 frames against 0.022 without.)
+        // Texels without a receiver (sky: no samples, mq.z == 0) leave the blend too: their lit sky signal would
+        // brighten a shadowed receiver along every silhouette against the background.
         if (DNSR_SPEC_STABLE_HISTORY) {
             vec2 t = history_uv * vec2(dnsr_get_extent()) - 0.5;
             vec2 f = t - floor(t);
             float all_weight = 0.0;
+            vec2 receivers = vec2(0.0);
+            float agreeing_run = 0.0;
             for (int k = 0; k < 4; ++k) {
                 float weight = ((k & 1) != 0 ? f.x : 1.0 - f.x) * ((k & 2) != 0 ? f.y : 1.0 - f.y);
                 ivec2 q = clamp(ivec2(floor(t)) + ivec2(k & 1, k >> 1), ivec2(0), dnsr_get_extent() - 1);
                 if (weight < 1.0 / 16.0) continue;
                 vec4 mq = dnsr_read_previous_moments(q);
                 all_weight += weight;
+                if (!(mq.z > 0.0)) continue;
+                float texel = dnsr_read_history_texel(q);
+                receivers += vec2(weight * texel, weight);
                 if (!dnsr_stable_agreeing(mq.w, x, stable_after)) continue;
-                run_history += vec2(weight * dnsr_read_history_texel(q), weight);
+                run_history += vec2(weight * texel, weight);
+                if (abs(mq.w) > abs(agreeing_run)) agreeing_run = mq.w;
             }
+            // The nearest texel lies across the edge from this surface point (a moving camera at a silhouette or a
+            // crease): the run it continues is the longest agreeing texel's, not the other surface's.
+            if (agreeing_run != 0.0 && !dnsr_stable_agreeing(m.w, x, stable_after)) m.w = agreeing_run;
             // Only where the footprint is split: elsewhere the plain blend stands.
-            if (!(run_history.y > 0.0 && run_history.y < all_weight)) run_history = vec2(0.0);
+            if (!(run_history.y > 0.0 && run_history.y < all_weight)) {
+                run_history = receivers.y > 0.0 && receivers.y < all_weight ? receivers : vec2(0.0);
+            }
         }
         if (!(m.z >= 0.0 && m.z <= max_samples && m.y >= 0.0 && m.y < 1e30 && dnsr_finite(m.x)
               && abs(m.w) <= float(DNSR_MAX_SAMPLE_RUN))) {
@@ -503,6 +523,14 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     if (m.z < reject.z && !stable) variance = max(variance, local.y) * max(reject.z - m.z, 1.0);
     float history_weight = sqrt(max(temporal.x - m.z, 0.0) / temporal.x);
     float shadow = mix(clamped, x, mix(temporal.y, 1.0, history_weight));
+    // Converged (Settings::converged_samples): the input resolves this pixel; its run's value is the answer, and
+    // variance 0 tells the filter to leave it (dnsr_converged_signal).
+    if (dnsr_converged(m.w, x, dnsr_get_run_settings().z) && !flipped) {
+        shadow = m.w > 0.0 ? 1.0 : 0.0;
+        variance = 0.0;
+    } else {
+        variance = dnsr_unconverged_variance(variance);
+    }
 
     dnsr_write_moments(p, m);
     dnsr_write_reprojection(p, vec2(shadow, variance));

@@ -73,7 +73,8 @@ gpu_block! {
         /// x: cross tap weight; y: normal power; z: output contrast; w: shadow sigma floor.
         filtering: [f32; 4],
         /// x: identical samples in a row that make a pixel stable (0: never); y: samples of the other value after a
-        /// stable run that restart its history (0: never); zw: unused.
+        /// stable run that restart its history (0: never); z: identical samples in a row that make a pixel
+        /// converged (0: never); w: unused.
         runs: [f32; 4],
         /// Penumbra guidance (the pipelines specialized with DNSR_SPEC_PENUMBRA_GUIDED): x: tan(light angular diameter / 2); yz: a pixel's
         /// world-space size at linear view depth z is y + z * z; w: the kernel's sigma in penumbra half-widths.
@@ -186,6 +187,7 @@ pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
     ("DNSR_MOMENT_RADIUS", crate::passes::MOMENT_RADIUS),
     ("DNSR_MAX_SAMPLE_RUN", crate::passes::MAX_SAMPLE_RUN),
     ("DNSR_RUN_CLAMP_SAMPLES", crate::passes::RUN_CLAMP_SAMPLES),
+    ("DNSR_UNCONVERGED_VARIANCE_INV", crate::passes::UNCONVERGED_VARIANCE_INV),
     ("DNSR_SPEC_ID_PENUMBRA_GUIDED", crate::gpu::shader::SPEC_PENUMBRA_GUIDED),
     ("DNSR_SPEC_ID_STABLE_HISTORY", crate::gpu::shader::SPEC_STABLE_HISTORY),
     ("DNSR_LIGHT_SLOTS", crate::passes::LIGHT_SLOTS as u32),

@@ -75,6 +75,12 @@ declare_settings! {
     /// shadow moved over the pixel, with or without motion vectors. Whole samples (a fraction is dropped); 0 turns
     /// this off; it needs `stable_history_samples` > 0.
     history_flip_samples: f32 = 0.0, [0.0, 16.0] "[0, 16]";
+    /// A pixel whose last n >= this-many samples were identical (each exactly lit or exactly shadowed, the run
+    /// `stable_history_samples` counts) is converged: classification outputs its run's value with variance 0 and
+    /// the filter leaves it as it is. The 1-spp input already resolves it (a hard shadow, a face turned from the
+    /// light, a crease, a thin stripe), and the history clamp, the 17x17 moments and the filter taps, which straddle
+    /// its edges, silhouettes and the sky, could only move it away. 0 turns this off (the FidelityFX behaviour).
+    converged_samples: f32 = 0.0, [0.0, crate::passes::MAX_SAMPLE_RUN as f32] "[0, 4096]";
     /// Below this many accumulated samples the variance is boosted (raised to the spatial variance and
     /// multiplied by the missing samples), except on a pixel whose run is stable (`stable_history_samples`).
     variance_boost_samples: f32 = 16.0, [0.0, 1024.0] "[0, 1024]";
@@ -123,6 +129,7 @@ impl Settings {
                 kernel_cross_weight: 0.5,
                 stable_history_samples: 8.0,
                 history_flip_samples: 3.0,
+                converged_samples: 8.0,
                 ..balanced
             },
         }
@@ -143,7 +150,7 @@ impl Settings {
             self.history_clamp_sigmas,
         ];
         c.rejection = [self.history_rejection_falloff, self.history_rejection_min_sigma, self.variance_boost_samples, 0.0];
-        c.runs = [self.stable_history_samples, self.history_flip_samples, 0.0, 0.0];
+        c.runs = [self.stable_history_samples, self.history_flip_samples, self.converged_samples, 0.0];
         c.temporal = [self.full_history_samples, self.min_current_weight, self.max_history_samples, self.spatial_falloff];
         c.filtering = [self.kernel_cross_weight, self.normal_power, self.output_contrast, self.min_shadow_sigma];
     }

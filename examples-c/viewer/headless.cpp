@@ -185,6 +185,9 @@ int runHeadless(VulkanContext &ctx, const Options &opt, const Scene &scene, cons
         bool last = f + 1 == opt.frames;
         Orbit o = s.orbit;
         o.yaw += radians(opt.orbitDegPerFrame) * f;  // a slow orbit: dnsr must reproject its history every frame
+        // --pan: eye and target move together along the view's right vector (a strafing camera).
+        Vec3 right{std::cos(s.orbit.yaw), 0, -std::sin(s.orbit.yaw)};
+        o.target = o.target + right * (opt.panPerFrame * s.orbit.distance * float(f));
         if (s.light.moving) s.light.azimuth += radians(0.5f);
         FrameInput in = makeFrame(s.scene, o, s.light, opt.width, opt.height);
         in.cameraCut = f == 0;

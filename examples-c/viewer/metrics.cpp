@@ -7,10 +7,75 @@
 #include <cstring>
 #include <memory>
 #include <stdexcept>
+#include <vector>
 
 namespace {
 
 const char kReferenceMagic[8] = {'d', 'n', 's', 'r', 'r', 'e', 'f', '1'};
+
+ClassError summarize(std::vector<double> errors)
+{
+    ClassError c;
+    c.pixels = errors.size();
+    if (errors.empty()) return c;
+    double sum = 0;
+    for (double x : errors) sum += x, c.over1 += x > 1.0, c.max = std::max(c.max, x);
+    c.mean = sum / double(errors.size());
+    size_t k = std::min(errors.size() - 1, size_t(0.99 * double(errors.size())));
+    std::nth_element(errors.begin(), errors.begin() + k, errors.end());
+    c.p99 = errors[k];
+    return c;
+}
+
+// The classes of pixels the "do no harm" targets name: exact, silhouettes, creases, thin features.
+void measureDoNoHarm(const ShadowImages &s, ErrorStats &e)
+{
+    const int w = int(s.width), h = int(s.height);
+    auto at = [&](int x, int y) { return size_t(y) * w + x; };
+    auto in = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h; };
+    auto exactRef = [&](size_t i) { return s.receiver[i] && (s.reference[i] == 0.0f || s.reference[i] == 1.0f); };
+    auto error255 = [&](size_t i) { return std::fabs(double(s.denoised[i]) - s.reference[i]) * 255.0; };
+    // 1 - depth is proportional to 1 / linear depth for a perspective projection with the far plane well behind
+    // the near one: its relative change is the linear depth's.
+    auto jump = [&](size_t a, size_t b) {
+        double za = 1.0 - s.depth[a], zb = 1.0 - s.depth[b];
+        return std::fabs(za - zb) > kSilhouetteDepthJump * std::min(za, zb);
+    };
+    std::vector<double> exact, silhouette;
+    double thinError = 0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            size_t i = at(x, y);
+            if (!exactRef(i)) continue;
+            if (s.noisy[i] == s.reference[i]) exact.push_back(error255(i));
+            bool nearEdge = false;
+            for (int dy = -kSilhouetteRadius; dy <= kSilhouetteRadius && !nearEdge; dy++)
+                for (int dx = -kSilhouetteRadius; dx <= kSilhouetteRadius && !nearEdge; dx++)
+                    nearEdge = in(x + dx, y + dy) && (!s.receiver[at(x + dx, y + dy)] || jump(i, at(x + dx, y + dy)));
+            if (nearEdge && s.reference[i] == 0.0f) silhouette.push_back(error255(i));
+            // A run of this value at most 2 px long along x or y, bounded by the other exact value on both sides.
+            bool thin = false;
+            for (int axis = 0; axis < 2 && !thin; axis++) {
+                int ax = axis == 0, ay = axis == 1;
+                auto other = [&](int k) {
+                    int qx = x + ax * k, qy = y + ay * k;
+                    if (!in(qx, qy)) return 0;  // 0: no bound; 1: the other value; 2: the same value
+                    size_t q = at(qx, qy);
+                    return !exactRef(q) ? 0 : (s.reference[q] != s.reference[i] ? 1 : 2);
+                };
+                for (int start = -1; start <= 0 && !thin; start++) {  // the run is [start, start + 1] or [0, 0]
+                    int lo = other(start - 1), hi = other(start + 2);
+                    bool mid = start == -1 ? other(-1) == 2 : other(1) == 2;
+                    thin = mid && lo == 1 && hi == 1;
+                }
+                thin = thin || (other(-1) == 1 && other(1) == 1);
+            }
+            if (thin) thinError += error255(i) / 255.0, e.thinPixels++;
+        }
+    e.exact = summarize(std::move(exact));
+    e.silhouette = summarize(std::move(silhouette));
+    if (e.thinPixels) e.thinContrastKept = 1.0 - thinError / double(e.thinPixels);
+}
 
 }  // namespace
 
@@ -81,6 +146,7 @@ ErrorStats measure(const ShadowImages &s)
         return s.receiver[i] && s.reference[i] < 0.5f;
     };
     double sum = 0, worst = -1e30;
+    std::vector<double> creaseErrors;
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             size_t i = size_t(y) * w + x;
@@ -93,6 +159,7 @@ ErrorStats measure(const ShadowImages &s)
                 }
             if (!nearShadow) continue;
             double darkening = (double(s.reference[i]) - s.denoised[i]) * 255.0;
+            creaseErrors.push_back(std::fabs(darkening));
             sum += darkening;
             worst = std::max(worst, darkening);
             e.creasePixels++;
@@ -101,6 +168,8 @@ ErrorStats measure(const ShadowImages &s)
         e.creaseMax = worst;
         e.creaseMean = sum / double(e.creasePixels);
     }
+    e.crease = summarize(std::move(creaseErrors));
+    measureDoNoHarm(s, e);
     return e;
 }
 

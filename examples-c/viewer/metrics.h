@@ -17,11 +17,32 @@
 // are; a filter that averages across the edge darkens them.
 constexpr int kCreaseRadius = 3;
 
+// "Do no harm" (docs/viewer-accuracy.md): the absolute error, in 1/255 units, over one class of pixels.
+struct ClassError {
+    size_t pixels = 0;
+    double mean = 0, p99 = 0, max = 0;
+    size_t over1 = 0;  // pixels off by more than 1/255
+};
+
+// Silhouettes: receivers the reference holds exactly shadowed within kSilhouetteRadius pixels of the sky or of a
+// depth discontinuity (a neighbour more than kSilhouetteDepthJump farther or nearer, relative).
+constexpr int kSilhouetteRadius = 2;
+constexpr double kSilhouetteDepthJump = 0.1;
+
 struct ErrorStats {
     double rmseNoisy = 0, rmseDenoised = 0;
     size_t pixels = 0;
     size_t creasePixels = 0;
     double creaseMax = 0, creaseMean = 0;  // darkening, in 1/255 units
+    // Receivers the 1-spp input already has right: the reference is exactly 0 or 1 (every reference ray agrees)
+    // and so is this frame's sample.
+    ClassError exact;
+    ClassError silhouette;
+    ClassError crease;  // the crease pixels above, absolute error
+    // Thin features: exact pixels whose value runs at most 2 px along x or y between pixels of the other exact
+    // value (1-2 px stripes, lines); contrast kept = 1 - mean absolute error over them.
+    size_t thinPixels = 0;
+    double thinContrastKept = 1;
 };
 
 // In dB, for an error of signals in 0..1; 100 for no error at all.

@@ -18,6 +18,9 @@ const char *kUsage =
     "  --screenshot FILE       window mode: save the displayed image (PNG) after --frames N frames and exit\n"
     "  --point-light           a spherical point light instead of the directional light\n"
     "  --light-angle DEG       angular radius of the light, 0..30 (default 3; sets the penumbra width)\n"
+    "  --light-elevation DEG   light 0's elevation above the horizon, 1..90 (default 50)\n"
+    "  --light-azimuth DEG     light 0's direction around the up axis from the starting view's, -360..360\n"
+    "                          (default 100: shadows fall where the camera sees them)\n"
     "  --light-motion          start with the light moving (key L toggles it)\n"
     "  --lights N              1 or 2 lights (default 1). The second (light 1) is the first (light 0) turned 100\n"
     "                          degrees about the up axis: same elevation, size and kind (a point light the same\n"
@@ -41,6 +44,8 @@ const char *kUsage =
     "  --view NAME             window mode: first view (noisy, denoised, reference, composite, tiles, or dnsr's\n"
     "                          debug views classification, samples, variance, disocclusion; keys 1-9)\n"
     "  --orbit-speed DEG       headless: camera orbit per frame in degrees, -45..45 (default 0.25; 0 = static)\n"
+    "  --pan F                 headless: the camera moves sideways by F x its distance per frame, -0.1..0.1\n"
+    "                          (default 0)\n"
     "  --hybrid                hybrid shadows: cascaded shadow maps decide what they can, dnsr's classifier lists\n"
     "                          the 8x4 tiles whose other pixels need a ray, and only those are traced (one\n"
     "                          directional light, --rays 1, --gbuffer default; key C). With penumbra guidance\n"
@@ -77,6 +82,16 @@ uint32_t parseCount(const char *flag, const char *value, uint32_t min, uint32_t 
         throw UsageError(std::string(flag) + " wants a number in " + std::to_string(min) + ".." + std::to_string(max) +
                          ", got '" + value + "'");
     return static_cast<uint32_t>(v);
+}
+
+float parseNumber(const char *flag, const char *value, float min, float max)
+{
+    char *end = nullptr;
+    float v = std::strtof(value, &end);
+    if (!*value || *end || !(v >= min && v <= max))
+        throw UsageError(std::string(flag) + " wants a number in " + std::to_string(min) + ".." + std::to_string(max) +
+                         ", got '" + value + "'");
+    return v;
 }
 
 }  // namespace
@@ -119,6 +134,12 @@ Options parseOptions(int argc, char **argv)
             o.lightAngleDeg = std::strtof(v, &end);
             if (!*v || *end || !(o.lightAngleDeg >= 0.0f && o.lightAngleDeg <= 30.0f))
                 throw UsageError(std::string("--light-angle wants degrees in 0..30, got '") + v + "'");
+        } else if (a == "--light-elevation") {
+            o.lightElevationDeg = parseNumber("--light-elevation", value(), 1.0f, 90.0f);
+        } else if (a == "--light-azimuth") {
+            o.lightAzimuthDeg = parseNumber("--light-azimuth", value(), -360.0f, 360.0f);
+        } else if (a == "--pan") {
+            o.panPerFrame = parseNumber("--pan", value(), -0.1f, 0.1f);
         } else if (a == "--orbit-speed") {
             const char *v = value();
             char *end = nullptr;

@@ -29,6 +29,9 @@ struct Options {
     uint32_t referenceSamples = 256;
     std::string saveReference, loadReference;  // headless: the reference, written to / read from a file
     float orbitDegPerFrame = 0.25f;
+    float panPerFrame = 0;  // headless: camera (eye and target) moves sideways by this fraction of its distance
+    float lightElevationDeg = 50.0f;
+    float lightAzimuthDeg = 100.0f;  // around the up axis from the starting view's direction
     DnsrPreset preset = DNSR_PRESET_BALANCED;
     View view = View::Composite;  // window mode: the view shown first
     // Hybrid shadows (RendererSettings::hybrid): start in hybrid mode, and its settings.

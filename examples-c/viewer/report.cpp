@@ -92,6 +92,15 @@ void writeReport(const std::string &path, const Session &session, const Measurem
                    {"pixels", e.creasePixels},
                    {"max_darkening_255", rounded(e.creaseMax, 3)},
                    {"mean_darkening_255", rounded(e.creaseMean, 3)}};
+    // "Do no harm": absolute errors in 1/255 units over the pixel classes of metrics.h.
+    auto classError = [](const ClassError &c) {
+        return Json{{"pixels", c.pixels}, {"mean_255", rounded(c.mean, 3)}, {"p99_255", rounded(c.p99, 3)},
+                    {"max_255", rounded(c.max, 3)}, {"over_1_255", c.over1}};
+    };
+    r["exact"] = classError(e.exact);
+    r["silhouette"] = classError(e.silhouette);
+    r["crease_abs"] = classError(e.crease);
+    r["thin"] = {{"pixels", e.thinPixels}, {"contrast_kept", rounded(e.thinContrastKept, 4)}};
     // Every light (light 0's numbers repeat the ones above): where it is, its mean denoised shadow over the
     // receivers, its error, and fingerprints (FNV-1a of the raw readback) of its hit mask and denoised shadow.
     r["lights"] = m.shadows.size();

@@ -23,7 +23,8 @@ Session::Session(const Options &options, const Scene &s, VulkanContext &context)
     light.hitDistance = opt.hitDistance;
     // Light from the side of the starting view (100 degrees around from the camera), so that the shadows fall where
     // the camera sees them whatever the scene.
-    light.azimuth = orbit.yaw + radians(100.0f);
+    light.azimuth = orbit.yaw + radians(opt.lightAzimuthDeg);
+    light.elevation = radians(opt.lightElevationDeg);
     hybrid = opt.hybrid;
     hybridAvailable = opt.hybrid || (!opt.headless && hybridUnsupported(opt).empty());
 }

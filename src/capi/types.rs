@@ -366,6 +366,11 @@ pub struct DnsrSettings {
     /// within 0.5 of it) restart the pixel's history at the local mean (a shadow moved over it). Range [0, 16];
     /// 0 disables; needs stableHistorySamples > 0. Default 0; 3 in the Quality preset.
     pub history_flip_samples: f32,
+    /// A pixel whose last n >= this-many samples were identical (each exactly 0 or 1) is converged: it outputs
+    /// its run's value and no spatial filter touches it (its 1-spp input already resolves it: hard shadows, faces
+    /// turned from the light, creases, thin stripes). Range [0, 4096]; 0 disables. Default 0; 8 in the Quality
+    /// preset.
+    pub converged_samples: f32,
 }
 
 /// Everything needed to create a context. Read during `dnsr_context_create` only (callback structs are copied;

@@ -170,6 +170,12 @@ pub(crate) const MAX_SAMPLE_RUN: u32 = 4096;
 /// to within this many / n of them (the rule of three). Generated into GLSL.
 pub(crate) const RUN_CLAMP_SAMPLES: u32 = 3;
 
+/// With converged pixels on (`Settings::converged_samples`), every receiver that is not converged stores a variance
+/// of at least 1 / this, so that a variance of exactly 0 marks the converged ones alone: float rounding cannot make
+/// another pixel look converged to the filter (a standard deviation of 0.001, far below what the edge stop
+/// resolves; f16 holds it). Generated into GLSL.
+pub(crate) const UNCONVERGED_VARIANCE_INV: u32 = 1_000_000;
+
 /// Tile metadata bit: the tile needs no temporal or spatial work; its value is in `TILE_LIT`.
 pub(crate) const TILE_CLEARED: u32 = 1 << 0;
 /// Tile metadata bit: a cleared tile is lit (1) rather than shadowed (0).

@@ -13,8 +13,25 @@ fn receiver_depth<Io: Read + ?Sized>(io: &Io, p: Coord) -> Option<f64> {
     is_receiver(d).then(|| linear_depth(io, uv_to_ndc(pixel_uv(io, p)), d))
 }
 
-/// 3x3 Gaussian of the variance (center 1/4, cross 1/8, corner 1/16) over receivers.
+/// With converged pixels on, a converged pixel's signal: variance exactly 0 (shaders/dnsr_common.glsl).
+pub fn converged_signal(c: DVec2) -> bool {
+    c.y == 0.0
+}
+
+/// With converged pixels on, the variance a receiver that is not converged stores: at least
+/// 1 / UNCONVERGED_VARIANCE_INV, so that 0 marks the converged ones alone.
+pub fn unconverged_variance(settings: &crate::Settings, variance: f64) -> f64 {
+    if settings.converged_samples > 0.0 {
+        variance.max(1.0 / crate::passes::UNCONVERGED_VARIANCE_INV as f64)
+    } else {
+        variance
+    }
+}
+
+/// 3x3 Gaussian of the variance (center 1/4, cross 1/8, corner 1/16) over receivers; with converged pixels on,
+/// not over variances of exactly 0 (shaders/filter.glsl says why). 0 when no tap is left.
 fn blurred_variance<Io: Read + ?Sized>(io: &Io, p: Coord) -> f64 {
+    let skip_zero = io.settings().converged_samples > 0.0;
     let (mut sum, mut weight) = (0.0, 0.0);
     for j in -1..=1i32 {
         for i in -1..=1i32 {
@@ -22,12 +39,16 @@ fn blurred_variance<Io: Read + ?Sized>(io: &Io, p: Coord) -> f64 {
             if receiver_depth(io, q).is_none() {
                 continue;
             }
+            let v = io.read_filter_input(q).y;
+            if skip_zero && v == 0.0 {
+                continue;
+            }
             let w = 1.0 / (4 << (i.abs() + j.abs())) as f64;
-            sum += w * io.read_filter_input(q).y;
+            sum += w * v;
             weight += w;
         }
     }
-    sum / weight
+    if weight > 0.0 { sum / weight } else { 0.0 }
 }
 
 /// Penumbra guidance: 1 / (2 sigma^2) of the Gaussian over tap distance (pixels) that keeps the kernel within
@@ -49,6 +70,10 @@ pub fn filter_pixel<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64) -> DVec2 {
     let kernel = [1.0, s.kernel_cross_weight as f64];
     let step = io.filter_step();
     let c = io.read_filter_input(p);
+    // A converged pixel (Settings::converged_samples) passes through: its samples already resolve it.
+    if s.converged_samples > 0.0 && converged_signal(c) {
+        return c;
+    }
     let nc = io.read_normal(p);
     let inv_sigma = 1.0 / blurred_variance(io, p).max(0.0).sqrt().max(s.min_shadow_sigma as f64);
     let inv_depth_sigma = 1.0 / io.depth_similarity_sigma();
@@ -73,7 +98,7 @@ pub fn filter_pixel<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64) -> DVec2 {
             var_sum += w * w * n.y;
         }
     }
-    DVec2::new((mean_sum / weight_sum).clamp(0.0, 1.0), (var_sum / (weight_sum * weight_sum)).max(0.0))
+    DVec2::new((mean_sum / weight_sum).clamp(0.0, 1.0), unconverged_variance(s, (var_sum / (weight_sum * weight_sum)).max(0.0)))
 }
 
 /// Runs the current filter pass (routing set by `Write::begin_filter_pass`) over the render rectangle.

@@ -166,6 +166,17 @@ pub fn fractional_run(previous: f64, stable_after: f64) -> f64 {
     0.0
 }
 
+/// A run of at least `converged_after` (> 0) identical samples that sample `x` does not contradict (on the run's
+/// side of 0.5; shaders/tile_classification.glsl says why not equal).
+pub fn converged(run: f64, x: f64, converged_after: f64) -> bool {
+    converged_after > 0.0 && run.abs() >= converged_after && (x - run_value(run)).abs() < 0.5
+}
+
+/// The value a run of identical samples holds: 1 (lit) for a positive run, 0 otherwise.
+fn run_value(run: f64) -> f64 {
+    if run > 0.0 { 1.0 } else { 0.0 }
+}
+
 /// A previous run that is stable (`stable_after` > 0 samples or more) and of the same value as sample `x`, which
 /// is exact.
 fn stable_agreeing(run: f64, x: f64, stable_after: f64) -> bool {
@@ -232,7 +243,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
         if stable_after > 0.0 {
             let t = DVec2::new(history_uv.x * e[0] as f64 - 0.5, history_uv.y * e[1] as f64 - 0.5);
             let f = t - t.floor();
-            let (mut agree, mut all) = (DVec2::ZERO, 0.0);
+            let (mut agree, mut all, mut receivers, mut agreeing_run) = (DVec2::ZERO, 0.0, DVec2::ZERO, 0.0f64);
             for k in 0..4 {
                 let weight = (if k & 1 != 0 { f.x } else { 1.0 - f.x }) * (if k & 2 != 0 { f.y } else { 1.0 - f.y });
                 let q = [
@@ -244,14 +255,31 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
                 }
                 let mq = io.read_previous_moments(q);
                 all += weight;
+                // Texels without a receiver (sky: no samples) leave the blend too: their lit sky signal would
+                // brighten a shadowed receiver along every silhouette against the background.
+                if !(mq.z > 0.0) {
+                    continue;
+                }
+                let texel = io.read_history_texel(q);
+                receivers += DVec2::new(weight * texel, weight);
                 if !stable_agreeing(mq.w, x, stable_after) {
                     continue;
                 }
-                agree += DVec2::new(weight * io.read_history_texel(q), weight);
+                agree += DVec2::new(weight * texel, weight);
+                if mq.w.abs() > agreeing_run.abs() {
+                    agreeing_run = mq.w;
+                }
+            }
+            // The nearest texel lies across the edge from this surface point: the run it continues is the longest
+            // agreeing texel's, not the other surface's.
+            if agreeing_run != 0.0 && !stable_agreeing(m.w, x, stable_after) {
+                m.w = agreeing_run;
             }
             // Only where the footprint is split: elsewhere the plain blend stands.
             if agree.y > 0.0 && agree.y < all {
                 run_history = Some(agree.x / agree.y);
+            } else if receivers.y > 0.0 && receivers.y < all {
+                run_history = Some(receivers.x / receivers.y);
             }
         }
         let sane = m.z >= 0.0
@@ -323,7 +351,12 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     let history_weight = ((full - m.z).max(0.0) / full).sqrt();
     let alpha = min_blend + (1.0 - min_blend) * history_weight;
     let shadow = clamped + (x - clamped) * alpha;
-    (m, DVec2::new(shadow, variance))
+    // Converged (Settings::converged_samples): the input resolves this pixel; its run's value is the answer, and
+    // variance 0 tells the filter to leave it.
+    if converged(m.w, x, s.converged_samples as f64) && !flipped {
+        return (m, DVec2::new(run_value(m.w), 0.0));
+    }
+    (m, DVec2::new(shadow, super::filter::unconverged_variance(s, variance)))
 }
 
 /// A pixel's hit distance counts towards its tile's blocker estimate when finite and positive.

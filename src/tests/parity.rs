@@ -139,6 +139,13 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
         5 => 2.0,
         _ => 0.0,
     };
+    // Some cases make pixels with two (or three) identical samples in a row converged: their run's value passes
+    // through the filter (reached by the compared frame 3), with stable history on or off.
+    info.settings.converged_samples = match seed {
+        1 | 3 | 8 | 10 => 2.0,
+        6 => 3.0,
+        _ => 0.0,
+    };
     let mut r = Runner::new(g, &info).unwrap();
     // Some cases guide the filter by the hit distances (penumbrae from sub-pixel to several pixels wide).
     r.guidance = match seed {

@@ -382,6 +382,14 @@ status=0
   fail "--preset best: status $status, message: $(cat "$tmp/preset.err")"
 echo "presets: quality ran clean unguided and guided (against the saved reference), 'best' and 'maybe' refused"
 
+# ---- Do no harm: a fixed subset of the procedural scene family (family.py; make viewer-accuracy runs 100) ----
+# Ten seeded scenes (with and without a ground plane, hard and soft lights, point lights), a still camera, the
+# Quality preset: never worse than the 1-spp input, exact pixels within 1/255 (hard shadows only: RMSE <= 0.002),
+# shadowed silhouettes within 1/255 on average, thin features keep 80% of their contrast.
+python3 examples-c/viewer/family.py "$viewer" "$tmp/family" --first 1000 --count 10 --presets quality \
+  --camera still --check quality > "$tmp/family.out" 2>&1 || fail "do no harm: $(tail -n 20 "$tmp/family.out")"
+echo "do no harm: $(tail -n 1 "$tmp/family.out")"
+
 # ---- --validate counts validation messages, not the Vulkan loader's notices ----
 # With VK_INSTANCE_LAYERS naming the layer, the loader warns through the same debug messenger that it adds the
 # layer from the environment (pMessageIdName "Loader Message", type GENERAL): that is no validation failure.

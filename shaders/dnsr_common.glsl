@@ -19,7 +19,7 @@ const int DNSR_WIDE_GROUP_INVOCATIONS = DNSR_WIDE_GROUP_WIDTH * DNSR_WIDE_GROUP_
 layout(constant_id = DNSR_SPEC_ID_PENUMBRA_GUIDED) const bool DNSR_SPEC_PENUMBRA_GUIDED = false;
 #endif
 #ifdef DNSR_PASS_TILE_CLASSIFICATION
-// Stable history: Settings::stable_history_samples > 0 (dnsr_get_run_settings().x).
+// The run features: Settings::stable_history_samples > 0 (dnsr_get_run_settings().x) or converged_samples > 0 (.z).
 layout(constant_id = DNSR_SPEC_ID_STABLE_HISTORY) const bool DNSR_SPEC_STABLE_HISTORY = false;
 #endif
 

@@ -521,7 +521,7 @@ impl Context {
             hit_distance: d.hit_distance.as_ref().map_or(image(light.depth[cur ^ 1].view, vk::ImageLayout::GENERAL), host),
             tile_blocker: light.tile_blocker.view,
             spec: (if d.hit_distance.is_some() { 1 << SPEC_PENUMBRA_GUIDED } else { 0 })
-                | (if self.settings.stable_history_samples > 0.0 { 1 << SPEC_STABLE_HISTORY } else { 0 }),
+                | (if self.settings.uses_runs() { 1 << SPEC_STABLE_HISTORY } else { 0 }),
             output: d.output.view,
             tile_mask: if self.reads_mask_directly(d) { host(&d.hit_mask) } else { image(light.tile_mask.view, vk::ImageLayout::GENERAL) },
             tile_dark: light.tile_dark.view,

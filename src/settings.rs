@@ -136,6 +136,14 @@ impl Settings {
     }
 }
 
+impl Settings {
+    /// Whether a feature built on runs of identical samples is on (stable history or converged pixels): the
+    /// classification pipelines specialized with DNSR_SPEC_STABLE_HISTORY run them.
+    pub(crate) fn uses_runs(&self) -> bool {
+        self.stable_history_samples > 0.0 || self.converged_samples > 0.0
+    }
+}
+
 /// Largest number of filter passes. The last one's step (8 px) may not exceed a block: the first pass writes the
 /// guide of cleared blocks only within one block of a tile it filters.
 pub const MAX_FILTER_PASSES: u32 = 4;

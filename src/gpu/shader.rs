@@ -333,7 +333,7 @@ pub(crate) fn reflect(spirv: &[u8]) -> Result<Interface> {
 /// the stable-run-aware history slowed Balanced, which never uses it, from 0.410 to 0.463 ms.
 /// `DNSR_SPEC_PENUMBRA_GUIDED`: the dispatch has hit distances.
 pub(crate) const SPEC_PENUMBRA_GUIDED: u32 = 0;
-/// `DNSR_SPEC_STABLE_HISTORY`: `Settings::stable_history_samples` > 0.
+/// `DNSR_SPEC_STABLE_HISTORY`: the run features are on (`Settings::uses_runs`: stable history or converged pixels).
 pub(crate) const SPEC_STABLE_HISTORY: u32 = 1;
 const SPEC_COUNT: usize = 2;
 

@@ -204,19 +204,30 @@ def build():
     eye, target = [3.4, 3.6, 5.6], [0.2, 0.3, 0.2]
     camera = node(name="camera", camera=0, translation=eye, rotation=look_at_quat(eye, target))
 
+    return document("dnsr viewer scenes/make_default.py", "default", [g, table, pole, raised, contact, camera], nodes,
+                    0.75, meshes, gltf_materials, b)
+
+
+def document(generator, name, roots, nodes, yfov, meshes, materials, b):
+    """The glTF document of one scene: its root nodes, one perspective camera, the builder's embedded buffer."""
     return {
-        "asset": {"version": "2.0", "generator": "dnsr viewer scenes/make_default.py"},
+        "asset": {"version": "2.0", "generator": generator},
         "scene": 0,
-        "scenes": [{"name": "default", "nodes": [g, table, pole, raised, contact, camera]}],
+        "scenes": [{"name": name, "nodes": roots}],
         "nodes": nodes,
-        "cameras": [{"type": "perspective", "perspective": {"yfov": 0.75, "znear": 0.05, "zfar": 100.0}}],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": yfov, "znear": 0.05, "zfar": 100.0}}],
         "meshes": meshes,
-        "materials": gltf_materials,
+        "materials": materials,
         "accessors": b.accessors,
         "bufferViews": b.views,
         "buffers": [{"byteLength": len(b.data),
                      "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(b.data)).decode()}],
     }
+
+
+def plain_materials(materials):
+    """glTF materials from (name, base colour) pairs."""
+    return [{"name": n, "pbrMetallicRoughness": {"baseColorFactor": c, "metallicFactor": 0.0}} for n, c in materials]
 
 
 def main():

@@ -11,7 +11,6 @@ usage: make_family.py OUT_DIR FIRST_SEED COUNT   -> OUT_DIR/family_<seed>.gltf a
 
 Same conventions as make_default.py: y up, metres, triangles only, POSITION + NORMAL, buffers embedded.
 """
-import base64
 import json
 import math
 import random
@@ -19,7 +18,7 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
-from make_default import Builder, cube, cylinder, ground, look_at_quat, quat_y  # noqa: E402
+from make_default import Builder, cube, cylinder, document, ground, look_at_quat, plain_materials, quat_y  # noqa: E402
 from make_thin import shell  # noqa: E402
 
 LIGHT_ANGLES = [0.0, 0.0, 0.27, 1.0, 3.0, 6.0, 10.0]  # angular radius, degrees; 0: hard shadows only
@@ -118,20 +117,8 @@ def family_scene(seed):
     eye = [distance * math.cos(pitch) * math.sin(yaw), 0.5 + distance * math.sin(pitch),
            distance * math.cos(pitch) * math.cos(yaw)]
     roots.append(node(name="camera", camera=0, translation=eye, rotation=look_at_quat(eye, [0, 0.5, 0])))
-    gltf = {
-        "asset": {"version": "2.0", "generator": f"dnsr viewer scenes/make_family.py, seed {seed}"},
-        "scene": 0,
-        "scenes": [{"name": f"family_{seed}", "nodes": roots}],
-        "nodes": nodes,
-        "cameras": [{"type": "perspective", "perspective": {"yfov": 0.7, "znear": 0.05, "zfar": 100.0}}],
-        "meshes": meshes,
-        "materials": [{"name": n, "pbrMetallicRoughness": {"baseColorFactor": c, "metallicFactor": 0.0}}
-                      for n, c in materials],
-        "accessors": b.accessors,
-        "bufferViews": b.views,
-        "buffers": [{"byteLength": len(b.data),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(b.data)).decode()}],
-    }
+    gltf = document(f"dnsr viewer scenes/make_family.py, seed {seed}", f"family_{seed}", roots, nodes, 0.7, meshes,
+                    plain_materials(materials), b)
     point = rng.random() < 0.25
     angle = rng.choice(LIGHT_ANGLES)
     camera = rng.choice(list(CAMERAS))

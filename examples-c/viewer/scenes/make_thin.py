@@ -9,14 +9,13 @@ fins.gltf:   a heat sink (a base plate with twelve 3 cm fins 15 cm apart) whose 
 shells.gltf: open half-cylinder shells 2 cm thick at several angles: thin lit crescents on their rims, thin curved
              shadows, and shells that shadow each other.
 """
-import base64
 import json
 import math
 import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
-from make_default import Builder, cube, ground, look_at_quat, quat_y  # noqa: E402
+from make_default import Builder, cube, document, ground, look_at_quat, plain_materials, quat_y  # noqa: E402
 
 
 def shell(radius, thickness, segments):
@@ -68,20 +67,7 @@ def scene(name, build_nodes, eye, target):
 
     roots = [0] + build_nodes(add_mesh, node)
     roots.append(node(name="camera", camera=0, translation=eye, rotation=look_at_quat(eye, target)))
-    return {
-        "asset": {"version": "2.0", "generator": "dnsr viewer scenes/make_thin.py"},
-        "scene": 0,
-        "scenes": [{"name": name, "nodes": roots}],
-        "nodes": nodes,
-        "cameras": [{"type": "perspective", "perspective": {"yfov": 0.6, "znear": 0.05, "zfar": 100.0}}],
-        "meshes": meshes,
-        "materials": [{"name": n, "pbrMetallicRoughness": {"baseColorFactor": c, "metallicFactor": 0.0}}
-                      for n, c in materials],
-        "accessors": b.accessors,
-        "bufferViews": b.views,
-        "buffers": [{"byteLength": len(b.data),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(b.data)).decode()}],
-    }
+    return document("dnsr viewer scenes/make_thin.py", name, roots, nodes, 0.6, meshes, plain_materials(materials), b)
 
 
 def fins(add_mesh, node):

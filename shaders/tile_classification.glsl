@@ -220,6 +220,18 @@ bool dnsr_stable_agreeing(float run, float x, float stable_after) {
     return stable_after > 0.0 && abs(run) >= stable_after && (x >= 0.5 ? run > 0.0 : run < 0.0);
 }
 
+// A run whose value is exact sample x's (any length).
+bool dnsr_sign_agreeing(float run, float x) {
+#ifdef DNSR_VISIBILITY_INPUT
+    if (!dnsr_is_exact(x)) return false;
+#endif
+    return x >= 0.5 ? run > 0.0 : run < 0.0;
+}
+
+// Moments whose every sample had one value: the run covers the whole count (and is no break marker).
+bool dnsr_pure(vec4 mq) { return mq.z > 0.0 && abs(mq.w) >= mq.z && fract(abs(mq.w)) == 0.0; }
+bool dnsr_pure_agreeing(vec4 mq, float x) { return dnsr_pure(mq) && dnsr_sign_agreeing(mq.w, x); }
+
 // A run of at least `converged_after` (> 0) identical samples that this frame's x does not contradict (x is the
 // run's value, or with a checkerboard input an untraced pixel's neighbour mean on the run's side of 0.5: never
 // compared for equality, which float rounding of that mean could flip).
@@ -439,6 +451,10 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             float all_weight = 0.0;
             vec2 receivers = vec2(0.0);
             float agreeing_run = 0.0;
+            // The texel of the longest pure run that agrees with x (every sample of its moments identical): its
+            // moments, its history.
+            vec4 pure = vec4(0.0);
+            float pure_history = 0.0;
             for (int k = 0; k < 4; ++k) {
                 float weight = ((k & 1) != 0 ? f.x : 1.0 - f.x) * ((k & 2) != 0 ? f.y : 1.0 - f.y);
                 ivec2 q = clamp(ivec2(floor(t)) + ivec2(k & 1, k >> 1), ivec2(0), dnsr_get_extent() - 1);
@@ -448,6 +464,10 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
                 if (!(mq.z > 0.0)) continue;
                 float texel = dnsr_read_history_texel(q);
                 receivers += vec2(weight * texel, weight);
+                if (dnsr_pure_agreeing(mq, x) && abs(mq.w) > abs(pure.w)) {
+                    pure = mq;
+                    pure_history = texel;
+                }
                 if (!dnsr_stable_agreeing(mq.w, x, stable_after)) continue;
                 run_history += vec2(weight * texel, weight);
                 if (abs(mq.w) > abs(agreeing_run)) agreeing_run = mq.w;
@@ -455,9 +475,16 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             // The nearest texel lies across the edge from this surface point (a moving camera at a silhouette or a
             // crease): the run it continues is the longest agreeing texel's, not the other surface's.
             if (agreeing_run != 0.0 && !dnsr_stable_agreeing(m.w, x, stable_after)) m.w = agreeing_run;
+            // A thin feature (a 1-px shadow line) under a moving camera: the nearest texel lies off it, and the
+            // feature's runs would restart every frame. Where the nearest texel's samples all held the other value
+            // (a hard edge between two resolved sides, not a penumbra), continue the agreeing texel whose samples
+            // all agree instead, moments and history.
+            bool adopt = pure.z > 0.0 && !dnsr_sign_agreeing(m.w, x) && dnsr_pure(m);
+            if (adopt) m = pure;
             // Only where the footprint is split: elsewhere the plain blend stands.
             if (!(run_history.y > 0.0 && run_history.y < all_weight)) {
-                run_history = receivers.y > 0.0 && receivers.y < all_weight ? receivers : vec2(0.0);
+                run_history = adopt ? vec2(pure_history, 1.0)
+                            : (receivers.y > 0.0 && receivers.y < all_weight ? receivers : vec2(0.0));
             }
         }
         if (!(m.z >= 0.0 && m.z <= max_samples && m.y >= 0.0 && m.y < 1e30 && dnsr_finite(m.x)

@@ -177,6 +177,21 @@ fn run_value(run: f64) -> f64 {
     if run > 0.0 { 1.0 } else { 0.0 }
 }
 
+/// A run whose value is exact sample `x`'s (any length).
+fn sign_agreeing(run: f64, x: f64) -> bool {
+    is_exact(x) && if x >= 0.5 { run > 0.0 } else { run < 0.0 }
+}
+
+/// A texel's moments whose every sample was exact sample `x`'s value.
+fn pure_agreeing(mq: DVec4, x: f64) -> bool {
+    pure_moments(mq) && sign_agreeing(mq.w, x)
+}
+
+/// Moments whose every sample had one value: the run covers the whole count (and is no break marker).
+fn pure_moments(mq: DVec4) -> bool {
+    mq.z > 0.0 && mq.w.abs() >= mq.z && mq.w.abs().fract() == 0.0
+}
+
 /// A previous run that is stable (`stable_after` > 0 samples or more) and of the same value as sample `x`, which
 /// is exact.
 fn stable_agreeing(run: f64, x: f64, stable_after: f64) -> bool {
@@ -244,6 +259,8 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
             let t = DVec2::new(history_uv.x * e[0] as f64 - 0.5, history_uv.y * e[1] as f64 - 0.5);
             let f = t - t.floor();
             let (mut agree, mut all, mut receivers, mut agreeing_run) = (DVec2::ZERO, 0.0, DVec2::ZERO, 0.0f64);
+            // The texel of the longest pure run that agrees with x: its moments and history.
+            let (mut pure, mut pure_history) = (DVec4::ZERO, 0.0);
             for k in 0..4 {
                 let weight = (if k & 1 != 0 { f.x } else { 1.0 - f.x }) * (if k & 2 != 0 { f.y } else { 1.0 - f.y });
                 let q = [
@@ -262,6 +279,10 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
                 }
                 let texel = io.read_history_texel(q);
                 receivers += DVec2::new(weight * texel, weight);
+                if pure_agreeing(mq, x) && mq.w.abs() > pure.w.abs() {
+                    pure = mq;
+                    pure_history = texel;
+                }
                 if !stable_agreeing(mq.w, x, stable_after) {
                     continue;
                 }
@@ -275,9 +296,17 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
             if agreeing_run != 0.0 && !stable_agreeing(m.w, x, stable_after) {
                 m.w = agreeing_run;
             }
+            // A thin feature under a moving camera, where the nearest texel's samples all held the other value:
+            // continue the agreeing texel whose samples all agree.
+            let adopt = pure.z > 0.0 && !sign_agreeing(m.w, x) && pure_moments(m);
+            if adopt {
+                m = pure;
+            }
             // Only where the footprint is split: elsewhere the plain blend stands.
             if agree.y > 0.0 && agree.y < all {
                 run_history = Some(agree.x / agree.y);
+            } else if adopt {
+                run_history = Some(pure_history);
             } else if receivers.y > 0.0 && receivers.y < all {
                 run_history = Some(receivers.x / receivers.y);
             }

@@ -14,6 +14,9 @@ use dnsr::{Precision, Preset, Settings};
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
+#[path = "accuracy/family.rs"]
+mod family;
+
 const W: u32 = 160;
 const H: u32 = 96;
 const FRAMES: u32 = 48;
@@ -255,6 +258,11 @@ fn with_rays(mut f: FrameInputs, rays: Option<u32>, t: u32) -> FrameInputs {
 }
 
 fn run(gpu: &Gpu, seq: &Sequence, mode: Mode) -> Run {
+    run_frames(gpu, &|t| frame_inputs(seq, t), seq.name == "shadow_jump", mode)
+}
+
+/// `frames` through dnsr in `mode`; `jump` measures shadow_jump's lag.
+fn run_frames(gpu: &Gpu, frames: &dyn Fn(u32) -> FrameInputs, jump: bool, mode: Mode) -> Run {
     let mut info = gpu.create_info(W, H);
     info.output_format = vk::Format::R32_SFLOAT;
     info.precision = mode.precision;
@@ -274,14 +282,14 @@ fn run(gpu: &Gpu, seq: &Sequence, mode: Mode) -> Run {
     let mut lag = None;
     let mut last = (Vec::new(), Vec::new(), Vec::new());
     for t in 0..FRAMES {
-        let f = with_rays(frame_inputs(seq, t), mode.rays, t);
+        let f = with_rays(frames(t), mode.rays, t);
         if mode.checkerboard {
             r.checkerboard_phase = t % 2;
         }
         let out = r.frame(&f, t == 0);
         let err = dnsr::testing::images::rmse(&out, &f.truth, &f.receiver);
         per_frame.push(err);
-        if seq.name == "shadow_jump" && t >= JUMP_FRAME && lag.is_none() {
+        if jump && t >= JUMP_FRAME && lag.is_none() {
             // Error inside the uncovered band, against 10% of the 0.9 jump.
             let band: Vec<bool> = (0..(W * H) as usize)
                 .map(|i| {
@@ -370,6 +378,60 @@ fn header(sequences: &[Sequence]) -> String {
 
 /// The penumbra-guidance table: each preset with and without the hit-distance input, and image strips.
 /// Several rays per pixel through the visibility input: the presets at 1, 2 and 4 rays, and how their error falls.
+/// Seeds of the sequence families (family.rs): FAMILY_COUNT of each kind from FAMILY_SEED on.
+const FAMILY_SEED: u64 = 2000;
+const FAMILY_COUNT: u64 = 12;
+
+/// Every preset on the sequence families, as distributions: the output's RMSE over its 1-spp input's, how many
+/// members the output is worse on, and for moving occluders the RMSE over the static twin's.
+fn family_section(gpu: &Gpu, md: &mut String) {
+    let members = family::members(FAMILY_SEED, FAMILY_COUNT);
+    let input: Vec<f64> = members.iter().map(|m| m.input_rmse(false)).collect();
+    let _ = writeln!(
+        md,
+        "\n## Sequence families\n\n{FAMILY_COUNT} seeded members of each family (src/bin/accuracy/family.rs, seeds \
+         {FAMILY_SEED}..{}): `lines`, hard edges and 1-3 px lines at random angles on a penumbra of random width \
+         (0.2-3 units), half of them with sky beside the plane and half under a camera panning 1 px per frame; \
+         `moving`, 1-3 discs with penumbrae 0.1-1.5 units wide moving 0.5-8 px per frame (log-uniform) without \
+         motion vectors, each against its static twin (the same discs held still). RMSE over frames {WARMUP}..{FRAMES}; \
+         ratio: the output's RMSE over the 1-spp input's (goal: below 1 everywhere, at most 0.5 with penumbrae); \
+         motion: the moving member's RMSE over its static twin's (goal: at most 1.5). Median / 90th percentile / worst \
+         over the members.\n",
+        FAMILY_SEED + FAMILY_COUNT - 1
+    );
+    let _ = writeln!(md, "| preset | lines: ratio | lines: worse than input | moving: ratio | moving: worse than input | motion: moving / static |");
+    let _ = writeln!(md, "|---|---|---|---|---|---|");
+    for preset in [Preset::Fast, Preset::Balanced, Preset::Quality] {
+        let mode = Mode { settings: Settings::preset(preset), precision: Precision::Fp32, guidance: None, rays: None, checkerboard: false };
+        let out: Vec<f64> = members.iter().map(|m| run_frames(gpu, &|t| m.frame(t, false), false, mode).metrics.rmse).collect();
+        let still: Vec<Option<f64>> = members
+            .iter()
+            .map(|m| m.moving.then(|| run_frames(gpu, &|t| m.frame(t, true), false, mode).metrics.rmse))
+            .collect();
+        let of_kind = |moving: bool| -> (Vec<f64>, usize) {
+            let idx: Vec<usize> = (0..members.len()).filter(|&i| members[i].moving == moving).collect();
+            (idx.iter().map(|&i| out[i] / input[i]).collect(), idx.iter().filter(|&&i| out[i] > input[i]).count())
+        };
+        let (lines, lines_worse) = of_kind(false);
+        let (moving, moving_worse) = of_kind(true);
+        let motion: Vec<f64> = (0..members.len()).filter_map(|i| still[i].map(|s| out[i] / s)).collect();
+        let q = |v: Vec<f64>| {
+            let (m, p, w) = family::quantiles(v);
+            format!("{m:.3} / {p:.3} / {w:.3}")
+        };
+        let _ = writeln!(
+            md,
+            "| {preset:?} | {} | {lines_worse} of {FAMILY_COUNT} | {} | {moving_worse} of {FAMILY_COUNT} | {} |",
+            q(lines),
+            q(moving),
+            q(motion)
+        );
+        eprintln!("families, {preset:?}: done");
+    }
+    let worst: Vec<String> = members.iter().zip(&input).map(|(m, e)| format!("{} {e:.3}", m.name)).collect();
+    let _ = writeln!(md, "\n1-spp input RMSE per member: {}.", worst.join(", "));
+}
+
 fn rays_section(gpu: &Gpu, md: &mut String) {
     const RAYS: [u32; 3] = [1, 2, 4];
     let _ = writeln!(*md, "\n## Rays per pixel (visibility input)\n");
@@ -506,6 +568,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut guided_only = false;
     let mut rays_only = false;
     let mut checkerboard_only = false;
+    let mut family_only = false;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
@@ -513,8 +576,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "--guided-only" => guided_only = true,
             "--rays-only" => rays_only = true,
             "--checkerboard-only" => checkerboard_only = true,
+            "--family-only" => family_only = true,
             _ => {
-                let usage = "usage: dnsr-accuracy [--out DIR] [--guided-only] [--rays-only] [--checkerboard-only]";
+                let usage = "usage: dnsr-accuracy [--out DIR] [--guided-only] [--rays-only] [--checkerboard-only] [--family-only]";
                 return Err(format!("unknown argument {a}; {usage}").into());
             }
         }
@@ -552,7 +616,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .collect();
     let _ = writeln!(md, "\n1-spp input RMSE: {}\n", noisy.iter().map(|e| format!("{e:.3}")).collect::<Vec<_>>().join(", "));
 
-    if guided_only || rays_only || checkerboard_only {
+    if guided_only || rays_only || checkerboard_only || family_only {
+        if family_only {
+            family_section(&gpu, &mut md);
+        }
         if guided_only {
             guided_section(&gpu, &mut md, &img_dir)?;
         }
@@ -592,6 +659,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         kept.join(", ")
     );
 
+    family_section(&gpu, &mut md);
     guided_section(&gpu, &mut md, &img_dir)?;
     rays_section(&gpu, &mut md);
     checkerboard_section(&gpu, &mut md);

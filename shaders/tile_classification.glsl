@@ -451,10 +451,11 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             float all_weight = 0.0;
             vec2 receivers = vec2(0.0);
             float agreeing_run = 0.0;
-            // The texel of the longest pure run that agrees with x (every sample of its moments identical): its
-            // moments, its history.
-            vec4 pure = vec4(0.0);
-            float pure_history = 0.0;
+            // The texel of the longest pure run that agrees with x (every sample of its moments identical).
+            // Kept as its texel and run length and read again only where it is taken: fewer registers held through
+            // the loop.
+            ivec2 pure_texel = ivec2(-1);
+            float pure_run = 0.0;
             for (int k = 0; k < 4; ++k) {
                 float weight = ((k & 1) != 0 ? f.x : 1.0 - f.x) * ((k & 2) != 0 ? f.y : 1.0 - f.y);
                 ivec2 q = clamp(ivec2(floor(t)) + ivec2(k & 1, k >> 1), ivec2(0), dnsr_get_extent() - 1);
@@ -464,9 +465,9 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
                 if (!(mq.z > 0.0)) continue;
                 float texel = dnsr_read_history_texel(q);
                 receivers += vec2(weight * texel, weight);
-                if (dnsr_pure_agreeing(mq, x) && abs(mq.w) > abs(pure.w)) {
-                    pure = mq;
-                    pure_history = texel;
+                if (dnsr_pure_agreeing(mq, x) && abs(mq.w) > pure_run) {
+                    pure_texel = q;
+                    pure_run = abs(mq.w);
                 }
                 if (!dnsr_stable_agreeing(mq.w, x, stable_after)) continue;
                 run_history += vec2(weight * texel, weight);
@@ -479,11 +480,11 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             // feature's runs would restart every frame. Where the nearest texel's samples all held the other value
             // (a hard edge between two resolved sides, not a penumbra), continue the agreeing texel whose samples
             // all agree instead, moments and history.
-            bool adopt = pure.z > 0.0 && !dnsr_sign_agreeing(m.w, x) && dnsr_pure(m);
-            if (adopt) m = pure;
+            bool adopt = pure_texel.x >= 0 && !dnsr_sign_agreeing(m.w, x) && dnsr_pure(m);
+            if (adopt) m = dnsr_read_previous_moments(pure_texel);
             // Only where the footprint is split: elsewhere the plain blend stands.
             if (!(run_history.y > 0.0 && run_history.y < all_weight)) {
-                run_history = adopt ? vec2(pure_history, 1.0)
+                run_history = adopt ? vec2(dnsr_read_history_texel(pure_texel), 1.0)
                             : (receivers.y > 0.0 && receivers.y < all_weight ? receivers : vec2(0.0));
             }
         }

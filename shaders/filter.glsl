@@ -170,23 +170,36 @@ void dnsr_tap(int l, ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal
 
 
 // 1 / sigma of the shadow edge stop: the variances of the 3x3 receivers (told apart by their signal, see
-// DNSR_SKY_SIGNAL) blurred, at least the floor `sigma_floor`. With converged pixels (Settings::converged_samples)
-// a variance of exactly 0 is left out too: a converged neighbour knows its value, which says nothing of this
-// pixel's noise, and its zeros would drive sigma to the floor (an edge stop that float rounding can flip).
+// DNSR_SKY_SIGNAL) blurred, at least the floor `sigma_floor`.
 float dnsr_inv_shadow_sigma(float v[9], float sigma_floor) {
-    bool skip_zero = dnsr_converged_on();
     float vsum = 0.0, vweight = 0.0;
     for (int j = -1; j <= 1; ++j) {
         for (int i = -1; i <= 1; ++i) {
             float s = v[(j + 1) * 3 + i + 1];
-            if (!dnsr_is_receiver_signal(vec2(0.0, s)) || (skip_zero && s == 0.0)) continue;
+            if (!dnsr_is_receiver_signal(vec2(0.0, s))) continue;
             float w = 1.0 / float(4 << (abs(i) + abs(j)));
             vsum += w * s;
             vweight += w;
         }
     }
-    return 1.0 / max(sqrt(max(vweight > 0.0 ? vsum / vweight : 0.0, 0.0)), sigma_floor);
+    return 1.0 / max(sqrt(max(vsum / vweight, 0.0)), sigma_floor);
 }
+
+// A converged pixel (variance 0) whose 3x3 receivers are all converged too passes through the filter as its run's
+// value (the side of 0.5 its stable-clamped value lies on): its samples resolve it, and so do its neighbours', so
+// this is no penumbra where a run of 8 identical samples happened by chance (a pixel of visibility 0.95 shows one
+// two times in three; its 3x3 rarely all do). Other converged pixels are filtered like any other.
+bool dnsr_passes_through(vec2 c, float v[9]) {
+    if (!dnsr_converged_on() || !dnsr_converged_signal(c)) return false;
+    int receivers = 0, converged = 0;
+    for (int k = 0; k < 9; ++k) {
+        if (k == 4 || v[k] < 0.0) continue;  // the centre; sky's -1
+        receivers += 1;
+        converged += v[k] == 0.0 ? 1 : 0;
+    }
+    return 2 * converged >= receivers;
+}
+vec2 dnsr_run_signal(vec2 c) { return vec2(c.x >= 0.5 ? 1.0 : 0.0, 0.0); }
 
 // The filtered (mean, variance) of receiver p (linear depth zc, normal nc) in a tile that is not cleared.
 vec2 dnsr_filter_receiver(int l, ivec2 p, ivec2 lid, int step, float zc, vec3 nc) {
@@ -194,9 +207,9 @@ vec2 dnsr_filter_receiver(int l, ivec2 p, ivec2 lid, int step, float zc, vec3 nc
     float kernel[2] = float[2](1.0, settings.x);
     float normal_power = settings.y;
     vec2 c = dnsr_center_signal(l, p, lid);
-    if (dnsr_converged_on() && dnsr_converged_signal(c)) return c;
     float v[9];
     dnsr_variance_neighbourhood(l, p, lid, c, v);
+    if (dnsr_passes_through(c, v)) return dnsr_run_signal(c);
     float inv_sigma = dnsr_inv_shadow_sigma(v, settings.w);
     float inv_depth_sigma = 1.0 / dnsr_get_depth_similarity_sigma();
     float falloff = dnsr_pass_penumbra_falloff(l, p, zc);
@@ -368,14 +381,15 @@ void dnsr_filter_lights(ivec2 gid, ivec2 lid) {
         inv_sigma[l] = falloff[l] = 0.0;
         if (!filtering[l]) continue;
         c[l] = dnsr_center_signal(l, p, lid);
-        // A converged pixel passes through (dnsr_filter_receiver): the result below is its centre alone.
-        if (dnsr_converged_on() && dnsr_converged_signal(c[l])) {
+        float v[9];
+        dnsr_variance_neighbourhood(l, p, lid, c[l], v);
+        // A converged pixel among converged ones passes through (dnsr_filter_receiver): the result below is its
+        // centre alone.
+        if (dnsr_passes_through(c[l], v)) {
             filtering[l] = false;
             converged[l] = true;
             continue;
         }
-        float v[9];
-        dnsr_variance_neighbourhood(l, p, lid, c[l], v);
         inv_sigma[l] = dnsr_inv_shadow_sigma(v, settings.w);
         falloff[l] = dnsr_pass_penumbra_falloff(l, p, zc);
     }
@@ -410,7 +424,7 @@ void dnsr_filter_lights(ivec2 gid, ivec2 lid) {
     [[unroll]] for (int l = 0; l < DNSR_LIGHT_SLOTS; ++l) {
         if (l >= count || block_cleared[l]) continue;
         vec2 result = zc < 0.0 ? DNSR_SKY_SIGNAL
-                    : converged[l] ? c[l]
+                    : converged[l] ? dnsr_run_signal(c[l])
                     : (!filtering[l] ? dnsr_cleared_value(true, meta[l])
                                      : vec2(clamp(mean_sum[l] / weight_sum[l], 0.0, 1.0),
                                             dnsr_unconverged_variance(max(var_sum[l] / (weight_sum[l] * weight_sum[l]), 0.0))));

@@ -551,16 +551,14 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     if (m.z < reject.z && !stable) variance = max(variance, local.y) * max(reject.z - m.z, 1.0);
     float history_weight = sqrt(max(temporal.x - m.z, 0.0) / temporal.x);
     float shadow = mix(clamped, x, mix(temporal.y, 1.0, history_weight));
-    // Converged (Settings::converged_samples): the input resolves this pixel; its run's value is the answer, and
-    // variance 0 tells the filter to leave it (dnsr_converged_signal). Behind the run features' specialization:
-    // as a runtime branch alone it slowed Balanced's classification, which never takes it, by 9% on an H100 at 4K.
+    // Converged (Settings::converged_samples, on a stable pixel): variance 0 tells the filter that the input may
+    // resolve this pixel; the filter decides from its neighbours (dnsr_passes_through). The value stays the
+    // temporal one: a penumbra pixel of visibility 0.95 shows 8 lit samples in a row two times in three, and its
+    // run's value would bias it. Behind the run features' specialization: as a runtime branch alone it slowed
+    // Balanced's classification, which never takes it, by 9% on an H100 at 4K.
     if (DNSR_SPEC_STABLE_HISTORY) {
-        if (dnsr_converged(m.w, x, dnsr_get_run_settings().z) && !flipped) {
-            shadow = m.w > 0.0 ? 1.0 : 0.0;
-            variance = 0.0;
-        } else {
-            variance = dnsr_unconverged_variance(variance);
-        }
+        variance = stable && !flipped && dnsr_pure(m) && dnsr_converged(m.w, x, dnsr_get_run_settings().z) ? 0.0
+                 : dnsr_unconverged_variance(variance);
     }
 
     dnsr_write_moments(p, m);

@@ -75,11 +75,12 @@ declare_settings! {
     /// shadow moved over the pixel, with or without motion vectors. Whole samples (a fraction is dropped); 0 turns
     /// this off; it needs `stable_history_samples` > 0.
     history_flip_samples: f32 = 0.0, [0.0, 16.0] "[0, 16]";
-    /// A pixel whose last n >= this-many samples were identical (each exactly lit or exactly shadowed, the run
-    /// `stable_history_samples` counts) is converged: classification outputs its run's value with variance 0 and
-    /// the filter leaves it as it is. The 1-spp input already resolves it (a hard shadow, a face turned from the
-    /// light, a crease, a thin stripe), and the history clamp, the 17x17 moments and the filter taps, which straddle
-    /// its edges, silhouettes and the sky, could only move it away. 0 turns this off (the FidelityFX behaviour).
+    /// A stable pixel (`stable_history_samples`) whose last n >= this-many samples were identical and whose
+    /// moments hold no other sample is converged (variance 0); where at least half of its 3x3 receivers are
+    /// converged too, the filter passes it through as its run's value. The 1-spp input then resolves it (a hard
+    /// shadow, a face turned from the light, a crease, a thin stripe), and the 17x17 moments and the filter taps,
+    /// which straddle its edges, silhouettes and the sky, could only move it away; a lone run in a penumbra is
+    /// filtered as before. 0 turns this off (the FidelityFX behaviour); it needs `stable_history_samples` > 0.
     converged_samples: f32 = 0.0, [0.0, crate::passes::MAX_SAMPLE_RUN as f32] "[0, 4096]";
     /// Below this many accumulated samples the variance is boosted (raised to the spatial variance and
     /// multiplied by the missing samples), except on a pixel whose run is stable (`stable_history_samples`).
@@ -111,7 +112,9 @@ pub enum Preset {
     Balanced,
     /// The measured best knobs combined: 4 filter passes, 10% current-frame weight, no output contrast, cross
     /// tap weight 0.5, history of pixels with 8 identical samples in a row clamped to their run and restarted
-    /// after 3 samples of the other value (1 where the neighbourhood agrees; see docs/accuracy.md for why each).
+    /// after 3 samples of the other value (1 where the neighbourhood agrees; see docs/accuracy.md for why each),
+    /// and pixels with 8 identical samples in a row converged (passed through the filter among converged
+    /// neighbours; docs/do-no-harm.md).
     Quality,
 }
 
@@ -130,6 +133,7 @@ impl Settings {
                 stable_history_samples: 8.0,
                 history_flip_samples: 3.0,
                 converged_samples: 8.0,
+                variance_boost_samples: 16.0,
                 ..balanced
             },
         }

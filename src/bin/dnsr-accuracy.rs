@@ -569,6 +569,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut rays_only = false;
     let mut checkerboard_only = false;
     let mut family_only = false;
+    let mut presets_only = false;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
@@ -577,8 +578,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "--rays-only" => rays_only = true,
             "--checkerboard-only" => checkerboard_only = true,
             "--family-only" => family_only = true,
+            "--presets-only" => presets_only = true,
             _ => {
-                let usage = "usage: dnsr-accuracy [--out DIR] [--guided-only] [--rays-only] [--checkerboard-only] [--family-only]";
+                let usage = "usage: dnsr-accuracy [--out DIR] [--guided-only] [--rays-only] [--checkerboard-only] [--family-only] [--presets-only]";
                 return Err(format!("unknown argument {a}; {usage}").into());
             }
         }
@@ -639,6 +641,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let _ = writeln!(md, "{}", row(&format!("{preset:?}"), &runs));
         eprintln!("{preset:?}: mean RMSE {:.4}", score(&runs));
         preset_runs.push(runs);
+    }
+    if presets_only {
+        std::fs::write(out_dir.join("accuracy.md"), md)?;
+        return Ok(());
     }
     let fp16 = all(Settings::preset(Preset::Balanced), Precision::Fp16);
     let _ = writeln!(md, "{}", row("Balanced, fp16 filter", &fp16));
@@ -722,7 +728,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
          a single sample wherever the neighbourhood agrees already moves the shadow's edge, so 3 samples elsewhere \
          beat 2 on every sequence but moving_occluder, where both stay below 0.03; a restart after any single \
          sample brings moving_occluder to 0.019 but leaves the static penumbrae and the camera pan worse than \
-         Quality without either knob, 0.032 and 0.031). `Preset::Fast` is one \
+         Quality without either knob, 0.032 and 0.031); converged_samples 8 comes from \
+         the scene family of docs/viewer-family.md (docs/do-no-harm.md). `Preset::Fast` is one \
          filter pass, \
          whose mean RMSE stays within 1% of the defaults'. `Preset::Balanced` is the FidelityFX defaults. Timings \
          for the same settings come from `make bench` (BENCHMARKS.md).\n",

@@ -186,7 +186,8 @@ pub const DNSR_PRESET_FAST: DnsrPreset = 0;
 /// The FidelityFX defaults (same as `dnsr_settings_init_default`).
 pub const DNSR_PRESET_BALANCED: DnsrPreset = 1;
 /// The measured best knobs combined: 4 filter passes, 10% current-frame weight, no output contrast, cross-tap
-/// weight 0.5, stable history after 8 identical samples, restarted after 3 samples of the other value.
+/// weight 0.5, stable history after 8 identical samples, restarted after 3 samples of the other value, converged
+/// after 8 identical samples (unfiltered among converged neighbours).
 pub const DNSR_PRESET_QUALITY: DnsrPreset = 2;
 /// Forces 32 bits.
 pub const DNSR_PRESET_MAX_ENUM: DnsrPreset = 0x7FFF_FFFF;
@@ -366,10 +367,11 @@ pub struct DnsrSettings {
     /// within 0.5 of it) restart the pixel's history at the local mean (a shadow moved over it). Range [0, 16];
     /// 0 disables; needs stableHistorySamples > 0. Default 0; 3 in the Quality preset.
     pub history_flip_samples: f32,
-    /// A pixel whose last n >= this-many samples were identical (each exactly 0 or 1) is converged: it outputs
-    /// its run's value and no spatial filter touches it (its 1-spp input already resolves it: hard shadows, faces
-    /// turned from the light, creases, thin stripes). Range [0, 4096]; 0 disables. Default 0; 8 in the Quality
-    /// preset.
+    /// A stable pixel whose last n >= this-many samples were identical (each exactly 0 or 1), with no other sample
+    /// in its history, is converged; where at least half of its 3x3 receivers are converged too, the filter passes
+    /// it through as its run's value (its 1-spp input resolves it: hard shadows, faces turned from the light,
+    /// creases, thin stripes). Range [0, 4096]; 0 disables; needs stableHistorySamples > 0. Default 0; 8 in the
+    /// Quality preset.
     pub converged_samples: f32,
 }
 

@@ -18,6 +18,22 @@ pub fn converged_signal(c: DVec2) -> bool {
     c.y == 0.0
 }
 
+/// Every receiver of the 3x3 around p (step 1) converged.
+fn converged_neighbourhood<Io: Read + ?Sized>(io: &Io, p: Coord) -> bool {
+    let (mut receivers, mut converged) = (0, 0);
+    for j in -1..=1i32 {
+        for i in -1..=1i32 {
+            let q = [p[0] + i, p[1] + j];
+            if (i == 0 && j == 0) || receiver_depth(io, q).is_none() {
+                continue;
+            }
+            receivers += 1;
+            converged += converged_signal(io.read_filter_input(q)) as i32;
+        }
+    }
+    2 * converged >= receivers
+}
+
 /// With converged pixels on, the variance a receiver that is not converged stores: at least
 /// 1 / UNCONVERGED_VARIANCE_INV, so that 0 marks the converged ones alone.
 pub fn unconverged_variance(settings: &crate::Settings, variance: f64) -> f64 {
@@ -28,10 +44,8 @@ pub fn unconverged_variance(settings: &crate::Settings, variance: f64) -> f64 {
     }
 }
 
-/// 3x3 Gaussian of the variance (center 1/4, cross 1/8, corner 1/16) over receivers; with converged pixels on,
-/// not over variances of exactly 0 (shaders/filter.glsl says why). 0 when no tap is left.
+/// 3x3 Gaussian of the variance (center 1/4, cross 1/8, corner 1/16) over receivers.
 fn blurred_variance<Io: Read + ?Sized>(io: &Io, p: Coord) -> f64 {
-    let skip_zero = io.settings().converged_samples > 0.0;
     let (mut sum, mut weight) = (0.0, 0.0);
     for j in -1..=1i32 {
         for i in -1..=1i32 {
@@ -40,15 +54,12 @@ fn blurred_variance<Io: Read + ?Sized>(io: &Io, p: Coord) -> f64 {
                 continue;
             }
             let v = io.read_filter_input(q).y;
-            if skip_zero && v == 0.0 {
-                continue;
-            }
             let w = 1.0 / (4 << (i.abs() + j.abs())) as f64;
             sum += w * v;
             weight += w;
         }
     }
-    if weight > 0.0 { sum / weight } else { 0.0 }
+    sum / weight
 }
 
 /// Penumbra guidance: 1 / (2 sigma^2) of the Gaussian over tap distance (pixels) that keeps the kernel within
@@ -70,9 +81,10 @@ pub fn filter_pixel<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64) -> DVec2 {
     let kernel = [1.0, s.kernel_cross_weight as f64];
     let step = io.filter_step();
     let c = io.read_filter_input(p);
-    // A converged pixel (Settings::converged_samples) passes through: its samples already resolve it.
-    if s.converged_samples > 0.0 && converged_signal(c) {
-        return c;
+    // A converged pixel (Settings::converged_samples) among converged receivers passes through
+    // (shaders/filter.glsl, dnsr_passes_through).
+    if s.converged_samples > 0.0 && converged_signal(c) && converged_neighbourhood(io, p) {
+        return DVec2::new(if c.x >= 0.5 { 1.0 } else { 0.0 }, 0.0);
     }
     let nc = io.read_normal(p);
     let inv_sigma = 1.0 / blurred_variance(io, p).max(0.0).sqrt().max(s.min_shadow_sigma as f64);

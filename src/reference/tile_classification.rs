@@ -380,12 +380,14 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     let history_weight = ((full - m.z).max(0.0) / full).sqrt();
     let alpha = min_blend + (1.0 - min_blend) * history_weight;
     let shadow = clamped + (x - clamped) * alpha;
-    // Converged (Settings::converged_samples): the input resolves this pixel; its run's value is the answer, and
-    // variance 0 tells the filter to leave it.
-    if converged(m.w, x, s.converged_samples as f64) && !flipped {
-        return (m, DVec2::new(run_value(m.w), 0.0));
-    }
-    (m, DVec2::new(shadow, super::filter::unconverged_variance(s, variance)))
+    // Converged (Settings::converged_samples, on a stable pixel): variance 0 tells the filter that the input may
+    // resolve this pixel; the value stays the temporal one (shaders/tile_classification.glsl says why).
+    let variance = if stable && !flipped && pure_moments(m) && converged(m.w, x, s.converged_samples as f64) {
+        0.0
+    } else {
+        super::filter::unconverged_variance(s, variance)
+    };
+    (m, DVec2::new(shadow, variance))
 }
 
 /// A pixel's hit distance counts towards its tile's blocker estimate when finite and positive.

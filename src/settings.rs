@@ -133,7 +133,6 @@ impl Settings {
                 stable_history_samples: 8.0,
                 history_flip_samples: 3.0,
                 converged_samples: 8.0,
-                variance_boost_samples: 16.0,
                 ..balanced
             },
         }

@@ -37,8 +37,8 @@ bool dnsr_is_receiver(float depth) { return depth > 0.0 && depth < 1.0; }
 const vec2 DNSR_SKY_SIGNAL = vec2(1.0, -1.0);
 bool dnsr_is_receiver_signal(vec2 signal) { return signal.y >= 0.0; }
 // With converged pixels on (Settings::converged_samples, dnsr_get_run_settings().z > 0): a converged pixel's signal
-// has variance exactly 0 (its value is exactly 0 or 1) and the filter passes it through; every other receiver
-// stores at least DNSR_MIN_UNCONVERGED_VARIANCE, so that float rounding cannot make it look converged.
+// has variance exactly 0 (the filter may pass it through, see dnsr_passes_through); every other receiver stores at
+// least DNSR_MIN_UNCONVERGED_VARIANCE, so that float rounding cannot make it look converged.
 bool dnsr_converged_on() { return dnsr_get_run_settings().z > 0.0; }
 const float DNSR_MIN_UNCONVERGED_VARIANCE = 1.0 / float(DNSR_UNCONVERGED_VARIANCE_INV);
 bool dnsr_converged_signal(vec2 signal) { return signal.y == 0.0; }

@@ -185,10 +185,12 @@ float dnsr_inv_shadow_sigma(float v[9], float sigma_floor) {
     return 1.0 / max(sqrt(max(vsum / vweight, 0.0)), sigma_floor);
 }
 
-// A converged pixel (variance 0) whose 3x3 receivers are all converged too passes through the filter as its run's
-// value (the side of 0.5 its stable-clamped value lies on): its samples resolve it, and so do its neighbours', so
-// this is no penumbra where a run of 8 identical samples happened by chance (a pixel of visibility 0.95 shows one
-// two times in three; its 3x3 rarely all do). Other converged pixels are filtered like any other.
+// A converged pixel (variance 0) at least half of whose other 3x3 receivers are converged too passes through the
+// filter as its run's value (the side of 0.5 its stable-clamped value lies on): its samples resolve it, and so do
+// its neighbours', so this is no penumbra where a run of identical samples happened by chance (a pixel of
+// visibility 0.95 shows 8 lit samples in a row two times in three, one with no other sample in its history far less
+// often, and half of its neighbours at once rarely). The half, not all of them: a shadowed receiver next to a
+// background in penumbra has its own surface on one side only. Other converged pixels are filtered like any other.
 bool dnsr_passes_through(vec2 c, float v[9]) {
     if (!dnsr_converged_on() || !dnsr_converged_signal(c)) return false;
     int receivers = 0, converged = 0;

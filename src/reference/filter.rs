@@ -18,7 +18,7 @@ pub fn converged_signal(c: DVec2) -> bool {
     c.y == 0.0
 }
 
-/// Every receiver of the 3x3 around p (step 1) converged.
+/// At least half of the other receivers of the 3x3 around p (step 1) converged (shaders/filter.glsl says why).
 fn converged_neighbourhood<Io: Read + ?Sized>(io: &Io, p: Coord) -> bool {
     let (mut receivers, mut converged) = (0, 0);
     for j in -1..=1i32 {

@@ -255,7 +255,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
         // across it. The texels whose stable run holds this sample's value are where this surface point was: blend
         // the history from them alone. (A texel weighed at under 1/16 does not count; the bound also keeps float
         // rounding at texel centres out. Taking their moments too left the viewer's orbiting fins worse.)
-        if stable_after > 0.0 {
+        if s.uses_runs() {
             let t = DVec2::new(history_uv.x * e[0] as f64 - 0.5, history_uv.y * e[1] as f64 - 0.5);
             let f = t - t.floor();
             let (mut agree, mut all, mut receivers, mut agreeing_run) = (DVec2::ZERO, 0.0, DVec2::ZERO, 0.0f64);

@@ -228,8 +228,12 @@ bool dnsr_sign_agreeing(float run, float x) {
     return x >= 0.5 ? run > 0.0 : run < 0.0;
 }
 
-// Moments whose every sample had one value: the run covers the whole count (and is no break marker).
-bool dnsr_pure(vec4 mq) { return mq.z > 0.0 && abs(mq.w) >= mq.z && fract(abs(mq.w)) == 0.0; }
+// Moments whose every sample had one value: no spread, and the run covers the whole count (and is no break marker).
+// The spread must be checked too: under a moving camera a pixel continues the longest agreeing run of its
+// footprint, so runs passed from texel to texel outgrow the count of moments that saw both values, and without
+// the spread test penumbra pixels counted as pure and converged (scene family, 10-degree penumbrae under an
+// orbiting camera, seed 1047: Quality RMSE 0.105 -> 0.053 with it).
+bool dnsr_pure(vec4 mq) { return mq.z > 0.0 && mq.y == 0.0 && abs(mq.w) >= mq.z && fract(abs(mq.w)) == 0.0; }
 bool dnsr_pure_agreeing(vec4 mq, float x) { return dnsr_pure(mq) && dnsr_sign_agreeing(mq.w, x); }
 
 // A run of at least `converged_after` (> 0) identical samples that this frame's x does not contradict (x is the

@@ -187,9 +187,10 @@ fn pure_agreeing(mq: DVec4, x: f64) -> bool {
     pure_moments(mq) && sign_agreeing(mq.w, x)
 }
 
-/// Moments whose every sample had one value: the run covers the whole count (and is no break marker).
+/// Moments whose every sample had one value: no spread, and the run covers the whole count (and is no break
+/// marker). A run continued from another texel can outgrow the count (shaders/tile_classification.glsl).
 fn pure_moments(mq: DVec4) -> bool {
-    mq.z > 0.0 && mq.w.abs() >= mq.z && mq.w.abs().fract() == 0.0
+    mq.z > 0.0 && mq.y == 0.0 && mq.w.abs() >= mq.z && mq.w.abs().fract() == 0.0
 }
 
 /// A previous run that is stable (`stable_after` > 0 samples or more) and of the same value as sample `x`, which

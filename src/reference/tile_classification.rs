@@ -193,6 +193,13 @@ fn pure_moments(mq: DVec4) -> bool {
     mq.z > 0.0 && mq.y == 0.0 && mq.w.abs() >= mq.z && mq.w.abs().fract() == 0.0
 }
 
+/// Whether two or more of the 8 pixels around p inside the rectangle hold exactly sample `x` this frame (sky pixels
+/// count by their mask bit: the test reads the samples alone).
+fn two_neighbours_share<Io: Read + ?Sized>(io: &Io, p: Coord, x: f64) -> bool {
+    let shares = |i: i32, j: i32| (i, j) != (0, 0) && inside(io, [p[0] + i, p[1] + j]) && sample(io, [p[0] + i, p[1] + j]) == x;
+    (-1..=1).flat_map(|j| (-1..=1).map(move |i| (i, j))).filter(|&(i, j)| shares(i, j)).count() >= 2
+}
+
 /// A previous run that is stable (`stable_after` > 0 samples or more) and of the same value as sample `x`, which
 /// is exact.
 fn stable_agreeing(run: f64, x: f64, stable_after: f64) -> bool {
@@ -240,7 +247,10 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     }
 
     let stable_after = s.stable_history_samples as f64;
+    let converged_after = s.converged_samples as f64;
     let mut m = DVec4::ZERO;
+    // A resolved change (see below): this frame's sample stands alone.
+    let mut resolved = false;
     // History blended from the texels that agree (weighted sum, weight), when only some of them do.
     let mut run_history = None;
     if !disoccluded {
@@ -262,6 +272,9 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
             let (mut agree, mut all, mut receivers, mut agreeing_run) = (DVec2::ZERO, 0.0, DVec2::ZERO, 0.0f64);
             // The texel of the longest pure run that agrees with x: its moments and history.
             let (mut pure, mut pure_history) = (DVec4::ZERO, 0.0);
+            // Every receiver texel resolved: of the other value (one of them is) pure and converged, of this
+            // sample's value pure or converged.
+            let (mut all_resolved, mut any_other) = (true, false);
             for k in 0..4 {
                 let weight = (if k & 1 != 0 { f.x } else { 1.0 - f.x }) * (if k & 2 != 0 { f.y } else { 1.0 - f.y });
                 let q = [
@@ -280,6 +293,10 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
                 }
                 let texel = io.read_history_texel(q);
                 receivers += DVec2::new(weight * texel, weight);
+                let agreeing = sign_agreeing(mq.w, x);
+                let converged_run = mq.w.abs() >= converged_after;
+                all_resolved &= if agreeing { pure_moments(mq) || converged_run } else { pure_moments(mq) && converged_run };
+                any_other |= !agreeing;
                 if pure_agreeing(mq, x) && mq.w.abs() > pure.w.abs() {
                     pure = mq;
                     pure_history = texel;
@@ -292,19 +309,32 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
                     agreeing_run = mq.w;
                 }
             }
-            // The nearest texel lies across the edge from this surface point: the run it continues is the longest
-            // agreeing texel's, not the other surface's.
+            // A hard edge or a thin feature under a moving camera, where the nearest texel's samples all held the
+            // other value: continue the agreeing texel whose samples all agree, moments and history.
+            let adopt = pure.z > 0.0 && !sign_agreeing(m.w, x) && pure_moments(m);
+            // Elsewhere the nearest texel lying across the edge from this surface point hands over the longest
+            // agreeing texel's run, not its own.
             if agreeing_run != 0.0 && !stable_agreeing(m.w, x, stable_after) {
                 m.w = agreeing_run;
             }
-            // A thin feature under a moving camera, where the nearest texel's samples all held the other value:
-            // continue the agreeing texel whose samples all agree.
-            let adopt = pure.z > 0.0 && !sign_agreeing(m.w, x) && pure_moments(m);
             if adopt {
                 m = pure;
             }
+            // A silhouette under a moving camera between resolved surfaces: this sample stands alone
+            // (shaders/tile_classification.glsl says why, and why only beside the sky).
+            resolved = converged_after > 0.0
+                && is_exact(x)
+                && !untraced
+                && any_other
+                && all_resolved
+                && receivers.y < all
+                && two_neighbours_share(io, p, x);
+            // Continue the agreeing texel whose samples all agree, or start from this sample.
+            if resolved {
+                m = pure;
+                run_history = Some(if pure.z > 0.0 { pure_history } else { x });
             // Only where the footprint is split: elsewhere the plain blend stands.
-            if agree.y > 0.0 && agree.y < all {
+            } else if agree.y > 0.0 && agree.y < all {
                 run_history = Some(agree.x / agree.y);
             } else if adopt {
                 run_history = Some(pure_history);
@@ -365,7 +395,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     }
     let (clamped, d) = if flipped {
         (local.x, 0.0)
-    } else if stable {
+    } else if stable || resolved {
         let width = RUN_CLAMP_SAMPLES as f64 / m.w.abs();
         (history.clamp(x - width, x + width), 0.0)
     } else {
@@ -383,6 +413,9 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     let shadow = clamped + (x - clamped) * alpha;
     // Converged (Settings::converged_samples, on a stable pixel): variance 0 tells the filter that the input may
     // resolve this pixel; the value stays the temporal one (shaders/tile_classification.glsl says why).
+    if resolved {
+        return (m, DVec2::new(x, 0.0));
+    }
     let variance = if stable && !flipped && pure_moments(m) && converged(m.w, x, s.converged_samples as f64) {
         0.0
     } else {

@@ -46,8 +46,12 @@ fn random_frame(w: u32, h: u32, seed: u64, frame: u64) -> FrameInputs {
             // Regions wide enough for uniform tiles (+-8 px): top-left lit, a bottom band shadowed, the rest noise
             // with a probability that varies across the image.
             let (lit_w, lit_h, band) = if w >= 96 { (56, 44, 24) } else { (24, 12, 12) };
+            // Seed 6's compared frame draws a 1-px shadow line across the lit region, whose history is resolved
+            // (cleared tiles: pure, converged): under its sub-pixel motion, where the footprint also holds sky,
+            // the line's samples stand alone.
+            let line = seed == 6 && frame == 3 && x == 30;
             let lit = if x < lit_w && y < lit_h {
-                true
+                !line
             } else if y + band >= h {
                 false
             } else {

@@ -187,10 +187,9 @@ fn pure_agreeing(mq: DVec4, x: f64) -> bool {
     pure_moments(mq) && sign_agreeing(mq.w, x)
 }
 
-/// Moments whose every sample had one value: no spread, and the run covers the whole count (and is no break
-/// marker). A run continued from another texel can outgrow the count (shaders/tile_classification.glsl).
+/// Moments whose every sample had one value: the run covers the whole count (and is no break marker).
 fn pure_moments(mq: DVec4) -> bool {
-    mq.z > 0.0 && mq.y == 0.0 && mq.w.abs() >= mq.z && mq.w.abs().fract() == 0.0
+    mq.z > 0.0 && mq.w.abs() >= mq.z && mq.w.abs().fract() == 0.0
 }
 
 /// Whether two or more of the 8 pixels around p inside the rectangle hold exactly sample `x` this frame (sky pixels
@@ -312,10 +311,10 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
             // A hard edge or a thin feature under a moving camera, where the nearest texel's samples all held the
             // other value: continue the agreeing texel whose samples all agree, moments and history.
             let adopt = pure.z > 0.0 && !sign_agreeing(m.w, x) && pure_moments(m);
-            // Elsewhere the nearest texel lying across the edge from this surface point hands over the longest
-            // agreeing texel's run, not its own.
+            // Elsewhere, where the nearest texel lies across the edge from this surface point, the pixel continues
+            // a stable run of stable_after samples, no longer (shaders/tile_classification.glsl says why).
             if agreeing_run != 0.0 && !stable_agreeing(m.w, x, stable_after) {
-                m.w = agreeing_run;
+                m.w = agreeing_run.signum() * stable_after;
             }
             if adopt {
                 m = pure;

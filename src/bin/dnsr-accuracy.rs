@@ -391,7 +391,7 @@ fn family_section(gpu: &Gpu, md: &mut String) {
         md,
         "\n## Sequence families\n\n{FAMILY_COUNT} seeded members of each family (src/bin/accuracy/family.rs, seeds \
          {FAMILY_SEED}..{}): `lines`, hard edges and 1-3 px lines at random angles on a penumbra of random width \
-         (0.2-3 units), half of them with sky beside the plane and half under a camera panning 1 px per frame; \
+         (0.2-3 units), half of them with sky beside the plane and half under a camera panning 0.3-2.7 px per frame; \
          `moving`, 1-3 discs with penumbrae 0.1-1.5 units wide moving 0.5-8 px per frame (log-uniform) without \
          motion vectors, each against its static twin (the same discs held still). RMSE over frames {WARMUP}..{FRAMES}; \
          ratio: the output's RMSE over the 1-spp input's (goal: below 1 everywhere, at most 0.5 with penumbrae); \

@@ -1,7 +1,8 @@
 //! Seeded families of truth-known sequences, reported as distributions rather than one sequence each: hard edges
 //! and 1-3 px lines of random orientation on penumbrae of random width (half of them with sky beside the plane,
-//! half under a panning camera), and occluders moving 0.5-8 px per frame without motion vectors, each measured
-//! against its own static twin (the same field held still).
+//! half under a camera panning 0.3-2.7 px per frame, so that the history falls between pixel centres as a real
+//! camera's does), and occluders moving 0.5-8 px per frame without motion vectors, each measured against its own
+//! static twin (the same field held still).
 
 use dnsr::testing::fields::{band, smoothstep, soft_box};
 use dnsr::testing::images::{mask_to_image, rmse};
@@ -13,7 +14,8 @@ use super::{FRAMES, H, PX, W, WARMUP};
 pub struct Member {
     pub name: String,
     field: Box<dyn Fn(u32, f64, f64) -> f64>,
-    panning: bool,
+    /// Camera pan in pixels per frame (0: still).
+    pan_px: f64,
     plane_half_width: f64,
     /// Moving members: the field held at frame 0 (the static twin the motion target compares with).
     pub moving: bool,
@@ -56,10 +58,12 @@ fn lines_member(seed: u64) -> Member {
     let edge = move |x: f64, z: f64| if (x - ex) * ea.cos() + (z - ez) * ea.sin() > 2.0 { 1.0 } else { 0.0 };
     let panning = r.next() < 0.5;
     let plane_half_width = if r.next() < 0.5 { 5.0 } else { 1e9 };
+    // Whole-pixel pans keep the history on texel centres, where a moving camera's footprint never splits.
+    let pan_px = if panning { r.range(0.3, 2.7) } else { 0.0 };
     Member {
         name: format!("lines {seed}"),
         field: Box::new(move |_, x, z| 1.0 - soft(x, z).max(line(x, z)).max(edge(x, z))),
-        panning,
+        pan_px,
         plane_half_width,
         moving: false,
     }
@@ -90,7 +94,7 @@ fn moving_member(seed: u64) -> Member {
                 v.min(smoothstep(radius - width / 2.0, radius + width / 2.0, d))
             })
         }),
-        panning: false,
+        pan_px: 0.0,
         plane_half_width: 1e9,
         moving: true,
     }
@@ -104,7 +108,7 @@ pub fn members(first_seed: u64, count: u64) -> Vec<Member> {
 impl Member {
     /// Frame t; `still` holds the field at frame 0 (the static twin).
     pub fn frame(&self, t: u32, still: bool) -> FrameInputs {
-        let camera = |t: u32| Camera::above(if self.panning { t as f64 * PX } else { 0.0 }, 0.0, 10.0);
+        let camera = |t: u32| Camera::above(t as f64 * self.pan_px * PX, 0.0, 10.0);
         let ft = if still { 0 } else { t };
         let seed = 0xFA11_0000 + t as u64 * 7919;
         render(W, H, &camera(t), &camera(t.saturating_sub(1)), self.plane_half_width, &|x, z| (self.field)(ft, x, z), seed)

@@ -1362,11 +1362,6 @@ typedef struct DnsrDiagnosis {
 } DnsrDiagnosis;
 
 /**
- * `DnsrReferenceFrameInfo`.
- */
-#define DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO 6
-
-/**
  * Discard the previous state (the callbacks for previous depth, moments and history are not called).
  */
 #define DNSR_REFERENCE_RESET (1 << 0)
@@ -1482,6 +1477,11 @@ typedef struct DnsrDiagnosis {
  * `DnsrClassifierTimings`.
  */
 #define DNSR_STRUCTURE_TYPE_CLASSIFIER_TIMINGS 9
+
+/**
+ * `DnsrReferenceFrameInfo` (the CPU reference from C).
+ */
+#define DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO 10
 
 /**
  * Forces 32 bits.

@@ -3,13 +3,10 @@
 
 use super::boundary::{check_no_next, check_type, guard, required, CallError};
 use super::convert::settings_from_c;
-use super::types::{DnsrResult, DnsrSettings, DnsrStructureType};
+use super::types::{DnsrResult, DnsrSettings, DnsrStructureType, DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO};
 use crate::reference::{decode_normal, memory::Frame, run_frame};
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use std::ffi::c_void;
-
-/// `DnsrReferenceFrameInfo`.
-pub const DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO: DnsrStructureType = 6;
 
 /// Reference frame flags.
 pub type DnsrReferenceFlags = u32;

@@ -126,6 +126,8 @@ pub const DNSR_STRUCTURE_TYPE_CLASSIFY_DISPATCH: DnsrStructureType = 7;
 pub const DNSR_STRUCTURE_TYPE_CLASSIFIER_BUFFERS: DnsrStructureType = 8;
 /// `DnsrClassifierTimings`.
 pub const DNSR_STRUCTURE_TYPE_CLASSIFIER_TIMINGS: DnsrStructureType = 9;
+/// `DnsrReferenceFrameInfo` (the CPU reference from C).
+pub const DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO: DnsrStructureType = 10;
 /// Forces 32 bits.
 pub const DNSR_STRUCTURE_TYPE_MAX_ENUM: DnsrStructureType = 0x7FFF_FFFF;
 

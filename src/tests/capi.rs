@@ -183,7 +183,7 @@ fn handles_codes_and_messages() {
 mod reference_table {
     use super::super::{correctness::smooth, gpu, static_frame};
     use crate::capi::reference::*;
-    use crate::capi::types::DnsrResult;
+    use crate::capi::types::{DnsrResult, DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO};
     use crate::testing::scene::FrameInputs;
     use crate::ShadowInput;
     use crate::testing::Runner;

@@ -383,6 +383,28 @@ fn header_declares_only_dnsr_names() {
     assert!(foreign.is_empty(), "include/dnsr.h declares names without the dnsr prefix: {foreign:?}");
 }
 
+/// Every structure type tag of the header has a value of its own: a structure tagged as another one must be
+/// refused (DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH and _REFERENCE_FRAME_INFO once shared 6).
+#[test]
+fn every_structure_type_is_distinct() {
+    let header = String::from_utf8(generated_header()).unwrap();
+    let mut seen = std::collections::BTreeMap::new();
+    for line in header.lines() {
+        let Some(rest) = line.strip_prefix("#define DNSR_STRUCTURE_TYPE_") else { continue };
+        let (name, value) = rest.split_once(' ').expect("a #define with a value");
+        let value = value.trim();
+        let value = match value.strip_prefix("0x") {
+            Some(hex) => u32::from_str_radix(hex, 16),
+            None => value.parse(),
+        }
+        .unwrap_or_else(|_| panic!("DNSR_STRUCTURE_TYPE_{name}: value {value}"));
+        if let Some(other) = seen.insert(value, name.to_string()) {
+            panic!("DNSR_STRUCTURE_TYPE_{name} and DNSR_STRUCTURE_TYPE_{other} share the value {value}");
+        }
+    }
+    assert!(seen.len() >= 11, "the scan found only {seen:?}");
+}
+
 #[test]
 fn header_documents_every_setting_range() {
     let header = String::from_utf8(generated_header()).unwrap();

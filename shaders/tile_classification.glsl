@@ -472,7 +472,6 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             vec2 f = t - floor(t);
             float all_weight = 0.0;
             vec2 receivers = vec2(0.0);
-            float agreeing_run = 0.0;
             // The texel of the longest pure run that agrees with x (every sample of its moments identical): its
             // moments and history. (Keeping only its position and reading them again after the loop ran faster on
             // an H100, 0.560 -> 0.497 ms at 4K, but the extra fetch sites made lavapipe leak memory every frame.)
@@ -501,7 +500,6 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
                 }
                 if (!dnsr_stable_agreeing(mq.w, x, stable_after)) continue;
                 run_history += vec2(weight * texel, weight);
-                if (abs(mq.w) > abs(agreeing_run)) agreeing_run = mq.w;
             }
             // A hard edge or a thin feature (a 1-px shadow line) under a moving camera: the nearest texel lies
             // across it. Where the nearest texel's samples all held the other value (a hard edge between two
@@ -515,15 +513,15 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             // penumbra (each frame some texel of the footprint agrees), until they covered moments that held both
             // values and the pixel counted as pure and converged (scene family, 10-degree penumbra under an
             // orbiting camera, seed 1047: Quality RMSE 0.105 -> 0.060).
-            if (agreeing_run != 0.0 && !dnsr_stable_agreeing(m.w, x, stable_after)) m.w = sign(agreeing_run) * stable_after;
+            if (run_history.y > 0.0 && !dnsr_stable_agreeing(m.w, x, stable_after)) m.w = (x >= 0.5 ? 1.0 : -1.0) * stable_after;
             if (adopt) m = pure;
             // A silhouette under a moving camera, between resolved surfaces: the footprint holds sky, its receiver
             // texels of the other value held it in all their samples (converged_after or more), the ones of this
             // sample's value in all their samples or their last converged_after, and two neighbours share this
             // sample (a stray sample of a penumbra seldom has them). This sample is the answer: the history and
             // the filter would only blend it with the other side (the scene family's sky scenes under a panning
-            // camera: seed 1092 RMSE 0.148 -> 0.061). Not away from the sky: there the same test also takes the
-            // umbra side of a penumbra for a hard edge (the family's penumbrae under a moving camera lost 5-20%).
+            // camera: seed 1092 RMSE 0.148 -> 0.059). Not away from the sky: there the same test also takes the
+            // umbra side of a penumbra for a hard edge (the family's penumbrae under a moving camera lost 5-30%).
 #ifdef DNSR_VISIBILITY_INPUT
             bool resolvable = dnsr_is_exact(x) && !untraced;
 #else

@@ -268,7 +268,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
         if s.uses_runs() {
             let t = DVec2::new(history_uv.x * e[0] as f64 - 0.5, history_uv.y * e[1] as f64 - 0.5);
             let f = t - t.floor();
-            let (mut agree, mut all, mut receivers, mut agreeing_run) = (DVec2::ZERO, 0.0, DVec2::ZERO, 0.0f64);
+            let (mut agree, mut all, mut receivers) = (DVec2::ZERO, 0.0, DVec2::ZERO);
             // The texel of the longest pure run that agrees with x: its moments and history.
             let (mut pure, mut pure_history) = (DVec4::ZERO, 0.0);
             // Every receiver texel resolved: of the other value (one of them is) pure and converged, of this
@@ -304,17 +304,14 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
                     continue;
                 }
                 agree += DVec2::new(weight * texel, weight);
-                if mq.w.abs() > agreeing_run.abs() {
-                    agreeing_run = mq.w;
-                }
             }
             // A hard edge or a thin feature under a moving camera, where the nearest texel's samples all held the
             // other value: continue the agreeing texel whose samples all agree, moments and history.
             let adopt = pure.z > 0.0 && !sign_agreeing(m.w, x) && pure_moments(m);
             // Elsewhere, where the nearest texel lies across the edge from this surface point, the pixel continues
             // a stable run of stable_after samples, no longer (shaders/tile_classification.glsl says why).
-            if agreeing_run != 0.0 && !stable_agreeing(m.w, x, stable_after) {
-                m.w = agreeing_run.signum() * stable_after;
+            if agree.y > 0.0 && !stable_agreeing(m.w, x, stable_after) {
+                m.w = if x >= 0.5 { stable_after } else { -stable_after };
             }
             if adopt {
                 m = pure;
@@ -410,11 +407,12 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     let history_weight = ((full - m.z).max(0.0) / full).sqrt();
     let alpha = min_blend + (1.0 - min_blend) * history_weight;
     let shadow = clamped + (x - clamped) * alpha;
-    // Converged (Settings::converged_samples, on a stable pixel): variance 0 tells the filter that the input may
-    // resolve this pixel; the value stays the temporal one (shaders/tile_classification.glsl says why).
+    // A resolved pixel is this sample, flagged converged.
     if resolved {
         return (m, DVec2::new(x, 0.0));
     }
+    // Converged (Settings::converged_samples, on a stable pixel): variance 0 tells the filter that the input may
+    // resolve this pixel; the value stays the temporal one (shaders/tile_classification.glsl says why).
     let variance = if stable && !flipped && pure_moments(m) && converged(m.w, x, s.converged_samples as f64) {
         0.0
     } else {

@@ -16,6 +16,7 @@ use std::path::PathBuf;
 
 #[path = "accuracy/family.rs"]
 mod family;
+use family::Kind;
 
 const W: u32 = 160;
 const H: u32 = 96;
@@ -384,7 +385,7 @@ const FAMILY_COUNT: u64 = 12;
 
 /// Every preset on the sequence families, as distributions: the output's RMSE over its 1-spp input's, how many
 /// members the output is worse on, and for moving occluders the RMSE over the static twin's.
-fn family_section(gpu: &Gpu, md: &mut String) {
+fn family_section(gpu: &Gpu, md: &mut String, img_dir: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
     let members = family::members(FAMILY_SEED, FAMILY_COUNT);
     let input: Vec<f64> = members.iter().map(|m| m.input_rmse(false)).collect();
     let _ = writeln!(
@@ -392,44 +393,60 @@ fn family_section(gpu: &Gpu, md: &mut String) {
         "\n## Sequence families\n\n{FAMILY_COUNT} seeded members of each family (src/bin/accuracy/family.rs, seeds \
          {FAMILY_SEED}..{}): `lines`, hard edges and 1-3 px lines at random angles on a penumbra of random width \
          (0.2-3 units), half of them with sky beside the plane and half under a camera panning 0.3-2.7 px per frame; \
-         `moving`, 1-3 discs with penumbrae 0.1-1.5 units wide moving 0.5-8 px per frame (log-uniform) without \
-         motion vectors, each against its static twin (the same discs held still). RMSE over frames {WARMUP}..{FRAMES}; \
-         ratio: the output's RMSE over the 1-spp input's (goal: below 1 everywhere, at most 0.5 with penumbrae); \
-         motion: the moving member's RMSE over its static twin's (goal: at most 1.5). Median / 90th percentile / worst \
-         over the members.\n",
+         `disocclusion`, 1-3 boxes 1.5-4 units tall on the plane (lit top, one shadowed side, a soft shadow on the \
+         ground) under a camera moving back and forth 0.5-3 px per frame, so that their parallax uncovers strips of \
+         ground every frame; `shells`, 1-2 thin two-sided shells tilted 8-30 degrees from vertical, one side lit \
+         and the other shadowed, whose plane the camera crosses between frames 20 and 36 (the side in view flips \
+         at the same depth); `moving`, 1-3 discs with penumbrae 0.1-1.5 units wide moving 0.5-8 px per frame \
+         (log-uniform) without motion vectors, each against its static twin (the same discs held still). RMSE over \
+         frames {WARMUP}..{FRAMES}; ratio: the output's RMSE over the 1-spp input's (goal: below 1 everywhere, at \
+         most 0.5 with penumbrae); motion: the moving member's RMSE over its static twin's (goal: at most 1.5). \
+         Median / 90th percentile / worst over the members, and in how many of them the output is worse than its \
+         input.\n",
         FAMILY_SEED + FAMILY_COUNT - 1
     );
-    let _ = writeln!(md, "| preset | lines: ratio | lines: worse than input | moving: ratio | moving: worse than input | motion: moving / static |");
-    let _ = writeln!(md, "|---|---|---|---|---|---|");
+    let names: Vec<String> = Kind::ALL.iter().map(|k| format!("{}: ratio", k.name())).collect();
+    let _ = writeln!(md, "| preset | {} | motion: moving / static |", names.join(" | "));
+    let _ = writeln!(md, "|---|{}---|", "---|".repeat(Kind::ALL.len()));
+    let q = |v: Vec<f64>| {
+        let (m, p, w) = family::quantiles(v);
+        format!("{m:.3} / {p:.3} / {w:.3}")
+    };
+    // The first member of each family, last frame, per preset.
+    let mut shown: Vec<Vec<Run>> = Vec::new();
     for preset in [Preset::Fast, Preset::Balanced, Preset::Quality] {
         let mode = Mode { settings: Settings::preset(preset), precision: Precision::Fp32, guidance: None, rays: None, checkerboard: false };
-        let out: Vec<f64> = members.iter().map(|m| run_frames(gpu, &|t| m.frame(t, false), false, mode).metrics.rmse).collect();
+        let runs: Vec<Run> = members.iter().map(|m| run_frames(gpu, &|t| m.frame(t, false), false, mode)).collect();
+        let out: Vec<f64> = runs.iter().map(|r| r.metrics.rmse).collect();
+        shown.push(runs.into_iter().take(Kind::ALL.len()).collect());
         let still: Vec<Option<f64>> = members
             .iter()
-            .map(|m| m.moving.then(|| run_frames(gpu, &|t| m.frame(t, true), false, mode).metrics.rmse))
+            .map(|m| m.moving().then(|| run_frames(gpu, &|t| m.frame(t, true), false, mode).metrics.rmse))
             .collect();
-        let of_kind = |moving: bool| -> (Vec<f64>, usize) {
-            let idx: Vec<usize> = (0..members.len()).filter(|&i| members[i].moving == moving).collect();
-            (idx.iter().map(|&i| out[i] / input[i]).collect(), idx.iter().filter(|&&i| out[i] > input[i]).count())
-        };
-        let (lines, lines_worse) = of_kind(false);
-        let (moving, moving_worse) = of_kind(true);
+        let cells: Vec<String> = Kind::ALL
+            .iter()
+            .map(|&kind| {
+                let idx: Vec<usize> = (0..members.len()).filter(|&i| members[i].kind == kind).collect();
+                let worse = idx.iter().filter(|&&i| out[i] > input[i]).count();
+                format!("{}, {worse} worse", q(idx.iter().map(|&i| out[i] / input[i]).collect()))
+            })
+            .collect();
         let motion: Vec<f64> = (0..members.len()).filter_map(|i| still[i].map(|s| out[i] / s)).collect();
-        let q = |v: Vec<f64>| {
-            let (m, p, w) = family::quantiles(v);
-            format!("{m:.3} / {p:.3} / {w:.3}")
-        };
-        let _ = writeln!(
-            md,
-            "| {preset:?} | {} | {lines_worse} of {FAMILY_COUNT} | {} | {moving_worse} of {FAMILY_COUNT} | {} |",
-            q(lines),
-            q(moving),
-            q(motion)
-        );
-        eprintln!("families, {preset:?}: done");
+        let _ = writeln!(md, "| {preset:?} | {} | {} |", cells.join(" | "), q(motion));
+        let each: Vec<String> = members.iter().zip(&out).map(|(m, o)| format!("{} {o:.4}", m.name)).collect();
+        eprintln!("families, {preset:?}: {}", each.join(", "));
     }
     let worst: Vec<String> = members.iter().zip(&input).map(|(m, e)| format!("{} {e:.3}", m.name)).collect();
     let _ = writeln!(md, "\n1-spp input RMSE per member: {}.", worst.join(", "));
+    let _ = writeln!(md, "\nImages (the first member of each family, last frame: 1-spp input | Fast | Balanced | Quality | truth):\n");
+    for (i, kind) in Kind::ALL.iter().enumerate() {
+        let images: [&[f32]; 5] = [&shown[0][i].last_noisy, &shown[0][i].last, &shown[1][i].last, &shown[2][i].last, &shown[0][i].last_truth];
+        let (w, strip) = side_by_side(W, H, &images);
+        let file = format!("family-{}.png", kind.name());
+        write_png(&img_dir.join(&file), w, H, &strip)?;
+        let _ = writeln!(md, "`{}`\n\n![{}](accuracy/{file})\n", members[i].name, members[i].name);
+    }
+    Ok(())
 }
 
 fn rays_section(gpu: &Gpu, md: &mut String) {
@@ -563,6 +580,95 @@ fn guided_section(gpu: &Gpu, md: &mut String, img_dir: &std::path::Path) -> Resu
     Ok(())
 }
 
+/// Every frame of one family member, for each preset: a strip of the 1-spp input, the output, the truth, the
+/// error (|output - truth| x 4) and the sample count, into DIR/accuracy/dump/<member>-<preset>-<frame>.png; with
+/// `trace`, the CPU reference's state at that pixel every frame (stderr).
+fn dump_member(gpu: &Gpu, name: &str, img_dir: &std::path::Path, trace: Option<[i32; 2]>) -> Result<(), Box<dyn std::error::Error>> {
+    let members = family::members(FAMILY_SEED, FAMILY_COUNT);
+    let m = members.iter().find(|m| m.name == name).ok_or_else(|| format!("no family member is called {name:?}"))?;
+    let dir = img_dir.join("dump");
+    std::fs::create_dir_all(&dir)?;
+    for preset in [Preset::Balanced, Preset::Quality] {
+        let mut info = gpu.create_info(W, H);
+        info.output_format = vk::Format::R32_SFLOAT;
+        info.settings = Settings::preset(preset);
+        // Two contexts in step: one shows the shadow, the other the sample count.
+        let (mut shadow, mut count) = (Runner::new(gpu, &info)?, Runner::new(gpu, &info)?);
+        let mut sq = 0.0;
+        let mut cpu = dnsr::reference::memory::Frame::new(W as i32, H as i32, info.settings);
+        for t in 0..FRAMES {
+            let f = m.frame(t, false);
+            if let Some(p) = trace {
+                trace_pixel(&mut cpu, &shadow.dispatch(&f), &f, p, t);
+            }
+            let out = shadow.frame(&f, t == 0);
+            let d = dnsr::ShadowsDispatch { reset: t == 0, debug_view: dnsr::DebugView::SampleCount, ..count.dispatch(&f) };
+            let samples = count.run(&f, &d)?;
+            let err: Vec<f32> = out.iter().zip(&f.truth).zip(&f.receiver).map(|((o, t), &r)| if r { 4.0 * (o - t).abs() } else { 0.0 }).collect();
+            let e = dnsr::testing::images::rmse(&out, &f.truth, &f.receiver);
+            if t >= WARMUP {
+                sq += e * e;
+            }
+            let (w, strip) = side_by_side(W, H, &[&mask_to_image(&f), &out, &f.truth, &err, &samples]);
+            write_png(&dir.join(format!("{}-{preset:?}-{t:02}.png", name.replace(' ', "-"))), w, H, &strip)?;
+            eprintln!("{name} {preset:?} frame {t}: RMSE {e:.4}");
+        }
+        eprintln!("{name} {preset:?}: RMSE over frames {WARMUP}..{FRAMES} {:.4}", (sq / (FRAMES - WARMUP) as f64).sqrt());
+    }
+    Ok(())
+}
+
+/// Runs the CPU reference on frame `f` and prints pixel `p`'s state: its sample and truth, its velocity, the
+/// previous moments (mean / count / run) and history of the four texels of its history footprint (with the
+/// bilinear fraction), and its new moments, temporal result and output.
+fn trace_pixel(cpu: &mut dnsr::reference::memory::Frame, d: &dnsr::ShadowsDispatch, f: &FrameInputs, p: [i32; 2], t: u32) {
+    use glam::{DVec2, DVec3};
+    cpu.projection_inverse = d.projection_inverse.as_dmat4();
+    cpu.reprojection = d.reprojection_matrix.as_dmat4();
+    cpu.view_projection_inverse = d.view_projection_inverse.as_dmat4();
+    cpu.eye = d.eye.as_dvec3();
+    cpu.depth_similarity_sigma = d.depth_similarity_sigma as f64;
+    cpu.reset = t == 0;
+    cpu.hit_mask = f.mask.clone();
+    cpu.depth = f.depth.iter().map(|&v| v as f64).collect();
+    cpu.velocity = f.velocity.iter().map(|v| DVec2::new(v[0] as f64, v[1] as f64)).collect();
+    cpu.normals = f.normals.iter().map(|n| DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64)).collect();
+    dnsr::reference::run_frame(cpu, true);
+    let i = |q: [i32; 2]| (q[1] * W as i32 + q[0]) as usize;
+    let v = f.velocity[i(p)];
+    let h = [p[0] as f64 + v[0] as f64 * W as f64, p[1] as f64 + v[1] as f64 * H as f64];
+    let q0 = [h[0].floor() as i32, h[1].floor() as i32];
+    let texels: Vec<String> = (0..4)
+        .map(|k| {
+            let q = [q0[0] + (k & 1), q0[1] + (k >> 1)];
+            if q[0] < 0 || q[1] < 0 || q[0] >= W as i32 || q[1] >= H as i32 {
+                return "-".into();
+            }
+            let m = cpu.previous_moments[i(q)];
+            format!("{:.2}/{:.0}/{:+.1} h{:.2}", m.x, m.z, m.w, cpu.history[i(q)])
+        })
+        .collect();
+    let (m, r) = (cpu.moments[i(p)], cpu.reprojection_out[i(p)]);
+    eprintln!(
+        "t {t}: sample {} truth {:.2} velocity ({:.2}, {:.2}) px | footprint ({:.2}, {:.2}) {} | moments {:.3}/{:.0}/{:+.1} \
+         temporal {:.3} variance {:.4} output {:.3}",
+        mask_to_image(f)[i(p)],
+        f.truth[i(p)],
+        v[0] * W as f32,
+        v[1] * H as f32,
+        h[0] - q0[0] as f64,
+        h[1] - q0[1] as f64,
+        texels.join(" | "),
+        m.x,
+        m.z,
+        m.w,
+        r.x,
+        r.y,
+        cpu.output[i(p)]
+    );
+    cpu.advance();
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut out_dir = PathBuf::from("docs");
     let mut guided_only = false;
@@ -570,6 +676,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut checkerboard_only = false;
     let mut family_only = false;
     let mut presets_only = false;
+    let mut dump = None;
+    let mut trace = None;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
@@ -579,8 +687,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "--checkerboard-only" => checkerboard_only = true,
             "--family-only" => family_only = true,
             "--presets-only" => presets_only = true,
+            "--trace" => {
+                let v = args.next().ok_or("--trace needs X,Y")?;
+                let (x, y) = v.split_once(',').ok_or("--trace needs X,Y")?;
+                trace = Some([x.parse::<i32>()?, y.parse::<i32>()?]);
+            }
+            "--dump" => dump = Some(args.next().ok_or("--dump needs a family member's name, e.g. \"shells 2003\"")?),
             _ => {
-                let usage = "usage: dnsr-accuracy [--out DIR] [--guided-only] [--rays-only] [--checkerboard-only] [--family-only] [--presets-only]";
+                let usage = "usage: dnsr-accuracy [--out DIR] [--guided-only] [--rays-only] [--checkerboard-only] [--family-only] [--presets-only] [--dump MEMBER]";
                 return Err(format!("unknown argument {a}; {usage}").into());
             }
         }
@@ -588,6 +702,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let img_dir = out_dir.join("accuracy");
     std::fs::create_dir_all(&img_dir)?;
     let gpu = Gpu::new(GpuOptions { validation: false, ..Default::default() });
+    if let Some(name) = dump {
+        return dump_member(&gpu, &name, &img_dir, trace);
+    }
     let all = |settings: Settings, precision: Precision| -> Vec<Run> {
         SEQUENCES.iter().map(|q| run(&gpu, q, Mode { settings, precision, guidance: None, rays: None, checkerboard: false })).collect()
     };
@@ -620,7 +737,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     if guided_only || rays_only || checkerboard_only || family_only {
         if family_only {
-            family_section(&gpu, &mut md);
+            family_section(&gpu, &mut md, &img_dir)?;
         }
         if guided_only {
             guided_section(&gpu, &mut md, &img_dir)?;
@@ -665,7 +782,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         kept.join(", ")
     );
 
-    family_section(&gpu, &mut md);
+    family_section(&gpu, &mut md, &img_dir)?;
     guided_section(&gpu, &mut md, &img_dir)?;
     rays_section(&gpu, &mut md);
     checkerboard_section(&gpu, &mut md);

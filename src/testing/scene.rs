@@ -173,6 +173,62 @@ pub fn render_with_blockers(
     blocker: &dyn Fn(f64, f64) -> f64,
     seed: u64,
 ) -> FrameInputs {
+    let ground = Ground { half_width: plane_half_width, visibility, blocker };
+    render_scene(width, height, cam, prev, &ground, &[], seed)
+}
+
+/// The ground plane y = 0 of a scene: where it ends (sky beyond |x| = `half_width`), its visibility field and the
+/// distance to the occluder a ray that hits it finds.
+pub struct Ground<'a> {
+    /// The plane covers world |x| < this.
+    pub half_width: f64,
+    /// Visibility at world (x, z).
+    pub visibility: Visibility<'a>,
+    /// Occluder distance at world (x, z), written where a ray hit.
+    pub blocker: &'a dyn Fn(f64, f64) -> f64,
+}
+
+/// A two-sided parallelogram above the ground (a box face, one face of a thin shell): the points
+/// `corner + s * edges[0] + t * edges[1]` for s and t in [0, 1]. It hides what lies behind it, so a moving camera
+/// uncovers the ground beside it (disocclusion), and a camera that crosses its plane sees its other side (a shell
+/// that flips). Static: its motion vectors are the camera's.
+pub struct Quad<'a> {
+    /// One corner, world units.
+    pub corner: DVec3,
+    /// The two edges from `corner`; `edges[0] x edges[1]` is the front side's normal.
+    pub edges: [DVec3; 2],
+    /// Visibility of the front and back side at (s, t).
+    pub sides: [Visibility<'a>; 2],
+}
+
+impl Quad<'_> {
+    /// The ray parameter, world normal of the side facing the ray, and the visibility there, where the ray
+    /// `from + k * dir` (k > 0) hits this quad.
+    fn hit(&self, from: DVec3, dir: DVec3) -> Option<(f64, DVec3, f64)> {
+        let [e0, e1] = self.edges;
+        let n = e0.cross(e1);
+        let facing = n.dot(dir);
+        if facing.abs() < 1e-12 {
+            return None;
+        }
+        let k = n.dot(self.corner - from) / facing;
+        let d = from + dir * k - self.corner;
+        let (a, b, c) = (e0.length_squared(), e0.dot(e1), e1.length_squared());
+        let det = a * c - b * b;
+        let s = (d.dot(e0) * c - d.dot(e1) * b) / det;
+        let t = (d.dot(e1) * a - d.dot(e0) * b) / det;
+        if !(k > 0.0 && (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t)) {
+            return None;
+        }
+        let front = facing < 0.0;
+        let normal = if front { n.normalize() } else { -n.normalize() };
+        Some((k, normal, self.sides[if front { 0 } else { 1 }](s, t)))
+    }
+}
+
+/// Builds one frame of the ground and the quads above it. `seed` draws the mask; `prev` is the previous frame's
+/// camera.
+pub fn render_scene(width: u32, height: u32, cam: &Camera, prev: &Camera, ground: &Ground, quads: &[Quad], seed: u64) -> FrameInputs {
     let aspect = width as f64 / height as f64;
     // Camera-relative matrices: both frames relative to the current eye, so large world coordinates cancel in f64.
     let origin = cam.eye;
@@ -193,28 +249,34 @@ pub fn render_with_blockers(
                 p.truncate() / p.w
             };
             let a = unproject(if cam.inverted { 1.0 } else { 0.0 });
-            let b = unproject(0.5);
-            let dir = b - a;
+            let dir = unproject(0.5) - a;
+            // The nearest surface: (ray parameter, normal, visibility, occluder distance).
             let t = -(a.y + origin.y) / dir.y;
-            let hit = a + dir * t;
-            let world = hit + origin;
-            let on_plane = t > 0.0 && (world.x).abs() < plane_half_width;
+            let world = a + dir * t + origin;
+            let mut nearest = (t > 0.0 && world.x.abs() < ground.half_width)
+                .then(|| (t, DVec3::Y, (ground.visibility)(world.x, world.z), (ground.blocker)(world.x, world.z)));
+            for q in quads {
+                let hit = q.hit(a + origin, dir);
+                if let Some((k, normal, v)) = hit.filter(|h| nearest.is_none_or(|n| h.0 < n.0)) {
+                    nearest = Some((k, normal, v, 0.0));
+                }
+            }
             let mut lit = true;
-            if on_plane {
+            if let Some((k, normal, v, blocker)) = nearest {
+                let hit = a + dir * k;
                 let clip = vp * DVec4::new(hit.x, hit.y, hit.z, 1.0);
                 f.depth[i] = (clip.z / clip.w) as f32;
                 let prev_clip = vp_prev * DVec4::new(hit.x, hit.y, hit.z, 1.0);
                 let prev_uv = [prev_clip.x / prev_clip.w * 0.5 + 0.5, prev_clip.y / prev_clip.w * 0.5 + 0.5];
                 f.velocity[i] = [(prev_uv[0] - uv[0]) as f32, (prev_uv[1] - uv[1]) as f32];
-                let v = visibility(world.x, world.z).clamp(0.0, 1.0);
+                f.normals[i] = [normal.x as f32, normal.y as f32, normal.z as f32, 0.0];
+                let v = v.clamp(0.0, 1.0);
                 f.truth[i] = v as f32;
                 f.receiver[i] = true;
                 lit = hash01(seed, x, y) < v;
                 if !lit {
-                    f.hit_distance[i] = blocker(world.x, world.z) as f32;
+                    f.hit_distance[i] = blocker as f32;
                 }
-            } else {
-                f.depth[i] = sky_depth;
             }
             if !lit {
                 f.mask[((y / 4) * tw + x / 8) as usize] |= 1 << ((y % 4) * 8 + (x % 8));

@@ -228,8 +228,18 @@ bool dnsr_sign_agreeing(float run, float x) {
     return x >= 0.5 ? run > 0.0 : run < 0.0;
 }
 
-// Moments whose every sample had one value: the run covers the whole count (and is no break marker).
-bool dnsr_pure(vec4 mq) { return mq.z > 0.0 && abs(mq.w) >= mq.z && fract(abs(mq.w)) == 0.0; }
+// Moments whose every sample had one value: the run covers the whole count (and is no break marker), and the
+// mean is exactly the run's value, or the run is at least twice the count. The run alone does not tell: a rejected
+// history keeps its run but not its count, and a handed-over run (stable_after) can exceed a count that a
+// disocclusion restarted, so under a moving camera penumbra pixels whose moments held both values counted as pure
+// and converged, and skipped the filter (make accuracy's disocclusion family: Quality worse than Balanced). The mean
+// alone is too strict: it never returns exactly to 0 or 1, so a pixel that once saw the other value would never
+// converge again (a still penumbra tail, seed 1002 of the viewer family: worse than its input); a run twice the
+// count outweighs what the moments remember of that sample.
+bool dnsr_pure(vec4 mq) {
+    return mq.z > 0.0 && abs(mq.w) >= mq.z && fract(abs(mq.w)) == 0.0
+        && (mq.x == (mq.w > 0.0 ? 1.0 : 0.0) || abs(mq.w) >= 2.0 * mq.z);
+}
 bool dnsr_pure_agreeing(vec4 mq, float x) { return dnsr_pure(mq) && dnsr_sign_agreeing(mq.w, x); }
 
 // A run of at least `converged_after` (> 0) identical samples that this frame's x does not contradict (x is the

@@ -187,9 +187,11 @@ fn pure_agreeing(mq: DVec4, x: f64) -> bool {
     pure_moments(mq) && sign_agreeing(mq.w, x)
 }
 
-/// Moments whose every sample had one value: the run covers the whole count (and is no break marker).
+/// Moments whose every sample had one value: the run covers the whole count (and is no break marker), and the
+/// mean is exactly the run's value or the run is at least twice the count (shaders/tile_classification.glsl says
+/// why the run alone does not tell).
 fn pure_moments(mq: DVec4) -> bool {
-    mq.z > 0.0 && mq.w.abs() >= mq.z && mq.w.abs().fract() == 0.0
+    mq.z > 0.0 && mq.w.abs() >= mq.z && mq.w.abs().fract() == 0.0 && (mq.x == run_value(mq.w) || mq.w.abs() >= 2.0 * mq.z)
 }
 
 /// Whether two or more of the 8 pixels around p inside the rectangle hold exactly sample `x` this frame (sky pixels

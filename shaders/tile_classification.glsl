@@ -491,6 +491,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             // sample's value pure or converged.
             bool all_resolved = true;
             bool any_other = false;
+            bool all_pure = true;
             for (int k = 0; k < 4; ++k) {
                 float weight = ((k & 1) != 0 ? f.x : 1.0 - f.x) * ((k & 2) != 0 ? f.y : 1.0 - f.y);
                 ivec2 q = clamp(ivec2(floor(t)) + ivec2(k & 1, k >> 1), ivec2(0), dnsr_get_extent() - 1);
@@ -504,6 +505,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
                 bool converged_run = abs(mq.w) >= converged_after;
                 all_resolved = all_resolved && (agreeing ? dnsr_pure(mq) || converged_run : dnsr_pure(mq) && converged_run);
                 any_other = any_other || !agreeing;
+                all_pure = all_pure && dnsr_pure(mq);
                 if (dnsr_pure_agreeing(mq, x) && abs(mq.w) > abs(pure.w)) {
                     pure = mq;
                     pure_history = texel;
@@ -512,11 +514,14 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
                 run_history += vec2(weight * texel, weight);
             }
             // A hard edge or a thin feature (a 1-px shadow line) under a moving camera: the nearest texel lies
-            // across it. Where the nearest texel's samples all held the other value (a hard edge between two
-            // resolved sides, not a penumbra), continue the agreeing texel whose samples all agree, moments and
-            // history: its run alone would leave the other side's samples in the moments, and the pixel would never
-            // count as pure (converged) again.
-            bool adopt = pure.z > 0.0 && !dnsr_sign_agreeing(m.w, x) && dnsr_pure(m);
+            // across it. Where the nearest texel's samples all held the other value and so did every receiver
+            // texel of the footprint, each its own (a hard edge between two resolved sides, not a penumbra),
+            // continue the agreeing texel whose samples all agree, moments and history: its run alone would leave
+            // the other side's samples in the moments, and the pixel would never count as pure (converged) again.
+            // Inside a penumbra the flip rule leaves short pure runs of the other value, and without the condition
+            // on the whole footprint a penumbra pixel took a lit neighbour's pure moments, converged, and passed
+            // its history on the same way next frame (make accuracy, disocclusion 2000: 0.0445 -> 0.0417).
+            bool adopt = pure.z > 0.0 && !dnsr_sign_agreeing(m.w, x) && dnsr_pure(m) && all_pure;
             // Elsewhere, where the nearest texel lies across the edge from this surface point (a moving camera at
             // a silhouette or a crease), the pixel stays stable: it continues a stable run of stable_after samples,
             // no longer. Handing over the agreeing texel's whole run let runs grow from texel to texel in a

@@ -275,7 +275,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
             let (mut pure, mut pure_history) = (DVec4::ZERO, 0.0);
             // Every receiver texel resolved: of the other value (one of them is) pure and converged, of this
             // sample's value pure or converged.
-            let (mut all_resolved, mut any_other) = (true, false);
+            let (mut all_resolved, mut any_other, mut all_pure) = (true, false, true);
             for k in 0..4 {
                 let weight = (if k & 1 != 0 { f.x } else { 1.0 - f.x }) * (if k & 2 != 0 { f.y } else { 1.0 - f.y });
                 let q = [
@@ -298,6 +298,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
                 let converged_run = mq.w.abs() >= converged_after;
                 all_resolved &= if agreeing { pure_moments(mq) || converged_run } else { pure_moments(mq) && converged_run };
                 any_other |= !agreeing;
+                all_pure &= pure_moments(mq);
                 if pure_agreeing(mq, x) && mq.w.abs() > pure.w.abs() {
                     pure = mq;
                     pure_history = texel;
@@ -308,8 +309,9 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
                 agree += DVec2::new(weight * texel, weight);
             }
             // A hard edge or a thin feature under a moving camera, where the nearest texel's samples all held the
-            // other value: continue the agreeing texel whose samples all agree, moments and history.
-            let adopt = pure.z > 0.0 && !sign_agreeing(m.w, x) && pure_moments(m);
+            // other value and every receiver texel's samples held one value: continue the agreeing texel whose
+            // samples all agree, moments and history (shaders/tile_classification.glsl says why the whole footprint).
+            let adopt = pure.z > 0.0 && !sign_agreeing(m.w, x) && pure_moments(m) && all_pure;
             // Elsewhere, where the nearest texel lies across the edge from this surface point, the pixel continues
             // a stable run of stable_after samples, no longer (shaders/tile_classification.glsl says why).
             if agree.y > 0.0 && !stable_agreeing(m.w, x, stable_after) {

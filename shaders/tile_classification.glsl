@@ -232,7 +232,7 @@ bool dnsr_sign_agreeing(float run, float x) {
 // mean is exactly the run's value, or the run is at least twice the count. The run alone does not tell: a rejected
 // history keeps its run but not its count, and a handed-over run (stable_after) can exceed a count that a
 // disocclusion restarted, so under a moving camera penumbra pixels whose moments held both values counted as pure
-// and converged, and skipped the filter (make accuracy's disocclusion family: Quality worse than Balanced). The mean
+// and converged, and skipped the filter (make accuracy's disocclusion family, member 2000: 0.0531 -> 0.0445). The mean
 // alone is too strict: it never returns exactly to 0 or 1, so a pixel that once saw the other value would never
 // converge again (a still penumbra tail, seed 1002 of the viewer family: worse than its input); a run twice the
 // count outweighs what the moments remember of that sample.
@@ -240,7 +240,6 @@ bool dnsr_pure(vec4 mq) {
     return mq.z > 0.0 && abs(mq.w) >= mq.z && fract(abs(mq.w)) == 0.0
         && (mq.x == (mq.w > 0.0 ? 1.0 : 0.0) || abs(mq.w) >= 2.0 * mq.z);
 }
-bool dnsr_pure_agreeing(vec4 mq, float x) { return dnsr_pure(mq) && dnsr_sign_agreeing(mq.w, x); }
 
 // A run of at least `converged_after` (> 0) identical samples that this frame's x does not contradict (x is the
 // run's value, or with a checkerboard input an untraced pixel's neighbour mean on the run's side of 0.5: never
@@ -502,11 +501,12 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
                 float texel = dnsr_read_history_texel(q);
                 receivers += vec2(weight * texel, weight);
                 bool agreeing = dnsr_sign_agreeing(mq.w, x);
+                bool texel_pure = dnsr_pure(mq);
                 bool converged_run = abs(mq.w) >= converged_after;
-                all_resolved = all_resolved && (agreeing ? dnsr_pure(mq) || converged_run : dnsr_pure(mq) && converged_run);
+                all_resolved = all_resolved && (agreeing ? texel_pure || converged_run : texel_pure && converged_run);
                 any_other = any_other || !agreeing;
-                all_pure = all_pure && dnsr_pure(mq);
-                if (dnsr_pure_agreeing(mq, x) && abs(mq.w) > abs(pure.w)) {
+                all_pure = all_pure && texel_pure;
+                if (texel_pure && agreeing && abs(mq.w) > abs(pure.w)) {
                     pure = mq;
                     pure_history = texel;
                 }

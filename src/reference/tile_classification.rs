@@ -182,11 +182,6 @@ fn sign_agreeing(run: f64, x: f64) -> bool {
     is_exact(x) && if x >= 0.5 { run > 0.0 } else { run < 0.0 }
 }
 
-/// A texel's moments whose every sample was exact sample `x`'s value.
-fn pure_agreeing(mq: DVec4, x: f64) -> bool {
-    pure_moments(mq) && sign_agreeing(mq.w, x)
-}
-
 /// Moments whose every sample had one value: the run covers the whole count (and is no break marker), and the
 /// mean is exactly the run's value or the run is at least twice the count (shaders/tile_classification.glsl says
 /// why the run alone does not tell).
@@ -295,11 +290,12 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
                 let texel = io.read_history_texel(q);
                 receivers += DVec2::new(weight * texel, weight);
                 let agreeing = sign_agreeing(mq.w, x);
+                let texel_pure = pure_moments(mq);
                 let converged_run = mq.w.abs() >= converged_after;
-                all_resolved &= if agreeing { pure_moments(mq) || converged_run } else { pure_moments(mq) && converged_run };
+                all_resolved &= if agreeing { texel_pure || converged_run } else { texel_pure && converged_run };
                 any_other |= !agreeing;
-                all_pure &= pure_moments(mq);
-                if pure_agreeing(mq, x) && mq.w.abs() > pure.w.abs() {
+                all_pure &= texel_pure;
+                if texel_pure && agreeing && mq.w.abs() > pure.w.abs() {
                     pure = mq;
                     pure_history = texel;
                 }

@@ -98,11 +98,6 @@ fn download_rg(g: &Gpu, image: vk::Image, format: vk::Format, w: u32, h: u32) ->
     }
 }
 
-/// Which pixels of frame `frame` of a random case are receivers (not sky).
-fn before_receivers(w: u32, h: u32, seed: u64, frame: u64) -> Vec<bool> {
-    random_frame(w, h, seed, frame).receiver
-}
-
 fn dmat(m: Mat4) -> DMat4 {
     m.as_dmat4()
 }
@@ -188,7 +183,7 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     if seed == 12 {
         // Every fifth pixel's history replaced by moments on both sides of the purity test (dnsr_pure): counts
         // from 0.6 to 2.5 (rejected histories), runs of 1 to 5 either way, means exactly the run's value or not.
-        let receivers = before_receivers(w, h, seed, frames - 1);
+        let receivers = random_frame(w, h, seed, frames - 1).receiver;
         for (i, m) in prev_moments.iter_mut().enumerate().filter(|(i, _)| i % 5 == 0 && receivers[*i]) {
             let k = i / 5;
             let run = [1.0, 2.0, 3.0, 4.0, 5.0][k / 4 % 5] * if k % 3 == 0 { -1.0 } else { 1.0 };

@@ -205,7 +205,7 @@ fn shell_member(seed: u64) -> Member {
     let mut solids = Vec::new();
     let mut shadows = Vec::new();
     let shells = r.range(1.0, 2.99) as usize;
-    let mut first_x = 0.0;
+    let (mut first_x, mut crossing_x) = (0.0, 0.0);
     for i in 0..shells {
         let (tilt, height, length) = (r.range(8.0, 30.0).to_radians(), r.range(1.5, 3.0), r.range(2.0, 5.0));
         let (z0, band_at, band_width) = (r.range(-3.5, 0.5), r.range(0.2, 0.8), r.range(0.05, 0.5));
@@ -214,6 +214,7 @@ fn shell_member(seed: u64) -> Member {
         let x0 = if i == 0 { r.range(-2.0, 2.0) } else { first_x + r.range(-3.0, 3.0) };
         if i == 0 {
             first_x = x0;
+            crossing_x = x0 - tilt.tan() * 10.0;
         }
         let up = DVec3::new(-tilt.sin(), tilt.cos(), 0.0) * height;
         let lit = move |_: f64, t: f64| {
@@ -225,8 +226,6 @@ fn shell_member(seed: u64) -> Member {
         solids.push(Solid { corner: DVec3::new(x0, 0.0, z0), edges: [up, DVec3::Z * length], sides });
         shadows.push((x0, z0, length, r.range(0.5, 2.0), r.range(0.2, 1.5)));
     }
-    let tilt = solids[0].edges[0].x.abs().atan2(solids[0].edges[0].y);
-    let crossing_x = first_x - tilt.tan() * 10.0;
     Member {
         name: format!("shells {seed}"),
         kind: Kind::Shells,

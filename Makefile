@@ -49,13 +49,15 @@ test: deps
 	VIEWER_DEVICE="$(DNSR_DEVICE)" examples-c/viewer/test.sh
 
 # "Do no harm" on the procedural scene family (examples-c/viewer/family.py, scenes/make_family.py): FAMILY_SCENES
-# seeded scenes, each with its own light and camera, every preset, as distributions -> docs/viewer-family.md.
+# seeded scenes, each with its own light and camera, every preset without penumbra guidance and Quality with it, as
+# distributions -> docs/viewer-family.md.
 FAMILY_SCENES ?= 100
 # The viewer's committed scenes (default, thin fins, thin shells) against their 1024-ray reference, every preset,
 # directional and point light, still and orbiting camera: writes docs/viewer-accuracy.md (a few minutes on lavapipe).
 viewer-accuracy: viewer
 	examples-c/viewer/accuracy.py build/viewer/dnsr_viewer docs/viewer-accuracy.md
-	python3 examples-c/viewer/family.py build/viewer/dnsr_viewer build/family --count $(FAMILY_SCENES) --md docs/viewer-family.md
+	python3 examples-c/viewer/family.py build/viewer/dnsr_viewer build/family --count $(FAMILY_SCENES) \
+		--presets fast,balanced,quality,quality+guided --md docs/viewer-family.md
 
 # Hybrid shadows against full tracing on the viewer's committed scenes (examples-c/viewer/hybrid.py): rays traced,
 # rays saved, GPU ms and RMSE against a 1024-ray reference, into out/hybrid/hybrid.md. docs/hybrid-shadows.md has the

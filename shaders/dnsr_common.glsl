@@ -46,6 +46,20 @@ float dnsr_unconverged_variance(float variance) {
     return dnsr_converged_on() ? max(variance, DNSR_MIN_UNCONVERGED_VARIANCE) : variance;
 }
 
+#if defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER)
+// Penumbra guidance, Settings::hard_penumbra_pixels (run settings w): the blockers near a tile, `blocker` away on
+// average (-1: none known), cast a penumbra narrower than that many pixels either side of its edge on a receiver at
+// linear depth zc (pen: the light's penumbra constants), and lie DNSR_HARD_PENUMBRA_MIN_BLOCKER_PIXELS pixel
+// footprints or more from it (src/passes/mod.rs says why). One ray resolves such a pixel: its output is its sample.
+bool dnsr_hard_penumbra(float blocker, vec4 pen, float zc) {
+    float radius = dnsr_get_run_settings().w;
+    if (!DNSR_SPEC_PENUMBRA_GUIDED || !(radius > 0.0) || blocker < 0.0) return false;
+    float footprint = pen.y + pen.z * zc;
+    return footprint > 0.0 && blocker * pen.x < radius * footprint
+        && blocker >= float(DNSR_HARD_PENUMBRA_MIN_BLOCKER_PIXELS) * footprint;
+}
+#endif
+
 // Vulkan NDC: uv (0,0) is the top-left corner and maps to ndc (-1,-1).
 vec2 dnsr_uv_to_ndc(vec2 uv) { return uv * 2.0 - 1.0; }
 vec2 dnsr_pixel_uv(ivec2 p) { return (vec2(p) + 0.5) * dnsr_get_inv_extent(); }

@@ -44,6 +44,10 @@ float dnsr_pass_penumbra_falloff(int l, ivec2 p, float zc) {
     if (!DNSR_SPEC_PENUMBRA_GUIDED || !dnsr_get_light_guided(l)) return 0.0;
     return dnsr_penumbra_falloff_of(dnsr_read_light_tile_blocker(l, p / DNSR_TILE_SIZE), dnsr_get_light_penumbra_settings(l), zc);
 }
+bool dnsr_pass_hard(int l, ivec2 p, float zc) {
+    return dnsr_get_light_guided(l)
+        && dnsr_hard_penumbra(dnsr_read_light_tile_blocker(l, p / DNSR_TILE_SIZE), dnsr_get_light_penumbra_settings(l), zc);
+}
 void dnsr_pass_write_filter_output(int l, ivec2 p, vec2 mean_var) { dnsr_write_light_filter_output(l, p, mean_var); }
 #ifdef DNSR_FINAL_PASS
 void dnsr_pass_write_output(int l, ivec2 p, float shadow) { dnsr_write_light_output(l, p, shadow); }
@@ -53,6 +57,9 @@ vec3 dnsr_pass_debug_moments(int l, ivec2 p) { return dnsr_read_light_debug_mome
 vec2 dnsr_pass_filter_input(int l, ivec2 p) { return dnsr_read_filter_input(p); }
 vec4 dnsr_pass_gather_variance(int l, ivec2 corner) { return dnsr_gather_filter_variance(corner); }
 float dnsr_pass_penumbra_falloff(int l, ivec2 p, float zc) { return dnsr_penumbra_falloff(p, zc); }
+bool dnsr_pass_hard(int l, ivec2 p, float zc) {
+    return dnsr_hard_penumbra(dnsr_read_tile_blocker(p / DNSR_TILE_SIZE), dnsr_get_penumbra_settings(), zc);
+}
 void dnsr_pass_write_filter_output(int l, ivec2 p, vec2 mean_var) { dnsr_write_filter_output(p, mean_var); }
 #ifdef DNSR_FINAL_PASS
 void dnsr_pass_write_output(int l, ivec2 p, float shadow) { dnsr_write_output(p, shadow); }
@@ -209,6 +216,7 @@ vec2 dnsr_filter_receiver(int l, ivec2 p, ivec2 lid, int step, float zc, vec3 nc
     float kernel[2] = float[2](1.0, settings.x);
     float normal_power = settings.y;
     vec2 c = dnsr_center_signal(l, p, lid);
+    if (dnsr_converged_signal(c) && dnsr_pass_hard(l, p, zc)) return c;
     float v[9];
     dnsr_variance_neighbourhood(l, p, lid, c, v);
     if (dnsr_passes_through(c, v)) return dnsr_run_signal(c);
@@ -372,24 +380,32 @@ void dnsr_filter_lights(ivec2 gid, ivec2 lid) {
     float inv_depth_sigma = 1.0 / dnsr_get_depth_similarity_sigma();
 
     // The lights this pixel filters, and each one's centre, edge-stop sigma and penumbra falloff.
-    bool filtering[DNSR_LIGHT_SLOTS], converged[DNSR_LIGHT_SLOTS];
+    // A light whose pixel passes through (converged among converged neighbours, or under a hard penumbra) keeps
+    // its pass-through signal in c.
+    bool filtering[DNSR_LIGHT_SLOTS], passes[DNSR_LIGHT_SLOTS];
     vec2 c[DNSR_LIGHT_SLOTS];
     float inv_sigma[DNSR_LIGHT_SLOTS], falloff[DNSR_LIGHT_SLOTS];
     float weight_sum[DNSR_LIGHT_SLOTS], mean_sum[DNSR_LIGHT_SLOTS], var_sum[DNSR_LIGHT_SLOTS];
     [[unroll]] for (int l = 0; l < DNSR_LIGHT_SLOTS; ++l) {
         filtering[l] = l < count && !block_cleared[l] && zc >= 0.0 && (meta[l] & DNSR_TILE_CLEARED) == 0u;
-        converged[l] = false;
+        passes[l] = false;
         c[l] = vec2(0.0);
         inv_sigma[l] = falloff[l] = 0.0;
         if (!filtering[l]) continue;
         c[l] = dnsr_center_signal(l, p, lid);
+        // As in dnsr_filter_receiver: a hard penumbra's sample (flagged converged), or a converged pixel among
+        // converged ones, is the result alone.
+        if (dnsr_converged_signal(c[l]) && dnsr_pass_hard(l, p, zc)) {
+            filtering[l] = false;
+            passes[l] = true;
+            continue;
+        }
         float v[9];
         dnsr_variance_neighbourhood(l, p, lid, c[l], v);
-        // A converged pixel among converged ones passes through (dnsr_filter_receiver): the result below is its
-        // centre alone.
         if (dnsr_passes_through(c[l], v)) {
             filtering[l] = false;
-            converged[l] = true;
+            passes[l] = true;
+            c[l] = dnsr_run_signal(c[l]);
             continue;
         }
         inv_sigma[l] = dnsr_inv_shadow_sigma(v, settings.w);
@@ -426,7 +442,7 @@ void dnsr_filter_lights(ivec2 gid, ivec2 lid) {
     [[unroll]] for (int l = 0; l < DNSR_LIGHT_SLOTS; ++l) {
         if (l >= count || block_cleared[l]) continue;
         vec2 result = zc < 0.0 ? DNSR_SKY_SIGNAL
-                    : converged[l] ? dnsr_run_signal(c[l])
+                    : passes[l] ? c[l]
                     : (!filtering[l] ? dnsr_cleared_value(true, meta[l])
                                      : vec2(clamp(mean_sum[l] / weight_sum[l], 0.0, 1.0),
                                             dnsr_unconverged_variance(max(var_sum[l] / (weight_sum[l] * weight_sum[l]), 0.0))));

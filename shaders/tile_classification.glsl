@@ -392,9 +392,10 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         dnsr_write_cleared(p, receiver, uniform_state, tile_writer);
         return;
     }
+    float blocker = guided ? dnsr_tile_blocker(own_tile) : -1.0;
     if (tile_writer) {
         dnsr_write_tile_meta(p / DNSR_TILE_SIZE, 0u);
-        if (guided) dnsr_write_tile_blocker(p / DNSR_TILE_SIZE, dnsr_tile_blocker(own_tile));
+        if (guided) dnsr_write_tile_blocker(p / DNSR_TILE_SIZE, blocker);
     }
     if (!receiver) {
         dnsr_write_reprojection(p, DNSR_SKY_SIGNAL);
@@ -629,6 +630,13 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
 
     // A resolved pixel is this sample, flagged converged: the filter passes it through among converged neighbours.
     if (resolved) {
+        shadow = x;
+        variance = 0.0;
+    }
+    // Under a penumbra narrower than Settings::hard_penumbra_pixels this sample resolves the pixel: it is the
+    // output (variance 0: converged), and the filter passes it through (dnsr_pass_hard). The moments go on as
+    // before, for the frame the blockers move away.
+    if (dnsr_hard_penumbra(blocker, dnsr_get_penumbra_settings(), dnsr_linear_depth(ndc, depth))) {
         shadow = x;
         variance = 0.0;
     }

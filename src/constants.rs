@@ -74,7 +74,7 @@ gpu_block! {
         filtering: [f32; 4],
         /// x: identical samples in a row that make a pixel stable (0: never); y: samples of the other value after a
         /// stable run that restart its history (0: never); z: identical samples in a row that make a pixel
-        /// converged (0: never); w: unused.
+        /// converged (0: never); w: penumbra guidance's hard penumbra half-width in pixels (0: off).
         runs: [f32; 4],
         /// Penumbra guidance (the pipelines specialized with DNSR_SPEC_PENUMBRA_GUIDED): x: tan(light angular diameter / 2); yz: a pixel's
         /// world-space size at linear view depth z is y + z * z; w: the kernel's sigma in penumbra half-widths.
@@ -188,6 +188,7 @@ pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
     ("DNSR_MAX_SAMPLE_RUN", crate::passes::MAX_SAMPLE_RUN),
     ("DNSR_RUN_CLAMP_SAMPLES", crate::passes::RUN_CLAMP_SAMPLES),
     ("DNSR_UNCONVERGED_VARIANCE_INV", crate::passes::UNCONVERGED_VARIANCE_INV),
+    ("DNSR_HARD_PENUMBRA_MIN_BLOCKER_PIXELS", crate::passes::HARD_PENUMBRA_MIN_BLOCKER_PIXELS),
     ("DNSR_SPEC_ID_PENUMBRA_GUIDED", crate::gpu::shader::SPEC_PENUMBRA_GUIDED),
     ("DNSR_SPEC_ID_STABLE_HISTORY", crate::gpu::shader::SPEC_STABLE_HISTORY),
     ("DNSR_LIGHT_SLOTS", crate::passes::LIGHT_SLOTS as u32),

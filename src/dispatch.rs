@@ -113,7 +113,8 @@ pub struct ShadowsDispatch {
     /// R32_SFLOAT, sampled. Read only where the hit mask says the ray hit; a value there that is not finite and
     /// positive counts as unknown. With it, the filter derives how wide the penumbra can be around each pixel
     /// (from `light_angular_size`, the blockers' distance and the view depth) and narrows its kernel to that:
-    /// contact shadows stay sharp, wide penumbrae are filtered as without it. `None`: no guidance.
+    /// contact shadows stay sharp, wide penumbrae are filtered as without it, and under penumbrae narrower than
+    /// `Settings::hard_penumbra_pixels` the output is the ray's own result. `None`: no guidance.
     pub hit_distance: Option<HostImage>,
     /// Angular diameter of the light seen from the receivers, in radians (the sun: about 0.0093), in [0, pi).
     /// Used only with `hit_distance`; 0 means a point light (every penumbra hard, no spatial filtering).

@@ -85,6 +85,15 @@ declare_settings! {
     /// sample as it is (a resolved silhouette, docs/do-no-harm.md). 0 turns this off (the FidelityFX behaviour);
     /// converged pixels need `stable_history_samples` > 0, resolved silhouettes do not.
     converged_samples: f32 = 0.0, [0.0, crate::passes::MAX_SAMPLE_RUN as f32] "[0, 4096]";
+    /// Penumbra guidance only (a dispatch with hit distances): where the blockers near a tile cast a penumbra
+    /// narrower than this many pixels either side of its edge (from their mean hit distance, the light's angular
+    /// size and the receiver's depth) and lie at least two pixel footprints away, a receiver's output is its
+    /// sample of this frame, neither accumulated nor filtered. One ray then resolves the pixel (a hard light, a
+    /// distant sun's blocker); accumulating it under a moving camera blurs edges and loses sub-pixel features (a
+    /// wire's shadow), and where the estimate errs the output is the input, never worse. The price is on a still
+    /// camera, whose accumulation would resolve the few pixels inside such a penumbra. 0 turns this off (the
+    /// FidelityFX behaviour).
+    hard_penumbra_pixels: f32 = 0.0, [0.0, 16.0] "[0, 16]";
     /// Below this many accumulated samples the variance is boosted (raised to the spatial variance and
     /// multiplied by the missing samples), except on a pixel whose run is stable (`stable_history_samples`).
     variance_boost_samples: f32 = 16.0, [0.0, 1024.0] "[0, 1024]";
@@ -116,8 +125,9 @@ pub enum Preset {
     /// The measured best knobs combined: 4 filter passes, 10% current-frame weight, no output contrast, cross
     /// tap weight 0.5, history of pixels with 8 identical samples in a row clamped to their run and restarted
     /// after 3 samples of the other value (1 where the neighbourhood agrees; see docs/accuracy.md for why each),
-    /// and pixels with 8 identical samples in a row converged (passed through the filter among converged
-    /// neighbours; docs/do-no-harm.md).
+    /// pixels with 8 identical samples in a row converged (passed through the filter among converged
+    /// neighbours; docs/do-no-harm.md), and, with penumbra guidance, pixels under a penumbra narrower than a quarter
+    /// of a pixel either side output as sampled.
     Quality,
 }
 
@@ -136,6 +146,7 @@ impl Settings {
                 stable_history_samples: 8.0,
                 history_flip_samples: 3.0,
                 converged_samples: 8.0,
+                hard_penumbra_pixels: 0.25,
                 ..balanced
             },
         }
@@ -164,7 +175,7 @@ impl Settings {
             self.history_clamp_sigmas,
         ];
         c.rejection = [self.history_rejection_falloff, self.history_rejection_min_sigma, self.variance_boost_samples, 0.0];
-        c.runs = [self.stable_history_samples, self.history_flip_samples, self.converged_samples, 0.0];
+        c.runs = [self.stable_history_samples, self.history_flip_samples, self.converged_samples, self.hard_penumbra_pixels];
         c.temporal = [self.full_history_samples, self.min_current_weight, self.max_history_samples, self.spatial_falloff];
         c.filtering = [self.kernel_cross_weight, self.normal_power, self.output_contrast, self.min_shadow_sigma];
     }

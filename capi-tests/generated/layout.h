@@ -61,6 +61,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrSettings, minShadowSigma) == 76, "offsetof(DnsrS
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, stableHistorySamples) == 80, "offsetof(DnsrSettings, stableHistorySamples)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, historyFlipSamples) == 84, "offsetof(DnsrSettings, historyFlipSamples)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, convergedSamples) == 88, "offsetof(DnsrSettings, convergedSamples)");
+DNSR_STATIC_ASSERT(offsetof(DnsrSettings, hardPenumbraPixels) == 92, "offsetof(DnsrSettings, hardPenumbraPixels)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrContextCreateInfo) == 160, "sizeof(DnsrContextCreateInfo)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrContextCreateInfo) == 8, "alignof(DnsrContextCreateInfo)");

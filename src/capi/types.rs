@@ -377,6 +377,12 @@ pub struct DnsrSettings {
     /// its sample as it is (a resolved silhouette; this part needs no stable history). Range [0, 4096]; 0
     /// disables; converged pixels need stableHistorySamples > 0. Default 0; 8 in the Quality preset.
     pub converged_samples: f32,
+    /// With penumbra guidance (DNSR_DISPATCH_USE_HIT_DISTANCE) only: where the blockers near a tile cast a penumbra
+    /// narrower than this many pixels either side of its edge and lie at least two pixel footprints away, a
+    /// receiver's output is its sample of this frame, neither accumulated nor filtered (one ray resolves it: a
+    /// hard light; where the estimate errs, the output is the input). Range [0, 16]; 0 disables (the FidelityFX
+    /// behaviour). Default 0; 0.25 in the Quality preset.
+    pub hard_penumbra_pixels: f32,
 }
 
 /// Everything needed to create a context. Read during `dnsr_context_create` only (callback structs are copied;
@@ -596,7 +602,8 @@ pub struct DnsrShadowsDispatch {
     /// units (those projectionInverse maps depth to). Read only where the hit mask says the ray hit; a value
     /// there that is not finite and > 0 counts as unknown, so a tracer may write anything (0, say) on a miss.
     /// The filter narrows its kernel to the penumbra width the blockers imply: contact shadows stay sharp, wide
-    /// penumbrae are filtered as without guidance. Sampled layouts as for the hit mask.
+    /// penumbrae are filtered as without guidance, and under penumbrae narrower than
+    /// DnsrSettings::hardPenumbraPixels the output is the ray's own result. Sampled layouts as for the hit mask.
     pub hit_distance: DnsrHostImage,
     /// Read when DNSR_DISPATCH_USE_HIT_DISTANCE is set. The light's angular diameter seen from the receivers, in
     /// radians, in [0, pi) (the sun: about 0.0093; a sphere light of radius r at distance D: 2 asin(r / D)); 0 is

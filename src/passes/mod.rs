@@ -176,6 +176,13 @@ pub(crate) const RUN_CLAMP_SAMPLES: u32 = 3;
 /// resolves; f16 holds it). Generated into GLSL.
 pub(crate) const UNCONVERGED_VARIANCE_INV: u32 = 1_000_000;
 
+/// Penumbra guidance's hard penumbrae (`Settings::hard_penumbra_pixels`) need blockers at least this many pixel
+/// footprints from the receiver on average: nearer hits are mostly the receiver's own surface under a light near its
+/// horizon, whose partial visibility no blocker distance describes (the scene family's 6-10 degree lights: faces
+/// lit at grazing angles lost 0.02-0.03 RMSE without this; a limit of 1 kept those losses and won 0.02 on one
+/// hard-shadow scene's contact shadows, 2 lost it: docs/do-no-harm.md). Generated into GLSL.
+pub(crate) const HARD_PENUMBRA_MIN_BLOCKER_PIXELS: u32 = 2;
+
 /// Tile metadata bit: the tile needs no temporal or spatial work; its value is in `TILE_LIT`.
 pub(crate) const TILE_CLEARED: u32 = 1 << 0;
 /// Tile metadata bit: a cleared tile is lit (1) rather than shadowed (0).

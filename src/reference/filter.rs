@@ -75,12 +75,23 @@ pub fn penumbra_falloff<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64) -> f64 {
     0.5 / (sigma * sigma).max(1e-20)
 }
 
+/// Penumbra guidance, `Settings::hard_penumbra_pixels`: whether tile `tile`'s blockers cast a penumbra that one ray
+/// resolves on a receiver at linear depth `zc`.
+pub fn hard_penumbra<Io: Read + ?Sized>(io: &Io, tile: Coord, zc: f64) -> bool {
+    io.penumbra().is_some_and(|pen| pen.is_hard(io.read_tile_blocker(tile), zc, io.settings().hard_penumbra_pixels as f64))
+}
+
 /// The filtered (mean, variance) of one receiver pixel of a mixed tile.
 pub fn filter_pixel<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64) -> DVec2 {
     let s = io.settings();
     let kernel = [1.0, s.kernel_cross_weight as f64];
     let step = io.filter_step();
     let c = io.read_filter_input(p);
+    // Under a hard penumbra the sample (flagged converged by the temporal part) passes through (shaders/filter.glsl,
+    // dnsr_pass_hard).
+    if converged_signal(c) && hard_penumbra(io, [p[0] / TILE[0], p[1] / TILE[1]], zc) {
+        return c;
+    }
     // A converged pixel (Settings::converged_samples) among converged receivers passes through
     // (shaders/filter.glsl, dnsr_passes_through).
     if s.converged_samples > 0.0 && converged_signal(c) && converged_neighbourhood(io, p) {

@@ -411,6 +411,10 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     if resolved {
         return (m, DVec2::new(x, 0.0));
     }
+    // Under a hard penumbra (Settings::hard_penumbra_pixels) this sample is the output; the moments go on.
+    if super::filter::hard_penumbra(io, [p[0] / TILE[0], p[1] / TILE[1]], linear_depth(io, ndc, depth)) {
+        return (m, DVec2::new(x, 0.0));
+    }
     // Converged (Settings::converged_samples, on a stable pixel): variance 0 tells the filter that the input may
     // resolve this pixel; the value stays the temporal one (shaders/tile_classification.glsl says why).
     let variance = if stable && !flipped && pure_moments(m) && converged(m.w, x, s.converged_samples as f64) {

@@ -223,7 +223,7 @@ fn generated_layout_header() -> String {
         disocclusion_angle_exponent, spatial_falloff, history_clamp_sigmas, history_rejection_falloff,
         history_rejection_min_sigma, variance_boost_samples, full_history_samples, min_current_weight,
         max_history_samples, kernel_cross_weight, normal_power, output_contrast, min_shadow_sigma, stable_history_samples,
-        history_flip_samples, converged_samples,
+        history_flip_samples, converged_samples, hard_penumbra_pixels,
     });
     check!(DnsrContextCreateInfo {
         s_type, p_next, instance, physical_device, device, vulkan_functions, api_version, queue_family_index,

@@ -41,7 +41,9 @@ fn random_frame(w: u32, h: u32, seed: u64, frame: u64) -> FrameInputs {
                 1 => -2.0,
                 2 => f32::NAN,
                 3 => f32::INFINITY,
-                _ => (0.05 + 3.0 * r(5)) as f32,
+                // Seed 4's blockers lie 1-10 pixel footprints from their receivers: on both sides of the nearest
+                // blocker a hard penumbra allows (HARD_PENUMBRA_MIN_BLOCKER_PIXELS).
+                _ => ((0.05 + 3.0 * r(5)) * if seed == 4 { 0.2 } else { 1.0 }) as f32,
             };
             // Regions wide enough for uniform tiles (+-8 px): top-left lit, a bottom band shadowed, the rest noise
             // with a probability that varies across the image.
@@ -156,12 +158,21 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
         6 => 3.0,
         _ => 0.0,
     };
+    // Some guided cases output the sample under a penumbra narrower than a pixel or two (about half of their
+    // pixels: their penumbrae are 0.3-3 px wide either side).
+    info.settings.hard_penumbra_pixels = match seed {
+        4 | 11 => 1.0,
+        9 => 1.5,
+        _ => 0.0,
+    };
     let mut r = Runner::new(g, &info).unwrap();
-    // Some cases guide the filter by the hit distances (penumbrae from sub-pixel to several pixels wide).
+    // Some cases guide the filter by the hit distances (penumbrae from under a pixel to tens of pixels wide).
     r.guidance = match seed {
         2 | 6 => Some(0.5),
-        4 => Some(0.3),
-        7 | 9 | 11 => Some(1.0),
+        4 => Some(0.5),
+        9 => Some(0.04),
+        11 => Some(0.03),
+        7 => Some(1.0),
         _ => None,
     };
     // One visibility case reads 16-bit floats (random_frame rounds its values to them).

@@ -44,6 +44,9 @@ fn runner(g: &Gpu, input: ShadowInput) -> Runner<'_> {
     info.output_format = vk::Format::R32_SFLOAT;
     info.light_count = LIGHTS as u32;
     info.shadow_input = input;
+    // Quality's paths (converged pixels, runs), and hard penumbrae wide enough to hold some of the guided lights'
+    // pixels (their penumbrae are about 1-3 px wide either side), so that the light-slot filter takes each.
+    info.settings = crate::Settings { hard_penumbra_pixels: 2.0, ..crate::Settings::preset(crate::Preset::Quality) };
     Runner::new(g, &info).unwrap()
 }
 

@@ -27,6 +27,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 // ---- Layout (SDK 1.1.4 on Linux x86-64, 4-byte wchar_t) ----
@@ -54,7 +55,22 @@ static_assert(offsetof(Dispatch, depthSimilaritySigma) == 1752, "");
 static_assert(sizeof(FfxDenoiserReflectionsDispatchDescription) == 3592, "");
 static_assert(sizeof(FfxDenoiserContext) == 292392, "");
 static_assert(sizeof(VkDeviceContext) == 24 && sizeof(FfxDeviceCapabilities) == 20, "");
-static_assert(FFX_ERROR_INVALID_VERSION == (int32_t)0x8000000f && FFX_ERROR_ACCESS_DENIED == (int32_t)0x80000010, "");
+static_assert(uint32_t(FFX_ERROR_INVALID_VERSION) == 0x8000000fu && uint32_t(FFX_ERROR_ACCESS_DENIED) == 0x80000010u, "");
+// The error types as the SDK declares them: FfxErrorCode a signed 32-bit integer, FfxErrorCodes an enum whose values
+// from 0x80000000 up make its underlying type unsigned. So a switch on FfxErrorCodes takes these labels without
+// narrowing, and `code < FFX_OK` compares as unsigned and is false for every code, as with the SDK.
+static_assert(std::is_same<FfxErrorCode, int32_t>::value, "FfxErrorCode");
+static_assert(std::is_unsigned<std::underlying_type<FfxErrorCodes>::type>::value, "FfxErrorCodes' underlying type");
+static constexpr const char *ffx_error_name(FfxErrorCodes code)
+{
+    switch (code) {
+    case FFX_OK: return "FFX_OK";
+    case FFX_ERROR_INVALID_POINTER: return "FFX_ERROR_INVALID_POINTER";
+    case FFX_ERROR_INVALID_ARGUMENT: return "FFX_ERROR_INVALID_ARGUMENT";
+    default: return "another FfxErrorCodes";
+    }
+}
+static_assert(ffx_error_name(FFX_ERROR_INVALID_ARGUMENT)[10] == 'I', "a switch on FfxErrorCodes");
 static_assert(FFX_SURFACE_FORMAT_R32_FLOAT == 28 && FFX_SURFACE_FORMAT_R32_TYPELESS == 37, "");
 static_assert(FFX_RESOURCE_STATE_GENERIC_READ == 20 && FFX_RESOURCE_STATE_DEPTH_ATTACHEMENT == 512, "");
 static_assert(FFX_DENOISER_ENABLE_DEPTH_INVERTED == 4 && FFX_EFFECT_DENOISER == 9, "");
@@ -81,7 +97,7 @@ static HostBuffer readback;
 #define EXPECT_FFX(want, call)                                                                                   \
     do {                                                                                                         \
         FfxErrorCode ffx_got_ = (call);                                                                          \
-        CHECK(ffx_got_ == (want), "%s gave 0x%08x, want %s", #call, (unsigned)ffx_got_, #want);                 \
+        CHECK(ffx_got_ == FfxErrorCode(want), "%s gave 0x%08x, want %s", #call, (unsigned)ffx_got_, #want);                 \
         CHECK(dnsr_last_error_message()[0] != 0, "%s: no message", #call);                                      \
         std::printf("refused as %s: %s\n", #want, dnsr_last_error_message());                                    \
         cases++;                                                                                                 \
@@ -140,6 +156,49 @@ struct Integration {
     std::unique_ptr<FfxDenoiserContext> context{new FfxDenoiserContext};
 };
 
+// fpGetDeviceCapabilities reports the device as the SDK's Vulkan backend does: wave lanes from the subgroup size
+// control properties where the device has that extension (32 otherwise), fp16 from shaderFloat16 where it has
+// VK_KHR_shader_float16_int8, shader model 5.1.
+static void check_capabilities(FfxInterface &iface)
+{
+    FfxDeviceCapabilities caps;
+    std::memset(&caps, 0xff, sizeof caps);
+    FFX_CHECK(iface.fpGetDeviceCapabilities(&iface, &caps));
+    uint32_t count = 0;
+    vkEnumerateDeviceExtensionProperties(host.physicalDevice, nullptr, &count, nullptr);
+    std::vector<VkExtensionProperties> extensions(count);
+    vkEnumerateDeviceExtensionProperties(host.physicalDevice, nullptr, &count, extensions.data());
+    auto has = [&](const char *name) {
+        for (const VkExtensionProperties &e : extensions)
+            if (std::strcmp(e.extensionName, name) == 0) return true;
+        return false;
+    };
+    VkPhysicalDeviceSubgroupSizeControlProperties sizes = {};
+    sizes.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_PROPERTIES;
+    VkPhysicalDeviceProperties2 properties = {};
+    properties.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
+    properties.pNext = &sizes;
+    VkPhysicalDeviceShaderFloat16Int8Features fp16 = {};
+    fp16.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_FLOAT16_INT8_FEATURES;
+    VkPhysicalDeviceFeatures2 features = {};
+    features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+    features.pNext = &fp16;
+    vkGetPhysicalDeviceProperties2(host.physicalDevice, &properties);
+    vkGetPhysicalDeviceFeatures2(host.physicalDevice, &features);
+    bool control = has(VK_EXT_SUBGROUP_SIZE_CONTROL_EXTENSION_NAME);
+    uint32_t lanesMin = control ? sizes.minSubgroupSize : 32, lanesMax = control ? sizes.maxSubgroupSize : 32;
+    bool half = has(VK_KHR_SHADER_FLOAT16_INT8_EXTENSION_NAME) && fp16.shaderFloat16;
+    CHECK(caps.waveLaneCountMin == lanesMin && caps.waveLaneCountMax == lanesMax, "wave lanes %u..%u, want %u..%u",
+          caps.waveLaneCountMin, caps.waveLaneCountMax, lanesMin, lanesMax);
+    CHECK(caps.fp16Supported == half, "fp16Supported %d, want %d", int(caps.fp16Supported), int(half));
+    CHECK(caps.maximumSupportedShaderModel == FFX_SHADER_MODEL_5_1, "shader model %d", int(caps.maximumSupportedShaderModel));
+    CHECK(caps.dedicatedAllocationSupported == has(VK_KHR_DEDICATED_ALLOCATION_EXTENSION_NAME), "dedicatedAllocationSupported");
+    EXPECT_FFX(FFX_ERROR_INVALID_POINTER, iface.fpGetDeviceCapabilities(&iface, nullptr));
+    std::printf("fpGetDeviceCapabilities: wave lanes %u..%u, fp16 %d, ray tracing %d, synchronization2 %d\n",
+                caps.waveLaneCountMin, caps.waveLaneCountMax, int(caps.fp16Supported), int(caps.raytracingSupported),
+                int(caps.extendedSynchronizationSupported));
+}
+
 // What the SDK's sample does at start-up, with its version asserts.
 static void integrate(Integration &in, uint32_t flags)
 {
@@ -150,6 +209,7 @@ static void integrate(Integration &in, uint32_t flags)
                                 FFX_DENOISER_CONTEXT_COUNT));
     CHECK(in.iface.fpGetSDKVersion(&in.iface) == FFX_SDK_MAKE_VERSION(1, 1, 4), "fpGetSDKVersion");
     CHECK(ffxDenoiserGetEffectVersion() == FFX_SDK_MAKE_VERSION(1, 3, 0), "ffxDenoiserGetEffectVersion");
+    check_capabilities(in.iface);
     in.iface.fpRegisterConstantBufferAllocator(&in.iface, nullptr);
     FfxDenoiserContextDescription desc = {};
     desc.flags = flags;

@@ -6,6 +6,7 @@
 //! Where the SDK trusts its caller (a NULL context, a destroyed one, a missing image), these functions return an
 //! error code and set `dnsr_last_error_message`, and never record anything half.
 
+mod capabilities;
 mod loader;
 mod resources;
 pub mod types;
@@ -70,6 +71,19 @@ struct Scratch {
 }
 const SCRATCH_MAGIC: u64 = u64::from_le_bytes(*b"dnsrffx1");
 
+/// The record ffxGetInterfaceVK wrote into `iface`'s scratch buffer.
+fn scratch_of(iface: &FfxInterface) -> Result<Scratch, Failure> {
+    if iface.functions[FP_GET_SDK_VERSION] != get_sdk_version as *const std::ffi::c_void || iface.scratchBuffer.is_null() {
+        return fail(FFX_ERROR_INCOMPLETE_INTERFACE, "backendInterface was not filled by ffxGetInterfaceVK");
+    }
+    // SAFETY: ffxGetInterfaceVK checked the size and wrote the record (the caller may have moved nothing).
+    let scratch = unsafe { (iface.scratchBuffer as *const Scratch).read_unaligned() };
+    if scratch.magic != SCRATCH_MAGIC {
+        return fail(FFX_ERROR_INCOMPLETE_INTERFACE, "backendInterface.scratchBuffer no longer holds what ffxGetInterfaceVK wrote");
+    }
+    Ok(scratch)
+}
+
 /// The SDK keeps the last ffxGetDeviceVK argument in process-wide storage and hands out its address.
 static DEVICE: Mutex<VkDeviceContext> =
     Mutex::new(VkDeviceContext { vkDevice: vk::Device::null(), vkPhysicalDevice: vk::PhysicalDevice::null(), vkDeviceProcAddr: None });
@@ -99,15 +113,15 @@ extern "C" fn get_sdk_version(_interface: *mut FfxInterface) -> u32 {
 
 extern "C" fn register_constant_buffer_allocator(_interface: *mut FfxInterface, _allocator: *const std::ffi::c_void) {}
 
-/// fpGetDeviceCapabilities: what the SDK reports that holds for dnsr (it needs no wave64, fp16 or ray queries).
-extern "C" fn get_device_capabilities(_interface: *mut FfxInterface, out: *mut FfxDeviceCapabilities) -> FfxErrorCode {
-    match unsafe { out.as_mut() } {
-        Some(out) => {
-            *out = FfxDeviceCapabilities { maximumSupportedShaderModel: 0, ..Default::default() };
-            FFX_OK
-        }
-        None => FFX_ERROR_INVALID_POINTER,
-    }
+/// fpGetDeviceCapabilities: the device's, as the SDK's Vulkan backend reports them (capabilities.rs).
+extern "C" fn get_device_capabilities(interface: *mut FfxInterface, out: *mut FfxDeviceCapabilities) -> FfxErrorCode {
+    guard(|| {
+        let Some(out) = (unsafe { out.as_mut() }) else { return fail(FFX_ERROR_INVALID_POINTER, "outDeviceCapabilities is NULL") };
+        let Some(interface) = (unsafe { interface.as_ref() }) else { return fail(FFX_ERROR_INVALID_POINTER, "backendInterface is NULL") };
+        let scratch = scratch_of(interface)?;
+        *out = capabilities::query(scratch.device.vkPhysicalDevice);
+        Ok(())
+    })
 }
 
 /// ffx_vk.h: fills the backend table a context description carries.
@@ -312,15 +326,7 @@ pub extern "C" fn ffxDenoiserContextCreate(context: *mut FfxDenoiserContext, des
         if d.flags & FFX_DENOISER_REFLECTIONS != 0 {
             return fail(FFX_ERROR_INVALID_ARGUMENT, "flags has FFX_DENOISER_REFLECTIONS: dnsr denoises shadows only");
         }
-        let iface = &d.backendInterface;
-        if iface.functions[FP_GET_SDK_VERSION] != get_sdk_version as *const std::ffi::c_void || iface.scratchBuffer.is_null() {
-            return fail(FFX_ERROR_INCOMPLETE_INTERFACE, "backendInterface was not filled by ffxGetInterfaceVK");
-        }
-        // SAFETY: ffxGetInterfaceVK checked the size and wrote the record (the caller may have moved nothing).
-        let scratch = unsafe { (iface.scratchBuffer as *const Scratch).read_unaligned() };
-        if scratch.magic != SCRATCH_MAGIC {
-            return fail(FFX_ERROR_INCOMPLETE_INTERFACE, "backendInterface.scratchBuffer no longer holds what ffxGetInterfaceVK wrote");
-        }
+        let scratch = scratch_of(&d.backendInterface)?;
         let (width, height) = (d.windowSize.width, d.windowSize.height);
         if width == 0 || height == 0 {
             return fail(FFX_ERROR_INVALID_ARGUMENT, format!("windowSize is {width}x{height}"));

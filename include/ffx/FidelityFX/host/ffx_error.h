@@ -10,28 +10,31 @@
 
 #include <stdint.h>
 
-/* The result of every FFX function that can fail: FFX_OK or one of the negative FfxErrorCodes values. */
+/* The result of every FFX function that can fail: FFX_OK or one of the FfxErrorCodes values. As in the SDK, the
+ * codes are written from 0x80000000 up, which makes FfxErrorCodes' underlying type unsigned (C++; GCC and Clang in
+ * C): stored in an FfxErrorCode they are negative, but `code < FFX_OK` compares as unsigned and is false. Test for
+ * `code != FFX_OK`. */
 typedef int32_t FfxErrorCode;
 
 typedef enum FfxErrorCodes {
     FFX_OK = 0,
-    FFX_ERROR_INVALID_POINTER = (int32_t)0x80000000,
-    FFX_ERROR_INVALID_ALIGNMENT = (int32_t)0x80000001,
-    FFX_ERROR_INVALID_SIZE = (int32_t)0x80000002,
-    FFX_EOF = (int32_t)0x80000003,
-    FFX_ERROR_INVALID_PATH = (int32_t)0x80000004,
-    FFX_ERROR_EOF = (int32_t)0x80000005,
-    FFX_ERROR_MALFORMED_DATA = (int32_t)0x80000006,
-    FFX_ERROR_OUT_OF_MEMORY = (int32_t)0x80000007,
-    FFX_ERROR_INCOMPLETE_INTERFACE = (int32_t)0x80000008,
-    FFX_ERROR_INVALID_ENUM = (int32_t)0x80000009,
-    FFX_ERROR_INVALID_ARGUMENT = (int32_t)0x8000000a,
-    FFX_ERROR_OUT_OF_RANGE = (int32_t)0x8000000b,
-    FFX_ERROR_NULL_DEVICE = (int32_t)0x8000000c,
-    FFX_ERROR_BACKEND_API_ERROR = (int32_t)0x8000000d,
-    FFX_ERROR_INSUFFICIENT_MEMORY = (int32_t)0x8000000e,
-    FFX_ERROR_INVALID_VERSION = (int32_t)0x8000000f,
-    FFX_ERROR_ACCESS_DENIED = (int32_t)0x80000010
+    FFX_ERROR_INVALID_POINTER = 0x80000000,
+    FFX_ERROR_INVALID_ALIGNMENT = 0x80000001,
+    FFX_ERROR_INVALID_SIZE = 0x80000002,
+    FFX_EOF = 0x80000003,
+    FFX_ERROR_INVALID_PATH = 0x80000004,
+    FFX_ERROR_EOF = 0x80000005,
+    FFX_ERROR_MALFORMED_DATA = 0x80000006,
+    FFX_ERROR_OUT_OF_MEMORY = 0x80000007,
+    FFX_ERROR_INCOMPLETE_INTERFACE = 0x80000008,
+    FFX_ERROR_INVALID_ENUM = 0x80000009,
+    FFX_ERROR_INVALID_ARGUMENT = 0x8000000a,
+    FFX_ERROR_OUT_OF_RANGE = 0x8000000b,
+    FFX_ERROR_NULL_DEVICE = 0x8000000c,
+    FFX_ERROR_BACKEND_API_ERROR = 0x8000000d,
+    FFX_ERROR_INSUFFICIENT_MEMORY = 0x8000000e,
+    FFX_ERROR_INVALID_VERSION = 0x8000000f,
+    FFX_ERROR_ACCESS_DENIED = 0x80000010
 } FfxErrorCodes;
 
 /* Returns `error` from the enclosing function when `condition` is false. */

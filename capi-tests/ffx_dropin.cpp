@@ -28,6 +28,7 @@
 #include <cstring>
 #include <memory>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 // ---- Layout (SDK 1.1.4 on Linux x86-64, 4-byte wchar_t) ----
@@ -262,6 +263,143 @@ static void frames_match_native(void)
     DNSR_CHECK(dnsr_context_destroy(native));
 }
 
+// ---- A pitching camera: the SDK's clip space has y up ----
+
+// Column-major 4x4 matrices for column vectors, in double.
+struct Mat4 {
+    double m[16];
+    double &at(int row, int col) { return m[col * 4 + row]; }
+    double at(int row, int col) const { return m[col * 4 + row]; }
+};
+static Mat4 mul(const Mat4 &a, const Mat4 &b)
+{
+    Mat4 r = {};
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++)
+            for (int k = 0; k < 4; k++) r.at(i, j) += a.at(i, k) * b.at(k, j);
+    return r;
+}
+static Mat4 inverse(Mat4 a)
+{
+    Mat4 r = {};
+    for (int i = 0; i < 4; i++) r.at(i, i) = 1.0;
+    for (int c = 0; c < 4; c++) {
+        int p = c;
+        for (int i = c + 1; i < 4; i++)
+            if (std::fabs(a.at(i, c)) > std::fabs(a.at(p, c))) p = i;
+        for (int j = 0; j < 4; j++) std::swap(a.at(c, j), a.at(p, j)), std::swap(r.at(c, j), r.at(p, j));
+        double d = a.at(c, c);
+        for (int j = 0; j < 4; j++) a.at(c, j) /= d, r.at(c, j) /= d;
+        for (int i = 0; i < 4; i++) {
+            if (i == c) continue;
+            double f = a.at(i, c);
+            for (int j = 0; j < 4; j++) a.at(i, j) -= f * a.at(c, j), r.at(i, j) -= f * r.at(c, j);
+        }
+    }
+    return r;
+}
+static void store(float out[16], const Mat4 &m)
+{
+    for (int i = 0; i < 16; i++) out[i] = float(m.m[i]);
+}
+
+// Vulkan's clip space (y down, depth 0..1): a 60-degree perspective; the camera at the origin looking down -z,
+// pitched by `degrees` about x.
+static Mat4 vulkan_projection()
+{
+    double f = 1.0 / std::tan(M_PI / 6.0), n = 0.1, far = 100.0;
+    Mat4 p = {};
+    p.at(0, 0) = f * H / W;
+    p.at(1, 1) = -f;
+    p.at(2, 2) = far / (n - far);
+    p.at(2, 3) = n * far / (n - far);
+    p.at(3, 2) = -1.0;
+    return p;
+}
+static Mat4 pitch(double degrees)
+{
+    double a = degrees * M_PI / 180.0;
+    Mat4 v = {};
+    v.at(0, 0) = v.at(3, 3) = 1.0;
+    v.at(1, 1) = v.at(2, 2) = std::cos(a);
+    v.at(1, 2) = -std::sin(a);
+    v.at(2, 1) = std::sin(a);
+    return v;
+}
+
+// SDK-style matrices (y-up clip space, what an integration of the SDK passes) through the FFX API give the same
+// output, bit for bit, as the same camera's Vulkan-convention matrices through dnsr.h, over frames of a camera
+// pitched 30 degrees and pitching 0.5 degrees more per frame, facing a wall 5 units away (its depth recomputed every frame); the Vulkan-
+// convention matrices through the FFX API do not (they would mirror the reprojection and lose the history).
+static void pitching_camera(void)
+{
+    Integration sdk, vulkan;
+    integrate(sdk, FFX_DENOISER_SHADOWS);
+    integrate(vulkan, FFX_DENOISER_SHADOWS);
+    DnsrContextCreateInfo info = host_create_info(&host, W, H);
+    DnsrContext native = nullptr;
+    DNSR_CHECK(dnsr_context_create(&info, &native));
+    Mat4 flip = {};
+    flip.at(0, 0) = flip.at(2, 2) = flip.at(3, 3) = 1.0;
+    flip.at(1, 1) = -1.0;
+    Mat4 p = vulkan_projection(), pi = inverse(p);
+    std::vector<float> a, b, c, depthData(W * H);
+    uint32_t differing = 0;
+    for (uint32_t frame = 0; frame < 6; frame++) {
+        Mat4 vp = mul(p, pitch(30.0 + 0.5 * frame)), vpPrev = mul(p, pitch(30.0 + 0.5 * (frame ? frame - 1 : 0)));
+        Mat4 vpi = inverse(vp), reprojection = mul(vpPrev, vpi);
+        // The wall z = -5 seen through each pixel centre.
+        for (uint32_t y = 0; y < H; y++) {
+            for (uint32_t x = 0; x < W; x++) {
+                double ndc[4] = {2.0 * (x + 0.5) / W - 1.0, 2.0 * (y + 0.5) / H - 1.0, 1.0, 1.0}, w[4] = {};
+                for (int i = 0; i < 4; i++)
+                    for (int k = 0; k < 4; k++) w[i] += vpi.at(i, k) * ndc[k];
+                double t = -5.0 / (w[2] / w[3]);
+                double world[4] = {t * w[0] / w[3], t * w[1] / w[3], -5.0, 1.0}, clip[4] = {};
+                for (int i = 0; i < 4; i++)
+                    for (int k = 0; k < 4; k++) clip[i] += vp.at(i, k) * world[k];
+                depthData[y * W + x] = float(clip[2] / clip[3]);
+            }
+        }
+        host_upload(&host, &depth, depthData.data(), depthData.size() * sizeof(float));
+        upload_mask(100 + frame, false);
+        VkCommandBuffer cmd = host_begin(&host);
+        host_cmd_full_barrier(cmd);
+        Dispatch fs = ffx_dispatch(cmd, frame);
+        store(fs.projectionInverse, mul(pi, flip));
+        store(fs.viewProjectionInverse, mul(vpi, flip));
+        store(fs.reprojectionMatrix, mul(flip, mul(reprojection, flip)));
+        FFX_CHECK(ffxDenoiserContextDispatchShadows(sdk.context.get(), &fs));
+        Dispatch fv = ffx_dispatch(cmd, frame, outFfx8);
+        store(fv.projectionInverse, pi);
+        store(fv.viewProjectionInverse, vpi);
+        store(fv.reprojectionMatrix, reprojection);
+        FFX_CHECK(ffxDenoiserContextDispatchShadows(vulkan.context.get(), &fv));
+        DnsrShadowsDispatch nd = native_dispatch(cmd, frame);
+        store(nd.projectionInverse, pi);
+        store(nd.viewProjectionInverse, vpi);
+        store(nd.reprojectionMatrix, reprojection);
+        DNSR_CHECK(dnsr_shadows_record(native, &nd));
+        host_submit(&host, cmd);
+        read_output(outFfx, a);
+        read_output(outNative, b);
+        read_output(outFfx8, c);
+        differing = 0;
+        for (uint32_t i = 0; i < W * H; i++) {
+            CHECK(a[i] == b[i], "pitch frame %u: FFX API (SDK matrices) %.9g, dnsr.h %.9g at (%u, %u)", frame, a[i], b[i],
+                  i % W, i / W);
+            differing += std::fabs(c[i] - b[i]) > 1.0f / 255.0f;
+        }
+    }
+    CHECK(differing > W * H / 10, "Vulkan-convention matrices through the FFX API differ on only %u pixels", differing);
+    std::printf("pitching camera: SDK-style matrices through the FFX API == dnsr.h with Vulkan's on all %u pixels of 6 "
+                "frames; Vulkan's through the FFX API differ on %u pixels of the last\n", W * H, differing);
+    host_expect_clean(&host, "pitching camera");
+    FFX_CHECK(ffxDenoiserContextDestroy(sdk.context.get()));
+    FFX_CHECK(ffxDenoiserContextDestroy(vulkan.context.get()));
+    DNSR_CHECK(dnsr_context_destroy(native));
+}
+
 // The depth buffer itself (D32_SFLOAT, described by ffxGetImageResourceDescriptionVK with DEPTHTARGET usage, where
 // the SDK needed an R32_FLOAT copy), reverse-Z, with FFX_DENOISER_ENABLE_DEPTH_INVERTED: equal to dnsr.h with
 // DNSR_CONTEXT_CREATE_DEPTH_INVERTED on the same image. Odd columns move 2 px, even ones stay: each 2x2 quad takes
@@ -398,6 +536,7 @@ int main(void)
     frames_match_native();
     depth_buffer_reverse_z();
     misuse();
+    pitching_camera();
 
     host_buffer_destroy(&host, &readback);
     for (HostImage *img : {&mask, &depth, &depthBuffer, &velocity, &velocityVarying, &normals, &outFfx, &outFfx8, &outNative}) host_image_destroy(&host, img);

@@ -7,6 +7,7 @@
 //! error code and set `dnsr_last_error_message`, and never record anything half.
 
 mod capabilities;
+mod clip;
 mod loader;
 mod resources;
 pub mod types;
@@ -434,9 +435,9 @@ impl Denoiser {
             normals_unpack_add: d.normalsUnpackAdd,
             eye: d.eye,
             frame_index: d.frameIndex,
-            projection_inverse: d.projectionInverse,
-            reprojection_matrix: d.reprojectionMatrix,
-            view_projection_inverse: d.viewProjectionInverse,
+            projection_inverse: clip::from_sdk_clip(d.projectionInverse),
+            reprojection_matrix: clip::between_sdk_clips(d.reprojectionMatrix),
+            view_projection_inverse: clip::from_sdk_clip(d.viewProjectionInverse),
             depth_similarity_sigma: d.depthSimilaritySigma,
             render_rect: DnsrRect::default(),
             // The FFX interface does not say which stages wrote the inputs or read the output: all of them.

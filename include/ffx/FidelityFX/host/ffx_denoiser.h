@@ -96,6 +96,8 @@ typedef struct FfxDenoiserShadowsDispatchDescription {
     /* Camera position in world space. */
     FfxFloat32x3 eye;
     uint32_t frameIndex;
+    /* Clip space is the SDK's: y up (NDC = (2 uv - 1) * (1, -1)), depth 0..1; column-major, column vectors. dnsr
+     * flips y for its own API, which reads Vulkan's convention. Clip space -> view space. */
     FfxFloat32 projectionInverse[16];
     /* Current clip space -> previous frame's clip space. */
     FfxFloat32 reprojectionMatrix[16];

@@ -217,6 +217,21 @@ static void create_calls(void)
     DnsrShaderOverride odd = {"filter_final_r32f", not_spirv, 6};
     CREATE_CASE("create: shader override of 6 bytes", DNSR_ERROR_INVALID_ARGUMENT, "codeSize",
                 info.shaderOverrideCount = 1; info.pShaderOverrides = &odd);
+    DnsrShaderOverride huge = {"filter_final_r32f", not_spirv, DNSR_MAX_SHADER_OVERRIDE_CODE_SIZE + 4};
+    CREATE_CASE("create: shader override over DNSR_MAX_SHADER_OVERRIDE_CODE_SIZE", DNSR_ERROR_INVALID_ARGUMENT,
+                "DNSR_MAX_SHADER_OVERRIDE_CODE_SIZE", info.shaderOverrideCount = 1; info.pShaderOverrides = &huge);
+    {
+        /* A 100,000-byte name: refused, and the message does not echo it whole. */
+        char *name = (char *)malloc(100001);
+        memset(name, 'x', 100000);
+        name[100000] = 0;
+        DnsrShaderOverride long_name = {name, not_spirv, sizeof not_spirv};
+        CREATE_CASE("create: shader override named by 100000 bytes", DNSR_ERROR_INVALID_ARGUMENT,
+                    "DNSR_MAX_SHADER_VARIANT_NAME_LENGTH", info.shaderOverrideCount = 1; info.pShaderOverrides = &long_name);
+        CHECK(strlen(dnsr_last_error_message()) < 512, "a 100000-byte name echoed in a %zu-byte message",
+              strlen(dnsr_last_error_message()));
+        free(name);
+    }
     {
         uint32_t n = 0;
         expect("dnsr_get_shader_variants: NULL count", dnsr_get_shader_variants(NULL, NULL), DNSR_ERROR_INVALID_ARGUMENT, "pCount");

@@ -11,9 +11,9 @@
  *     context writing the sample's RGBA8 output holds the same values, rounded, in every channel;
  *   - the depth buffer itself (D32_SFLOAT, reverse-Z, FFX_DENOISER_ENABLE_DEPTH_INVERTED) equals dnsr.h with
  *     DNSR_CONTEXT_CREATE_DEPTH_INVERTED on it;
- *   - misuse the SDK does not catch (NULL pointers, a destroyed or never-created context, the reflections flag, an
- *     output format dnsr cannot write, a NULL image, a scratch buffer too small, an interface not from
- *     ffxGetInterfaceVK): each a specific FfxErrorCode with a message, nothing recorded;
+ *   - misuse the SDK does not catch (NULL pointers, a destroyed or never-created context, a create into a live
+ *     one, the reflections flag, an output format dnsr cannot write, a NULL image, a scratch buffer too small, an
+ *     interface not from ffxGetInterfaceVK): each a specific FfxErrorCode with a message, nothing recorded;
  *   - no validation message from any of it.
  */
 #include <FidelityFX/host/backends/vk/ffx_vk.h>
@@ -451,6 +451,7 @@ static void misuse(void)
     std::memset(other, 0, sizeof *other);
 
     EXPECT_FFX(FFX_ERROR_INVALID_POINTER, ffxDenoiserContextCreate(nullptr, &desc));
+    EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextCreate(in.context.get(), &desc)); /* live: not orphaned */
     EXPECT_FFX(FFX_ERROR_INVALID_POINTER, ffxDenoiserContextCreate(other, nullptr));
     desc.flags = FFX_DENOISER_SHADOWS | FFX_DENOISER_REFLECTIONS;
     EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextCreate(other, &desc));

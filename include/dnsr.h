@@ -79,6 +79,18 @@
 #define DNSR_MAX_DIAGNOSES 8
 
 /**
+ * Largest `DnsrShaderOverride::codeSize` accepted, in bytes (dnsr's own modules are under 100 KiB): a larger one is
+ * refused with DNSR_ERROR_INVALID_ARGUMENT before anything is read.
+ */
+#define DNSR_MAX_SHADER_OVERRIDE_CODE_SIZE (16 << 20)
+
+/**
+ * Longest `DnsrShaderOverride::pVariantName` accepted, in bytes without the terminator (dnsr's names are under 40):
+ * a longer one is refused with DNSR_ERROR_INVALID_ARGUMENT, and no more of it is read or echoed.
+ */
+#define DNSR_MAX_SHADER_VARIANT_NAME_LENGTH 255
+
+/**
  * Most lights one `dnsr_lights_record` call denoises.
  */
 #define DNSR_MAX_LIGHTS_PER_RECORD 8
@@ -483,7 +495,8 @@ typedef struct DnsrDebugNameCallback {
  */
 typedef struct DnsrShaderOverride {
   /**
-   * Required. The variant it replaces, e.g. "tile_classification_r16f" (NUL-terminated).
+   * Required. The variant it replaces, e.g. "tile_classification_r16f" (NUL-terminated, at most
+   * DNSR_MAX_SHADER_VARIANT_NAME_LENGTH bytes before the terminator).
    */
   const char *pVariantName;
   /**
@@ -491,7 +504,7 @@ typedef struct DnsrShaderOverride {
    */
   const uint32_t *pCode;
   /**
-   * Size of pCode in bytes (a multiple of 4).
+   * Size of pCode in bytes (a multiple of 4, at most DNSR_MAX_SHADER_OVERRIDE_CODE_SIZE).
    */
   uintptr_t codeSize;
 } DnsrShaderOverride;

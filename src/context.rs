@@ -170,9 +170,11 @@ fn check_shader_overrides(overrides: &[crate::ShaderOverride]) -> Result<()> {
             )));
         }
         if !crate::shader_variants().any(|v| v.name == o.variant) {
+            // Not a variant: echo no more of the name than a variant's could be.
+            let shown: String = o.variant.chars().take(64).collect();
+            let more = if shown.len() < o.variant.len() { "..." } else { "" };
             return Err(Error::ShaderInterface(format!(
-                "shader override {i} names \"{}\", which is not a dnsr shader variant (shader_variants lists them)",
-                o.variant
+                "shader override {i} names \"{shown}{more}\", which is not a dnsr shader variant (shader_variants lists them)"
             )));
         }
         if overrides[..i].iter().any(|p| p.variant == o.variant) {

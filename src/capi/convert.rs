@@ -196,8 +196,24 @@ fn shader_overrides_from_c(c: &DnsrContextCreateInfo) -> Result<Vec<crate::Shade
             if o.code_size % 4 != 0 || o.code_size == 0 {
                 return Err(CallError::InvalidArgument(format!("{what}.codeSize is {}; SPIR-V is whole 32-bit words", o.code_size)));
             }
-            // SAFETY: a NUL-terminated name and codeSize bytes of code, as the header requires.
-            let variant = unsafe { std::ffi::CStr::from_ptr(o.p_variant_name) }.to_string_lossy().into_owned();
+            if o.code_size > DNSR_MAX_SHADER_OVERRIDE_CODE_SIZE {
+                return Err(CallError::InvalidArgument(format!(
+                    "{what}.codeSize is {}; at most DNSR_MAX_SHADER_OVERRIDE_CODE_SIZE ({DNSR_MAX_SHADER_OVERRIDE_CODE_SIZE}) bytes",
+                    o.code_size
+                )));
+            }
+            // SAFETY: a NUL-terminated name, read no further than one byte past the longest accepted.
+            let length = unsafe { libc::strnlen(o.p_variant_name, DNSR_MAX_SHADER_VARIANT_NAME_LENGTH + 1) };
+            // SAFETY: `length` bytes before the terminator (or the bound).
+            let name = unsafe { std::slice::from_raw_parts(o.p_variant_name as *const u8, length) };
+            if length > DNSR_MAX_SHADER_VARIANT_NAME_LENGTH {
+                return Err(CallError::InvalidArgument(format!(
+                    "{what}.pVariantName is longer than DNSR_MAX_SHADER_VARIANT_NAME_LENGTH ({DNSR_MAX_SHADER_VARIANT_NAME_LENGTH}) bytes: \"{}...\"",
+                    String::from_utf8_lossy(&name[..32])
+                )));
+            }
+            let variant = String::from_utf8_lossy(name).into_owned();
+            // SAFETY: codeSize bytes of code, as the header requires.
             let spirv = unsafe { std::slice::from_raw_parts(o.p_code as *const u8, o.code_size) }.to_vec();
             Ok(crate::ShaderOverride { variant, spirv })
         })

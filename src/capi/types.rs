@@ -459,15 +459,23 @@ pub struct DnsrContextCreateInfo {
     pub shadow_input: DnsrShadowInput,
 }
 
+/// Largest `DnsrShaderOverride::codeSize` accepted, in bytes (dnsr's own modules are under 100 KiB): a larger one is
+/// refused with DNSR_ERROR_INVALID_ARGUMENT before anything is read.
+pub const DNSR_MAX_SHADER_OVERRIDE_CODE_SIZE: usize = 16 << 20;
+/// Longest `DnsrShaderOverride::pVariantName` accepted, in bytes without the terminator (dnsr's names are under 40):
+/// a longer one is refused with DNSR_ERROR_INVALID_ARGUMENT, and no more of it is read or echoed.
+pub const DNSR_MAX_SHADER_VARIANT_NAME_LENGTH: usize = 255;
+
 /// One pass variant's SPIR-V, compiled by the engine.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct DnsrShaderOverride {
-    /// Required. The variant it replaces, e.g. "tile_classification_r16f" (NUL-terminated).
+    /// Required. The variant it replaces, e.g. "tile_classification_r16f" (NUL-terminated, at most
+    /// DNSR_MAX_SHADER_VARIANT_NAME_LENGTH bytes before the terminator).
     pub p_variant_name: *const c_char,
     /// Required. The SPIR-V module (SPIR-V 1.3: glslc --target-env=vulkan1.1).
     pub p_code: *const u32,
-    /// Size of pCode in bytes (a multiple of 4).
+    /// Size of pCode in bytes (a multiple of 4, at most DNSR_MAX_SHADER_OVERRIDE_CODE_SIZE).
     pub code_size: usize,
 }
 

@@ -322,6 +322,10 @@ fn new_dnsr_context(info: &DnsrContextCreateInfo) -> Result<DnsrContext, Failure
 pub extern "C" fn ffxDenoiserContextCreate(context: *mut FfxDenoiserContext, description: *const FfxDenoiserContextDescription) -> FfxErrorCode {
     guard(|| {
         let Some(out) = (unsafe { context.as_mut() }) else { return fail(FFX_ERROR_INVALID_POINTER, "pContext is NULL") };
+        // A second create into a live context would orphan the first (its GPU objects outlive the device).
+        if lock(&CONTEXTS).contains_key(&context_id(out)) {
+            return fail(FFX_ERROR_INVALID_ARGUMENT, "pContext holds a live context: destroy it first (ffxDenoiserContextDestroy)");
+        }
         out.data[0] = 0;
         let Some(d) = (unsafe { description.as_ref() }) else { return fail(FFX_ERROR_INVALID_POINTER, "pContextDescription is NULL") };
         if d.flags & FFX_DENOISER_REFLECTIONS != 0 {

@@ -121,6 +121,59 @@ fn finite_mat(what: &'static str, m: &glam::Mat4) -> Result<()> {
     if m.is_finite() { Ok(()) } else { Err(Error::NonFinite(what)) }
 }
 
+/// A frame's camera and decoding constants, which a dispatch and the CPU reference's frame info both carry.
+pub(crate) struct Camera<'a> {
+    pub projection_inverse: &'a glam::Mat4,
+    pub reprojection_matrix: &'a glam::Mat4,
+    pub view_projection_inverse: &'a glam::Mat4,
+    pub eye: glam::Vec3,
+    pub motion_vector_scale: glam::Vec2,
+    pub normals_unpack: [f32; 2],
+    pub depth_similarity_sigma: f32,
+}
+
+impl<'a> Camera<'a> {
+    /// A dispatch's.
+    pub fn of(d: &'a ShadowsDispatch) -> Camera<'a> {
+        Camera {
+            projection_inverse: &d.projection_inverse,
+            reprojection_matrix: &d.reprojection_matrix,
+            view_projection_inverse: &d.view_projection_inverse,
+            eye: d.eye,
+            motion_vector_scale: d.motion_vector_scale,
+            normals_unpack: [d.normals_unpack_mul, d.normals_unpack_add],
+            depth_similarity_sigma: d.depth_similarity_sigma,
+        }
+    }
+}
+
+/// Checks a frame's camera constants (the GPU dispatch and the CPU reference alike): finite, and a depth sigma > 0.
+pub(crate) fn camera(c: &Camera) -> Result<()> {
+    finite_mat("projection_inverse", c.projection_inverse)?;
+    finite_mat("reprojection_matrix", c.reprojection_matrix)?;
+    finite_mat("view_projection_inverse", c.view_projection_inverse)?;
+    if !c.eye.is_finite() {
+        return Err(Error::NonFinite("eye"));
+    }
+    if !c.motion_vector_scale.is_finite() {
+        return Err(Error::NonFinite("motion_vector_scale"));
+    }
+    if !c.normals_unpack.iter().all(|v| v.is_finite()) {
+        return Err(Error::NonFinite("normals_unpack_mul/add"));
+    }
+    if !c.depth_similarity_sigma.is_finite() {
+        return Err(Error::NonFinite("depth_similarity_sigma"));
+    }
+    if c.depth_similarity_sigma <= 0.0 {
+        return Err(Error::InvalidValue {
+            field: "depth_similarity_sigma",
+            value: c.depth_similarity_sigma.to_string(),
+            allowed: "it must be > 0 (a linear-depth distance in view-space units, FidelityFX default 1)",
+        });
+    }
+    Ok(())
+}
+
 /// What a context accepts in its dispatches.
 pub(crate) struct DispatchRules {
     pub size: [u32; 2],
@@ -191,28 +244,7 @@ pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, rules: &DispatchRules) -> R
         light_angular_size(d.light_angular_size)?;
     }
 
-    finite_mat("projection_inverse", &d.projection_inverse)?;
-    finite_mat("reprojection_matrix", &d.reprojection_matrix)?;
-    finite_mat("view_projection_inverse", &d.view_projection_inverse)?;
-    if !d.eye.is_finite() {
-        return Err(Error::NonFinite("eye"));
-    }
-    if !d.motion_vector_scale.is_finite() {
-        return Err(Error::NonFinite("motion_vector_scale"));
-    }
-    if !d.normals_unpack_mul.is_finite() || !d.normals_unpack_add.is_finite() {
-        return Err(Error::NonFinite("normals_unpack_mul/add"));
-    }
-    if !d.depth_similarity_sigma.is_finite() {
-        return Err(Error::NonFinite("depth_similarity_sigma"));
-    }
-    if d.depth_similarity_sigma <= 0.0 {
-        return Err(Error::InvalidValue {
-            field: "depth_similarity_sigma",
-            value: d.depth_similarity_sigma.to_string(),
-            allowed: "it must be > 0 (a linear-depth distance in view-space units, FidelityFX default 1)",
-        });
-    }
+    camera(&Camera::of(d))?;
     host_sync(&d.sync, supported_stages)?;
     let rect = render_rect(d.render_rect, size)?;
     // Relations between fields, once each field is known to be usable.
@@ -363,6 +395,8 @@ pub(crate) fn light_list(shared: &ShadowsDispatch, lights: &[crate::LightDispatc
             allowed: "one record_lights call takes 1 to 8 lights (MAX_LIGHTS_PER_RECORD)",
         });
     }
+    // The camera is the shared dispatch's: an error in it is not one light's.
+    camera(&Camera::of(shared))?;
     let per_light = "leave it at its default in the shared dispatch of record_lights: each LightDispatch gives its own";
     unused_input(&shared.hit_mask, "hit_mask", per_light)?;
     unused_input(&shared.visibility, "visibility", per_light)?;

@@ -27,6 +27,14 @@ pub const DNSR_REFERENCE_CHECKERBOARD_INPUT: DnsrReferenceFlags = 1 << 5;
 pub const DNSR_REFERENCE_CHECKERBOARD_PHASE_1: DnsrReferenceFlags = 1 << 6;
 /// Forces 32 bits.
 pub const DNSR_REFERENCE_MAX_ENUM: DnsrReferenceFlags = 0x7FFF_FFFF;
+/// Every DNSR_REFERENCE_* bit.
+const KNOWN_FLAGS: DnsrReferenceFlags = DNSR_REFERENCE_RESET
+    | DNSR_REFERENCE_DEPTH_INVERTED
+    | DNSR_REFERENCE_HIT_MASK_LIT_BITS
+    | DNSR_REFERENCE_USE_HIT_DISTANCE
+    | DNSR_REFERENCE_VISIBILITY_INPUT
+    | DNSR_REFERENCE_CHECKERBOARD_INPUT
+    | DNSR_REFERENCE_CHECKERBOARD_PHASE_1;
 
 /// The constants of one reference frame (the same values as a DnsrShadowsDispatch; the render rectangle is
 /// the whole `width` x `height`).
@@ -53,7 +61,7 @@ pub struct DnsrReferenceFrameInfo {
     pub normals_unpack_add: f32,
     /// Eye in world space.
     pub eye: [f32; 3],
-    /// Depth edge-stop sigma, > 0.
+    /// Depth edge-stop sigma, > 0 (0, NaN or infinite: refused, as by a dispatch).
     pub depth_similarity_sigma: f32,
     /// Current clip -> view (column-major).
     pub projection_inverse: [f32; 16],
@@ -110,7 +118,8 @@ fn mat(m: &[f32; 16]) -> DMat4 {
     DMat4::from_cols_array(&m.map(|v| v as f64))
 }
 
-/// The checks every reference entry point makes on its frame info: structure, extent, finite matrices.
+/// The checks every reference entry point makes on its frame info: structure, extent, flags, and the constants as a
+/// GPU dispatch's are checked.
 fn checked<'a>(
     p_info: *const DnsrReferenceFrameInfo,
     p_callbacks: *const DnsrReferenceCallbacks,
@@ -120,14 +129,23 @@ fn checked<'a>(
     check_type(info.s_type, DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO, "DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO", "pInfo")?;
     check_no_next(info.p_next, "pInfo")?;
     crate::validate::extent("pInfo->width/height", info.width, info.height, 16384)?;
-    for (name, m) in [
-        ("projectionInverse", &info.projection_inverse),
-        ("reprojectionMatrix", &info.reprojection_matrix),
-        ("viewProjectionInverse", &info.view_projection_inverse),
-    ] {
-        if m.iter().any(|v| !v.is_finite()) {
-            return Err(CallError::Core(crate::Error::NonFinite(name)));
-        }
+    let unknown = info.flags & !KNOWN_FLAGS;
+    if unknown != 0 {
+        return Err(CallError::InvalidArgument(format!("pInfo->flags has unknown bits {unknown:#x}")));
+    }
+    // The same checks as a GPU dispatch's constants.
+    let m = |a: &[f32; 16]| glam::Mat4::from_cols_array(a);
+    crate::validate::camera(&crate::validate::Camera {
+        projection_inverse: &m(&info.projection_inverse),
+        reprojection_matrix: &m(&info.reprojection_matrix),
+        view_projection_inverse: &m(&info.view_projection_inverse),
+        eye: glam::Vec3::from_array(info.eye),
+        motion_vector_scale: glam::Vec2::from_array(info.motion_vector_scale),
+        normals_unpack: [info.normals_unpack_mul, info.normals_unpack_add],
+        depth_similarity_sigma: info.depth_similarity_sigma,
+    })?;
+    if info.flags & DNSR_REFERENCE_USE_HIT_DISTANCE != 0 {
+        crate::validate::light_angular_size(info.light_angular_size)?;
     }
     Ok((info, cb))
 }

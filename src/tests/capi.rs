@@ -313,6 +313,18 @@ mod reference_table {
         assert_eq!(dnsr_reference_run_frame(&frame, &callbacks), DnsrResult::DNSR_SUCCESS);
         let worst = gpu_out.iter().zip(&user.output).map(|(a, b)| (a - b).abs()).fold(0.0f32, f32::max);
         assert!(worst <= 1e-4, "C reference vs GPU ({guidance:?}): {worst}");
+        // What a dispatch refuses, the reference refuses too (each used to run and return SUCCESS, the first with
+        // every output non-finite or outside [0, 1]).
+        for (bad, want) in [
+            (DnsrReferenceFrameInfo { depth_similarity_sigma: 0.0, ..frame }, DnsrResult::DNSR_ERROR_INVALID_ARGUMENT),
+            (DnsrReferenceFrameInfo { depth_similarity_sigma: f32::NAN, ..frame }, DnsrResult::DNSR_ERROR_NON_FINITE),
+            (DnsrReferenceFrameInfo { eye: [f32::INFINITY, 0.0, 0.0], ..frame }, DnsrResult::DNSR_ERROR_NON_FINITE),
+            (DnsrReferenceFrameInfo { motion_vector_scale: [f32::NAN, 1.0], ..frame }, DnsrResult::DNSR_ERROR_NON_FINITE),
+            (DnsrReferenceFrameInfo { normals_unpack_add: f32::NAN, ..frame }, DnsrResult::DNSR_ERROR_NON_FINITE),
+            (DnsrReferenceFrameInfo { flags: frame.flags | 1 << 20, ..frame }, DnsrResult::DNSR_ERROR_INVALID_ARGUMENT),
+        ] {
+            assert_eq!(dnsr_reference_run_frame(&bad, &callbacks), want);
+        }
         // A frame without RESET needs the previous-state callbacks; guidance needs its callback and a valid angle.
         let no_reset = DnsrReferenceFrameInfo { flags: 0, ..frame };
         assert_eq!(dnsr_reference_run_frame(&no_reset, &callbacks), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);

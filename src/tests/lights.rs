@@ -197,6 +197,10 @@ fn a_bad_light_refuses_the_whole_record() {
             matches!(e, Error::InvalidValue { field: "output", .. })
         }),
         ("reset in the shared dispatch", ShadowsDispatch { reset: true, ..d }, base.to_vec(), |e| matches!(e, Error::InvalidValue { field: "reset", .. })),
+        // The camera is the shared dispatch's: its error names no light.
+        ("a NaN in the shared camera", ShadowsDispatch { view_projection_inverse: glam::Mat4::NAN, ..d }, base.to_vec(), |e| {
+            matches!(e, Error::NonFinite("view_projection_inverse"))
+        }),
         ("light index in the shared dispatch", ShadowsDispatch { light_index: 2, ..d }, base.to_vec(), |e| {
             matches!(e, Error::InvalidValue { field: "light_index", .. })
         }),

@@ -231,6 +231,10 @@ enum DnsrResult
    */
   DNSR_ERROR_CLASSIFIER_NOT_ENABLED = -23,
   /**
+   * A host allocation failed (the CPU reference's per-pixel buffers for a large frame): nothing was written.
+   */
+  DNSR_ERROR_OUT_OF_HOST_MEMORY = -24,
+  /**
    * Forces a 32-bit enum.
    */
   DNSR_RESULT_MAX_ENUM = 2147483647,
@@ -1270,7 +1274,7 @@ typedef struct DnsrReferenceFrameInfo {
    */
   float eye[3];
   /**
-   * Depth edge-stop sigma, > 0.
+   * Depth edge-stop sigma, > 0 (0, NaN or infinite: refused, as by a dispatch).
    */
   float depthSimilaritySigma;
   /**
@@ -1908,7 +1912,8 @@ const char *dnsr_last_error_message(void);
 
 /**
  * Runs one frame of the CPU reference (f64) over the engine's data: read callbacks in, write callbacks out.
- * Returns DNSR_ERROR_NON_FINITE for non-finite matrices, DNSR_ERROR_INVALID_ARGUMENT for a missing required
+ * Returns DNSR_ERROR_NON_FINITE for non-finite constants, DNSR_ERROR_OUT_OF_HOST_MEMORY where its buffers cannot
+ * be allocated (nothing written), DNSR_ERROR_INVALID_ARGUMENT for a missing required
  * callback. Single-threaded; meant for diffing a captured frame, not for real time.
  */
 DnsrResult dnsr_reference_run_frame(const struct DnsrReferenceFrameInfo *pInfo,

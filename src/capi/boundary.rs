@@ -13,6 +13,7 @@ pub(crate) enum CallError {
     InvalidStructure(String),
     InvalidHandle(&'static str),
     Internal(String),
+    OutOfHostMemory(String),
 }
 
 impl From<Error> for CallError {
@@ -101,6 +102,7 @@ pub(crate) fn guard(f: impl FnOnce(&mut Option<LogSink>) -> Result<DnsrResult, C
             (DnsrResult::DNSR_ERROR_INVALID_HANDLE, format!("{what} is not a live DnsrContext (never created, or destroyed)"))
         }
         Ok(Err(CallError::Internal(m))) => (DnsrResult::DNSR_ERROR_INTERNAL, m),
+        Ok(Err(CallError::OutOfHostMemory(m))) => (DnsrResult::DNSR_ERROR_OUT_OF_HOST_MEMORY, m),
         Err(panic) => {
             let text = panic
                 .downcast_ref::<&str>()

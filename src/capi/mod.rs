@@ -362,8 +362,9 @@ pub extern "C" fn dnsr_result_to_string(result: i32) -> *const c_char {
         DNSR_ERROR_INVALID_HOST_SYNC,
         DNSR_ERROR_INVALID_QUEUE_FAMILY,
         DNSR_ERROR_CLASSIFIER_NOT_ENABLED,
+        DNSR_ERROR_OUT_OF_HOST_MEMORY,
     ];
-    let names: [&'static std::ffi::CStr; 24] = [
+    let names: [&'static std::ffi::CStr; 25] = [
         c"DNSR_SUCCESS",
         c"DNSR_NOT_READY",
         c"DNSR_ERROR_INVALID_ARGUMENT",
@@ -388,6 +389,7 @@ pub extern "C" fn dnsr_result_to_string(result: i32) -> *const c_char {
         c"DNSR_ERROR_INVALID_HOST_SYNC",
         c"DNSR_ERROR_INVALID_QUEUE_FAMILY",
         c"DNSR_ERROR_CLASSIFIER_NOT_ENABLED",
+        c"DNSR_ERROR_OUT_OF_HOST_MEMORY",
     ];
     all.iter().position(|&r| r as i32 == result).map_or(c"DNSR_RESULT_UNKNOWN", |i| names[i]).as_ptr()
 }

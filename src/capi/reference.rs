@@ -4,7 +4,8 @@
 use super::boundary::{check_no_next, check_type, guard, required, CallError};
 use super::convert::settings_from_c;
 use super::types::{DnsrResult, DnsrSettings, DnsrStructureType, DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO};
-use crate::reference::{decode_normal, memory::Frame, run_frame};
+use crate::reference::memory::{filled, Frame};
+use crate::reference::{decode_normal, run_frame};
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use std::ffi::c_void;
 
@@ -150,6 +151,11 @@ fn checked<'a>(
     Ok((info, cb))
 }
 
+/// The error of a failed allocation for `info`'s frame.
+fn out_of_memory(info: &DnsrReferenceFrameInfo) -> impl Fn(std::collections::TryReserveError) -> CallError + '_ {
+    move |e| CallError::OutOfHostMemory(format!("the CPU reference's buffers for a {}x{} frame: {e}", info.width, info.height))
+}
+
 /// Depth, normal texels and motion vectors of every pixel, as the engine's read callbacks return them.
 struct RawInputs {
     depth: Vec<f32>,
@@ -165,7 +171,12 @@ impl RawInputs {
         let read_velocity = cb.read_velocity.ok_or_else(|| missing("readVelocity"))?;
         let (w, h) = (info.width as i32, info.height as i32);
         let n = (info.width * info.height) as usize;
-        let mut raw = RawInputs { depth: vec![0.0; n], normals: vec![[0.0; 4]; n], velocity: vec![[0.0; 2]; n] };
+        let oom = out_of_memory(info);
+        let mut raw = RawInputs {
+            depth: filled(n, 0.0).map_err(&oom)?,
+            normals: filled(n, [0.0; 4]).map_err(&oom)?,
+            velocity: filled(n, [0.0; 2]).map_err(&oom)?,
+        };
         for y in 0..h {
             for x in 0..w {
                 let i = (y * w + x) as usize;
@@ -182,7 +193,8 @@ impl RawInputs {
 }
 
 /// Runs one frame of the CPU reference (f64) over the engine's data: read callbacks in, write callbacks out.
-/// Returns DNSR_ERROR_NON_FINITE for non-finite matrices, DNSR_ERROR_INVALID_ARGUMENT for a missing required
+/// Returns DNSR_ERROR_NON_FINITE for non-finite constants, DNSR_ERROR_OUT_OF_HOST_MEMORY where its buffers cannot
+/// be allocated (nothing written), DNSR_ERROR_INVALID_ARGUMENT for a missing required
 /// callback. Single-threaded; meant for diffing a captured frame, not for real time.
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_reference_run_frame(
@@ -227,7 +239,7 @@ pub extern "C" fn dnsr_reference_run_frame(
         };
 
         let (w, h) = (info.width as i32, info.height as i32);
-        let mut f = Frame::new(w, h, settings);
+        let mut f = Frame::try_new(w, h, settings).map_err(out_of_memory(info))?;
         f.reset = reset;
         f.depth_inverted = info.flags & DNSR_REFERENCE_DEPTH_INVERTED != 0;
         f.projection_inverse = mat(&info.projection_inverse);
@@ -248,7 +260,12 @@ pub extern "C" fn dnsr_reference_run_frame(
             }
         }
         if let Some(read) = read_visibility {
-            f.visibility = Some((0..h).flat_map(|y| (0..w).map(move |x| (x, y))).map(|(x, y)| unsafe { read(user, x, y) } as f64).collect());
+            let mut v = filled((w * h) as usize, 0.0).map_err(out_of_memory(info))?;
+            for (i, value) in v.iter_mut().enumerate() {
+                // SAFETY: the engine's callback, called as the header documents.
+                *value = unsafe { read(user, i as i32 % w, i as i32 / w) } as f64;
+            }
+            f.visibility = Some(v);
         }
         let scale = DVec2::new(info.motion_vector_scale[0] as f64, info.motion_vector_scale[1] as f64);
         let (mul, add) = (info.normals_unpack_mul as f64, info.normals_unpack_add as f64);

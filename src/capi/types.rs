@@ -102,6 +102,8 @@ pub enum DnsrResult {
     DNSR_ERROR_INVALID_QUEUE_FAMILY = -22,
     /// The classifier was used on a context created without DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER.
     DNSR_ERROR_CLASSIFIER_NOT_ENABLED = -23,
+    /// A host allocation failed (the CPU reference's per-pixel buffers for a large frame): nothing was written.
+    DNSR_ERROR_OUT_OF_HOST_MEMORY = -24,
     /// Forces a 32-bit enum.
     DNSR_RESULT_MAX_ENUM = 0x7FFF_FFFF,
 }

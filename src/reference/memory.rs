@@ -3,6 +3,7 @@
 
 use super::{Coord, Get, Penumbra, Read, Write, TILE};
 use crate::settings::Settings;
+use std::collections::TryReserveError;
 use glam::{DMat4, DVec2, DVec3, DVec4};
 
 /// One frame of one light for the CPU reference.
@@ -76,9 +77,20 @@ pub struct Frame {
 impl Frame {
     /// A frame of `w` x `h` with neutral inputs (sky, no motion) and empty history.
     pub fn new(w: i32, h: i32, settings: Settings) -> Frame {
+        Frame::try_new(w, h, settings).expect("memory for a reference frame")
+    }
+
+    /// As `new`, or the allocation that failed: every per-pixel buffer, the filter passes' included, is
+    /// allocated here, fallibly (the C entry points answer DNSR_ERROR_OUT_OF_HOST_MEMORY instead of aborting).
+    pub fn try_new(w: i32, h: i32, settings: Settings) -> Result<Frame, TryReserveError> {
         let n = (w * h) as usize;
         let tiles = (((w + 7) / 8) * ((h + 3) / 4)) as usize;
-        Frame {
+        let mut filter_out = Vec::new();
+        filter_out.try_reserve_exact(settings.filter_passes as usize)?;
+        for _ in 0..settings.filter_passes {
+            filter_out.push(filled(n, DVec2::ZERO)?);
+        }
+        Ok(Frame {
             extent: [w, h],
             settings,
             projection_inverse: DMat4::IDENTITY,
@@ -89,29 +101,29 @@ impl Frame {
             reset: false,
             depth_inverted: false,
             penumbra: None,
-            hit_distance: vec![0.0; n],
-            hit_mask: vec![0; tiles],
+            hit_distance: filled(n, 0.0)?,
+            hit_mask: filled(tiles, 0)?,
             visibility: None,
             checkerboard_phase: None,
-            depth: vec![1.0; n],
-            velocity: vec![DVec2::ZERO; n],
-            normals: vec![DVec3::ZERO; n],
-            previous_depth: vec![1.0; n],
-            previous_moments: vec![DVec4::ZERO; n],
-            history: vec![0.0; n],
-            tile_mask: vec![0; tiles],
-            tile_dark: vec![0; tiles],
-            tile_meta: vec![0; tiles],
-            tile_blocker: vec![-1.0; tiles],
-            depth_copy: vec![0.0; n],
-            moments: vec![DVec4::ZERO; n],
-            reprojection_out: vec![DVec2::ZERO; n],
-            filter_out: Vec::new(),
-            output: vec![0.0; n],
+            depth: filled(n, 1.0)?,
+            velocity: filled(n, DVec2::ZERO)?,
+            normals: filled(n, DVec3::ZERO)?,
+            previous_depth: filled(n, 1.0)?,
+            previous_moments: filled(n, DVec4::ZERO)?,
+            history: filled(n, 0.0)?,
+            tile_mask: filled(tiles, 0)?,
+            tile_dark: filled(tiles, 0)?,
+            tile_meta: filled(tiles, 0)?,
+            tile_blocker: filled(tiles, -1.0)?,
+            depth_copy: filled(n, 0.0)?,
+            moments: filled(n, DVec4::ZERO)?,
+            reprojection_out: filled(n, DVec2::ZERO)?,
+            filter_out,
+            output: filled(n, 0.0)?,
             half_intermediates: false,
             pass: 0,
             passes: 0,
-        }
+        })
     }
 
     fn px(&self, p: Coord) -> usize {
@@ -293,6 +305,14 @@ impl Write for Frame {
         let n = self.depth.len();
         self.filter_out.resize(passes as usize, vec![DVec2::ZERO; n]);
     }
+}
+
+/// `n` copies of `value`, or the error of a failed allocation (instead of an abort).
+pub(crate) fn filled<T: Clone>(n: usize, value: T) -> Result<Vec<T>, TryReserveError> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(n)?;
+    v.resize(n, value);
+    Ok(v)
 }
 
 /// Rounds to the nearest IEEE half-precision value (ties to even), as a GPU stores into a 16-bit float image.

@@ -342,3 +342,88 @@ mod reference_table {
         gpu_out
     }
 }
+
+/// The CPU reference's C entry points answer DNSR_ERROR_OUT_OF_HOST_MEMORY where their buffers cannot be allocated
+/// (they used to abort the process: `dnsr_reference_diagnose` at 16384x16384, `dnsr_reference_run_frame` at 4096x4096
+/// under a 3 GB address-space limit). The limit applies to a whole process, so the test runs itself again as a child
+/// (DNSR_OOM_CHILD set) that lowers its own limit to 1 GiB and makes both calls at 16384x16384.
+mod host_memory {
+    use crate::capi::reference::*;
+    use crate::capi::types::{DnsrResult, DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO};
+    use std::ffi::c_void;
+
+    unsafe extern "C" fn zero(_: *mut c_void, _: i32, _: i32) -> f32 {
+        0.0
+    }
+    unsafe extern "C" fn zeros(_: *mut c_void, _: i32, _: i32, out: *mut f32) {
+        unsafe { *out = 0.0 };
+    }
+    unsafe extern "C" fn no_hits(_: *mut c_void, _: i32, _: i32) -> u32 {
+        0
+    }
+
+    fn calls() -> [DnsrResult; 2] {
+        let mut identity = [0.0f32; 16];
+        for i in 0..4 {
+            identity[i * 5] = 1.0;
+        }
+        let info = DnsrReferenceFrameInfo {
+            s_type: DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO,
+            p_next: std::ptr::null(),
+            width: 16384,
+            height: 16384,
+            flags: DNSR_REFERENCE_RESET,
+            p_settings: std::ptr::null(),
+            motion_vector_scale: [1.0, 1.0],
+            normals_unpack_mul: 1.0,
+            normals_unpack_add: 0.0,
+            eye: [0.0; 3],
+            depth_similarity_sigma: 1.0,
+            projection_inverse: identity,
+            reprojection_matrix: identity,
+            view_projection_inverse: identity,
+            light_angular_size: 0.0,
+        };
+        let callbacks = DnsrReferenceCallbacks {
+            user_data: std::ptr::null_mut(),
+            read_hit_mask: Some(no_hits),
+            read_depth: Some(zero),
+            read_normal: Some(zeros),
+            read_velocity: Some(zeros),
+            read_previous_depth: None,
+            read_previous_moments: None,
+            read_history: None,
+            write_output: None,
+            write_tile_meta: None,
+            write_reprojection: None,
+            write_moments: None,
+            write_history: None,
+            read_hit_distance: None,
+            read_visibility: None,
+        };
+        let mut count = 0u32;
+        [
+            dnsr_reference_run_frame(&info, &callbacks),
+            dnsr_reference_diagnose(&info, &callbacks, &mut count, std::ptr::null_mut()),
+        ]
+    }
+
+    #[test]
+    fn reference_entry_points_report_out_of_host_memory() {
+        if std::env::var_os("DNSR_OOM_CHILD").is_some() {
+            let limit = libc::rlimit { rlim_cur: 1 << 30, rlim_max: 1 << 30 };
+            // SAFETY: lowers this (child) process's own address-space limit.
+            assert_eq!(unsafe { libc::setrlimit(libc::RLIMIT_AS, &limit) }, 0);
+            let got = calls();
+            assert_eq!(got, [DnsrResult::DNSR_ERROR_OUT_OF_HOST_MEMORY; 2]);
+            return;
+        }
+        let out = std::process::Command::new(std::env::current_exe().unwrap())
+            .args(["--exact", "tests::capi::host_memory::reference_entry_points_report_out_of_host_memory", "--nocapture", "--test-threads", "1"])
+            .env("DNSR_OOM_CHILD", "1")
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success() && text.contains("1 passed"), "child: {:?}\n{text}", out.status);
+    }
+}

@@ -9,6 +9,7 @@
 mod capabilities;
 mod clip;
 mod loader;
+mod messages;
 mod resources;
 pub mod types;
 
@@ -40,6 +41,8 @@ fn guard(f: impl FnOnce() -> Result<(), Failure>) -> FfxErrorCode {
             if let Some(m) = message {
                 set_last_error(&m);
             }
+            // SAFETY: this thread's last error message, NUL-terminated (just set, or set by the dnsr call that failed).
+            messages::error(&unsafe { std::ffi::CStr::from_ptr(crate::capi::boundary::last_error_ptr()) }.to_string_lossy());
             code
         }
         Err(_) => {
@@ -193,6 +196,37 @@ pub extern "C" fn ffxGetResourceVK(
 #[unsafe(no_mangle)]
 pub extern "C" fn ffxGetSurfaceFormatVK(format: vk::Format) -> u32 {
     resources::surface_format(format)
+}
+
+/// ffx_vk.h: a buffer's FfxResourceDescription from its create info.
+#[unsafe(no_mangle)]
+pub extern "C" fn ffxGetBufferResourceDescriptionVK(buffer: vk::Buffer, info: vk::BufferCreateInfo<'static>, additional_usages: u32) -> FfxResourceDescription {
+    if buffer == vk::Buffer::null() {
+        return FfxResourceDescription::default();
+    }
+    let mut usage = additional_usages;
+    if info.usage.contains(vk::BufferUsageFlags::STORAGE_BUFFER) {
+        usage |= FFX_RESOURCE_USAGE_UAV;
+    }
+    if info.usage.contains(vk::BufferUsageFlags::INDIRECT_BUFFER) {
+        usage |= FFX_RESOURCE_USAGE_INDIRECT;
+    }
+    // width is the size, height the stride (0: not a structured buffer), depth the alignment.
+    FfxResourceDescription { type_: FFX_RESOURCE_TYPE_BUFFER, width: info.size as u32, usage, ..Default::default() }
+}
+
+/// ffx_vk.h: a queue as an FfxCommandQueue.
+#[unsafe(no_mangle)]
+pub extern "C" fn ffxGetCommandQueueVK(queue: vk::Queue) -> *mut std::ffi::c_void {
+    use ash::vk::Handle;
+    queue.as_raw() as usize as *mut std::ffi::c_void
+}
+
+/// ffx_vk.h: a pipeline as an FfxPipeline.
+#[unsafe(no_mangle)]
+pub extern "C" fn ffxGetPipelineVK(pipeline: vk::Pipeline) -> *mut std::ffi::c_void {
+    use ash::vk::Handle;
+    pipeline.as_raw() as usize as *mut std::ffi::c_void
 }
 
 /// ffx_vk.h: an image's FfxResourceDescription from its create info.

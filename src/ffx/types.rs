@@ -8,6 +8,8 @@ use std::ffi::c_void;
 
 pub type FfxErrorCode = i32;
 pub const FFX_OK: FfxErrorCode = 0;
+/// FfxMsgType: an error message.
+pub const FFX_MESSAGE_TYPE_ERROR: u32 = 0;
 /// FfxShaderModel: the one the Vulkan backend reports (Vulkan has no shader models).
 pub const FFX_SHADER_MODEL_5_1: u32 = 0;
 pub const FFX_ERROR_INVALID_POINTER: FfxErrorCode = 0x8000_0000u32 as i32;

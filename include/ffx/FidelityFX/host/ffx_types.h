@@ -65,6 +65,14 @@ typedef void *FfxRootSignature;
 typedef void *FfxCommandSignature;
 typedef void *FfxPipeline;
 
+/* Message types (ffx_message.h) and the callback that receives them. */
+typedef enum FfxMsgType {
+    FFX_MESSAGE_TYPE_ERROR = 0,
+    FFX_MESSAGE_TYPE_WARNING = 1,
+    FFX_MESSAGE_TYPE_COUNT
+} FfxMsgType;
+typedef void (*ffxMessageCallback)(uint32_t type, const wchar_t *message);
+
 /* Texel formats. A depth image is described by its colour twin (D32_SFLOAT as R32_FLOAT, D16_UNORM as R16_UNORM)
  * plus FFX_RESOURCE_USAGE_DEPTHTARGET. */
 typedef enum FfxSurfaceFormat {

@@ -52,6 +52,17 @@ FFX_API FfxResourceDescription ffxGetImageResourceDescriptionVK(
     const VkImage image, const VkImageCreateInfo createInfo,
     FfxResourceUsage additionalUsages FFX_DNSR_DEFAULT_ARGUMENT(FFX_RESOURCE_USAGE_READ_ONLY));
 
+/* The description of a buffer from its create info: FFX_RESOURCE_TYPE_BUFFER, size createInfo.size (truncated to
+ * 32 bits, as in the SDK), stride 0, format unknown, usage UAV for a storage buffer and INDIRECT for an indirect
+ * one, plus additionalUsages. A null buffer gives zeros. (dnsr reads no buffers; for integrations' own glue.) */
+FFX_API FfxResourceDescription ffxGetBufferResourceDescriptionVK(
+    const VkBuffer buffer, const VkBufferCreateInfo createInfo,
+    FfxResourceUsage additionalUsages FFX_DNSR_DEFAULT_ARGUMENT(FFX_RESOURCE_USAGE_READ_ONLY));
+
+/* A VkQueue as an FfxCommandQueue, and a VkPipeline as an FfxPipeline (the handles themselves). */
+FFX_API FfxCommandQueue ffxGetCommandQueueVK(VkQueue commandQueue);
+FFX_API FfxPipeline ffxGetPipelineVK(VkPipeline pipeline);
+
 #ifdef __cplusplus
 }
 #endif

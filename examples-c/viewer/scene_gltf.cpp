@@ -3,7 +3,8 @@
 // that an accessor fits inside its buffer view, that indices are in range, or that positions are finite.
 //
 // Before tinygltf sees anything, the path is stat()ed (only a regular file is read: a directory made tinygltf
-// allocate 2^63 bytes, a FIFO blocked in open()) and the JSON's top level is scanned for the glTF version and the
+// allocate 2^63 bytes, a FIFO blocked in open(); buffer and image URIs likewise, through tinygltf's file-system
+// callbacks) and the JSON's top level is scanned for the glTF version and the
 // required extensions (tinygltf reads glTF 2.0 only, and met glTF 1.0 or Draco files with messages about
 // whatever it tripped on first).
 #include "scene_gltf.h"
@@ -23,12 +24,17 @@
 
 namespace {
 
-// tinygltf's messages can span lines; the viewer promises a one-line message.
+// tinygltf's messages can span lines, and a JSON parse error quotes the file's bytes (a PNG's 0x89 and all); the
+// viewer promises one line of printable ASCII (anything else becomes '?') of reasonable length.
 std::string oneLine(std::string s)
 {
-    for (char &c : s)
-        if (c == '\n' || c == '\r') c = ' ';
+    for (char &c : s) {
+        unsigned char u = static_cast<unsigned char>(c);
+        if (c == '\n' || c == '\r' || c == '\t') c = ' ';
+        else if (u < 0x20 || u >= 0x7f) c = '?';
+    }
     while (!s.empty() && s.back() == ' ') s.pop_back();
+    if (s.size() > 400) s = s.substr(0, 400) + "...";
     return s;
 }
 
@@ -341,7 +347,8 @@ private:
 
 // Reads `path` whole, refusing anything that is not a regular file. stat() first, never open(): opening a FIFO
 // blocks until a writer comes, and a directory opens fine but then reads as a file of absurd length.
-std::vector<unsigned char> readSceneFile(const std::string &path)
+// Reads a regular file whole (`what` names it in messages): anything else is refused before it is opened.
+std::vector<unsigned char> readRegularFile(const std::string &path, const char *what)
 {
     struct stat st;
     if (::stat(path.c_str(), &st) != 0) fail(path, std::string("cannot open file: ") + std::strerror(errno));
@@ -352,7 +359,7 @@ std::vector<unsigned char> readSceneFile(const std::string &path)
                        : S_ISCHR(st.st_mode)  ? "a character device"
                        : S_ISBLK(st.st_mode)  ? "a block device"
                                               : "not a regular file";
-    if (kind) throw SceneError(path + " is " + kind + ", not a glTF file");
+    if (kind) throw SceneError(path + " is " + kind + ", not " + what);
     if (st.st_size == 0) fail(path, "the file is empty");
     // tinygltf takes the length as an unsigned int.
     if (static_cast<unsigned long long>(st.st_size) > std::numeric_limits<unsigned int>::max())
@@ -363,6 +370,57 @@ std::vector<unsigned char> readSceneFile(const std::string &path)
     in.read(reinterpret_cast<char *>(data.data()), static_cast<std::streamsize>(data.size()));
     if (static_cast<size_t>(in.gcount()) != data.size()) fail(path, "cannot read the whole file (did it change?)");
     return data;
+}
+
+std::vector<unsigned char> readSceneFile(const std::string &path) { return readRegularFile(path, "a glTF file"); }
+
+// tinygltf's file-system callbacks for the buffers and images a glTF names by URI: each is read as the scene file is
+// (a regular file, checked before it is opened). tinygltf's own blocked forever in open() on a FIFO, reported
+// std::bad_alloc for a directory and "File not found" for /dev/zero. A path that exists goes on to the read, which
+// says why it cannot be used.
+bool uriExists(const std::string &path, void *)
+{
+    struct stat st;
+    return ::stat(path.c_str(), &st) == 0;
+}
+bool readUri(std::vector<unsigned char> *out, std::string *err, const std::string &path, void *)
+{
+    try {
+        *out = readRegularFile(path, "a buffer or image file");
+        return true;
+    } catch (const SceneError &e) {
+        if (err) *err += e.what();
+        return false;
+    }
+}
+bool refuseWrite(std::string *err, const std::string &, const std::vector<unsigned char> &, void *)
+{
+    if (err) *err += "dnsr_viewer writes no glTF files";
+    return false;
+}
+
+// JSON nested deeper than this is refused before tinygltf parses it: its parser recurses per level, and a file
+// whose "extras" nested arrays 20,000 deep overflowed the stack. glTF itself nests a few levels.
+constexpr int kMaxJsonNesting = 256;
+
+// The deepest nesting of arrays and objects in [begin, end), strings skipped (stops counting past the limit).
+int jsonNesting(const unsigned char *begin, const unsigned char *end)
+{
+    int depth = 0, deepest = 0;
+    bool inString = false;
+    for (const unsigned char *p = begin; p < end && deepest <= kMaxJsonNesting; ++p) {
+        if (inString) {
+            if (*p == '\\') ++p;
+            else if (*p == '"') inString = false;
+        } else if (*p == '"') {
+            inString = true;
+        } else if (*p == '[' || *p == '{') {
+            deepest = std::max(deepest, ++depth);
+        } else if ((*p == ']' || *p == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return deepest;
 }
 
 // What the top level of a glTF's JSON says about its version and extensions.
@@ -595,6 +653,10 @@ Scene loadGltfScene(const std::string &path)
         json = jsonChunk ? data.data() + 20 : nullptr;
         jsonEnd = jsonChunk ? json + word[2] : nullptr;
     }
+    // Nesting: the JSON chunk of a .glb, all of a .gltf (or of a .glb whose chunk cannot be found).
+    if (jsonNesting(json ? json : data.data(), json ? jsonEnd : data.data() + data.size()) > kMaxJsonNesting)
+        fail(path, "the JSON nests arrays and objects deeper than " + std::to_string(kMaxJsonNesting) +
+                       " levels (dnsr_viewer's limit; glTF needs a few)");
     GltfHeader header;
     bool scanned = json && HeaderScanner(json, jsonEnd).scan(header);
     if (scanned) refuseUnsupported(path, header);
@@ -609,6 +671,7 @@ Scene loadGltfScene(const std::string &path)
     try {
         tinygltf::TinyGLTF gltf;
         gltf.SetImageLoader(skipImage, nullptr);
+        gltf.SetFsCallbacks(tinygltf::FsCallbacks{uriExists, tinygltf::ExpandFilePath, readUri, refuseWrite, nullptr});
         tinygltf::Model model;
         std::string err, warn;
         // The bytes already read, so tinygltf opens no scene file itself; buffer URIs resolve next to the file.

@@ -563,10 +563,29 @@ write_json("meshopt_required.gltf", meshopt)
 unknown = gltf(tri)
 unknown["extensionsUsed"] = unknown["extensionsRequired"] = ["EXT_made_up_geometry"]
 write_json("unknown_required_extension.gltf", unknown)
+
+# Buffer URIs that name no regular file (the files are made below): a FIFO, a directory, a character device.
+write_json("buffer_fifo.gltf", gltf(tri, uri="fifo.bin"))
+write_json("buffer_directory.gltf", gltf(tri, uri="directory.bin"))
+write_json("buffer_dev_zero.gltf", gltf(tri, uri="zero.bin"))
+# "extras" nested 20,000 deep (tinygltf's recursive parser overflowed the stack), and 300 deep under a key of its own.
+deep = gltf(tri)
+deep["extras"] = "@DEEP@"
+with open(os.path.join(out, "deep_extras.gltf"), "w") as f:
+    f.write(json.dumps(deep).replace('"@DEEP@"', "[" * 20000 + "]" * 20000))
+with open(os.path.join(out, "deep_300.gltf"), "w") as f:
+    f.write(json.dumps(deep).replace('"@DEEP@"', '{"a": ' * 300 + "0" + "}" * 300))
+# A PNG named .gltf: tinygltf's parse error quotes the bytes; the message must stay printable.
+with open(os.path.join(out, "png_bytes.gltf"), "wb") as f:
+    f.write(b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR\0\0\0\x10\0\0\0\x10\x08\x02\0\0\0\x90\x91h6")
 PY
 # Not files at all: a directory (tinygltf used to ask for 2^63 bytes) and a FIFO (open() used to block forever).
 mkdir "$tmp/bad/directory.gltf"
 mkfifo "$tmp/bad/fifo.gltf"
+# The same as buffer URIs: tinygltf's own file reading blocked on the FIFO too.
+mkdir "$tmp/bad/directory.bin"
+mkfifo "$tmp/bad/fifo.bin"
+ln -s /dev/zero "$tmp/bad/zero.bin"
 
 # The message each of these must give (the other cases: any one-line message).
 declare -A expect=(
@@ -580,6 +599,11 @@ declare -A expect=(
   [draco_used_no_fallback.gltf]="Draco compression (KHR_draco_mesh_compression) is not supported"
   [meshopt_required.gltf]="meshopt compression (EXT_meshopt_compression) is not supported"
   [unknown_required_extension.gltf]="requires extension EXT_made_up_geometry"
+  [deep_extras.gltf]="the JSON nests arrays and objects deeper than 256 levels"
+  [deep_300.gltf]="the JSON nests arrays and objects deeper than 256 levels"
+  [buffer_fifo.gltf]="fifo.bin is a FIFO (named pipe), not a buffer or image file"
+  [buffer_directory.gltf]="directory.bin is a directory, not a buffer or image file"
+  [buffer_dev_zero.gltf]="zero.bin is a character device, not a buffer or image file"
 )
 bad=0
 for v in "$viewer" "$asan_viewer"; do
@@ -598,6 +622,7 @@ for v in "$viewer" "$asan_viewer"; do
     want=${expect[$(basename "$scene")]:-}
     [[ -z $want ]] || grep -qF -- "$want" "$tmp/bad.err" ||
       fail "$name: the message should say '$want': $(cat "$tmp/bad.err")"
+    ! LC_ALL=C grep -q '[^[:print:]]' "$tmp/bad.err" || fail "$name: unprintable bytes in the message: $(cat -v "$tmp/bad.err")"
     [[ -n $label ]] || echo "bad input $name: $(cat "$tmp/bad.err")"
     bad=$((bad + 1))
   done

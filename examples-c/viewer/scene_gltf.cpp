@@ -268,7 +268,8 @@ private:
         for (size_t p = 0; p < mesh.primitives.size(); p++) {
             const tinygltf::Primitive &prim = mesh.primitives[p];
             std::string name = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(p);
-            if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES) {  // points, lines, strips, fans
+            const bool strip = prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP, fan = prim.mode == TINYGLTF_MODE_TRIANGLE_FAN;
+            if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES && !strip && !fan) {  // points, lines
                 skippedPrimitives_++;
                 skippedMode_ = prim.mode;
                 continue;
@@ -295,7 +296,7 @@ private:
                                             {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
                                              TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
                                              TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT});
-                if (idx.count % 3 != 0)
+                if (!strip && !fan && idx.count % 3 != 0)
                     fail(path_, name + ": index count " + std::to_string(idx.count) + " is not a multiple of 3");
                 indices.resize(idx.count);
                 for (size_t i = 0; i < idx.count; i++) {
@@ -305,11 +306,25 @@ private:
                                         ", out of range for " + std::to_string(positions.count) + " vertices");
                 }
             } else {
-                if (positions.count % 3 != 0)
+                if (!strip && !fan && positions.count % 3 != 0)
                     fail(path_, name + ": " + std::to_string(positions.count) +
                                     " vertices without indices is not a multiple of 3");
                 indices.resize(positions.count);
                 for (size_t i = 0; i < positions.count; i++) indices[i] = static_cast<uint32_t>(i);
+            }
+            // Strips and fans as triangle lists: strip triangle k is (k, k+1, k+2), every other one with its
+            // first two swapped so that all keep the strip's winding; fan triangle k is (0, k+1, k+2).
+            if (strip || fan) {
+                if (indices.size() < 3) fail(path_, name + ": a triangle " + (strip ? "strip" : "fan") + " of " +
+                                                         std::to_string(indices.size()) + " vertices");
+                std::vector<uint32_t> list;
+                list.reserve(3 * (indices.size() - 2));
+                for (size_t k = 0; k + 2 < indices.size(); k++) {
+                    uint32_t a = fan ? indices[0] : indices[k], b = indices[k + 1], c = indices[k + 2];
+                    if (strip && k % 2 == 1) std::swap(a, b);
+                    list.insert(list.end(), {a, b, c});
+                }
+                indices = std::move(list);
             }
 
             uint32_t color = materialColor(prim.material);

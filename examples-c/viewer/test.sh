@@ -628,6 +628,33 @@ for v in "$viewer" "$asan_viewer"; do
   done
 done
 
+# ---- Triangle strips and fans (primitive modes 5 and 6) load as triangle lists: a quad each, two triangles ----
+python3 - "$tmp/modes" <<'PY'
+import base64, json, os, struct, sys
+out = sys.argv[1]
+os.makedirs(out)
+for name, mode, quad in (("strip", 5, [(0, 0, 0), (1, 0, 0), (0, 0, 1), (1, 0, 1)]),
+                         ("fan", 6, [(0, 0, 0), (1, 0, 0), (1, 0, 1), (0, 0, 1)])):
+    data = b"".join(struct.pack("<3f", *p) for p in quad)
+    doc = {"asset": {"version": "2.0"},
+           "buffers": [{"byteLength": len(data),
+                        "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+           "bufferViews": [{"buffer": 0, "byteLength": len(data)}],
+           "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                          "min": [0, 0, 0], "max": [1, 0, 1]}],
+           "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "mode": mode}]}],
+           "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}
+    with open(os.path.join(out, name + ".gltf"), "w") as f:
+        json.dump(doc, f)
+PY
+for mode in strip fan; do
+  "$viewer" "$tmp/modes/$mode.gltf" --headless --frames 1 --size 16x16 --out "$tmp/modes/out-$mode" > /dev/null \
+    2> "$tmp/modes/$mode.err" || fail "triangle $mode: $(cat "$tmp/modes/$mode.err")"
+  triangles=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["triangles"])' "$tmp/modes/out-$mode/report.json")
+  [[ $triangles == 2 ]] || fail "triangle $mode: $triangles triangles, expected 2"
+done
+echo "triangle strips and fans: a quad each, 2 triangles"
+
 echo "viewer tests: ok (headless 160x96, 8 frames, validation clean: ${quality#ok }; --checkerboard: $checkerboard;" \
   "--lights 2: light 0 bit for bit the same, light 1 its own (default inputs, --rays 2, --gbuffer packed," \
   "--checkerboard); ${window}; ${bad} bad inputs" \

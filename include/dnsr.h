@@ -1052,7 +1052,9 @@ typedef struct DnsrClassifyDispatch {
   struct DnsrHostImage cascadeImages[4];
   /**
    * With DNSR_CLASSIFY_CASCADE_ARRAY: the cascades as layers of one image (a 2D-array view, layer i cascade
-   * i); cascadeImages stay zero.
+   * i); cascadeImages stay zero. The view must be of type VK_IMAGE_VIEW_TYPE_2D_ARRAY: dnsr cannot query a
+   * view's type, so a 2D view of a layered image is recorded as given and the validation layer reports
+   * VUID-vkCmdDispatch-viewType-07752 at the dispatch.
    */
   struct DnsrHostImage cascadeArray;
   /**

@@ -446,6 +446,7 @@ struct GltfHeader {
     std::string gltf1Sign;  // the first top-level member shaped as in glTF 1.0, described; empty if none
     std::string objectNotArray;  // the first member that glTF 2.0 makes an array but this file an object
     std::vector<std::string> required, used;
+    bool sceneNotIndex = false;  // a top-level "scene" that is no number (tinygltf ignores it without a word)
 };
 
 // Just enough JSON to fill a GltfHeader: the members named above are read, every other value is skipped without
@@ -484,6 +485,7 @@ public:
             if (h.objectNotArray.empty() && peek('{') &&
                 std::find(std::begin(arrays), std::end(arrays), key) != std::end(arrays))
                 h.objectNotArray = key;
+            if (key == "scene" && !peekNumber()) h.sceneNotIndex = true;
             if (key == "version") h.gltf1Sign = "a top-level \"version\"";  // the plainest sign: named first
             else if (h.gltf1Sign.empty() && key == "scene" && peek('"'))
                 h.gltf1Sign = "\"scene\" is a string (an id)";
@@ -504,6 +506,11 @@ private:
     {
         skipSpace();
         return p_ < end_ && *p_ == c;
+    }
+    bool peekNumber()
+    {
+        skipSpace();
+        return p_ < end_ && (std::isdigit(static_cast<unsigned char>(*p_)) || *p_ == '-');
     }
     bool eat(char c)
     {
@@ -697,6 +704,11 @@ Scene loadGltfScene(const std::string &path)
                                                     static_cast<unsigned int>(data.size()), baseDir);
         if (!ok) fail(path, err.empty() ? "tinygltf could not load the file" : err);
         Loader(path, model, scene).run();
+        // What tinygltf accepted with a warning, or without one although the file is wrong: said, not fatal.
+        if (!warn.empty()) std::fprintf(stderr, "viewer: %s: warning: %s\n", path.c_str(), oneLine(warn).c_str());
+        if (header.sceneNotIndex)
+            std::fprintf(stderr, "viewer: %s: warning: \"scene\" is not an index; scene %d rendered\n", path.c_str(),
+                         model.defaultScene >= 0 ? model.defaultScene : 0);
     } catch (const SceneError &e) {
         if (usedCompression.empty()) throw;
         std::string reason = e.what();

@@ -646,6 +646,9 @@ for name, mode, quad in (("strip", 5, [(0, 0, 0), (1, 0, 0), (0, 0, 1), (1, 0, 1
            "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}
     with open(os.path.join(out, name + ".gltf"), "w") as f:
         json.dump(doc, f)
+    if name == "strip":  # the same with "scene" as a string: tinygltf ignores it without a word
+        with open(os.path.join(out, "scene_string.gltf"), "w") as f:
+            json.dump(dict(doc, scene="0"), f)
 PY
 for mode in strip fan; do
   "$viewer" "$tmp/modes/$mode.gltf" --headless --frames 1 --size 16x16 --out "$tmp/modes/out-$mode" > /dev/null \
@@ -653,7 +656,11 @@ for mode in strip fan; do
   triangles=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["triangles"])' "$tmp/modes/out-$mode/report.json")
   [[ $triangles == 2 ]] || fail "triangle $mode: $triangles triangles, expected 2"
 done
-echo "triangle strips and fans: a quad each, 2 triangles"
+"$viewer" "$tmp/modes/scene_string.gltf" --headless --frames 1 --size 16x16 --out "$tmp/modes/out-scene" > /dev/null \
+  2> "$tmp/modes/scene.err" || fail "\"scene\" as a string: $(cat "$tmp/modes/scene.err")"
+grep -qF 'warning: "scene" is not an index; scene 0 rendered' "$tmp/modes/scene.err" ||
+  fail "\"scene\" as a string: no warning: $(cat "$tmp/modes/scene.err")"
+echo "triangle strips and fans: a quad each, 2 triangles; \"scene\" as a string: rendered with a warning"
 
 echo "viewer tests: ok (headless 160x96, 8 frames, validation clean: ${quality#ok }; --checkerboard: $checkerboard;" \
   "--lights 2: light 0 bit for bit the same, light 1 its own (default inputs, --rays 2, --gbuffer packed," \

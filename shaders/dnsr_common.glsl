@@ -47,6 +47,10 @@ float dnsr_unconverged_variance(float variance) {
 }
 
 #if defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER)
+// Penumbra guidance: the world-space size of a pixel at linear depth zc (pen: the penumbra constants; <= 0 where the
+// projection gives none).
+float dnsr_pixel_footprint(vec4 pen, float zc) { return pen.y + pen.z * zc; }
+
 // Penumbra guidance, Settings::hard_penumbra_pixels (run settings w): the blockers near a tile, `blocker` away on
 // average (-1: none known), cast a penumbra narrower than that many pixels either side of its edge on a receiver at
 // linear depth zc (pen: the light's penumbra constants), and lie DNSR_HARD_PENUMBRA_MIN_BLOCKER_PIXELS pixel
@@ -54,7 +58,7 @@ float dnsr_unconverged_variance(float variance) {
 bool dnsr_hard_penumbra(float blocker, vec4 pen, float zc) {
     float radius = dnsr_get_run_settings().w;
     if (!DNSR_SPEC_PENUMBRA_GUIDED || !(radius > 0.0) || blocker < 0.0) return false;
-    float footprint = pen.y + pen.z * zc;
+    float footprint = dnsr_pixel_footprint(pen, zc);
     return footprint > 0.0 && blocker * pen.x < radius * footprint
         && blocker >= float(DNSR_HARD_PENUMBRA_MIN_BLOCKER_PIXELS) * footprint;
 }

@@ -26,7 +26,7 @@ float dnsr_tap_depth(ivec2 p) {
 // the tile's blockers cast on a receiver at linear depth zc; 0 (no narrowing) without guidance or blocker.
 float dnsr_penumbra_falloff_of(float blocker, vec4 pen, float zc) {
     if (blocker < 0.0) return 0.0;
-    float footprint = pen.y + pen.z * zc;
+    float footprint = dnsr_pixel_footprint(pen, zc);
     if (!(footprint > 0.0)) return 0.0;
     float sigma = blocker * pen.x / footprint * pen.w;
     return 0.5 / max(sigma * sigma, 1e-20);

@@ -195,12 +195,17 @@ impl Penumbra {
         (angular_size * 0.5).tan()
     }
 
+    /// World size of a pixel at linear view depth `z` (<= 0 where the projection gives none).
+    pub fn footprint(&self, z: f64) -> f64 {
+        self.pixel_size + self.pixel_size_per_depth * z
+    }
+
     /// Whether blockers `blocker` away on average (negative: none known) cast a penumbra narrower than `radius`
     /// pixels either side on a receiver at linear depth `z` (`Settings::hard_penumbra_pixels`; 0 never) from
     /// `HARD_PENUMBRA_MIN_BLOCKER_PIXELS` pixel footprints or more: shaders/dnsr_common.glsl, dnsr_hard_penumbra,
     /// compared in the same form.
     pub fn is_hard(&self, blocker: f64, z: f64, radius: f64) -> bool {
-        let footprint = self.pixel_size + self.pixel_size_per_depth * z;
+        let footprint = self.footprint(z);
         radius > 0.0
             && blocker >= 0.0
             && footprint > 0.0
@@ -211,7 +216,7 @@ impl Penumbra {
     /// Half-width in pixels of the penumbra a blocker `blocker` away casts on a receiver at linear depth `z`
     /// (infinite where the pixel footprint is degenerate: no narrowing).
     pub fn radius_px(&self, blocker: f64, z: f64) -> f64 {
-        let footprint = self.pixel_size + self.pixel_size_per_depth * z;
+        let footprint = self.footprint(z);
         if footprint > 0.0 { blocker * self.tan_half_angle / footprint } else { f64::INFINITY }
     }
 }

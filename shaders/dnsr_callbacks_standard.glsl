@@ -17,6 +17,7 @@
 
 #include "generated/dnsr_constants.glsl"
 #include "dnsr_precision.glsl"
+#include "dnsr_storage.glsl"
 
 layout(set = 0, binding = 0, std140) uniform DnsrConstantsBlock { DnsrFrameConstants dnsr_constants; };
 
@@ -97,8 +98,8 @@ layout(set = 0, binding = 3) uniform utexture2D dnsr_tile_mask;
 layout(set = 0, binding = 5) uniform texture2D dnsr_velocity;
 layout(set = 0, binding = 7) uniform texture2D dnsr_previous_depth;
 layout(set = 0, binding = 8, r32f) uniform writeonly image2D dnsr_depth_copy;
-layout(set = 0, binding = 9) uniform texture2D dnsr_previous_moments;
-layout(set = 0, binding = 10, rgba32f) uniform writeonly image2D dnsr_moments;
+layout(set = 0, binding = 9) uniform utexture2D dnsr_previous_moments;
+layout(set = 0, binding = 10, rg32ui) uniform writeonly uimage2D dnsr_moments;
 layout(set = 0, binding = 11) uniform sampler2D dnsr_history;
 layout(set = 0, binding = 12, DNSR_INTERMEDIATE_FORMAT) uniform writeonly image2D dnsr_reprojection;
 layout(set = 0, binding = 13, r32ui) uniform writeonly uimage2D dnsr_tile_meta_out;
@@ -119,7 +120,7 @@ vec2 dnsr_read_velocity(ivec2 p) {
 }
 float dnsr_read_previous_depth(ivec2 p) { return texelFetch(dnsr_previous_depth, p + dnsr_get_offset(), 0).r; }
 // (mean, sum of squared deviations, sample count, run of identical samples: +n lit, -n shadowed).
-vec4 dnsr_read_previous_moments(ivec2 p) { return texelFetch(dnsr_previous_moments, p + dnsr_get_offset(), 0); }
+vec4 dnsr_read_previous_moments(ivec2 p) { return dnsr_unpack_moments(texelFetch(dnsr_previous_moments, p + dnsr_get_offset(), 0).xy); }
 // Bilinear history at a rect-relative uv; the sampler clamps to the edge of the internal image.
 float dnsr_read_history(vec2 uv) {
     vec2 texel = (uv * vec2(dnsr_get_extent()) + vec2(dnsr_get_offset())) / vec2(textureSize(dnsr_history, 0));
@@ -127,7 +128,7 @@ float dnsr_read_history(vec2 uv) {
 }
 float dnsr_read_history_texel(ivec2 p) { return texelFetch(dnsr_history, p + dnsr_get_offset(), 0).r; }
 void dnsr_write_depth_copy(ivec2 p, float depth) { imageStore(dnsr_depth_copy, p + dnsr_get_offset(), vec4(depth)); }
-void dnsr_write_moments(ivec2 p, vec4 m) { imageStore(dnsr_moments, p + dnsr_get_offset(), m); }
+void dnsr_write_moments(ivec2 p, vec4 m) { imageStore(dnsr_moments, p + dnsr_get_offset(), uvec4(dnsr_pack_moments(m), 0u, 0u)); }
 void dnsr_write_reprojection(ivec2 p, vec2 mean_var) { imageStore(dnsr_reprojection, p + dnsr_get_offset(), vec4(mean_var, 0.0, 0.0)); }
 void dnsr_write_tile_meta(ivec2 tile, uint meta) { imageStore(dnsr_tile_meta_out, tile + dnsr_get_tile_offset(), uvec4(meta)); }
 // Penumbra guidance: the host's distance to the first occluder (read where the mask says the ray hit), and each
@@ -148,12 +149,12 @@ layout(set = 0, binding = 14) uniform utexture2D dnsr_tile_meta;
 // A sampler so that the later passes can gather the variances of 2x2 texels in one fetch.
 layout(set = 0, binding = 15) uniform sampler2D dnsr_filter_input;
 layout(set = 0, binding = 16, DNSR_INTERMEDIATE_FORMAT) uniform writeonly image2D dnsr_filter_output;
-layout(set = 0, binding = 19) uniform texture2D dnsr_guide;
-layout(set = 0, binding = 20, rgba32f) uniform writeonly image2D dnsr_guide_out;
+layout(set = 0, binding = 19) uniform utexture2D dnsr_guide;
+layout(set = 0, binding = 20, rg32ui) uniform writeonly uimage2D dnsr_guide_out;
 #ifdef DNSR_FINAL_PASS
 layout(set = 0, binding = 17, DNSR_OUTPUT_FORMAT) uniform writeonly image2D dnsr_output;
 // This frame's moments, read only by the debug views.
-layout(set = 0, binding = 18) uniform texture2D dnsr_debug_moments;
+layout(set = 0, binding = 18) uniform utexture2D dnsr_debug_moments;
 #endif
 
 int dnsr_get_filter_step() { return int(dnsr_push.pass.x); }
@@ -162,8 +163,8 @@ bool dnsr_get_skip_cleared() { return (dnsr_push.pass.y & DNSR_PASS_SKIP_CLEARED
 bool dnsr_get_write_guide() { return (dnsr_push.pass.y & DNSR_PASS_WRITE_GUIDE) != 0u; }
 bool dnsr_get_write_guide_everywhere() { return (dnsr_push.pass.y & DNSR_PASS_WRITE_GUIDE_EVERYWHERE) != 0u; }
 // The filter's own per-pixel geometry, written by the first pass for the later ones: (linear depth or -1, normal).
-vec4 dnsr_read_guide(ivec2 p) { return texelFetch(dnsr_guide, p + dnsr_get_offset(), 0); }
-void dnsr_write_guide(ivec2 p, float linear_depth, vec3 normal) { imageStore(dnsr_guide_out, p + dnsr_get_offset(), vec4(linear_depth, normal)); }
+vec4 dnsr_read_guide(ivec2 p) { return dnsr_unpack_guide(texelFetch(dnsr_guide, p + dnsr_get_offset(), 0).xy); }
+void dnsr_write_guide(ivec2 p, float linear_depth, vec3 normal) { imageStore(dnsr_guide_out, p + dnsr_get_offset(), uvec4(dnsr_pack_guide(linear_depth, normal), 0u, 0u)); }
 uint dnsr_read_tile_meta(ivec2 tile) { return texelFetch(dnsr_tile_meta, tile + dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT), 0).r; }
 layout(set = 0, binding = 23) uniform texture2D dnsr_tile_blocker;
 float dnsr_read_tile_blocker(ivec2 tile) { return texelFetch(dnsr_tile_blocker, tile + dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT), 0).r; }
@@ -176,7 +177,7 @@ void dnsr_write_filter_output(ivec2 p, vec2 mean_var) { imageStore(dnsr_filter_o
 #ifdef DNSR_FINAL_PASS
 void dnsr_write_output(ivec2 p, float shadow) { imageStore(dnsr_output, p + dnsr_get_offset(), vec4(shadow)); }
 uint dnsr_get_debug_view() { return dnsr_push.pass.w; }
-vec3 dnsr_read_debug_moments(ivec2 p) { return texelFetch(dnsr_debug_moments, p + dnsr_get_offset(), 0).xyz; }
+vec3 dnsr_read_debug_moments(ivec2 p) { return dnsr_unpack_moments(texelFetch(dnsr_debug_moments, p + dnsr_get_offset(), 0).xy).xyz; }
 #endif
 
 #ifdef DNSR_LIGHT_SLOTS_VARIANT
@@ -192,7 +193,7 @@ vec3 dnsr_read_debug_moments(ivec2 p) { return texelFetch(dnsr_debug_moments, p 
 #ifdef DNSR_FINAL_PASS
 #define DNSR_LIGHT_SLOT_FINAL(S, B) \
     layout(set = 0, binding = B + 4, DNSR_OUTPUT_FORMAT) uniform writeonly image2D dnsr_output_##S; \
-    layout(set = 0, binding = B + 5) uniform texture2D dnsr_debug_moments_##S;
+    layout(set = 0, binding = B + 5) uniform utexture2D dnsr_debug_moments_##S;
 #else
 #define DNSR_LIGHT_SLOT_FINAL(S, B)
 #endif
@@ -250,8 +251,8 @@ void dnsr_write_light_output(int l, ivec2 p, float shadow) {
 }
 vec3 dnsr_read_light_debug_moments(int l, ivec2 p) {
     ivec2 q = p + dnsr_get_offset();
-    return DNSR_BY_SLOT(l, texelFetch(dnsr_debug_moments, q, 0), texelFetch(dnsr_debug_moments_1, q, 0),
-                        texelFetch(dnsr_debug_moments_2, q, 0), texelFetch(dnsr_debug_moments_3, q, 0)).xyz;
+    return dnsr_unpack_moments(DNSR_BY_SLOT(l, texelFetch(dnsr_debug_moments, q, 0), texelFetch(dnsr_debug_moments_1, q, 0),
+                        texelFetch(dnsr_debug_moments_2, q, 0), texelFetch(dnsr_debug_moments_3, q, 0)).xy).xyz;
 }
 #endif
 #endif

@@ -855,7 +855,7 @@ impl Context {
         }
     }
 
-    /// The moments image written by the last recorded frame of `light` (m, s, n per pixel; RGBA32F, GENERAL).
+    /// The moments image written by the last recorded frame of `light` (packed: src/reference/storage.rs; GENERAL).
     pub(crate) fn last_moments(&self, light: usize) -> vk::Image {
         let l = &self.lights[light];
         l.moments[l.parity ^ 1].image

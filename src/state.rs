@@ -11,10 +11,12 @@ pub(crate) const TILE_FORMAT: vk::Format = vk::Format::R32_UINT;
 pub(crate) const DEPTH_FORMAT: vk::Format = vk::Format::R32_SFLOAT;
 /// Per tile: the blocker distance of penumbra guidance.
 pub(crate) const TILE_BLOCKER_FORMAT: vk::Format = vk::Format::R32_SFLOAT;
-pub(crate) const MOMENTS_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
-/// The filter's geometry per pixel (linear depth, -1 for sky; unit normal): one texel per tap for the passes after
-/// the first instead of a depth and a normal fetch, each decoded again.
-pub(crate) const GUIDE_FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
+/// Per pixel: mean (unorm16), sum of squared deviations and sample count (float16), run of identical samples
+/// (int16), packed into two words (shaders/dnsr_storage.glsl, src/reference/storage.rs).
+pub(crate) const MOMENTS_FORMAT: vk::Format = vk::Format::R32G32_UINT;
+/// The filter's geometry per pixel (linear depth as float32, -1 for sky; octahedral unit normal, 2 x snorm16): one
+/// texel per tap for the passes after the first instead of a depth and a normal fetch, each decoded again.
+pub(crate) const GUIDE_FORMAT: vk::Format = vk::Format::R32G32_UINT;
 
 pub(crate) fn intermediate_format(precision: Precision) -> vk::Format {
     match precision {
@@ -60,7 +62,7 @@ pub(crate) const RECONSTRUCTED_FORMAT: vk::Format = vk::Format::R32_SFLOAT;
 fn format_bytes(format: vk::Format) -> u64 {
     match format {
         vk::Format::R32G32B32A32_SFLOAT => 16,
-        vk::Format::R32G32_SFLOAT => 8,
+        vk::Format::R32G32_SFLOAT | vk::Format::R32G32_UINT => 8,
         _ => 4, // R32_UINT, R32_SFLOAT, R16G16_SFLOAT
     }
 }

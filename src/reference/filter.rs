@@ -1,5 +1,6 @@
 //! filter (shaders/filter.glsl): one pass of the edge-avoiding a-trous filter, 3x3 taps at +-step.
 
+use super::storage::guide_normal;
 use super::{inside, SKY_SIGNAL, is_receiver, linear_depth, pixel_uv, uv_to_ndc, Coord, Read, Write, PENUMBRA_SIGMA_SCALE, TILE};
 use crate::passes::{TILE_CLEARED, TILE_LIT};
 use glam::DVec2;
@@ -97,7 +98,9 @@ pub fn filter_pixel<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64) -> DVec2 {
     if s.converged_samples > 0.0 && converged_signal(c) && converged_neighbourhood(io, p) {
         return DVec2::new(if c.x >= 0.5 { 1.0 } else { 0.0 }, 0.0);
     }
-    let nc = io.read_normal(p);
+    // The passes after the first read normals from the guide (src/reference/storage.rs).
+    let normal = |q: Coord| if step > 1 { guide_normal(io.read_normal(q)) } else { io.read_normal(q) };
+    let nc = normal(p);
     let inv_sigma = 1.0 / blurred_variance(io, p).max(0.0).sqrt().max(s.min_shadow_sigma as f64);
     let inv_depth_sigma = 1.0 / io.depth_similarity_sigma();
     let falloff = penumbra_falloff(io, p, zc);
@@ -115,7 +118,7 @@ pub fn filter_pixel<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64) -> DVec2 {
                 * (-(c.x - n.x).abs() * inv_sigma).exp()
                 * (-(zc - zq).abs() * inv_depth_sigma).exp()
                 * (-((i * i + j * j) * step * step) as f64 * falloff).exp()
-                * nc.dot(io.read_normal(q)).max(0.0).powf(s.normal_power as f64);
+                * nc.dot(normal(q)).max(0.0).powf(s.normal_power as f64);
             weight_sum += w;
             mean_sum += w * n.x;
             var_sum += w * w * n.y;

@@ -9,6 +9,7 @@ pub mod diagnostics;
 pub mod filter;
 pub mod memory;
 pub mod prepare;
+pub mod storage;
 pub mod tile_classification;
 
 use crate::settings::Settings;

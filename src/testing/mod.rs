@@ -76,6 +76,12 @@ fn encode_visibility(v: &[f32], format: vk::Format) -> Vec<u8> {
     }
 }
 
+/// A light's moments image (R32G32_UINT, GENERAL) read back as (mean, sum of squared deviations, count, run).
+pub fn download_moments(gpu: &Gpu, image: vk::Image, w: u32, h: u32) -> Vec<glam::DVec4> {
+    let raw = gpu.download(&TestImage::borrowed(image, crate::state::MOMENTS_FORMAT, w, h, vk::ImageLayout::GENERAL));
+    bytemuck::cast_slice::<u8, [u32; 2]>(&raw).iter().map(|&m| crate::reference::storage::unpack_moments(m)).collect()
+}
+
 /// Converts f32 to an IEEE half (round to nearest even; NaN stays NaN, overflow goes to infinity).
 pub fn f32_to_f16(x: f32) -> u16 {
     let bits = x.to_bits();

@@ -166,7 +166,7 @@ fn handles_codes_and_messages() {
     assert_eq!(ext, ash::khr::push_descriptor::NAME);
     let mut needed = 0u64;
     assert_eq!(dnsr_get_memory_requirements(1920, 1080, DNSR_PRECISION_FP32, 3, 1, &mut needed), DnsrResult::DNSR_SUCCESS);
-    assert!(needed > 1920 * 1080 * 50);
+    assert!(needed > 1920 * 1080 * 40);
     assert_eq!(dnsr_get_memory_requirements(1920, 1080, 5, 3, 1, &mut needed), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);
     let name = |r: i32| unsafe { CStr::from_ptr(dnsr_result_to_string(r)) }.to_str().unwrap().to_owned();
     assert_eq!(name(DnsrResult::DNSR_ERROR_NON_FINITE as i32), "DNSR_ERROR_NON_FINITE");

@@ -1,7 +1,7 @@
 //! What the denoiser computes: exact values where the answer is known, convergence where it is noisy.
 
 use super::{gpu, mae, static_frame};
-use crate::testing::gpu::{Gpu, TestImage};
+use crate::testing::gpu::Gpu;
 use crate::testing::scene::{render, Camera, FrameInputs};
 use crate::testing::Runner;
 use crate::Precision;
@@ -29,9 +29,7 @@ fn runner<'g>(g: &'g Gpu, w: u32, h: u32, precision: Precision) -> Runner<'g> {
 
 /// Sample count n of every pixel after the last frame.
 fn sample_counts(r: &Runner, w: u32, h: u32) -> Vec<f32> {
-    let img = TestImage::borrowed(r.ctx.last_moments(0), vk::Format::R32G32B32A32_SFLOAT, w, h, vk::ImageLayout::GENERAL);
-    let raw = r.gpu.download(&img);
-    bytemuck::cast_slice::<u8, [f32; 4]>(&raw).iter().map(|m| m[2]).collect()
+    crate::testing::download_moments(r.gpu, r.ctx.last_moments(0), w, h).iter().map(|m| m.z as f32).collect()
 }
 
 #[test]

@@ -3,7 +3,7 @@
 
 use super::correctness::{smooth, DEFAULTS_MAE_BOUND};
 use super::{gpu, mae, static_frame};
-use crate::testing::gpu::{Gpu, TestImage};
+use crate::testing::gpu::Gpu;
 use crate::testing::scene::{render, Camera, FrameInputs};
 use crate::testing::Runner;
 use crate::{ContextCreateInfo, Precision};
@@ -27,15 +27,13 @@ fn assert_sane(out: &[f32], f: &FrameInputs, what: &str) {
 /// The moments written by the last frame are finite and within their bounds.
 fn assert_state_finite(r: &Runner, what: &str) {
     let [w, h] = r.ctx.size();
-    let img = TestImage::borrowed(r.ctx.internals(0).moments, vk::Format::R32G32B32A32_SFLOAT, w, h, vk::ImageLayout::GENERAL);
-    let raw = r.gpu.download(&img);
-    let max_n = r.ctx.settings().max_history_samples;
-    for (i, m) in bytemuck::cast_slice::<u8, [f32; 4]>(&raw).iter().enumerate() {
+    let max_n = r.ctx.settings().max_history_samples as f64;
+    for (i, m) in crate::testing::download_moments(r.gpu, r.ctx.internals(0).moments, w, h).iter().enumerate() {
         assert!(m[0].is_finite() && (0.0..=1.0).contains(&m[0]), "{what}: moments.mean of pixel {i} = {}", m[0]);
         assert!(m[1].is_finite() && m[1] >= 0.0 && m[1] <= max_n, "{what}: moments.sum of pixel {i} = {}", m[1]);
         assert!(m[2].is_finite() && m[2] >= 0.0 && m[2] <= max_n, "{what}: moments.n of pixel {i} = {}", m[2]);
         let run = m[3].abs();
-        let longest = crate::passes::MAX_SAMPLE_RUN as f32;
+        let longest = crate::passes::MAX_SAMPLE_RUN as f64;
         assert!(run <= longest && (run.fract() == 0.0 || run.fract() == 0.5), "{what}: sample run of pixel {i} = {}", m[3]);
     }
 }

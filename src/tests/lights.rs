@@ -156,7 +156,7 @@ fn equal_to_one_record_per_light(g: &Gpu, input: ShadowInput) {
     let bytes = |lights| crate::memory_requirements(W, H, crate::Precision::Fp32, 3, lights).unwrap();
     let (one, added) = (bytes(1), bytes(2) - bytes(1));
     assert_eq!(bytes(LIGHTS as u32) - bytes(1), (LIGHTS as u64 - 1) * added, "memory grows linearly with the light count");
-    assert!(one >= added + 16 * (W * H) as u64, "the first light carries the guide ({one} B), the next {added} B each");
+    assert!(one >= added + 8 * (W * H) as u64, "the first light carries the guide ({one} B), the next {added} B each");
     for img in masks.iter().chain(&outputs).chain(&hit_distances) {
         g.destroy_image(img);
     }

@@ -1,0 +1,62 @@
+// How dnsr packs the per-pixel state it keeps in compact formats (docs/performance.md, "State model"). The CPU
+// reference rounds at the same points in the same way (src/reference/storage.rs): every rounding here is written
+// out in integer or exact float steps, never left to a conversion whose rounding the Vulkan spec leaves open
+// (imageStore to a float16 or unorm format, packHalf2x16, round()).
+#ifndef DNSR_STORAGE_GLSL
+#define DNSR_STORAGE_GLSL
+
+// v >= 0 rounded to the nearest float16 value (ties to even), in float32: exact through packHalf2x16 on any
+// implementation. Below the smallest normal float16 (2^-14) it is 0 (no subnormals, which a driver may flush);
+// above the largest (65504) it is 65504.
+float dnsr_round_half(float v) {
+    if (!(v >= 6.103515625e-05)) return 0.0;
+    uint b = floatBitsToUint(min(v, 65504.0));
+    return uintBitsToFloat((b + 0x0FFFu + ((b >> 13) & 1u)) & 0xFFFFE000u);
+}
+
+// v in [0, 1] to a 16-bit unorm code: floor(v * 65535 + 0.5), ties up.
+uint dnsr_unorm16(float v) { return uint(floor(clamp(v, 0.0, 1.0) * 65535.0 + 0.5)); }
+// The code back; the ends are exact (0 and 1 are compared for equality: dnsr_pure).
+float dnsr_from_unorm16(uint u) { return u == 65535u ? 1.0 : float(u) * (1.0 / 65535.0); }
+
+// Moments (mean, sum of squared deviations, sample count, run) in 8 bytes (R32G32_UINT):
+//   x: mean as unorm16 | sum of squared deviations as float16 << 16
+//   y: sample count as float16 | 2 * run as a signed 16-bit integer << 16 (runs are whole or half samples)
+// The mean needs unorm16's even steps: a float16 mean near 1 moves in steps of 1/2048, and an update of
+// (x - mean) / 32 would stall 1/256 short of its target. Counts and sums need float16's range (up to
+// Settings::max_history_samples, 4096).
+uvec2 dnsr_pack_moments(vec4 m) {
+    uint hi_y = uint(int(m.w * 2.0)) << 16;
+    return uvec2(dnsr_unorm16(m.x) | (packHalf2x16(vec2(dnsr_round_half(m.y), 0.0)) << 16),
+                 packHalf2x16(vec2(dnsr_round_half(m.z), 0.0)) | hi_y);
+}
+vec4 dnsr_unpack_moments(uvec2 v) {
+    return vec4(dnsr_from_unorm16(v.x & 0xFFFFu), unpackHalf2x16(v.x >> 16).x, unpackHalf2x16(v.y).x,
+                float(int(v.y) >> 16) * 0.5);
+}
+
+// A unit normal (or vec3(0): no usable normal) in 32 bits: octahedral, two snorm16 codes (floor(c * 32767 + 0.5));
+// the code pair (-32768, -32768), which snorm never writes, is the zero normal.
+const uint DNSR_ZERO_NORMAL = 0x80008000u;
+uint dnsr_snorm16(float v) { return uint(int(floor(clamp(v, -1.0, 1.0) * 32767.0 + 0.5))) & 0xFFFFu; }
+uint dnsr_pack_normal(vec3 n) {
+    float l1 = abs(n.x) + abs(n.y) + abs(n.z);
+    if (!(l1 > 0.0)) return DNSR_ZERO_NORMAL;
+    vec2 o = n.xy / l1;
+    if (n.z < 0.0) o = (1.0 - abs(o.yx)) * vec2(o.x >= 0.0 ? 1.0 : -1.0, o.y >= 0.0 ? 1.0 : -1.0);
+    return dnsr_snorm16(o.x) | (dnsr_snorm16(o.y) << 16);
+}
+vec3 dnsr_unpack_normal(uint u) {
+    if (u == DNSR_ZERO_NORMAL) return vec3(0.0);
+    vec2 o = vec2(float(int(u << 16) >> 16), float(int(u) >> 16)) * (1.0 / 32767.0);
+    vec3 n = vec3(o, 1.0 - abs(o.x) - abs(o.y));
+    float t = max(-n.z, 0.0);
+    n.xy += vec2(n.x >= 0.0 ? -t : t, n.y >= 0.0 ? -t : t);
+    return normalize(n);
+}
+
+// The filter's guide in 8 bytes (R32G32_UINT): linear depth (or -1: no receiver) as float32 bits, the packed normal.
+uvec2 dnsr_pack_guide(float linear_depth, vec3 normal) { return uvec2(floatBitsToUint(linear_depth), dnsr_pack_normal(normal)); }
+vec4 dnsr_unpack_guide(uvec2 g) { return vec4(uintBitsToFloat(g.x), dnsr_unpack_normal(g.y)); }
+
+#endif

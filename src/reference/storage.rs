@@ -1,0 +1,137 @@
+//! The compact formats dnsr stores its per-pixel state in, rounded exactly as shaders/dnsr_storage.glsl rounds them:
+//! the reference keeps each stored value as the GPU reads it back. The GPU rounds its float32 value, the reference
+//! its f64 value (through float32, as the GPU holds it), so a stored value can differ by one step of its format
+//! where the two land on either side of a rounding boundary.
+
+use glam::{DVec3, DVec4};
+
+/// `v` >= 0 rounded to the nearest float16 value, ties to even, as float32 bits are rounded
+/// (`dnsr_round_half`): 0 below 2^-14 (no subnormals), at most 65504.
+pub fn round_half(v: f64) -> f64 {
+    let v = v as f32;
+    if !(v >= 6.103_515_6e-5) {
+        return 0.0;
+    }
+    let b = v.min(65504.0).to_bits();
+    f32::from_bits((b + 0x0FFF + ((b >> 13) & 1)) & 0xFFFF_E000) as f64
+}
+
+/// The float16 code of a value `round_half` returned (0, or a normal float16 value: exact).
+fn half_bits(v: f64) -> u32 {
+    if v == 0.0 {
+        return 0;
+    }
+    let b = (v as f32).to_bits();
+    ((((b >> 23) & 0xFF) - 127 + 15) << 10) | ((b >> 13) & 0x3FF)
+}
+
+/// A float16 code's value (any code a GPU may store, subnormals included).
+fn from_half_bits(h: u32) -> f64 {
+    let (e, m) = ((h >> 10) & 0x1F, (h & 0x3FF) as f64);
+    let a = match e {
+        0 => m * (-24f64).exp2(),
+        31 => if m == 0.0 { f64::INFINITY } else { f64::NAN },
+        _ => (1.0 + m / 1024.0) * (e as f64 - 15.0).exp2(),
+    };
+    if h & 0x8000 != 0 { -a } else { a }
+}
+
+fn unorm16(v: f64) -> u32 {
+    ((v as f32).clamp(0.0, 1.0) as f64 * 65535.0 + 0.5).floor() as u32
+}
+
+fn from_unorm16(u: u32) -> f64 {
+    u as f64 / 65535.0
+}
+
+/// Moments (mean, sum of squared deviations, sample count, run) packed as the GPU stores them (R32G32_UINT).
+pub fn pack_moments(m: DVec4) -> [u32; 2] {
+    let run = ((m.w * 2.0) as i32 as u32) << 16;
+    [unorm16(m.x) | (half_bits(round_half(m.y)) << 16), half_bits(round_half(m.z)) | run]
+}
+
+/// Packed moments read back.
+pub fn unpack_moments(v: [u32; 2]) -> DVec4 {
+    DVec4::new(from_unorm16(v[0] & 0xFFFF), from_half_bits(v[0] >> 16), from_half_bits(v[1] & 0xFFFF), ((v[1] as i32) >> 16) as f64 * 0.5)
+}
+
+/// Moments as a later frame reads them back.
+pub fn stored_moments(m: DVec4) -> DVec4 {
+    unpack_moments(pack_moments(m))
+}
+
+/// The packed code of the zero normal (no usable normal).
+const ZERO_NORMAL: u32 = 0x8000_8000;
+
+fn snorm16(v: f64) -> u32 {
+    (((v as f32).clamp(-1.0, 1.0) as f64 * 32767.0 + 0.5).floor() as i32 as u32) & 0xFFFF
+}
+
+/// A unit normal (or zero) as the filter's guide stores it: octahedral, two snorm16 codes.
+pub fn pack_normal(n: DVec3) -> u32 {
+    let l1 = n.x.abs() + n.y.abs() + n.z.abs();
+    if !(l1 > 0.0) {
+        return ZERO_NORMAL;
+    }
+    let (mut ox, mut oy) = (n.x / l1, n.y / l1);
+    if n.z < 0.0 {
+        let sign = |v: f64| if v >= 0.0 { 1.0 } else { -1.0 };
+        (ox, oy) = ((1.0 - oy.abs()) * sign(ox), (1.0 - ox.abs()) * sign(oy));
+    }
+    snorm16(ox) | (snorm16(oy) << 16)
+}
+
+/// A packed normal read back (unit length, or zero).
+pub fn unpack_normal(u: u32) -> DVec3 {
+    if u == ZERO_NORMAL {
+        return DVec3::ZERO;
+    }
+    let (ox, oy) = (((u << 16) as i32 >> 16) as f64 / 32767.0, ((u as i32) >> 16) as f64 / 32767.0);
+    let mut n = DVec3::new(ox, oy, 1.0 - ox.abs() - oy.abs());
+    let t = (-n.z).max(0.0);
+    n.x += if n.x >= 0.0 { -t } else { t };
+    n.y += if n.y >= 0.0 { -t } else { t };
+    n.normalize()
+}
+
+/// A normal as the filter passes after the first read it from the guide.
+pub fn guide_normal(n: DVec3) -> DVec3 {
+    unpack_normal(pack_normal(n))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn moments_keep_what_the_decisions_compare() {
+        // The ends of the mean, whole and half runs of either sign, whole counts: exact.
+        for m in [DVec4::new(1.0, 0.0, 32.0, 4096.0), DVec4::new(0.0, 0.0, 4096.0, -4096.0), DVec4::new(0.0, 0.0, 0.0, 0.0), DVec4::new(1.0, 0.25, 7.0, -3.5), DVec4::new(0.0, 0.0, 1.0, 2.5)] {
+            assert_eq!(stored_moments(m), m);
+        }
+        // Others within one step of their format.
+        let m = stored_moments(DVec4::new(0.3, 0.123_456, 17.3, 5.0));
+        assert!((m.x - 0.3).abs() <= 0.5 / 65535.0 && (m.y - 0.123_456).abs() <= 0.123_456 / 2048.0 && (m.z - 17.3).abs() <= 17.3 / 2048.0);
+        assert_eq!(round_half(1e-6), 0.0);
+        assert_eq!(round_half(1e9), 65504.0);
+        assert_eq!(round_half(2049.0), 2048.0); // a tie, to even
+        assert_eq!(round_half(2051.0), 2052.0);
+    }
+
+    #[test]
+    fn normals_round_trip_within_their_code() {
+        assert_eq!(guide_normal(DVec3::ZERO), DVec3::ZERO);
+        let mut worst: f64 = 0.0;
+        for i in 0..2000 {
+            let (a, b) = (i as f64 * 0.618_033_988_7 % 1.0, i as f64 * 0.754_877_666 % 1.0);
+            let z = 2.0 * a - 1.0;
+            let r = (1.0 - z * z).sqrt();
+            let n = DVec3::new(r * (6.283_185 * b).cos(), r * (6.283_185 * b).sin(), z);
+            worst = worst.max(guide_normal(n).angle_between(n));
+        }
+        assert!(worst < 1e-4, "octahedral snorm16 normal off by {worst} rad");
+        for n in [DVec3::X, DVec3::NEG_Y, DVec3::Z, DVec3::NEG_Z] {
+            assert!(guide_normal(n).distance(n) < 1e-9, "{n}");
+        }
+    }
+}

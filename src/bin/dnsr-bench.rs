@@ -9,7 +9,7 @@ mod bench;
 use bench::device::{command_line, commit, utc, DeviceInfo};
 use bench::report::{precision_name, preset_name, Report, Summary};
 use bench::run::Warmup;
-use bench::scenes::{build, SceneId, ALL_SCENES};
+use bench::scenes::{build, HostFormats, SceneId, ALL_SCENES};
 use dnsr::testing::gpu::{Gpu, GpuOptions};
 use dnsr::{Precision, Preset};
 use std::path::PathBuf;
@@ -41,6 +41,9 @@ const USAGE: &str = "usage: dnsr-bench [options]
   --validation                enable the Vulkan validation layer; any message fails the run (exit 1)
   --no-push-descriptors       dnsr's descriptor-set path even where VK_KHR_push_descriptor is enabled (what the
                               FidelityFX layer records: it cannot know whether the engine enabled the extension)
+  --float-gbuffer             feed R32_SFLOAT depth, R32G32B32A32_SFLOAT normals and R32G32_SFLOAT velocity instead
+                              of what engines render (default: D32_SFLOAT depth, A2B10G10R10_UNORM_PACK32 normals,
+                              R16G16_SFLOAT velocity)
 
 The device is the first whose name contains $DNSR_DEVICE (any device when unset). The commit recorded is
 $DNSR_COMMIT, else `git rev-parse HEAD` of the working directory.";
@@ -102,6 +105,7 @@ struct Options {
     lights: Vec<usize>,
     checkerboard: bool,
     push_descriptors: bool,
+    host: HostFormats,
 }
 
 fn parse_args() -> Options {
@@ -122,6 +126,7 @@ fn parse_args() -> Options {
         lights: vec![1],
         checkerboard: false,
         push_descriptors: true,
+        host: HostFormats::Engine,
     };
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
@@ -140,6 +145,7 @@ fn parse_args() -> Options {
             "--validation" => o.validation = true,
             "--checkerboard" => o.checkerboard = true,
             "--no-push-descriptors" => o.push_descriptors = false,
+            "--float-gbuffer" => o.host = HostFormats::Float,
             "--lights" => {
                 let max = dnsr::MAX_LIGHTS_PER_RECORD;
                 o.lights = list(args.next(), "--lights", |s| s.parse().ok().filter(|n| (1..=max).contains(n)));
@@ -193,7 +199,7 @@ fn main() {
     for &size in &opts.sizes {
         for &scene in &opts.scenes {
             let t = Instant::now();
-            let mut gpu_scene = build(&gpu, scene, size.0, size.1, opts.rays);
+            let mut gpu_scene = build(&gpu, scene, size.0, size.1, opts.rays, opts.host);
             gpu_scene.checkerboard = opts.checkerboard;
             eprintln!("dnsr-bench: {}x{} {}: {} frames generated in {:.1} s", size.0, size.1, scene.id(), gpu_scene.frames.len(), t.elapsed().as_secs_f64());
             for &precision in &precisions {
@@ -203,7 +209,7 @@ fn main() {
                         .unwrap_or_else(|e| {
                             fail(format!("{}x{} {} {} {} {lights} light(s): {e}", size.0, size.1, scene.id(), preset_name(preset), precision_name(precision)))
                         });
-                    let s = Summary::new(size, scene, preset, precision, run, gpu_scene.coverage, lights);
+                    let s = Summary::new(size, scene, preset, precision, run, gpu_scene.coverage, lights, opts.host);
                     eprintln!(
                         "dnsr-bench: {}x{} {} {} {} {lights} light(s): total {:.3} ms median, {:.3} ms p95 (warm-up {} frames, {:.0} ms{})",
                         size.0,
@@ -236,6 +242,7 @@ fn main() {
         results: &results,
         skipped: &skipped,
         wall_s: started.elapsed().as_secs_f64(),
+        host: opts.host,
     };
     let md = report.markdown();
     std::fs::create_dir_all(&opts.out).unwrap_or_else(|e| fail(format!("cannot create {}: {e}", opts.out.display())));

@@ -2,12 +2,13 @@
 //! neighbouring taps in the caches), nothing for constants or push constants. This is the traffic of the
 //! current passes, not the algorithm's floor (DESIGN.md puts that near 30-40 B/px for a whole frame).
 //!
-//! `MODEL` is the one table to update when a format or a pass changes. Each row: which pass, which resource,
+//! `model` is the one table to update when a format or a pass changes. Each row: which pass, which resource,
 //! bytes per unit with the fp32 and the fp16 path, read or write, which pixels it covers (bytes are per pixel
 //! of that class, per tile for `Tiles`), and in which filter passes it applies. The bench measures the size of
 //! every pixel class on the device (through dnsr's debug views) and multiplies out.
 
 use super::json::Json;
+use super::scenes::HostFormats;
 use dnsr::Precision;
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -67,7 +68,7 @@ pub enum When {
 
 pub struct Row {
     pub pass: Pass,
-    pub resource: &'static str,
+    pub resource: String,
     pub fp32: f64,
     pub fp16: f64,
     pub access: Access,
@@ -75,8 +76,8 @@ pub struct Row {
     pub when: When,
 }
 
-const fn row(pass: Pass, resource: &'static str, fp32: f64, fp16: f64, access: Access, pixels: Pixels, when: When) -> Row {
-    Row { pass, resource, fp32, fp16, access, pixels, when }
+fn row(pass: Pass, resource: &str, fp32: f64, fp16: f64, access: Access, pixels: Pixels, when: When) -> Row {
+    Row { pass, resource: resource.to_owned(), fp32, fp16, access, pixels, when }
 }
 
 use Access::*;
@@ -84,33 +85,39 @@ use Pass::*;
 use Pixels::*;
 use When::*;
 
-/// Host inputs as the bench binds them: hit mask R32_UINT, depth R32_SFLOAT, velocity R32G32_SFLOAT, normals
-/// R32G32B32A32_SFLOAT; output R16_SFLOAT. Internal formats from src/state.rs.
-pub const MODEL: &[Row] = &[
-    row(Prepare, "hit mask (host, R32_UINT)", 4.0, 4.0, Read, Tiles, Always),
-    row(Prepare, "tile mask (R32_UINT)", 4.0, 4.0, Write, Tiles, Always),
-    row(TileClassification, "tile mask (R32_UINT)", 4.0, 4.0, Read, Tiles, Always),
-    row(TileClassification, "depth (host, R32_SFLOAT)", 4.0, 4.0, Read, All, Always),
-    row(TileClassification, "velocity (host, R32G32_SFLOAT)", 8.0, 8.0, Read, ActiveGroupReceivers, Always),
-    row(TileClassification, "normals (host, R32G32B32A32_SFLOAT)", 16.0, 16.0, Read, Active, Always),
-    row(TileClassification, "previous depth copy (R32_SFLOAT)", 4.0, 4.0, Read, Active, Always),
-    row(TileClassification, "previous moments (R32G32_UINT, packed)", 8.0, 8.0, Read, History, Always),
-    row(TileClassification, "history (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Read, History, Always),
-    row(TileClassification, "depth copy (R32_SFLOAT)", 4.0, 4.0, Write, All, Always),
-    row(TileClassification, "moments (R32G32_UINT, packed)", 8.0, 8.0, Write, All, Always),
-    row(TileClassification, "reprojection (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Write, All, Always),
-    row(TileClassification, "tile meta (R32_UINT)", 4.0, 4.0, Write, Tiles, Always),
-    row(TileClassification, "output (host, R16_SFLOAT)", 2.0, 2.0, Write, ClearedGroups, Always),
-    row(Filter, "tile meta (R32_UINT)", 4.0, 4.0, Read, Tiles, Always),
-    row(Filter, "depth (host, R32_SFLOAT)", 4.0, 4.0, Read, All, FirstPass),
-    row(Filter, "depth (host, R32_SFLOAT)", 4.0, 4.0, Read, ClearedGroups, LaterPasses),
-    row(Filter, "normals (host, R32G32B32A32_SFLOAT)", 16.0, 16.0, Read, ActiveGroups, FirstPass),
-    row(Filter, "guide (R32G32_UINT, packed)", 8.0, 8.0, Write, ActiveGroups, FirstOfSeveral),
-    row(Filter, "guide (R32G32_UINT, packed)", 8.0, 8.0, Read, ActiveGroups, LaterPasses),
-    row(Filter, "filter input (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Read, ActiveGroups, Always),
-    row(Filter, "filter output (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Write, All, WritesIntermediate),
-    row(Filter, "output (host, R16_SFLOAT)", 2.0, 2.0, Write, All, FinalPass),
-];
+/// The bytes of one frame's passes with the host G-buffer in `host`'s formats (hit mask R32_UINT, output
+/// R16_SFLOAT). Internal formats from src/state.rs.
+pub fn model(host: HostFormats) -> Vec<Row> {
+    let (depth, velocity, normals) = host.bytes();
+    let depth_name = format!("depth (host, {:?})", host.depth());
+    let velocity_name = format!("velocity (host, {:?})", host.velocity());
+    let normals_name = format!("normals (host, {:?})", host.normals());
+    vec![
+        row(Prepare, "hit mask (host, R32_UINT)", 4.0, 4.0, Read, Tiles, Always),
+        row(Prepare, "tile mask (R32_UINT)", 4.0, 4.0, Write, Tiles, Always),
+        row(TileClassification, "tile mask (R32_UINT)", 4.0, 4.0, Read, Tiles, Always),
+        row(TileClassification, &depth_name, depth, depth, Read, All, Always),
+        row(TileClassification, &velocity_name, velocity, velocity, Read, ActiveGroupReceivers, Always),
+        row(TileClassification, &normals_name, normals, normals, Read, Active, Always),
+        row(TileClassification, "previous depth copy (R32_SFLOAT)", 4.0, 4.0, Read, Active, Always),
+        row(TileClassification, "previous moments (R32G32_UINT, packed)", 8.0, 8.0, Read, History, Always),
+        row(TileClassification, "history (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Read, History, Always),
+        row(TileClassification, "depth copy (R32_SFLOAT)", 4.0, 4.0, Write, All, Always),
+        row(TileClassification, "moments (R32G32_UINT, packed)", 8.0, 8.0, Write, All, Always),
+        row(TileClassification, "reprojection (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Write, All, Always),
+        row(TileClassification, "tile meta (R32_UINT)", 4.0, 4.0, Write, Tiles, Always),
+        row(TileClassification, "output (host, R16_SFLOAT)", 2.0, 2.0, Write, ClearedGroups, Always),
+        row(Filter, "tile meta (R32_UINT)", 4.0, 4.0, Read, Tiles, Always),
+        row(Filter, &depth_name, depth, depth, Read, All, FirstPass),
+        row(Filter, &depth_name, depth, depth, Read, ClearedGroups, LaterPasses),
+        row(Filter, &normals_name, normals, normals, Read, ActiveGroups, FirstPass),
+        row(Filter, "guide (R32G32_UINT, packed)", 8.0, 8.0, Write, ActiveGroups, FirstOfSeveral),
+        row(Filter, "guide (R32G32_UINT, packed)", 8.0, 8.0, Read, ActiveGroups, LaterPasses),
+        row(Filter, "filter input (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Read, ActiveGroups, Always),
+        row(Filter, "filter output (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Write, All, WritesIntermediate),
+        row(Filter, "output (host, R16_SFLOAT)", 2.0, 2.0, Write, All, FinalPass),
+    ]
+}
 
 /// Size of every pixel class in one frame (averaged over the frames measured).
 #[derive(Clone, Copy, Debug, Default)]
@@ -193,9 +200,9 @@ fn skips_cleared(k: u32, passes: u32) -> bool {
 }
 
 /// (bytes read, bytes written) of one pass in a frame with these pixel counts.
-pub fn pass_bytes(pass: PassId, filter_passes: u32, precision: Precision, counts: &PixelCounts) -> (f64, f64) {
+pub fn pass_bytes(pass: PassId, filter_passes: u32, precision: Precision, counts: &PixelCounts, host: HostFormats) -> (f64, f64) {
     let (mut read, mut write) = (0.0, 0.0);
-    for r in MODEL.iter().filter(|r| pass.applies(r, filter_passes)) {
+    for r in model(host).iter().filter(|r| pass.applies(r, filter_passes)) {
         let per = if precision == Precision::Fp16 { r.fp16 } else { r.fp32 };
         let pixels = match pass {
             PassId::Filter(k) if r.pixels == All && skips_cleared(k, filter_passes) => ActiveGroups,
@@ -243,14 +250,14 @@ fn pass_doc(p: Pass) -> &'static str {
     }
 }
 
-pub fn model_json() -> Json {
+pub fn model_json(host: HostFormats) -> Json {
     Json::Arr(
-        MODEL
+        model(host)
             .iter()
             .map(|r| {
                 Json::obj([
                     ("pass", pass_doc(r.pass).into()),
-                    ("resource", r.resource.into()),
+                    ("resource", r.resource.as_str().into()),
                     ("bytes_fp32", r.fp32.into()),
                     ("bytes_fp16", r.fp16.into()),
                     ("access", (if r.access == Read { "read" } else { "write" }).into()),
@@ -264,9 +271,9 @@ pub fn model_json() -> Json {
 }
 
 /// The table as Markdown.
-pub fn model_markdown() -> String {
+pub fn model_markdown(host: HostFormats) -> String {
     let mut s = String::from("| pass | resource | B fp32 | B fp16 | access | per | filter passes |\n|---|---|---|---|---|---|---|\n");
-    for r in MODEL {
+    for r in model(host) {
         s += &format!(
             "| {} | {} | {} | {} | {} | {} | {} |\n",
             pass_doc(r.pass),

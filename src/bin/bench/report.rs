@@ -5,7 +5,7 @@ use super::device::DeviceInfo;
 use super::json::Json;
 use super::model::{model_json, model_markdown, pass_bytes, PassId, PixelCounts};
 use super::run::{ConfigRun, WarmupDone, SUBMISSION};
-use super::scenes::{SceneId, ALL_SCENES};
+use super::scenes::{HostFormats, SceneId, ALL_SCENES};
 use super::stats::{max, mean, median, min, percentile};
 use dnsr::{Precision, Preset};
 
@@ -40,6 +40,8 @@ pub struct Summary {
     pub warmup: WarmupDone,
     /// Lights denoised per frame (one record_lights call when more than one).
     pub lights: usize,
+    /// The G-buffer formats fed.
+    pub host: HostFormats,
 }
 
 pub fn preset_name(p: Preset) -> &'static str {
@@ -66,6 +68,7 @@ impl Summary {
         run: ConfigRun,
         coverage: [f64; 4],
         lights: usize,
+        host: HostFormats,
     ) -> Summary {
         let n = run.filter_passes;
         let ids = [PassId::Prepare, PassId::TileClassification].into_iter().chain((0..n).map(PassId::Filter));
@@ -81,7 +84,7 @@ impl Summary {
                     })
                     .collect();
                 // Every light moves light 0's bytes (its pixel classes stand for all of them).
-                let (read_bytes, write_bytes) = pass_bytes(id, n, precision, &run.counts);
+                let (read_bytes, write_bytes) = pass_bytes(id, n, precision, &run.counts, host);
                 let (read_bytes, write_bytes) = (read_bytes * lights as f64, write_bytes * lights as f64);
                 PassSummary { id, median_ms: median(&ms), p95_ms: percentile(&ms, 95.0), read_bytes, write_bytes }
             })
@@ -110,6 +113,7 @@ impl Summary {
             coverage,
             warmup: run.warmup,
             lights,
+            host,
         }
     }
 
@@ -158,6 +162,8 @@ pub struct Report<'a> {
     pub results: &'a [Summary],
     pub skipped: &'a [String],
     pub wall_s: f64,
+    /// The G-buffer formats fed (every result's).
+    pub host: HostFormats,
 }
 
 impl Report<'_> {
@@ -235,9 +241,9 @@ impl Report<'_> {
                         "host_formats",
                         Json::obj([
                             ("hit_mask", "R32_UINT".into()),
-                            ("depth", "R32_SFLOAT".into()),
-                            ("velocity", "R32G32_SFLOAT".into()),
-                            ("normals", "R32G32B32A32_SFLOAT".into()),
+                            ("depth", format!("{:?}", self.host.depth()).into()),
+                            ("velocity", format!("{:?}", self.host.velocity()).into()),
+                            ("normals", format!("{:?}", self.host.normals()).into()),
                         ]),
                     ),
                     ("roofline_ratio", "pass GPU time / (model bytes / copy bandwidth); 1 = as fast as a copy of the same bytes".into()),
@@ -258,7 +264,7 @@ impl Report<'_> {
                     ("runs_ms", c.runs_ms.clone().into()),
                 ]),
             ),
-            ("byte_model", model_json()),
+            ("byte_model", model_json(self.host)),
             (
                 "scenes",
                 Json::Arr(
@@ -309,6 +315,15 @@ impl Report<'_> {
             if self.frames < 200 { " (fewer than 200: not for quoting)" } else { "" }
         );
         s += &format!("- Submission: {SUBMISSION}\n");
+        let h = self.host;
+        s += &format!(
+            "- Inputs: hit mask R32_UINT, depth {:?}, velocity {:?}, normals {:?} (decoded with unpack mul {}, add {}); output R16_SFLOAT\n",
+            h.depth(),
+            h.velocity(),
+            h.normals(),
+            h.normals_unpack().0,
+            h.normals_unpack().1
+        );
         for sk in self.skipped {
             s += &format!("- Skipped: {sk}\n");
         }
@@ -403,7 +418,7 @@ impl Report<'_> {
             s += &format!("- {}: {}\n", sc.name(), sc.description());
         }
         s += "\n## Byte model\n\nBytes per unit: per pixel of the class named (per tile for tiles), each texel counted once per pass. Filter passes that skip groups of two cleared tiles (pass 1, and a final pass after the first) count \"every pixel\" rows over the pixels of groups with a tile not cleared only.\n\n";
-        s += &model_markdown();
+        s += &model_markdown(self.host);
         s
     }
 }
@@ -412,7 +427,7 @@ impl Report<'_> {
 fn pass_model_bpp(r: &Summary, passes: u32, precision: Precision) -> f64 {
     let ids = [PassId::Prepare, PassId::TileClassification].into_iter().chain((0..passes).map(PassId::Filter));
     ids.map(|id| {
-        let (rd, wr) = pass_bytes(id, passes, precision, &r.counts);
+        let (rd, wr) = pass_bytes(id, passes, precision, &r.counts, r.host);
         rd + wr
     })
     .sum::<f64>()

@@ -75,6 +75,8 @@ fn dispatch(scene: &GpuScene, index: usize, output: &TestImage, guidance: Option
         depth: g.depth.host(),
         velocity: g.velocity.host(),
         normals: g.normals.host(),
+        normals_unpack_mul: scene.host.normals_unpack().0,
+        normals_unpack_add: scene.host.normals_unpack().1,
         output: output.host(),
         eye: f.eye,
         projection_inverse: f.projection_inverse,

@@ -65,6 +65,56 @@ impl SceneId {
     }
 }
 
+/// The G-buffer formats the bench feeds dnsr.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum HostFormats {
+    /// What engines render (the default): D32_SFLOAT depth (a depth attachment), A2B10G10R10_UNORM_PACK32 normals
+    /// (n * 0.5 + 0.5, decoded with unpack mul 2, add -1), R16G16_SFLOAT velocity.
+    Engine,
+    /// `--float-gbuffer`: R32_SFLOAT depth, R32G32B32A32_SFLOAT normals, R32G32_SFLOAT velocity (24 B/px of
+    /// normals and velocity that no engine has; the bench's inputs before issue 27).
+    Float,
+}
+
+impl HostFormats {
+    pub fn depth(self) -> vk::Format {
+        match self {
+            HostFormats::Engine => vk::Format::D32_SFLOAT,
+            HostFormats::Float => vk::Format::R32_SFLOAT,
+        }
+    }
+
+    pub fn velocity(self) -> vk::Format {
+        match self {
+            HostFormats::Engine => vk::Format::R16G16_SFLOAT,
+            HostFormats::Float => vk::Format::R32G32_SFLOAT,
+        }
+    }
+
+    pub fn normals(self) -> vk::Format {
+        match self {
+            HostFormats::Engine => vk::Format::A2B10G10R10_UNORM_PACK32,
+            HostFormats::Float => vk::Format::R32G32B32A32_SFLOAT,
+        }
+    }
+
+    /// (mul, add) that decode the stored normals (`ShadowsDispatch::normals_unpack_*`).
+    pub fn normals_unpack(self) -> (f32, f32) {
+        match self {
+            HostFormats::Engine => (2.0, -1.0),
+            HostFormats::Float => (1.0, 0.0),
+        }
+    }
+
+    /// Bytes of one texel of each host G-buffer input: (depth, velocity, normals).
+    pub fn bytes(self) -> (f64, f64, f64) {
+        match self {
+            HostFormats::Engine => (4.0, 4.0, 4.0),
+            HostFormats::Float => (4.0, 8.0, 16.0),
+        }
+    }
+}
+
 /// Matrices of one frame and which resident images it binds.
 pub struct Frame {
     pub mask: usize,
@@ -75,7 +125,7 @@ pub struct Frame {
     pub view_projection_inverse: Mat4,
 }
 
-/// Depth (R32_SFLOAT), velocity (R32G32_SFLOAT), normals (R32G32B32A32_SFLOAT).
+/// Depth, velocity and normals in the scene's `HostFormats`.
 pub struct GBuffer {
     pub depth: TestImage,
     pub velocity: TestImage,
@@ -91,6 +141,8 @@ pub struct GpuScene {
     /// alternating).
     pub checkerboard: bool,
     pub gbuffers: Vec<GBuffer>,
+    /// The formats of `gbuffers`.
+    pub host: HostFormats,
     pub frames: Vec<Frame>,
     /// Fractions of the pixels (mean over the frames): sky, lit, shadowed, penumbra (visibility within 0.02 of
     /// 1, of 0, in between).
@@ -105,12 +157,24 @@ fn upload(gpu: &Gpu, format: vk::Format, w: u32, h: u32, bytes: &[u8]) -> TestIm
     img
 }
 
-fn upload_gbuffer(gpu: &Gpu, f: &FrameInputs) -> GBuffer {
+fn upload_gbuffer(gpu: &Gpu, f: &FrameInputs, host: HostFormats) -> GBuffer {
     let (w, h) = (f.width, f.height);
+    if host == HostFormats::Float {
+        return GBuffer {
+            depth: upload(gpu, vk::Format::R32_SFLOAT, w, h, bytemuck_f32(&f.depth)),
+            velocity: upload(gpu, vk::Format::R32G32_SFLOAT, w, h, bytemuck_f32(f.velocity.as_flattened())),
+            normals: upload(gpu, vk::Format::R32G32B32A32_SFLOAT, w, h, bytemuck_f32(f.normals.as_flattened())),
+        };
+    }
+    let depth = gpu.image(vk::Format::D32_SFLOAT, w, h, vk::ImageLayout::DEPTH_STENCIL_READ_ONLY_OPTIMAL);
+    gpu.upload(&depth, bytemuck_f32(&f.depth));
+    let velocity: Vec<u16> = f.velocity.as_flattened().iter().map(|&v| dnsr::testing::f32_to_f16(v)).collect();
+    let unorm10 = |c: f32| ((c * 0.5 + 0.5).clamp(0.0, 1.0) * 1023.0).round() as u32;
+    let normals: Vec<u32> = f.normals.iter().map(|n| unorm10(n[0]) | (unorm10(n[1]) << 10) | (unorm10(n[2]) << 20) | (3 << 30)).collect();
     GBuffer {
-        depth: upload(gpu, vk::Format::R32_SFLOAT, w, h, bytemuck_f32(&f.depth)),
-        velocity: upload(gpu, vk::Format::R32G32_SFLOAT, w, h, bytemuck_f32(f.velocity.as_flattened())),
-        normals: upload(gpu, vk::Format::R32G32B32A32_SFLOAT, w, h, bytemuck_f32(f.normals.as_flattened())),
+        depth,
+        velocity: upload(gpu, vk::Format::R16G16_SFLOAT, w, h, bytemuck::cast_slice(&velocity)),
+        normals: upload(gpu, vk::Format::A2B10G10R10_UNORM_PACK32, w, h, bytemuck::cast_slice(&normals)),
     }
 }
 
@@ -160,7 +224,7 @@ fn upload_input(gpu: &Gpu, f: &FrameInputs, mask: &[u32], rays: Option<u32>, see
 
 /// Generates `scene` at `w` x `h` and uploads every frame of its cycle; with `rays`, the shadow input is the
 /// visibility of that many rays per pixel.
-pub fn build(gpu: &Gpu, scene: SceneId, w: u32, h: u32, rays: Option<u32>) -> GpuScene {
+pub fn build(gpu: &Gpu, scene: SceneId, w: u32, h: u32, rays: Option<u32>, host: HostFormats) -> GpuScene {
     let penumbra = |x: f64, z: f64| 0.5 + 0.3 * (x * 0.9).sin() * (z * 0.7).cos();
     let static_scene = |half_width: f64, field: &dyn Fn(f64, f64) -> f64| {
         let cam = Camera::above(0.0, 0.0, 10.0);
@@ -172,7 +236,8 @@ pub fn build(gpu: &Gpu, scene: SceneId, w: u32, h: u32, rays: Option<u32>) -> Gp
             })
             .collect();
         let frames = (0..STATIC_CYCLE).map(|k| frame_of(&f, k, 0)).collect();
-        GpuScene { masks, visibility_input: rays.is_some(), checkerboard: false, gbuffers: vec![upload_gbuffer(gpu, &f)], frames, coverage: coverage(&f) }
+        let gbuffers = vec![upload_gbuffer(gpu, &f, host)];
+        GpuScene { masks, visibility_input: rays.is_some(), checkerboard: false, gbuffers, host, frames, coverage: coverage(&f) }
     };
     match scene {
         SceneId::PenumbraHeavy => static_scene(1e9, &penumbra),
@@ -184,13 +249,14 @@ pub fn build(gpu: &Gpu, scene: SceneId, w: u32, h: u32, rays: Option<u32>) -> Gp
                 visibility_input: rays.is_some(),
                 checkerboard: false,
                 gbuffers: Vec::new(),
+                host,
                 frames: Vec::new(),
                 coverage: [0.0; 4],
             };
             for k in 0..TYPICAL_CYCLE {
                 let f = typical_frame(w, h, k, k as u64 + 1);
                 s.masks.push(upload_input(gpu, &f, &f.mask, rays, 2000 + k as u64));
-                s.gbuffers.push(upload_gbuffer(gpu, &f));
+                s.gbuffers.push(upload_gbuffer(gpu, &f, host));
                 s.frames.push(frame_of(&f, k, k));
                 for (c, v) in s.coverage.iter_mut().zip(coverage(&f)) {
                     *c += v / TYPICAL_CYCLE as f64;

@@ -40,7 +40,12 @@ bool dnsr_is_receiver_signal(vec2 signal) { return signal.y >= 0.0; }
 // has variance exactly 0 (the filter may pass it through, see dnsr_passes_through); every other receiver stores at
 // least DNSR_MIN_UNCONVERGED_VARIANCE, so that float rounding cannot make it look converged.
 bool dnsr_converged_on() { return dnsr_get_run_settings().z > 0.0; }
+// With float16 intermediates the floor is the smallest normal float16 (a subnormal may be flushed to 0 on store).
+#ifdef DNSR_FP16
+const float DNSR_MIN_UNCONVERGED_VARIANCE = 1.0 / float(DNSR_UNCONVERGED_VARIANCE_INV_FP16);
+#else
 const float DNSR_MIN_UNCONVERGED_VARIANCE = 1.0 / float(DNSR_UNCONVERGED_VARIANCE_INV);
+#endif
 bool dnsr_converged_signal(vec2 signal) { return signal.y == 0.0; }
 float dnsr_unconverged_variance(float variance) {
     return dnsr_converged_on() ? max(variance, DNSR_MIN_UNCONVERGED_VARIANCE) : variance;

@@ -175,6 +175,9 @@ pub(crate) const RUN_CLAMP_SAMPLES: u32 = 3;
 /// another pixel look converged to the filter (a standard deviation of 0.001, far below what the edge stop
 /// resolves; f16 holds it). Generated into GLSL.
 pub(crate) const UNCONVERGED_VARIANCE_INV: u32 = 1_000_000;
+/// The same floor where the intermediates are float16 (`Precision::Fp16`): 2^-14, the smallest normal float16.
+/// 1e-6 would be stored as a subnormal, which a device may flush to 0, and the pixel would read as converged.
+pub(crate) const UNCONVERGED_VARIANCE_INV_FP16: u32 = 16_384;
 
 /// Penumbra guidance's hard penumbrae (`Settings::hard_penumbra_pixels`) need blockers at least this many pixel
 /// footprints from the receiver on average: nearer hits are mostly the receiver's own surface under a light near its

@@ -36,10 +36,12 @@ fn converged_neighbourhood<Io: Read + ?Sized>(io: &Io, p: Coord) -> bool {
 }
 
 /// With converged pixels on, the variance a receiver that is not converged stores: at least
-/// 1 / UNCONVERGED_VARIANCE_INV, so that 0 marks the converged ones alone.
-pub fn unconverged_variance(settings: &crate::Settings, variance: f64) -> f64 {
-    if settings.converged_samples > 0.0 {
-        variance.max(1.0 / crate::passes::UNCONVERGED_VARIANCE_INV as f64)
+/// 1 / UNCONVERGED_VARIANCE_INV (UNCONVERGED_VARIANCE_INV_FP16 with float16 intermediates), so that 0 marks the
+/// converged ones alone.
+pub fn unconverged_variance<Io: Read + ?Sized>(io: &Io, variance: f64) -> f64 {
+    if io.settings().converged_samples > 0.0 {
+        let inv = if io.half_intermediates() { crate::passes::UNCONVERGED_VARIANCE_INV_FP16 } else { crate::passes::UNCONVERGED_VARIANCE_INV };
+        variance.max(1.0 / inv as f64)
     } else {
         variance
     }
@@ -124,7 +126,7 @@ pub fn filter_pixel<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64) -> DVec2 {
             var_sum += w * w * n.y;
         }
     }
-    DVec2::new((mean_sum / weight_sum).clamp(0.0, 1.0), unconverged_variance(s, (var_sum / (weight_sum * weight_sum)).max(0.0)))
+    DVec2::new((mean_sum / weight_sum).clamp(0.0, 1.0), unconverged_variance(io, (var_sum / (weight_sum * weight_sum)).max(0.0)))
 }
 
 /// Runs the current filter pass (routing set by `Write::begin_filter_pass`) over the render rectangle.

@@ -177,6 +177,9 @@ impl Get for Frame {
     fn settings(&self) -> &Settings {
         &self.settings
     }
+    fn half_intermediates(&self) -> bool {
+        self.half_intermediates
+    }
     fn filter_step(&self) -> i32 {
         1 << self.pass
     }

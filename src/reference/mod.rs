@@ -51,6 +51,8 @@ pub trait Get {
     fn visibility_input(&self) -> bool;
     /// A checkerboard input: this frame traced the pixels with (x + y) % 2 == phase (None: every pixel).
     fn checkerboard_phase(&self) -> Option<u32>;
+    /// The intermediates are float16 (`Precision::Fp16`).
+    fn half_intermediates(&self) -> bool;
     /// Whether this frame traced pixel `p` (every pixel without a checkerboard input).
     fn is_traced(&self, p: Coord) -> bool {
         self.checkerboard_phase().is_none_or(|phase| (p[0] + p[1]) as u32 % 2 == phase)

@@ -420,7 +420,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     let variance = if stable && !flipped && pure_moments(m) && converged(m.w, x, s.converged_samples as f64) {
         0.0
     } else {
-        super::filter::unconverged_variance(s, variance)
+        super::filter::unconverged_variance(io, variance)
     };
     (m, DVec2::new(shadow, variance))
 }

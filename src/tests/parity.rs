@@ -149,6 +149,29 @@ fn assert_stored_moments_match(gpu: &[glam::DVec4], cpu: &[glam::DVec4], case: &
     }
 }
 
+/// Converged pixels are marked by a variance of exactly 0, and every other receiver stores at least the floor that
+/// keeps it from reading as converged: 1e-6, or with float16 intermediates 2^-14 (the smallest normal float16, which
+/// no store can flush to 0). The GPU and the reference must mark the same pixels.
+fn assert_converged_flags_match(name: &str, gpu: &[DVec2], cpu: &[DVec2], precision: Precision) {
+    let inv = if precision == Precision::Fp16 { crate::passes::UNCONVERGED_VARIANCE_INV_FP16 } else { crate::passes::UNCONVERGED_VARIANCE_INV };
+    let floor = 1.0 / inv as f64;
+    for (i, (g, c)) in gpu.iter().zip(cpu).enumerate() {
+        assert_eq!(g.y == 0.0, c.y == 0.0, "{precision:?} {name}: pixel {i} converged on one side only (gpu {}, cpu {})", g.y, c.y);
+        if c.y > 0.0 {
+            assert!(g.y >= floor * (1.0 - 1e-6), "{precision:?} {name}: pixel {i} stores variance {} below the floor {floor}", g.y);
+        }
+        // Where the reference stores the floor itself, the GPU stores it or a variance its float32 arithmetic put a
+        // little above (variances that small differ by a few times 1e-6 between f32 and f64): a floor that differs
+        // between the two (1e-6 against 2^-14) is 61 times apart.
+        if c.y > 0.0 && c.y <= floor {
+            assert!(g.y <= 10.0 * c.y, "{precision:?} {name}: pixel {i} at the variance floor: gpu {} cpu {}", g.y, c.y);
+        }
+    }
+    let at_floor = cpu.iter().filter(|c| c.y > 0.0 && c.y < 1.5 * floor).count();
+    eprintln!("{precision:?} {name}: {} converged pixels, {at_floor} at the variance floor", cpu.iter().filter(|c| c.y == 0.0).count());
+    assert!(cpu.iter().any(|c| c.y == 0.0), "{name}: no converged pixel");
+}
+
 /// Seeds 8 and 9 take per-pixel visibility instead of the hit mask, seeds 10 and 11 a checkerboard input (half of the
 /// mask's pixels traced per frame, alternating).
 fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64) -> Vec<Worst> {
@@ -282,6 +305,18 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
         assert!(cpu.tile_meta.contains(&state), "tile state {state} missing from the test input");
     }
     assert_stored_moments_match(&moments, &cpu.moments, &format!("{precision:?} {w}x{h} seed {seed}"));
+    if info.settings.converged_samples > 0.0 {
+        let signals: &[(&str, &[DVec2], &[DVec2])] =
+            &[("reprojection", &reprojection, &cpu.reprojection_out), ("history (filter 0)", &history_out, &cpu.filter_out[0])];
+        for (name, gpu_signal, cpu_signal) in signals {
+            // Passes after the first reuse the reprojection image: its values are the temporal part's only with
+            // one or two passes.
+            if *name == "reprojection" && passes > 2 {
+                continue;
+            }
+            assert_converged_flags_match(name, gpu_signal, cpu_signal, precision);
+        }
+    }
     let mut results = vec![
         worst("history (filter 0)", history_out.iter().map(|v| v.x), cpu.filter_out[0].iter().map(|v| v.x)),
         worst("output", out.iter().map(|&v| v as f64), cpu.output.iter().copied()),

@@ -447,6 +447,59 @@ struct GltfHeader {
     std::string objectNotArray;  // the first member that glTF 2.0 makes an array but this file an object
     std::vector<std::string> required, used;
     bool sceneNotIndex = false;  // a top-level "scene" that is no number (tinygltf ignores it without a word)
+    // Members of the top-level arrays' objects whose JSON type is not glTF's (tinygltf ignores them without a
+    // word), described: the first kMaxWrongTypes, and how many there were.
+    std::vector<std::string> wrongTypes;
+    size_t wrongTypeCount = 0;
+};
+
+constexpr size_t kMaxWrongTypes = 4;
+
+enum class JsonType { String, Number, Bool, Array, Object, Null };
+
+const char *jsonTypeName(JsonType t)
+{
+    switch (t) {
+    case JsonType::String: return "a string";
+    case JsonType::Number: return "a number";
+    case JsonType::Bool: return "a boolean";
+    case JsonType::Array: return "an array";
+    case JsonType::Object: return "an object";
+    case JsonType::Null: return "null";
+    }
+    return "?";
+}
+
+// The JSON type glTF 2.0 gives a member of an element of a top-level array ("*": of every such array), for the
+// members the viewer reads or that are commonly wrong; others are not checked.
+struct MemberType {
+    const char *array, *member;
+    JsonType type;
+};
+const MemberType kMemberTypes[] = {
+    {"*", "name", JsonType::String},
+    {"materials", "doubleSided", JsonType::Bool},
+    {"materials", "alphaMode", JsonType::String},
+    {"materials", "alphaCutoff", JsonType::Number},
+    {"materials", "emissiveFactor", JsonType::Array},
+    {"materials", "pbrMetallicRoughness", JsonType::Object},
+    {"materials", "normalTexture", JsonType::Object},
+    {"materials", "occlusionTexture", JsonType::Object},
+    {"materials", "emissiveTexture", JsonType::Object},
+    {"textures", "source", JsonType::Number},
+    {"textures", "sampler", JsonType::Number},
+    {"images", "uri", JsonType::String},
+    {"images", "mimeType", JsonType::String},
+    {"images", "bufferView", JsonType::Number},
+    {"nodes", "mesh", JsonType::Number},
+    {"nodes", "camera", JsonType::Number},
+    {"nodes", "children", JsonType::Array},
+    {"nodes", "matrix", JsonType::Array},
+    {"nodes", "translation", JsonType::Array},
+    {"nodes", "rotation", JsonType::Array},
+    {"nodes", "scale", JsonType::Array},
+    {"meshes", "primitives", JsonType::Array},
+    {"scenes", "nodes", JsonType::Array},
 };
 
 // Just enough JSON to fill a GltfHeader: the members named above are read, every other value is skipped without
@@ -486,6 +539,8 @@ public:
                 std::find(std::begin(arrays), std::end(arrays), key) != std::end(arrays))
                 h.objectNotArray = key;
             if (key == "scene" && !peekNumber()) h.sceneNotIndex = true;
+            if (peek('[') && std::find(std::begin(arrays), std::end(arrays), key) != std::end(arrays))
+                return checkMemberTypes(key, h);
             if (key == "version") h.gltf1Sign = "a top-level \"version\"";  // the plainest sign: named first
             else if (h.gltf1Sign.empty() && key == "scene" && peek('"'))
                 h.gltf1Sign = "\"scene\" is a string (an id)";
@@ -498,6 +553,41 @@ public:
     }
 
 private:
+    // The elements of top-level array `array`, each member of kMemberTypes checked for its JSON type.
+    bool checkMemberTypes(const std::string &array, GltfHeader &h)
+    {
+        size_t index = 0;
+        return elements([&] {
+            size_t element = index++;
+            if (!peek('{')) return skipValue();
+            return members([&](const std::string &member) {
+                for (const MemberType &m : kMemberTypes) {
+                    if ((std::strcmp(m.array, "*") != 0 && array != m.array) || member != m.member) continue;
+                    JsonType found = typeHere();
+                    if (found != m.type && h.wrongTypeCount++ < kMaxWrongTypes)
+                        h.wrongTypes.push_back(array + "[" + std::to_string(element) + "]." + member + " is " +
+                                               jsonTypeName(found) + ", not " + jsonTypeName(m.type));
+                    break;
+                }
+                return skipValue();
+            });
+        });
+    }
+
+    JsonType typeHere()
+    {
+        skipSpace();
+        switch (p_ < end_ ? *p_ : '\0') {
+        case '"': return JsonType::String;
+        case '{': return JsonType::Object;
+        case '[': return JsonType::Array;
+        case 't':
+        case 'f': return JsonType::Bool;
+        case 'n': return JsonType::Null;
+        default: return JsonType::Number;
+        }
+    }
+
     void skipSpace()
     {
         while (p_ < end_ && (*p_ == ' ' || *p_ == '\t' || *p_ == '\n' || *p_ == '\r')) ++p_;
@@ -706,6 +796,14 @@ Scene loadGltfScene(const std::string &path)
         Loader(path, model, scene).run();
         // What tinygltf accepted with a warning, or without one although the file is wrong: said, not fatal.
         if (!warn.empty()) std::fprintf(stderr, "viewer: %s: warning: %s\n", path.c_str(), oneLine(warn).c_str());
+        if (header.wrongTypeCount > 0) {
+            std::string list;
+            for (const std::string &w : header.wrongTypes) list += (list.empty() ? "" : "; ") + w;
+            if (header.wrongTypeCount > header.wrongTypes.size())
+                list += "; " + std::to_string(header.wrongTypeCount - header.wrongTypes.size()) + " more";
+            std::fprintf(stderr, "viewer: %s: warning: members of the wrong JSON type, ignored: %s\n", path.c_str(),
+                         oneLine(list).c_str());
+        }
         if (header.sceneNotIndex)
             std::fprintf(stderr, "viewer: %s: warning: \"scene\" is not an index; scene %d rendered\n", path.c_str(),
                          model.defaultScene >= 0 ? model.defaultScene : 0);

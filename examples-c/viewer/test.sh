@@ -649,6 +649,11 @@ for name, mode, quad in (("strip", 5, [(0, 0, 0), (1, 0, 0), (0, 0, 1), (1, 0, 1
     if name == "strip":  # the same with "scene" as a string: tinygltf ignores it without a word
         with open(os.path.join(out, "scene_string.gltf"), "w") as f:
             json.dump(dict(doc, scene="0"), f)
+        # Members of the wrong type in a material, a texture and names: tinygltf ignores them without a word.
+        bad = dict(doc, materials=[{"name": 7, "doubleSided": "yes"}], textures=[{"source": "0"}],
+                   meshes=[dict(doc["meshes"][0], name=["quad"])], nodes=[{"mesh": 0, "name": None}])
+        with open(os.path.join(out, "wrong_types.gltf"), "w") as f:
+            json.dump(bad, f)
 PY
 for mode in strip fan; do
   "$viewer" "$tmp/modes/$mode.gltf" --headless --frames 1 --size 16x16 --out "$tmp/modes/out-$mode" > /dev/null \
@@ -660,7 +665,14 @@ done
   2> "$tmp/modes/scene.err" || fail "\"scene\" as a string: $(cat "$tmp/modes/scene.err")"
 grep -qF 'warning: "scene" is not an index; scene 0 rendered' "$tmp/modes/scene.err" ||
   fail "\"scene\" as a string: no warning: $(cat "$tmp/modes/scene.err")"
-echo "triangle strips and fans: a quad each, 2 triangles; \"scene\" as a string: rendered with a warning"
+"$viewer" "$tmp/modes/wrong_types.gltf" --headless --frames 1 --size 16x16 --out "$tmp/modes/out-types" > /dev/null \
+  2> "$tmp/modes/types.err" || fail "members of the wrong type: $(cat "$tmp/modes/types.err")"
+for want in 'materials[0].name is a number, not a string' 'materials[0].doubleSided is a string, not a boolean' \
+            'meshes[0].name is an array, not a string' '1 more'; do
+  grep -qF -- "$want" "$tmp/modes/types.err" || fail "members of the wrong type: no '$want' in: $(cat "$tmp/modes/types.err")"
+done
+[[ $(wc -l < "$tmp/modes/types.err") -eq 1 ]] || fail "members of the wrong type: not one line: $(cat "$tmp/modes/types.err")"
+echo "triangle strips and fans: a quad each, 2 triangles; \"scene\" as a string and members of the wrong type: rendered with a warning"
 
 echo "viewer tests: ok (headless 160x96, 8 frames, validation clean: ${quality#ok }; --checkerboard: $checkerboard;" \
   "--lights 2: light 0 bit for bit the same, light 1 its own (default inputs, --rays 2, --gbuffer packed," \

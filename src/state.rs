@@ -17,6 +17,8 @@ pub(crate) const MOMENTS_FORMAT: vk::Format = vk::Format::R32G32_UINT;
 /// The filter's geometry per pixel (linear depth as float32, -1 for sky; octahedral unit normal, 2 x snorm16): one
 /// texel per tap for the passes after the first instead of a depth and a normal fetch, each decoded again.
 pub(crate) const GUIDE_FORMAT: vk::Format = vk::Format::R32G32_UINT;
+// A context without a guide binds a light's moments in its place (Context::frame_views): same format.
+const _: () = assert!(GUIDE_FORMAT.as_raw() == MOMENTS_FORMAT.as_raw());
 
 pub(crate) fn intermediate_format(precision: Precision) -> vk::Format {
     match precision {

@@ -318,20 +318,11 @@ pub(crate) fn filled<T: Clone>(n: usize, value: T) -> Result<Vec<T>, TryReserveE
     Ok(v)
 }
 
-/// Rounds to the nearest IEEE half-precision value (ties to even), as a GPU stores into a 16-bit float image.
+/// Rounds to the nearest IEEE half-precision value (ties to even), as a GPU stores the float32 value into a 16-bit
+/// float image.
 pub fn round_to_half(x: f64) -> f64 {
     if !x.is_finite() || x == 0.0 {
         return x;
     }
-    let a = x.abs();
-    if a >= 65520.0 {
-        return f64::INFINITY.copysign(x);
-    }
-    // Spacing of halfs around `a`: 2^(e - 10) for normals (e >= -14), 2^-24 for subnormals.
-    let e = a.log2().floor().max(-14.0);
-    let ulp = (e - 10.0).exp2();
-    let q = a / ulp;
-    let r = q.round();
-    let r = if (q - q.floor() - 0.5).abs() < 1e-12 && r % 2.0 != 0.0 { r - 1.0 } else { r };
-    (r * ulp).copysign(x)
+    super::storage::f16_to_f32(super::storage::f32_to_f16(x as f32)) as f64
 }

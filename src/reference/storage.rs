@@ -16,24 +16,49 @@ pub fn round_half(v: f64) -> f64 {
     f32::from_bits((b + 0x0FFF + ((b >> 13) & 1)) & 0xFFFF_E000) as f64
 }
 
-/// The float16 code of a value `round_half` returned (0, or a normal float16 value: exact).
-fn half_bits(v: f64) -> u32 {
-    if v == 0.0 {
-        return 0;
+/// Converts f32 to an IEEE half (round to nearest even; NaN stays NaN, overflow goes to infinity).
+pub fn f32_to_f16(x: f32) -> u16 {
+    let bits = x.to_bits();
+    let sign = ((bits >> 16) & 0x8000) as u16;
+    if x.is_nan() {
+        return sign | 0x7E00;
     }
-    let b = (v as f32).to_bits();
-    ((((b >> 23) & 0xFF) - 127 + 15) << 10) | ((b >> 13) & 0x3FF)
+    let a = x.abs();
+    if a >= 65520.0 {
+        return sign | 0x7C00;
+    }
+    if a < 6.103_515_6e-5 {
+        // Subnormal: multiples of 2^-24.
+        return sign | (a * 16_777_216.0).round_ties_even() as u16;
+    }
+    let exp = ((bits >> 23) & 0xFF) as i32 - 127 + 15;
+    let mant = bits & 0x7F_FFFF;
+    let half = ((exp as u32) << 10) | (mant >> 13);
+    let rest = mant & 0x1FFF;
+    let round = (rest > 0x1000 || (rest == 0x1000 && half & 1 == 1)) as u32;
+    sign | (half + round) as u16
+}
+
+/// Converts an IEEE half to f32.
+pub fn f16_to_f32(h: u16) -> f32 {
+    let sign = if h & 0x8000 != 0 { -1.0 } else { 1.0 };
+    let exp = ((h >> 10) & 0x1f) as i32;
+    let mant = (h & 0x3ff) as f32;
+    sign * match exp {
+        0 => mant * 2f32.powi(-24),
+        31 => if mant == 0.0 { f32::INFINITY } else { f32::NAN },
+        e => (1.0 + mant / 1024.0) * 2f32.powi(e - 15),
+    }
+}
+
+/// The float16 code of a value `round_half` returned (exactly representable).
+fn half_bits(v: f64) -> u32 {
+    f32_to_f16(v as f32) as u32
 }
 
 /// A float16 code's value (any code a GPU may store, subnormals included).
 fn from_half_bits(h: u32) -> f64 {
-    let (e, m) = ((h >> 10) & 0x1F, (h & 0x3FF) as f64);
-    let a = match e {
-        0 => m * (-24f64).exp2(),
-        31 => if m == 0.0 { f64::INFINITY } else { f64::NAN },
-        _ => (1.0 + m / 1024.0) * (e as f64 - 15.0).exp2(),
-    };
-    if h & 0x8000 != 0 { -a } else { a }
+    f16_to_f32(h as u16) as f64
 }
 
 fn unorm16(v: f64) -> u32 {

@@ -82,40 +82,7 @@ pub fn download_moments(gpu: &Gpu, image: vk::Image, w: u32, h: u32) -> Vec<glam
     bytemuck::cast_slice::<u8, [u32; 2]>(&raw).iter().map(|&m| crate::reference::storage::unpack_moments(m)).collect()
 }
 
-/// Converts f32 to an IEEE half (round to nearest even; NaN stays NaN, overflow goes to infinity).
-pub fn f32_to_f16(x: f32) -> u16 {
-    let bits = x.to_bits();
-    let sign = ((bits >> 16) & 0x8000) as u16;
-    if x.is_nan() {
-        return sign | 0x7E00;
-    }
-    let a = x.abs();
-    if a >= 65520.0 {
-        return sign | 0x7C00;
-    }
-    if a < 6.103_515_6e-5 {
-        // Subnormal: multiples of 2^-24.
-        return sign | (a * 16_777_216.0).round_ties_even() as u16;
-    }
-    let exp = ((bits >> 23) & 0xFF) as i32 - 127 + 15;
-    let mant = bits & 0x7F_FFFF;
-    let half = ((exp as u32) << 10) | (mant >> 13);
-    let rest = mant & 0x1FFF;
-    let round = (rest > 0x1000 || (rest == 0x1000 && half & 1 == 1)) as u32;
-    sign | (half + round) as u16
-}
-
-/// Converts an IEEE half to f32.
-pub fn f16_to_f32(h: u16) -> f32 {
-    let sign = if h & 0x8000 != 0 { -1.0 } else { 1.0 };
-    let exp = ((h >> 10) & 0x1f) as i32;
-    let mant = (h & 0x3ff) as f32;
-    sign * match exp {
-        0 => mant * 2f32.powi(-24),
-        31 => if mant == 0.0 { f32::INFINITY } else { f32::NAN },
-        e => (1.0 + mant / 1024.0) * 2f32.powi(e - 15),
-    }
-}
+pub use crate::reference::storage::{f16_to_f32, f32_to_f16};
 
 impl<'g> Runner<'g> {
     /// Creates the context and the host images for `info`'s size.

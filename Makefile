@@ -41,6 +41,9 @@ test: deps
 	@# dnsr loads Vulkan through the host's vkGetInstanceProcAddr: the shared library must not link the loader.
 	@if ldd target/release/libdnsr.so | grep -q libvulkan; then echo "libdnsr.so links libvulkan"; exit 1; fi
 	@echo "libdnsr.so does not link libvulkan"
+	@# The C/C++ code compiled in (SPIRV-Reflect, SPIRV-Tools) must not be able to abort the host on bad SPIR-V.
+	@if nm -D target/release/libdnsr.so | grep -q __assert_fail; then echo "libdnsr.so calls assert (build with .cargo/config.toml's -DNDEBUG)"; exit 1; fi
+	@echo "libdnsr.so has no assert"
 	@# The C ABI: header (C11, C++17) and layout, bad-input matrix, a full frame, the minimal example, all under
 	@# AddressSanitizer and the validation layer; then the install story (pkg-config, CMake consumer, soname).
 	DNSR_DEVICE="$(DNSR_DEVICE)" capi-tests/run.sh

@@ -201,7 +201,7 @@ enum DnsrResult
    */
   DNSR_ERROR_TIMESTAMPS_UNSUPPORTED = -16,
   /**
-   * SPIR-V reflection failed or does not match dnsr's binding interface.
+   * A shader override is not valid SPIR-V for the device, or does not match dnsr's binding interface.
    */
   DNSR_ERROR_SHADER_INTERFACE = -17,
   /**
@@ -504,7 +504,11 @@ typedef struct DnsrShaderOverride {
    */
   const char *pVariantName;
   /**
-   * Required. The SPIR-V module (SPIR-V 1.3: glslc --target-env=vulkan1.1).
+   * Required. The SPIR-V module (SPIR-V 1.3: glslc --target-env=vulkan1.1). Before anything else reads it, it
+   * must pass Khronos's validator (SPIRV-Tools, compiled into dnsr) for Vulkan 1.1, have an id bound no larger
+   * than its word count, and ask only for the capabilities, extensions and instruction sets docs/callbacks.md
+   * lists; otherwise DNSR_ERROR_SHADER_INTERFACE with the validator's message. Malformed SPIR-V never reaches
+   * the driver.
    */
   const uint32_t *pCode;
   /**

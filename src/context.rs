@@ -160,8 +160,22 @@ fn check_features(vk: &Vk, info: &ContextCreateInfo) -> Result<()> {
     Ok(())
 }
 
+/// What an override's SPIR-V may use beyond every Vulkan 1.1 device's compute shaders.
+fn override_offers(vk: &Vk, info: &ContextCreateInfo) -> crate::gpu::spirv_validity::DeviceOffers {
+    let mut subgroup = vk::PhysicalDeviceSubgroupProperties::default();
+    let mut p2 = vk::PhysicalDeviceProperties2::default().push_next(&mut subgroup);
+    unsafe { vk.instance.get_physical_device_properties2(vk.physical_device, &mut p2) };
+    let compute = subgroup.supported_stages.contains(vk::ShaderStageFlags::COMPUTE);
+    crate::gpu::spirv_validity::DeviceOffers {
+        float16: info.features.float16,
+        subgroup_operations: if compute { subgroup.supported_operations } else { vk::SubgroupFeatureFlags::empty() },
+    }
+}
+
 /// Every override names a variant once and fits dnsr's interface (checked before anything is created).
-fn check_shader_overrides(overrides: &[crate::ShaderOverride]) -> Result<()> {
+fn check_shader_overrides(vk: &Vk, info: &ContextCreateInfo) -> Result<()> {
+    let overrides = &info.shader_overrides;
+    let offers = if overrides.is_empty() { Default::default() } else { override_offers(vk, info) };
     for (i, o) in overrides.iter().enumerate() {
         if crate::gpu::shader::is_light_slot_variant(&o.variant) {
             return Err(Error::ShaderInterface(format!(
@@ -180,7 +194,7 @@ fn check_shader_overrides(overrides: &[crate::ShaderOverride]) -> Result<()> {
         if overrides[..i].iter().any(|p| p.variant == o.variant) {
             return Err(Error::ShaderInterface(format!("shader override {i}: \"{}\" is overridden twice", o.variant)));
         }
-        crate::gpu::shader::check_override(&o.variant, &o.spirv)?;
+        crate::gpu::shader::check_override(&o.variant, &o.spirv, offers)?;
     }
     Ok(())
 }
@@ -195,8 +209,9 @@ impl Context {
         validate::light_count(info.light_count)?;
         validate::frames_in_flight(info.max_frames_in_flight)?;
         info.settings.validate()?;
-        check_shader_overrides(&info.shader_overrides)?;
         check_features(&vk, info)?;
+        // After the API version check: the override check queries Vulkan 1.1 properties.
+        check_shader_overrides(&vk, info)?;
         let family = validate::queue_family(&vk, info.queue_family_index)?;
         let supported_stages = validate::supported_stages(&vk, &family);
         let needed = memory_requirements_for_input(

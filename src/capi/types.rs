@@ -86,7 +86,7 @@ pub enum DnsrResult {
     // -15 was DNSR_ERROR_DESCRIPTOR_CACHE_FULL (dnsr 0.1.0); descriptor sets are now rewritten every frame.
     /// Timestamps were requested but the queue family cannot write them.
     DNSR_ERROR_TIMESTAMPS_UNSUPPORTED = -16,
-    /// SPIR-V reflection failed or does not match dnsr's binding interface.
+    /// A shader override is not valid SPIR-V for the device, or does not match dnsr's binding interface.
     DNSR_ERROR_SHADER_INTERFACE = -17,
     /// A Vulkan call (or the host's GPU memory allocator) failed.
     DNSR_ERROR_VULKAN = -18,
@@ -475,7 +475,11 @@ pub struct DnsrShaderOverride {
     /// Required. The variant it replaces, e.g. "tile_classification_r16f" (NUL-terminated, at most
     /// DNSR_MAX_SHADER_VARIANT_NAME_LENGTH bytes before the terminator).
     pub p_variant_name: *const c_char,
-    /// Required. The SPIR-V module (SPIR-V 1.3: glslc --target-env=vulkan1.1).
+    /// Required. The SPIR-V module (SPIR-V 1.3: glslc --target-env=vulkan1.1). Before anything else reads it, it
+    /// must pass Khronos's validator (SPIRV-Tools, compiled into dnsr) for Vulkan 1.1, have an id bound no larger
+    /// than its word count, and ask only for the capabilities, extensions and instruction sets docs/callbacks.md
+    /// lists; otherwise DNSR_ERROR_SHADER_INTERFACE with the validator's message. Malformed SPIR-V never reaches
+    /// the driver.
     pub p_code: *const u32,
     /// Size of pCode in bytes (a multiple of 4, at most DNSR_MAX_SHADER_OVERRIDE_CODE_SIZE).
     pub code_size: usize,

@@ -8,3 +8,4 @@ pub(crate) mod loader;
 pub(crate) mod memory;
 pub(crate) mod reflect;
 pub(crate) mod shader;
+pub(crate) mod spirv_validity;

@@ -26,6 +26,48 @@ pub(crate) struct RawBinding {
     pub descriptor_type: Option<vk::DescriptorType>,
     /// Size of a uniform block in bytes (0 otherwise).
     pub block_bytes: u32,
+    /// A uniform block's members, depth first (empty otherwise).
+    pub block_layout: Vec<MemberLayout>,
+}
+
+/// One member of a block as the shader reads it: where it lies and what type it is read as. Two modules whose
+/// blocks list the same members read the bytes dnsr writes the same way.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct MemberLayout {
+    pub offset: u32,
+    pub size: u32,
+    pub type_flags: u32,
+    /// Scalar width and signedness, vector components, matrix columns, rows and stride.
+    pub numeric: [u32; 6],
+    /// Array dimensions, then the array stride.
+    pub array: Vec<u32>,
+}
+
+/// Deepest block nesting read (dnsr's own blocks are flat).
+const MAX_BLOCK_DEPTH: u32 = 8;
+
+fn block_layout(block: &ffi::SpvReflectBlockVariable, depth: u32, out: &mut Vec<MemberLayout>) -> Result<()> {
+    if depth > MAX_BLOCK_DEPTH {
+        return Err(Error::ShaderInterface(format!("a block nests structs deeper than {MAX_BLOCK_DEPTH}")));
+    }
+    let members: &[ffi::SpvReflectBlockVariable] = match block.members.is_null() {
+        true => &[],
+        // SAFETY: SPIRV-Reflect's block holds member_count members.
+        false => unsafe { std::slice::from_raw_parts(block.members, block.member_count as usize) },
+    };
+    for m in members {
+        let (n, a) = (&m.numeric, &m.array);
+        let dims = &a.dims[..(a.dims_count as usize).min(a.dims.len())];
+        out.push(MemberLayout {
+            offset: m.absolute_offset,
+            size: m.size,
+            type_flags: unsafe { m.type_description.as_ref() }.map_or(0, |t| t.type_flags),
+            numeric: [n.scalar.width, n.scalar.signedness, n.vector.component_count, n.matrix.column_count, n.matrix.row_count, n.matrix.stride],
+            array: dims.iter().copied().chain([a.stride]).collect(),
+        });
+        block_layout(m, depth + 1, out)?;
+    }
+    Ok(())
 }
 
 fn c_string(p: *const std::os::raw::c_char) -> String {
@@ -45,8 +87,8 @@ fn descriptor_type(t: ffi::SpvReflectDescriptorType) -> Option<vk::DescriptorTyp
     })
 }
 
-/// Reflects `spirv`: its descriptor bindings and the largest push-constant block size.
-pub(crate) fn reflect_module(spirv: &[u8]) -> Result<(Vec<RawBinding>, u32)> {
+/// Reflects `spirv`: its descriptor bindings, the largest push-constant block size and the push constants' members.
+pub(crate) fn reflect_module(spirv: &[u8]) -> Result<(Vec<RawBinding>, u32, Vec<MemberLayout>)> {
     if spirv.len() < 20 || spirv.len() % 4 != 0 {
         return Err(Error::ShaderInterface(format!("SPIR-V of {} bytes is not a whole module", spirv.len())));
     }
@@ -96,7 +138,7 @@ fn enumerate<T>(
     Ok(ptrs)
 }
 
-fn read(module: &ffi::SpvReflectShaderModule) -> Result<(Vec<RawBinding>, u32)> {
+fn read(module: &ffi::SpvReflectShaderModule) -> Result<(Vec<RawBinding>, u32, Vec<MemberLayout>)> {
     let ptrs = enumerate("binding", module, ffi::spvReflectEnumerateDescriptorBindings)?;
     let mut bindings = Vec::with_capacity(ptrs.len());
     for p in ptrs {
@@ -104,7 +146,12 @@ fn read(module: &ffi::SpvReflectShaderModule) -> Result<(Vec<RawBinding>, u32)> 
         let b = unsafe { p.as_ref() }.ok_or_else(|| Error::ShaderInterface("null binding".into()))?;
         let type_name = unsafe { b.type_description.as_ref() }.map(|t| c_string(t.type_name)).unwrap_or_default();
         let descriptor_type = descriptor_type(b.descriptor_type);
-        let block_bytes = if descriptor_type == Some(vk::DescriptorType::UNIFORM_BUFFER) { b.block.size } else { 0 };
+        let uniform = descriptor_type == Some(vk::DescriptorType::UNIFORM_BUFFER);
+        let block_bytes = if uniform { b.block.size } else { 0 };
+        let mut block_layout = Vec::new();
+        if uniform {
+            self::block_layout(&b.block, 0, &mut block_layout)?;
+        }
         bindings.push(RawBinding {
             names: [c_string(b.name), type_name],
             set: b.set,
@@ -112,9 +159,15 @@ fn read(module: &ffi::SpvReflectShaderModule) -> Result<(Vec<RawBinding>, u32)> 
             count: b.count,
             descriptor_type,
             block_bytes,
+            block_layout,
         });
     }
     let blocks = enumerate("push constant", module, ffi::spvReflectEnumeratePushConstantBlocks)?;
-    let push_bytes = blocks.iter().filter_map(|&p| unsafe { p.as_ref() }).map(|b| b.size).max().unwrap_or(0);
-    Ok((bindings, push_bytes))
+    let blocks: Vec<&ffi::SpvReflectBlockVariable> = blocks.iter().filter_map(|&p| unsafe { p.as_ref() }).collect();
+    let push_bytes = blocks.iter().map(|b| b.size).max().unwrap_or(0);
+    let mut push_layout = Vec::new();
+    for b in blocks {
+        block_layout(b, 0, &mut push_layout)?;
+    }
+    Ok((bindings, push_bytes, push_layout))
 }

@@ -161,6 +161,8 @@ pub(crate) struct Interface {
     pub bindings: Vec<ReflectedBinding>,
     pub push_constant_bytes: u32,
     pub uniform_bytes: Option<u32>,
+    /// The members of each uniform block and of the push constants (`None`), as the module reads them.
+    pub layouts: Vec<(Option<Resource>, Vec<crate::gpu::reflect::MemberLayout>)>,
     /// The specialization constants the module declares.
     pub specializes: Specialization,
 }
@@ -230,7 +232,7 @@ fn entry_workgroup_size(spirv: &[u8]) -> Result<[u32; 3]> {
 /// Checks an engine's SPIR-V for `name` against what dnsr relies on in its own variant: the entry point and
 /// workgroup size its dispatches assume, each binding it declares at the number and of the type dnsr binds
 /// there (it may leave some out), the push-constant and constants-block sizes, the specialization constants.
-pub(crate) fn check_override(name: &str, spirv: &[u8]) -> Result<()> {
+pub(crate) fn check_override(name: &str, spirv: &[u8], offers: crate::gpu::spirv_validity::DeviceOffers) -> Result<()> {
     let fail = |what: String| Error::ShaderInterface(format!("shader override \"{name}\": {what}"));
     let wrap = |e: Error| match e {
         Error::ShaderInterface(m) => fail(m),
@@ -246,6 +248,8 @@ pub(crate) fn check_override(name: &str, spirv: &[u8]) -> Result<()> {
             (version >> 8) & 0xFF
         )));
     }
+    let words: Vec<u32> = spirv.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+    crate::gpu::spirv_validity::check(&words, offers).map_err(fail)?;
     let (size, expected_size) = (entry_workgroup_size(spirv).map_err(wrap)?, entry_workgroup_size(own.spirv)?);
     if size != expected_size {
         return Err(fail(format!("workgroup size {size:?}; dnsr dispatches {expected_size:?}")));
@@ -268,6 +272,16 @@ pub(crate) fn check_override(name: &str, spirv: &[u8]) -> Result<()> {
     if theirs.uniform_bytes.is_some_and(|b| Some(b) != ours.uniform_bytes) {
         return Err(fail(format!("constants block of {:?} bytes; dnsr writes {:?}", theirs.uniform_bytes, ours.uniform_bytes)));
     }
+    for (block, layout) in &theirs.layouts {
+        let own = ours.layouts.iter().find(|(b, _)| b == block).map(|(_, l)| l);
+        if let Some(own) = own.filter(|own| !layout.is_empty() && *own != layout) {
+            let what = block.map_or("push constants".to_string(), |r| format!("{r:?} block"));
+            let at = layout.iter().zip(own).position(|(a, b)| a != b).unwrap_or(own.len().min(layout.len()));
+            return Err(fail(format!(
+                "its {what} differs from dnsr's at member {at} (offset, size or type; keep dnsr_common.glsl's declarations)"
+            )));
+        }
+    }
     if theirs.specializes != ours.specializes {
         return Err(fail(format!(
             "declares specialization constants (mask) {:#b}; dnsr's variant declares {:#b} (keep dnsr_common.glsl's declarations)",
@@ -279,8 +293,9 @@ pub(crate) fn check_override(name: &str, spirv: &[u8]) -> Result<()> {
 
 /// Reflects a module and checks every binding against the interface dnsr knows.
 pub(crate) fn reflect(spirv: &[u8]) -> Result<Interface> {
-    let (raw, push_constant_bytes) = crate::gpu::reflect::reflect_module(spirv)?;
+    let (raw, push_constant_bytes, push_layout) = crate::gpu::reflect::reflect_module(spirv)?;
     let mut bindings = Vec::with_capacity(raw.len());
+    let mut layouts = vec![(None, push_layout)];
     let mut uniform_bytes = None;
     for b in raw {
         let [name, type_name] = &b.names;
@@ -309,6 +324,9 @@ pub(crate) fn reflect(spirv: &[u8]) -> Result<Interface> {
         if resource == Resource::Constants {
             uniform_bytes = Some(b.block_bytes);
         }
+        if expected == vk::DescriptorType::UNIFORM_BUFFER {
+            layouts.push((Some(resource), b.block_layout));
+        }
         let classify_bytes = std::mem::size_of::<crate::constants::ClassifyConstants>() as u32;
         if resource == Resource::ClassifyConstants && b.block_bytes != classify_bytes {
             return Err(Error::ShaderInterface(format!("classify constants block is {} bytes, host writes {classify_bytes}", b.block_bytes)));
@@ -323,7 +341,7 @@ pub(crate) fn reflect(spirv: &[u8]) -> Result<Interface> {
     }
     bindings.sort_by_key(|b| b.binding);
     let specializes = specialization_ids(spirv)?;
-    Ok(Interface { bindings, push_constant_bytes, uniform_bytes, specializes })
+    Ok(Interface { bindings, push_constant_bytes, uniform_bytes, layouts, specializes })
 }
 
 /// Specialization constants (booleans) that select what a pass compiles in; their ids are generated into GLSL.

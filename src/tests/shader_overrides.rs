@@ -103,6 +103,26 @@ fn mismatched_overrides_are_refused_before_anything_is_created() {
              float dnsr_read_depth(ivec2 p) { return texelFetch(engine_depth, p, 0).r; }")
     });
     let spirv15 = compile(&dir, "filter_final_r16f", &["--target-env=vulkan1.2"]);
+    // What the reflection library or a driver would not survive, and what the device does not offer.
+    let with_word = |i: usize, v: u32| {
+        let mut o = good.clone();
+        o.spirv[4 * i..4 * i + 4].copy_from_slice(&v.to_le_bytes());
+        o
+    };
+    let image_sampled_3 = {
+        let words: Vec<u32> = good.spirv.chunks_exact(4).map(|c| u32::from_le_bytes(c.try_into().unwrap())).collect();
+        let mut at = 5;
+        while words[at] & 0xFFFF != 25 {
+            at += (words[at] >> 16) as usize;
+        }
+        with_word(at + 7, 3)
+    };
+    let float64 = edited(&|s| {
+        s.replace("float dnsr_read_depth(ivec2 p) { return texelFetch(dnsr_depth, p + dnsr_get_offset(), 0).r; }",
+            "float dnsr_read_depth(ivec2 p) { return float(double(texelFetch(dnsr_depth, p + dnsr_get_offset(), 0).r) * 1.0lf); }")
+    });
+    let constants = std::fs::read_to_string(dir.join("generated/dnsr_constants.glsl")).unwrap();
+    let signed_rect = edited(&|s| s.replace("#include \"generated/dnsr_constants.glsl\"", &constants.replace("uvec4 rect;", "ivec4 rect;")));
     let cases: Vec<(&str, Vec<ShaderOverride>, &str)> = vec![
         ("not SPIR-V", vec![ShaderOverride { variant: "filter_final_r16f".into(), spirv: b"#version 450\nvoid main(){}".to_vec() }], "is not SPIR-V"),
         ("unknown variant", vec![ShaderOverride { variant: "filter_final_rgb9e5".into(), ..good.clone() }], "not a dnsr shader variant"),
@@ -114,6 +134,11 @@ fn mismatched_overrides_are_refused_before_anything_is_created() {
         ("normals as a combined sampler", vec![sampler_normals], "dnsr_normals"),
         ("normals at another binding", vec![moved_normals], "Normals is binding 30; dnsr binds it at"),
         ("an engine binding", vec![extra], "unknown binding 'engine_depth'"),
+        ("header's reserved word", vec![with_word(4, 1)], "header word 4"),
+        ("id bound 2^30", vec![with_word(3, 1 << 30)], "id bound"),
+        ("image Sampled 3", vec![image_sampled_3], "is not valid SPIR-V for Vulkan 1.1"),
+        ("a Float64 capability", vec![float64], "capability 10,"),
+        ("constants read as other types", vec![signed_rect], "Constants block differs"),
     ];
     for (what, overrides, expect) in cases {
         let mut info = g.create_info(24, 16);

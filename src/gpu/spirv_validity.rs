@@ -1,0 +1,186 @@
+//! Whether an engine's SPIR-V may be handed to the reflection library and the driver at all.
+//!
+//! Neither survives malformed SPIR-V: SPIRV-Reflect asserts or allocates what a corrupt count asks for, and drivers
+//! crash in `vkCreateComputePipelines` on modules that break the spec's rules. So an override passes Khronos's
+//! validator (SPIRV-Tools, the Vulkan 1.1 environment) first, with its id bound tied to the module's size, and
+//! may only ask for capabilities, extensions and instruction sets the device is known to have.
+
+use spirv_tools::val::{Validator, ValidatorLimits, ValidatorOptions};
+
+/// What the device offers beyond what every Vulkan 1.1 device does.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct DeviceOffers {
+    /// The host enabled shaderFloat16 and 16-bit storage (`EnabledFeatures::float16`).
+    pub float16: bool,
+    /// `VkPhysicalDeviceSubgroupProperties::supportedOperations`, when compute shaders have subgroup operations.
+    pub subgroup_operations: ash::vk::SubgroupFeatureFlags,
+}
+
+/// Longest validator message echoed in an error.
+const MAX_MESSAGE_CHARS: usize = 300;
+
+/// Checks `words` (a whole module, header included); `Err` says what is wrong, for the caller to name the override.
+pub(crate) fn check(words: &[u32], offers: DeviceOffers) -> Result<(), String> {
+    // The id bound sizes SPIRV-Reflect's tables: no larger than the module could use (an id needs an instruction
+    // of at least two words to define it).
+    if words[4] != 0 {
+        return Err(format!("header word 4 (reserved, must be 0) is {:#x}", words[4]));
+    }
+    let bound = words[3];
+    if bound as usize > words.len() {
+        return Err(format!("id bound {bound} exceeds the module's {} words", words.len()));
+    }
+    let validator = spirv_tools::val::create(Some(spirv_tools::TargetEnv::Vulkan_1_1));
+    let options = ValidatorOptions { max_limits: vec![(ValidatorLimits::IdBound, words.len() as u32)], ..Default::default() };
+    if let Err(e) = validator.validate(words, Some(options)) {
+        let what = e.diagnostic.as_ref().map_or_else(|| format!("{:?}", e.inner), |d| d.message.clone());
+        return Err(format!("is not valid SPIR-V for Vulkan 1.1 (SPIRV-Tools: {})", cap(&what)));
+    }
+    unreachable_block(words)?;
+    for (opcode, operands) in instructions(words) {
+        match opcode {
+            OP_CAPABILITY => {
+                let c = operands[0];
+                if !capability_offered(c, offers) {
+                    return Err(match capability_name(c) {
+                        Some(name) => format!("declares capability {name}, which the device does not offer (or the host did not enable)"),
+                        None => format!("declares capability {c}, which dnsr does not accept in an override (docs/callbacks.md lists those it does)"),
+                    });
+                }
+            }
+            OP_EXTENSION | OP_EXT_INST_IMPORT => {
+                let name = literal_string(&operands[usize::from(opcode == OP_EXT_INST_IMPORT)..]);
+                let known = match opcode {
+                    OP_EXTENSION => {
+                        name == "SPV_KHR_storage_buffer_storage_class" || (name == "SPV_KHR_16bit_storage" && offers.float16)
+                    }
+                    _ => name == "GLSL.std.450",
+                };
+                if !known {
+                    return Err(format!("uses \"{}\", which dnsr does not enable", cap(&name)));
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// Refuses a function with a block that no branch and no merge or continue declaration reaches. The current
+/// SPIR-V rules allow some such blocks, but older validators (the layers engines run) and drivers (Mesa's
+/// reader) do not take all of them, and glslc writes none.
+fn unreachable_block(words: &[u32]) -> Result<(), String> {
+    const OP_FUNCTION: u32 = 54;
+    const OP_FUNCTION_END: u32 = 56;
+    const OP_LABEL: u32 = 248;
+    const OP_BRANCH: u32 = 249;
+    const OP_BRANCH_CONDITIONAL: u32 = 250;
+    const OP_SWITCH: u32 = 251;
+    const OP_LOOP_MERGE: u32 = 246;
+    const OP_SELECTION_MERGE: u32 = 247;
+    // Per function: its blocks in order, and for each the blocks it names (branch targets, merge, continue).
+    let mut blocks: Vec<(u32, Vec<u32>)> = Vec::new();
+    let check = |blocks: &[(u32, Vec<u32>)]| -> Result<(), String> {
+        let index: std::collections::HashMap<u32, usize> = blocks.iter().enumerate().map(|(i, (label, _))| (*label, i)).collect();
+        let mut reached = vec![false; blocks.len()];
+        let mut stack = vec![0usize];
+        while let Some(b) = stack.pop() {
+            if !std::mem::replace(&mut reached[b], true) {
+                stack.extend(blocks[b].1.iter().filter_map(|target| index.get(target)));
+            }
+        }
+        match reached.iter().position(|r| !r) {
+            Some(b) => Err(format!("block %{} of a function is never reached (not a branch target, merge or continue block)", blocks[b].0)),
+            None => Ok(()),
+        }
+    };
+    for (opcode, ops) in instructions(words) {
+        match opcode {
+            OP_FUNCTION => blocks.clear(),
+            OP_LABEL => blocks.push((ops[0], Vec::new())),
+            OP_BRANCH | OP_LOOP_MERGE | OP_SELECTION_MERGE => {
+                let n = if opcode == OP_LOOP_MERGE { 2 } else { 1 };
+                blocks.last_mut().into_iter().for_each(|b| b.1.extend(&ops[..n]));
+            }
+            OP_BRANCH_CONDITIONAL => blocks.last_mut().into_iter().for_each(|b| b.1.extend(&ops[1..3])),
+            // Selector, then the default and (literal, label) pairs: every word counts as a target, since a literal
+            // that happens to name a block can only make the check more lenient.
+            OP_SWITCH => blocks.last_mut().into_iter().for_each(|b| b.1.extend(&ops[1..])),
+            OP_FUNCTION_END if !blocks.is_empty() => check(&blocks)?,
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+const OP_EXTENSION: u32 = 10;
+const OP_EXT_INST_IMPORT: u32 = 11;
+const OP_CAPABILITY: u32 = 17;
+
+/// (opcode, operands) of every instruction; the module has passed the validator, so every word count is sound.
+fn instructions(words: &[u32]) -> impl Iterator<Item = (u32, &[u32])> {
+    let mut i = 5;
+    std::iter::from_fn(move || {
+        let count = (*words.get(i)? >> 16) as usize;
+        let out = (words[i] & 0xFFFF, &words[i + 1..i + count]);
+        i += count;
+        Some(out)
+    })
+}
+
+fn literal_string(words: &[u32]) -> String {
+    let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).take_while(|&b| b != 0).collect();
+    String::from_utf8_lossy(&bytes).into_owned()
+}
+
+fn cap(s: &str) -> String {
+    match s.char_indices().nth(MAX_MESSAGE_CHARS) {
+        Some((end, _)) => format!("{}...", &s[..end]),
+        None => s.to_owned(),
+    }
+}
+
+/// Every Vulkan 1.1 device has these in compute shaders (dnsr's own passes use Shader, ImageQuery,
+/// StorageImageExtendedFormats and ImageBuffer); the rest need a feature the host enabled or a subgroup
+/// operation the device reports.
+fn capability_offered(c: u32, offers: DeviceOffers) -> bool {
+    use ash::vk::SubgroupFeatureFlags as S;
+    let subgroup = |f: S| offers.subgroup_operations.contains(f);
+    match c {
+        0 | 1 | 43 | 44 | 46 | 47 | 49 | 50 => true, // Matrix, Shader, Sampled1D, Image1D, SampledBuffer, ImageBuffer, StorageImageExtendedFormats, ImageQuery
+        9 | 4433 => offers.float16, // Float16, StorageBuffer16BitAccess
+        61 => subgroup(S::BASIC),
+        62 => subgroup(S::VOTE),
+        63 => subgroup(S::ARITHMETIC),
+        64 => subgroup(S::BALLOT),
+        65 => subgroup(S::SHUFFLE),
+        66 => subgroup(S::SHUFFLE_RELATIVE),
+        67 => subgroup(S::CLUSTERED),
+        68 => subgroup(S::QUAD),
+        _ => false,
+    }
+}
+
+fn capability_name(c: u32) -> Option<&'static str> {
+    Some(match c {
+        0 => "Matrix",
+        1 => "Shader",
+        9 => "Float16",
+        43 => "Sampled1D",
+        44 => "Image1D",
+        46 => "SampledBuffer",
+        47 => "ImageBuffer",
+        49 => "StorageImageExtendedFormats",
+        50 => "ImageQuery",
+        61 => "GroupNonUniform",
+        62 => "GroupNonUniformVote",
+        63 => "GroupNonUniformArithmetic",
+        64 => "GroupNonUniformBallot",
+        65 => "GroupNonUniformShuffle",
+        66 => "GroupNonUniformShuffleRelative",
+        67 => "GroupNonUniformClustered",
+        68 => "GroupNonUniformQuad",
+        4433 => "StorageBuffer16BitAccess",
+        _ => return None,
+    })
+}

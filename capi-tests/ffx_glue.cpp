@@ -13,6 +13,7 @@
 #include <FidelityFX/host/ffx_message.h>
 #include <FidelityFX/host/ffx_util.h>
 
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -53,6 +54,22 @@ int main(void)
     EXPECT(FFX_ALIGN_UP(13u, 8u) == 16u && FFX_DIVIDE_ROUNDING_UP(13u, 8u) == 2u, "align");
     EXPECT(FFX_MAXIMUM(2, 5) == 5 && FFX_MINIMUM(2, 5) == 2 && FFX_ABSOLUTE(-4) == 4 && FFX_SIGN(-4) == -1, "min/max");
     EXPECT(std::strcmp(FFX_STR(FFX_MAXIMUM_PATH), "(260)") == 0, "%s", FFX_STR(FFX_MAXIMUM_PATH));
+
+    // The backend limits glue code sizes its tables by, and the resource init description (SDK 1.1.4's values).
+    FfxUInt32 srvs[FFX_MAX_NUM_SRVS + FFX_MAX_NUM_UAVS + FFX_MAX_NUM_CONST_BUFFERS] = {};
+    EXPECT(FFX_ARRAY_ELEMENTS(srvs) == 131, "%d", FFX_ARRAY_ELEMENTS(srvs));
+    EXPECT(FFX_MAX_RESOURCE_COUNT == 512 && FFX_MAX_PASS_COUNT == 50 && FFX_MAX_BARRIERS == 128 && FFX_MAX_GPU_JOBS == 256 &&
+               FFX_MAX_SAMPLERS == 16 && FFX_RING_BUFFER_DESCRIPTOR_COUNT == 4 * 50 * 512 &&
+               FFX_CONSTANT_BUFFER_RING_BUFFER_SIZE == 4 * 50 * 4096,
+           "limits");
+    unsigned char bytes[16] = {};
+    FfxResourceInitData byValue = FfxResourceInitData::FfxResourceInitValue(64, 0x7f);
+    FfxResourceInitData byBuffer = FfxResourceInitData::FfxResourceInitBuffer(sizeof bytes, bytes);
+    EXPECT(byValue.type == FFX_RESOURCE_INIT_DATA_TYPE_VALUE && byValue.size == 64 && byValue.value == 0x7f, "init value");
+    EXPECT(byBuffer.type == FFX_RESOURCE_INIT_DATA_TYPE_BUFFER && byBuffer.size == 16 && byBuffer.buffer == bytes, "init buffer");
+    static_assert(sizeof(FfxResourceInitData) == 3 * sizeof(void *), "FfxResourceInitData's size");
+    static_assert(offsetof(FfxResourceInitData, buffer) == 2 * sizeof(void *), "FfxResourceInitData::buffer's offset");
+    static_assert(FFX_RESOURCE_INIT_DATA_TYPE_VALUE == 3, "FfxResourceInitDataType");
 
     // Asserts (_DEBUG): a failed one reports through the callback; a passing one does not.
     ffxAssertSetPrintingCallback(onAssert);

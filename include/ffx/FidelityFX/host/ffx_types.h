@@ -29,6 +29,21 @@
  * alive for this many later dispatches of the same context. */
 #define FFX_MAX_QUEUED_FRAMES (4)
 
+/* The SDK's backend limits (SDK 1.1.4's values), for glue code that sizes its own tables by them; dnsr's
+ * backend has none of these tables. */
+#define FFX_MAX_NUM_SRVS 64
+#define FFX_MAX_NUM_UAVS 64
+#define FFX_MAX_NUM_CONST_BUFFERS 3
+#define FFX_MAX_RESOURCE_COUNT (512)
+#define FFX_MAX_PASS_COUNT (50)
+#define FFX_MAX_BARRIERS (128)
+#define FFX_MAX_GPU_JOBS (256)
+#define FFX_MAX_SAMPLERS (16)
+/* One constant-buffer entry of the SDK backend's ring, in bytes, and the ring descriptors and bytes it derives. */
+#define FFX_BUFFER_SIZE (4096)
+#define FFX_RING_BUFFER_DESCRIPTOR_COUNT (FFX_MAX_QUEUED_FRAMES * FFX_MAX_PASS_COUNT * FFX_MAX_RESOURCE_COUNT)
+#define FFX_CONSTANT_BUFFER_RING_BUFFER_SIZE (FFX_MAX_QUEUED_FRAMES * FFX_MAX_PASS_COUNT * FFX_BUFFER_SIZE)
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -313,6 +328,41 @@ typedef struct FfxConstantAllocation {
 } FfxRootConstantAllocation;
 
 typedef struct FfxConstantAllocation (*FfxConstantBufferAllocator)(void *data, const FfxUInt64 dataSize);
+
+/* How a backend fills a resource it creates: with a copy of a buffer, with one byte value, or not at all. */
+typedef enum FfxResourceInitDataType {
+    FFX_RESOURCE_INIT_DATA_TYPE_INVALID = 0,
+    FFX_RESOURCE_INIT_DATA_TYPE_UNINITIALIZED = 1,
+    FFX_RESOURCE_INIT_DATA_TYPE_BUFFER = 2,
+    FFX_RESOURCE_INIT_DATA_TYPE_VALUE = 3
+} FfxResourceInitDataType;
+
+/* A resource's initial contents (24 bytes on 64-bit targets, as in the SDK). */
+typedef struct FfxResourceInitData {
+    FfxResourceInitDataType type;
+    /* Bytes to initialise. */
+    size_t size;
+    union {
+        /* FFX_RESOURCE_INIT_DATA_TYPE_BUFFER: the bytes to copy. */
+        void *buffer;
+        /* FFX_RESOURCE_INIT_DATA_TYPE_VALUE: the byte every byte is set to. */
+        unsigned char value;
+    };
+#ifdef __cplusplus
+    /* The SDK's C++ helpers building a value- or buffer-initialised description. */
+    static FfxResourceInitData FfxResourceInitValue(size_t dataSize, uint8_t initVal)
+    {
+        FfxResourceInitData d = {FFX_RESOURCE_INIT_DATA_TYPE_VALUE, dataSize, {nullptr}};
+        d.value = initVal;
+        return d;
+    }
+    static FfxResourceInitData FfxResourceInitBuffer(size_t dataSize, void *pInitData)
+    {
+        FfxResourceInitData d = {FFX_RESOURCE_INIT_DATA_TYPE_BUFFER, dataSize, {pInitData}};
+        return d;
+    }
+#endif
+} FfxResourceInitData;
 
 /* Structures that appear in FfxInterface's function types only; dnsr neither defines nor uses them. */
 typedef struct FfxCreateResourceDescription FfxCreateResourceDescription;

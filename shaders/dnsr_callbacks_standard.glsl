@@ -41,6 +41,7 @@ int dnsr_get_checkerboard_phase() { return int(dnsr_constants.flags.y); }
 bool dnsr_is_traced(ivec2 p) { return ((p.x + p.y) & 1) == dnsr_get_checkerboard_phase(); }
 vec4 dnsr_get_disocclusion_settings() { return dnsr_constants.disocclusion; }
 vec4 dnsr_get_rejection_settings() { return dnsr_constants.rejection; }
+float dnsr_get_signal_scale() { return dnsr_constants.rejection.w; }
 vec4 dnsr_get_temporal_settings() { return dnsr_constants.temporal; }
 vec4 dnsr_get_filter_settings() { return dnsr_constants.filtering; }
 vec4 dnsr_get_run_settings() { return dnsr_constants.runs; }
@@ -129,7 +130,7 @@ float dnsr_read_history(vec2 uv) {
 float dnsr_read_history_texel(ivec2 p) { return texelFetch(dnsr_history, p + dnsr_get_offset(), 0).r; }
 void dnsr_write_depth_copy(ivec2 p, float depth) { imageStore(dnsr_depth_copy, p + dnsr_get_offset(), vec4(depth)); }
 void dnsr_write_moments(ivec2 p, vec4 m) { imageStore(dnsr_moments, p + dnsr_get_offset(), uvec4(dnsr_pack_moments(m), 0u, 0u)); }
-void dnsr_write_reprojection(ivec2 p, vec2 mean_var) { imageStore(dnsr_reprojection, p + dnsr_get_offset(), vec4(mean_var, 0.0, 0.0)); }
+void dnsr_write_reprojection(ivec2 p, vec2 mean_var) { imageStore(dnsr_reprojection, p + dnsr_get_offset(), dnsr_encode_signal(mean_var, dnsr_get_signal_scale())); }
 void dnsr_write_tile_meta(ivec2 tile, uint meta) { imageStore(dnsr_tile_meta_out, tile + dnsr_get_tile_offset(), uvec4(meta)); }
 // Penumbra guidance: the host's distance to the first occluder (read where the mask says the ray hit), and each
 // tile's blocker estimate for the filter (-1: unknown).
@@ -168,12 +169,14 @@ void dnsr_write_guide(ivec2 p, float linear_depth, vec3 normal) { imageStore(dns
 uint dnsr_read_tile_meta(ivec2 tile) { return texelFetch(dnsr_tile_meta, tile + dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT), 0).r; }
 layout(set = 0, binding = 23) uniform texture2D dnsr_tile_blocker;
 float dnsr_read_tile_blocker(ivec2 tile) { return texelFetch(dnsr_tile_blocker, tile + dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT), 0).r; }
-vec2 dnsr_read_filter_input(ivec2 p) { return texelFetch(dnsr_filter_input, p + dnsr_get_offset(), 0).xy; }
+vec2 dnsr_read_filter_input(ivec2 p) { return dnsr_decode_signal(texelFetch(dnsr_filter_input, p + dnsr_get_offset(), 0).xy, dnsr_get_signal_scale()); }
 // Variances of the 2x2 texels around the texel corner at the top left of pixel `corner`.
 vec4 dnsr_gather_filter_variance(ivec2 corner) {
-    return textureGather(dnsr_filter_input, vec2(corner + dnsr_get_offset()) * dnsr_constants.inv_extent.zw, 1);
+    vec4 v = textureGather(dnsr_filter_input, vec2(corner + dnsr_get_offset()) * dnsr_constants.inv_extent.zw, 1);
+    float s = dnsr_get_signal_scale();
+    return vec4(dnsr_decode_variance(v.x, s), dnsr_decode_variance(v.y, s), dnsr_decode_variance(v.z, s), dnsr_decode_variance(v.w, s));
 }
-void dnsr_write_filter_output(ivec2 p, vec2 mean_var) { imageStore(dnsr_filter_output, p + dnsr_get_offset(), vec4(mean_var, 0.0, 0.0)); }
+void dnsr_write_filter_output(ivec2 p, vec2 mean_var) { imageStore(dnsr_filter_output, p + dnsr_get_offset(), dnsr_encode_signal(mean_var, dnsr_get_signal_scale())); }
 #ifdef DNSR_FINAL_PASS
 void dnsr_write_output(ivec2 p, float shadow) { imageStore(dnsr_output, p + dnsr_get_offset(), vec4(shadow)); }
 uint dnsr_get_debug_view() { return dnsr_push.pass.w; }
@@ -225,17 +228,19 @@ float dnsr_read_light_tile_blocker(int l, ivec2 tile) {
 }
 vec2 dnsr_read_light_filter_input(int l, ivec2 p) {
     ivec2 q = p + dnsr_get_offset();
-    return DNSR_BY_SLOT(l, texelFetch(dnsr_filter_input, q, 0), texelFetch(dnsr_filter_input_1, q, 0),
-                        texelFetch(dnsr_filter_input_2, q, 0), texelFetch(dnsr_filter_input_3, q, 0)).xy;
+    return dnsr_decode_signal(DNSR_BY_SLOT(l, texelFetch(dnsr_filter_input, q, 0), texelFetch(dnsr_filter_input_1, q, 0),
+                        texelFetch(dnsr_filter_input_2, q, 0), texelFetch(dnsr_filter_input_3, q, 0)).xy, dnsr_get_signal_scale());
 }
 vec4 dnsr_gather_light_filter_variance(int l, ivec2 corner) {
     vec2 uv = vec2(corner + dnsr_get_offset()) * dnsr_constants.inv_extent.zw;
-    return DNSR_BY_SLOT(l, textureGather(dnsr_filter_input, uv, 1), textureGather(dnsr_filter_input_1, uv, 1),
-                        textureGather(dnsr_filter_input_2, uv, 1), textureGather(dnsr_filter_input_3, uv, 1));
+    vec4 v = DNSR_BY_SLOT(l, textureGather(dnsr_filter_input, uv, 1), textureGather(dnsr_filter_input_1, uv, 1),
+                          textureGather(dnsr_filter_input_2, uv, 1), textureGather(dnsr_filter_input_3, uv, 1));
+    float s = dnsr_get_signal_scale();
+    return vec4(dnsr_decode_variance(v.x, s), dnsr_decode_variance(v.y, s), dnsr_decode_variance(v.z, s), dnsr_decode_variance(v.w, s));
 }
 void dnsr_write_light_filter_output(int l, ivec2 p, vec2 mean_var) {
     ivec2 q = p + dnsr_get_offset();
-    vec4 v = vec4(mean_var, 0.0, 0.0);
+    vec4 v = dnsr_encode_signal(mean_var, dnsr_get_signal_scale());
     if (l == 0) imageStore(dnsr_filter_output, q, v);
     else if (l == 1) imageStore(dnsr_filter_output_1, q, v);
     else if (l == 2) imageStore(dnsr_filter_output_2, q, v);

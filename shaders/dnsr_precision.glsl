@@ -1,5 +1,6 @@
 // Arithmetic and storage precision of the filter path, chosen per compiled variant.
-// DNSR_FP16: the a-trous filter works in float16 and the intermediate images are R16G16_SFLOAT.
+// DNSR_FP16: the a-trous filter works in float16 and the intermediate images are R16G16_SFLOAT; otherwise it works in
+// float32 and they are R16G16_UNORM (dnsr_storage.glsl, dnsr_encode_signal).
 #ifndef DNSR_PRECISION_GLSL
 #define DNSR_PRECISION_GLSL
 
@@ -10,7 +11,7 @@
 #define real2 f16vec2
 #define real3 f16vec3
 #else
-#define DNSR_INTERMEDIATE_FORMAT rg32f
+#define DNSR_INTERMEDIATE_FORMAT rg16
 #define real float
 #define real2 vec2
 #define real3 vec3

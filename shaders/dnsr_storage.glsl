@@ -59,4 +59,25 @@ vec3 dnsr_unpack_normal(uint u) {
 uvec2 dnsr_pack_guide(float linear_depth, vec3 normal) { return uvec2(floatBitsToUint(linear_depth), dnsr_pack_normal(normal)); }
 vec4 dnsr_unpack_guide(uvec2 g) { return vec4(uintBitsToFloat(g.x), dnsr_unpack_normal(g.y)); }
 
+// The filter's signal (mean, variance) between its passes and as the next frame's history. The fp32 path stores
+// it in R16G16_UNORM: the mean, and the standard deviation over `scale` (dnsr_get_signal_scale: it covers the
+// largest variance the settings' boost can reach); the sky's variance -1 is the code 65535 (1.0, which every
+// implementation writes exactly). A unorm write may take either code next to the value (Vulkan leaves the
+// rounding open), so deviations stay at or below 65000/65535, far from the sky's code. Variance 0 (converged)
+// is code 0, exactly. The fp16 path stores both as float16 (R16G16_SFLOAT).
+#ifdef DNSR_FP16
+vec4 dnsr_encode_signal(vec2 mean_var, float scale) { return vec4(mean_var, 0.0, 0.0); }
+float dnsr_decode_variance(float stored, float scale) { return stored; }
+#else
+vec4 dnsr_encode_signal(vec2 mean_var, float scale) {
+    float deviation = mean_var.y < 0.0 ? 1.0 : min(sqrt(mean_var.y) / scale, 65000.0 / 65535.0);
+    return vec4(mean_var.x, deviation, 0.0, 0.0);
+}
+float dnsr_decode_variance(float stored, float scale) {
+    float d = stored * scale;
+    return stored > 65500.0 / 65535.0 ? -1.0 : d * d;
+}
+#endif
+vec2 dnsr_decode_signal(vec2 stored, float scale) { return vec2(stored.x, dnsr_decode_variance(stored.y, scale)); }
+
 #endif

@@ -66,7 +66,8 @@ gpu_block! {
         inv_extent: [f32; 4],
         /// x: disocclusion threshold at N.V = 1; y: at grazing; z: (1 - N.V) exponent; w: history clamp width in sigmas.
         disocclusion: [f32; 4],
-        /// x: history rejection falloff; y: rejection sigma floor; z: variance boost below this many samples; w: unused.
+        /// x: history rejection falloff; y: rejection sigma floor; z: variance boost below this many samples; w: the
+        /// fp32 path's signal scale (`state::signal_scale`).
         rejection: [f32; 4],
         /// x: samples for full history trust; y: minimum current-frame blend; z: max history samples; w: spatial falloff.
         temporal: [f32; 4],

@@ -174,7 +174,12 @@ impl Settings {
             self.disocclusion_angle_exponent,
             self.history_clamp_sigmas,
         ];
-        c.rejection = [self.history_rejection_falloff, self.history_rejection_min_sigma, self.variance_boost_samples, 0.0];
+        c.rejection = [
+            self.history_rejection_falloff,
+            self.history_rejection_min_sigma,
+            self.variance_boost_samples,
+            crate::state::signal_scale(self.variance_boost_samples),
+        ];
         c.runs = [self.stable_history_samples, self.history_flip_samples, self.converged_samples, self.hard_penumbra_pixels];
         c.temporal = [self.full_history_samples, self.min_current_weight, self.max_history_samples, self.spatial_falloff];
         c.filtering = [self.kernel_cross_weight, self.normal_power, self.output_contrast, self.min_shadow_sigma];

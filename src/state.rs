@@ -20,11 +20,19 @@ pub(crate) const GUIDE_FORMAT: vk::Format = vk::Format::R32G32_UINT;
 // A context without a guide binds a light's moments in its place (Context::frame_views): same format.
 const _: () = assert!(GUIDE_FORMAT.as_raw() == MOMENTS_FORMAT.as_raw());
 
+/// The filter's signal (mean, variance) between passes and as history: R16G16_UNORM in the fp32 path (the mean,
+/// and the standard deviation over `signal_scale`: shaders/dnsr_storage.glsl), float16 in the fp16 path.
 pub(crate) fn intermediate_format(precision: Precision) -> vk::Format {
     match precision {
-        Precision::Fp32 => vk::Format::R32G32_SFLOAT,
+        Precision::Fp32 => vk::Format::R16G16_UNORM,
         Precision::Fp16 => vk::Format::R16G16_SFLOAT,
     }
+}
+
+/// The standard deviation a stored signal's code 1.0 stands for: the variance boost multiplies a variance of at
+/// most 0.5 (an unbiased estimate of 0/1 samples) by up to `variance_boost_samples`.
+pub(crate) fn signal_scale(variance_boost_samples: f32) -> f32 {
+    (0.5 * variance_boost_samples.max(1.0)).sqrt()
 }
 
 /// Images of a light that only some filter pass counts use, allocated when the settings first need them (and kept

@@ -69,6 +69,7 @@ pub struct Frame {
     /// Output: final shadow.
     pub output: Vec<f64>,
     /// Intermediates are stored as float16 (the fp16 path's R16G16_SFLOAT images): writes round to half.
+    /// Otherwise as the fp32 path's R16G16_UNORM (storage::stored_signal).
     pub half_intermediates: bool,
     pass: u32,
     passes: u32,
@@ -135,7 +136,11 @@ impl Frame {
     }
 
     fn store(&self, v: DVec2) -> DVec2 {
-        if self.half_intermediates { DVec2::new(round_to_half(v.x), round_to_half(v.y)) } else { v }
+        if self.half_intermediates {
+            DVec2::new(round_to_half(v.x), round_to_half(v.y))
+        } else {
+            super::storage::stored_signal(v, crate::state::signal_scale(self.settings.variance_boost_samples) as f64)
+        }
     }
 
     /// Moves this frame's outputs into the next frame's "previous" state (depth, moments, history).

@@ -3,7 +3,7 @@
 //! its f64 value (through float32, as the GPU holds it), so a stored value can differ by one step of its format
 //! where the two land on either side of a rounding boundary.
 
-use glam::{DVec3, DVec4};
+use glam::{DVec2, DVec3, DVec4};
 
 /// `v` >= 0 rounded to the nearest float16 value, ties to even, as float32 bits are rounded
 /// (`dnsr_round_half`): 0 below 2^-14 (no subnormals), at most 65504.
@@ -83,6 +83,23 @@ pub fn unpack_moments(v: [u32; 2]) -> DVec4 {
 /// Moments as a later frame reads them back.
 pub fn stored_moments(m: DVec4) -> DVec4 {
     unpack_moments(pack_moments(m))
+}
+
+/// The filter's signal (mean, variance) as the fp32 path stores it (R16G16_UNORM: the mean, and the standard
+/// deviation over `scale`, `state::signal_scale` of the settings; the sky's variance -1 as the code 65535),
+/// read back. A device's unorm write may take the other code next to the value: parity allows one code.
+pub fn stored_signal(v: DVec2, scale: f64) -> DVec2 {
+    let mean = from_unorm16(unorm16(v.x));
+    if v.y < 0.0 {
+        return DVec2::new(mean, -1.0);
+    }
+    decode_signal([unorm16(mean), unorm16((v.y.sqrt() / scale).min(65000.0 / 65535.0))], scale)
+}
+
+/// A stored signal's two unorm16 codes read back as (mean, variance), as the shaders' dnsr_decode_signal does.
+pub fn decode_signal(codes: [u32; 2], scale: f64) -> DVec2 {
+    let d = from_unorm16(codes[1]) * scale;
+    DVec2::new(from_unorm16(codes[0]), if codes[1] > 65500 { -1.0 } else { d * d })
 }
 
 /// The packed code of the zero normal (no usable normal).

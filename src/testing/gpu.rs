@@ -119,7 +119,7 @@ fn texel_bytes(format: vk::Format) -> u32 {
         vk::Format::A2B10G10R10_UNORM_PACK32 => 4,
         vk::Format::R32G32_SFLOAT | vk::Format::R32G32_UINT | vk::Format::R16G16B16A16_SFLOAT => 8,
         vk::Format::R32G32B32A32_SFLOAT => 16,
-        vk::Format::R16G16_SFLOAT => 4,
+        vk::Format::R16G16_SFLOAT | vk::Format::R16G16_UNORM => 4,
         other => panic!("test harness has no texel size for {other:?}"),
     }
 }

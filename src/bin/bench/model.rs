@@ -101,10 +101,10 @@ pub fn model(host: HostFormats) -> Vec<Row> {
         row(TileClassification, &normals_name, normals, normals, Read, Active, Always),
         row(TileClassification, "previous depth copy (R32_SFLOAT)", 4.0, 4.0, Read, Active, Always),
         row(TileClassification, "previous moments (R32G32_UINT, packed)", 8.0, 8.0, Read, History, Always),
-        row(TileClassification, "history (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Read, History, Always),
+        row(TileClassification, "history (R16G16_UNORM / R16G16_SFLOAT)", 4.0, 4.0, Read, History, Always),
         row(TileClassification, "depth copy (R32_SFLOAT)", 4.0, 4.0, Write, All, Always),
         row(TileClassification, "moments (R32G32_UINT, packed)", 8.0, 8.0, Write, All, Always),
-        row(TileClassification, "reprojection (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Write, All, Always),
+        row(TileClassification, "reprojection (R16G16_UNORM / R16G16_SFLOAT)", 4.0, 4.0, Write, All, Always),
         row(TileClassification, "tile meta (R32_UINT)", 4.0, 4.0, Write, Tiles, Always),
         row(TileClassification, "output (host, R16_SFLOAT)", 2.0, 2.0, Write, ClearedGroups, Always),
         row(Filter, "tile meta (R32_UINT)", 4.0, 4.0, Read, Tiles, Always),
@@ -113,8 +113,8 @@ pub fn model(host: HostFormats) -> Vec<Row> {
         row(Filter, &normals_name, normals, normals, Read, ActiveGroups, FirstPass),
         row(Filter, "guide (R32G32_UINT, packed)", 8.0, 8.0, Write, ActiveGroups, FirstOfSeveral),
         row(Filter, "guide (R32G32_UINT, packed)", 8.0, 8.0, Read, ActiveGroups, LaterPasses),
-        row(Filter, "filter input (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Read, ActiveGroups, Always),
-        row(Filter, "filter output (R32G32 / R16G16_SFLOAT)", 8.0, 4.0, Write, All, WritesIntermediate),
+        row(Filter, "filter input (R16G16_UNORM / R16G16_SFLOAT)", 4.0, 4.0, Read, ActiveGroups, Always),
+        row(Filter, "filter output (R16G16_UNORM / R16G16_SFLOAT)", 4.0, 4.0, Write, All, WritesIntermediate),
         row(Filter, "output (host, R16_SFLOAT)", 2.0, 2.0, Write, All, FinalPass),
     ]
 }

@@ -23,6 +23,41 @@ timed command buffers. Each configuration gets a fresh Context; its first 2N fra
 most 5x --warmup-ms), then the timed frames. The output is R16_SFLOAT, resting in SHADER_READ_ONLY_OPTIMAL; HostSync \
 names compute-shader writes of the inputs and compute-shader reads of the output, as an engine's would.";
 
+/// Wall microseconds of `frames` records (each submitted and waited for, as in `measure`) of a context without
+/// timestamps, after as many untimed ones as `measure`'s pixel-class pass records (a context's first records
+/// compile the pipelines of the specialization its frames use).
+fn record_only(
+    gpu: &Gpu,
+    ctx: &mut Context,
+    scene: &GpuScene,
+    outputs: &[TestImage],
+    cmd: vk::CommandBuffer,
+    frames: usize,
+    guidance: Option<Guidance>,
+) -> Result<Vec<f64>, String> {
+    let mut us = Vec::with_capacity(frames);
+    let skip = 2 * scene.frames.len();
+    for index in 0..skip + frames {
+        let mut lights = [LightDispatch::default(); dnsr::MAX_LIGHTS_PER_RECORD];
+        for (k, (l, out)) in lights.iter_mut().zip(outputs).enumerate() {
+            *l = light(scene, index, k, out, guidance);
+        }
+        let d = dispatch(scene, index, &outputs[0], guidance);
+        let shared = ShadowsDispatch { hit_mask: Default::default(), visibility: Default::default(), output: Default::default(),
+            hit_distance: None, light_angular_size: 0.0, reset: false, ..d };
+        let (r, elapsed) = gpu.submit_with(cmd, |cmd| {
+            let t0 = Instant::now();
+            let r = if outputs.len() == 1 { ctx.record_shadows(cmd, &d) } else { ctx.record_lights(cmd, &shared, &lights[..outputs.len()]) };
+            (r, t0.elapsed())
+        });
+        r.map_err(|e| format!("record without timestamps: {e}"))?;
+        if index >= skip {
+            us.push(elapsed.as_secs_f64() * 1e6);
+        }
+    }
+    Ok(us)
+}
+
 const READ: vk::ImageLayout = vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL;
 
 pub struct ConfigRun {
@@ -30,6 +65,8 @@ pub struct ConfigRun {
     pub timings: Vec<PassTimings>,
     /// Wall microseconds of each timed frame's record_shadows.
     pub record_us: Vec<f64>,
+    /// The same, recorded by a context without timestamps.
+    pub record_us_untimed: Vec<f64>,
     pub counts: PixelCounts,
     pub memory_bytes: u64,
     pub filter_passes: u32,
@@ -128,6 +165,12 @@ pub fn run(
     });
     let guidance = hit_distance.as_ref().map(|img| Guidance { hit_distance: img, light_angular_size: light_angle.unwrap_or(0.0) });
     let result = measure(gpu, &mut ctx, scene, &outputs, cmd, warmup, frames, guidance);
+    // The record's CPU time without timestamps, as an engine ships: a second context, the same frames.
+    let untimed = result.is_ok().then(|| {
+        info.enable_timestamps = false;
+        let mut quiet = Context::new(&info).map_err(|e| format!("Context::new without timestamps: {e}"))?;
+        record_only(gpu, &mut quiet, scene, &outputs, cmd, frames, guidance)
+    });
     unsafe { gpu.device.device_wait_idle().ok() };
     gpu.free_command_buffer(cmd);
     if let Some(img) = &hit_distance {
@@ -137,7 +180,8 @@ pub fn run(
     drop(ctx);
     outputs.iter().for_each(|o| gpu.destroy_image(o));
     let (timings, record_us, counts, warmup) = result?;
-    Ok(ConfigRun { timings, record_us, counts, memory_bytes, filter_passes: Settings::preset(preset).filter_passes, warmup })
+    let record_us_untimed = untimed.transpose()?.unwrap_or_default();
+    Ok(ConfigRun { timings, record_us, record_us_untimed, counts, memory_bytes, filter_passes: Settings::preset(preset).filter_passes, warmup })
 }
 
 /// How long to warm up before the timed frames.

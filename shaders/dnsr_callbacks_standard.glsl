@@ -172,9 +172,8 @@ float dnsr_read_tile_blocker(ivec2 tile) { return texelFetch(dnsr_tile_blocker, 
 vec2 dnsr_read_filter_input(ivec2 p) { return dnsr_decode_signal(texelFetch(dnsr_filter_input, p + dnsr_get_offset(), 0).xy, dnsr_get_signal_scale()); }
 // Variances of the 2x2 texels around the texel corner at the top left of pixel `corner`.
 vec4 dnsr_gather_filter_variance(ivec2 corner) {
-    vec4 v = textureGather(dnsr_filter_input, vec2(corner + dnsr_get_offset()) * dnsr_constants.inv_extent.zw, 1);
-    float s = dnsr_get_signal_scale();
-    return vec4(dnsr_decode_variance(v.x, s), dnsr_decode_variance(v.y, s), dnsr_decode_variance(v.z, s), dnsr_decode_variance(v.w, s));
+    vec2 uv = vec2(corner + dnsr_get_offset()) * dnsr_constants.inv_extent.zw;
+    return dnsr_decode_variances(textureGather(dnsr_filter_input, uv, 1), dnsr_get_signal_scale());
 }
 void dnsr_write_filter_output(ivec2 p, vec2 mean_var) { imageStore(dnsr_filter_output, p + dnsr_get_offset(), dnsr_encode_signal(mean_var, dnsr_get_signal_scale())); }
 #ifdef DNSR_FINAL_PASS
@@ -235,8 +234,7 @@ vec4 dnsr_gather_light_filter_variance(int l, ivec2 corner) {
     vec2 uv = vec2(corner + dnsr_get_offset()) * dnsr_constants.inv_extent.zw;
     vec4 v = DNSR_BY_SLOT(l, textureGather(dnsr_filter_input, uv, 1), textureGather(dnsr_filter_input_1, uv, 1),
                           textureGather(dnsr_filter_input_2, uv, 1), textureGather(dnsr_filter_input_3, uv, 1));
-    float s = dnsr_get_signal_scale();
-    return vec4(dnsr_decode_variance(v.x, s), dnsr_decode_variance(v.y, s), dnsr_decode_variance(v.z, s), dnsr_decode_variance(v.w, s));
+    return dnsr_decode_variances(v, dnsr_get_signal_scale());
 }
 void dnsr_write_light_filter_output(int l, ivec2 p, vec2 mean_var) {
     ivec2 q = p + dnsr_get_offset();

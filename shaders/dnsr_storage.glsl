@@ -79,5 +79,10 @@ float dnsr_decode_variance(float stored, float scale) {
 }
 #endif
 vec2 dnsr_decode_signal(vec2 stored, float scale) { return vec2(stored.x, dnsr_decode_variance(stored.y, scale)); }
+// Four stored variances at once (a textureGather of the second channel).
+vec4 dnsr_decode_variances(vec4 stored, float scale) {
+    return vec4(dnsr_decode_variance(stored.x, scale), dnsr_decode_variance(stored.y, scale),
+                dnsr_decode_variance(stored.z, scale), dnsr_decode_variance(stored.w, scale));
+}
 
 #endif

@@ -561,9 +561,6 @@ impl Context {
     /// Every engine image the enabled passes' (engine-compiled) variants declare is given, in a layout its
     /// descriptor type allows. Nothing to check (and no work on the recording path) without such variants.
     fn check_engine_images(&self, d: &ShadowsDispatch, passes: &crate::passes::FramePasses) -> Result<()> {
-        if !self.engine_images_declared {
-            return Ok(());
-        }
         let pipelines = self.pipelines.as_ref().expect("created");
         for pass in passes.iter().filter(|p| p.enabled) {
             for b in &pipelines.for_role(pass.role).interface.bindings {
@@ -636,8 +633,11 @@ impl Context {
         let views = &views[..ds.len()];
         let (filter_passes, debug_view) = (self.settings.filter_passes, shared.debug_view);
         let light_views = |light: usize| views[light].as_ref().expect("one per dispatch");
-        // The engine images are the shared dispatch's, and every light runs the same passes.
-        self.check_engine_images(shared, &crate::passes::frame(light_views(0), filter_passes, run_prepare, debug_view))?;
+        // The engine images are the shared dispatch's, and every light runs the same passes. (Building a frame of
+        // passes to check them is most of a record's CPU time: only where an override declares engine images.)
+        if self.engine_images_declared {
+            self.check_engine_images(shared, &crate::passes::frame(light_views(0), filter_passes, run_prepare, debug_view))?;
+        }
         // The later filter passes of several lights run LIGHT_SLOTS lights per dispatch where the context has the
         // light-slot variants; every other pass runs a dispatch per light.
         let pipelines = self.pipelines.as_ref().expect("created");
@@ -672,13 +672,11 @@ impl Context {
             }
         }
 
-        let mut constants = [0u8; CONSTANTS_STRIDE as usize * MAX_LIGHTS_PER_RECORD];
-        for (i, d) in ds.iter().enumerate() {
+        let constants: [Option<FrameConstants>; MAX_LIGHTS_PER_RECORD] = std::array::from_fn(|i| {
+            let d = ds.get(i)?;
             let light = &self.lights[d.light_index as usize];
-            let c = self.frame_constants(d, rect, d.reset || light.pending_reset || !light.initialized);
-            let at = i * CONSTANTS_STRIDE as usize;
-            constants[at..at + std::mem::size_of::<FrameConstants>()].copy_from_slice(bytemuck::bytes_of(&c));
-        }
+            Some(self.frame_constants(d, rect, d.reset || light.pending_reset || !light.initialized))
+        });
 
         let dev = &self.vk.device;
         self.frames_recorded += 1;
@@ -696,39 +694,61 @@ impl Context {
             let lights = ds.iter().map(|d| &self.lights[d.light_index as usize]).filter(|l| !l.initialized);
             lights.flat_map(LightState::images).chain(new_guide)
         };
-        let mut images = [vk::ImageMemoryBarrier::default(); MAX_LIGHTS_PER_RECORD * (1 + crate::state::MAX_IMAGES) + 1];
+        // Layout transitions into GENERAL: the outputs not in it yet here, with the first barrier; the internal
+        // images a frame uses for the first time in barriers of their own, in chunks, on those frames alone (an
+        // array for every image a record could transition took a fifth of a record's CPU time just to zero).
+        let mut outputs = [vk::ImageMemoryBarrier::default(); MAX_LIGHTS_PER_RECORD];
         let mut count = 0;
-        let mut src_stages = vk::PipelineStageFlags::TOP_OF_PIPE | vk::PipelineStageFlags::COMPUTE_SHADER | vk::PipelineStageFlags::TRANSFER;
-        let mut src_access = vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE;
-        let outputs = ds.iter().filter(|d| d.output.layout != vk::ImageLayout::GENERAL).map(|d| (d.output.image, d.output.layout, vk::AccessFlags::SHADER_WRITE));
-        let internal = new_images().map(|img| (img.image, vk::ImageLayout::UNDEFINED, vk::AccessFlags::TRANSFER_WRITE));
-        for (image, layout, access) in outputs.chain(internal) {
-            images[count] =
-                barrier::layout_transition(image, vk::ImageAspectFlags::COLOR, layout, vk::ImageLayout::GENERAL, vk::AccessFlags::empty(), access);
+        for d in ds.iter().filter(|d| d.output.layout != vk::ImageLayout::GENERAL) {
+            outputs[count] = barrier::layout_transition(
+                d.output.image,
+                vk::ImageAspectFlags::COLOR,
+                d.output.layout,
+                vk::ImageLayout::GENERAL,
+                vk::AccessFlags::empty(),
+                vk::AccessFlags::SHADER_WRITE,
+            );
             count += 1;
         }
+        let mut src_stages = vk::PipelineStageFlags::TOP_OF_PIPE | vk::PipelineStageFlags::COMPUTE_SHADER | vk::PipelineStageFlags::TRANSFER;
+        let mut src_access = vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE;
         for d in ds {
             src_stages |= d.sync.input_src_stages | d.sync.output_dst_stages;
             src_access |= d.sync.input_src_access;
         }
+        let dst_stages = vk::PipelineStageFlags::COMPUTE_SHADER | vk::PipelineStageFlags::TRANSFER;
+        let dst_access = vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE;
         // Earlier frames (dnsr's compute and the constants update), the host's input writes and its earlier use
         // of the outputs, all before anything this frame reads or writes.
-        barrier::memory(
-            dev,
-            cmd,
-            src_stages,
-            src_access,
-            vk::PipelineStageFlags::COMPUTE_SHADER | vk::PipelineStageFlags::TRANSFER,
-            vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::TRANSFER_WRITE,
-            &images[..count],
-        );
+        barrier::memory(dev, cmd, src_stages, src_access, dst_stages, dst_access, &outputs[..count]);
+        if new_images().next().is_some() {
+            let mut chunk = [vk::ImageMemoryBarrier::default(); 16];
+            let mut images = new_images().peekable();
+            while images.peek().is_some() {
+                let mut n = 0;
+                for img in images.by_ref().take(chunk.len()) {
+                    chunk[n] = barrier::layout_transition(
+                        img.image,
+                        vk::ImageAspectFlags::COLOR,
+                        vk::ImageLayout::UNDEFINED,
+                        vk::ImageLayout::GENERAL,
+                        vk::AccessFlags::empty(),
+                        vk::AccessFlags::TRANSFER_WRITE,
+                    );
+                    n += 1;
+                }
+                barrier::memory(dev, cmd, src_stages, src_access, dst_stages, dst_access, &chunk[..n]);
+            }
+        }
         // Defined contents from the first frame on: no NaN garbage can be sampled even by a bad reset path.
         let zero = vk::ClearColorValue { float32: [0.0; 4] };
         for img in new_images() {
             unsafe { dev.cmd_clear_color_image(cmd, img.image, vk::ImageLayout::GENERAL, &zero, &[color_range()]) };
         }
-        let written = ds.len() * CONSTANTS_STRIDE as usize;
-        unsafe { dev.cmd_update_buffer(cmd, self.constants_buffer, 0, &constants[..written]) };
+        // Each light's constants at its slot (one update each: no padded staging copy of every slot).
+        for (i, c) in constants.iter().flatten().enumerate() {
+            unsafe { dev.cmd_update_buffer(cmd, self.constants_buffer, i as u64 * CONSTANTS_STRIDE, bytemuck::bytes_of(c)) };
+        }
         barrier::transfer_to_compute(dev, cmd);
 
         // The frame's passes in order, each for every light; a barrier wherever a dispatch touches what an earlier

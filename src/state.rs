@@ -120,8 +120,6 @@ pub(crate) fn texel_bytes(extent: [u32; 2], precision: Precision, filter_passes:
 
 /// Images every light has (`image_specs`).
 const FIXED_IMAGES: usize = 10;
-/// Most internal images one light has: the fixed ones, every optional one and the checkerboard's reconstruction.
-pub(crate) const MAX_IMAGES: usize = FIXED_IMAGES + OPTIONAL.len() + 1;
 
 pub(crate) struct LightState {
     pub tile_mask: InternalImage,

@@ -21,11 +21,12 @@ const MAX_MESSAGE_CHARS: usize = 300;
 
 /// Checks `words` (a whole module, header included); `Err` says what is wrong, for the caller to name the override.
 pub(crate) fn check(words: &[u32], offers: DeviceOffers) -> Result<(), String> {
-    // The id bound sizes SPIRV-Reflect's tables: no larger than the module could use (an id needs an instruction
-    // of at least two words to define it).
+    // The validator lets a nonzero reserved word through; Mesa's SPIR-V reader refuses it.
     if words[4] != 0 {
         return Err(format!("header word 4 (reserved, must be 0) is {:#x}", words[4]));
     }
+    // The id bound sizes SPIRV-Reflect's tables: no larger than the module could use (an id needs an instruction
+    // of at least two words to define it).
     let bound = words[3];
     if bound as usize > words.len() {
         return Err(format!("id bound {bound} exceeds the module's {} words", words.len()));

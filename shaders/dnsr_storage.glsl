@@ -5,6 +5,8 @@
 #ifndef DNSR_STORAGE_GLSL
 #define DNSR_STORAGE_GLSL
 
+#include "generated/dnsr_constants.glsl"
+
 // v >= 0 rounded to the nearest float16 value (ties to even), in float32: exact through packHalf2x16 on any
 // implementation. Below the smallest normal float16 (2^-14) it is 0 (no subnormals, which a driver may flush);
 // above the largest (65504) it is 65504.
@@ -63,19 +65,19 @@ vec4 dnsr_unpack_guide(uvec2 g) { return vec4(uintBitsToFloat(g.x), dnsr_unpack_
 // it in R16G16_UNORM: the mean, and the standard deviation over `scale` (dnsr_get_signal_scale: it covers the
 // largest variance the settings' boost can reach); the sky's variance -1 is the code 65535 (1.0, which every
 // implementation writes exactly). A unorm write may take either code next to the value (Vulkan leaves the
-// rounding open), so deviations stay at or below 65000/65535, far from the sky's code. Variance 0 (converged)
+// rounding open), so deviations stay at or below DNSR_SIGNAL_MAX_DEVIATION_CODE, far from the sky's code. Variance 0 (converged)
 // is code 0, exactly. The fp16 path stores both as float16 (R16G16_SFLOAT).
 #ifdef DNSR_FP16
 vec4 dnsr_encode_signal(vec2 mean_var, float scale) { return vec4(mean_var, 0.0, 0.0); }
 float dnsr_decode_variance(float stored, float scale) { return stored; }
 #else
 vec4 dnsr_encode_signal(vec2 mean_var, float scale) {
-    float deviation = mean_var.y < 0.0 ? 1.0 : min(sqrt(mean_var.y) / scale, 65000.0 / 65535.0);
+    float deviation = mean_var.y < 0.0 ? 1.0 : min(sqrt(mean_var.y) / scale, float(DNSR_SIGNAL_MAX_DEVIATION_CODE) / 65535.0);
     return vec4(mean_var.x, deviation, 0.0, 0.0);
 }
 float dnsr_decode_variance(float stored, float scale) {
     float d = stored * scale;
-    return stored > 65500.0 / 65535.0 ? -1.0 : d * d;
+    return stored > float(DNSR_SIGNAL_SKY_CODE_ABOVE) / 65535.0 ? -1.0 : d * d;
 }
 #endif
 vec2 dnsr_decode_signal(vec2 stored, float scale) { return vec2(stored.x, dnsr_decode_variance(stored.y, scale)); }

@@ -560,7 +560,12 @@ impl Context {
 
     /// Every engine image the enabled passes' (engine-compiled) variants declare is given, in a layout its
     /// descriptor type allows. Nothing to check (and no work on the recording path) without such variants.
-    fn check_engine_images(&self, d: &ShadowsDispatch, passes: &crate::passes::FramePasses) -> Result<()> {
+    fn check_engine_images(&self, d: &ShadowsDispatch, views: &FrameViews, run_prepare: bool) -> Result<()> {
+        // Building a frame of passes is most of a record's CPU time: only where an override declares engine images.
+        if !self.engine_images_declared {
+            return Ok(());
+        }
+        let passes = crate::passes::frame(views, self.settings.filter_passes, run_prepare, d.debug_view);
         let pipelines = self.pipelines.as_ref().expect("created");
         for pass in passes.iter().filter(|p| p.enabled) {
             for b in &pipelines.for_role(pass.role).interface.bindings {
@@ -633,11 +638,8 @@ impl Context {
         let views = &views[..ds.len()];
         let (filter_passes, debug_view) = (self.settings.filter_passes, shared.debug_view);
         let light_views = |light: usize| views[light].as_ref().expect("one per dispatch");
-        // The engine images are the shared dispatch's, and every light runs the same passes. (Building a frame of
-        // passes to check them is most of a record's CPU time: only where an override declares engine images.)
-        if self.engine_images_declared {
-            self.check_engine_images(shared, &crate::passes::frame(light_views(0), filter_passes, run_prepare, debug_view))?;
-        }
+        // The engine images are the shared dispatch's, and every light runs the same passes.
+        self.check_engine_images(shared, light_views(0), run_prepare)?;
         // The later filter passes of several lights run LIGHT_SLOTS lights per dispatch where the context has the
         // light-slot variants; every other pass runs a dispatch per light.
         let pipelines = self.pipelines.as_ref().expect("created");

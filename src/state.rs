@@ -29,6 +29,12 @@ pub(crate) fn intermediate_format(precision: Precision) -> vk::Format {
     }
 }
 
+/// Largest unorm16 code a stored signal's deviation takes: a device's unorm write may round to either neighbouring
+/// code, so real values stay far from the sky's code 65535. Generated into GLSL.
+pub(crate) const SIGNAL_MAX_DEVIATION_CODE: u32 = 65000;
+/// A stored deviation above this code is the sky's (variance -1). Generated into GLSL.
+pub(crate) const SIGNAL_SKY_CODE_ABOVE: u32 = 65500;
+
 /// The standard deviation a stored signal's code 1.0 stands for: the variance boost multiplies a variance of at
 /// most 0.5 (an unbiased estimate of 0/1 samples) by up to `variance_boost_samples`.
 pub(crate) fn signal_scale(variance_boost_samples: f32) -> f32 {

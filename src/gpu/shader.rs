@@ -168,7 +168,7 @@ pub(crate) struct Interface {
 }
 
 /// A module's instructions: (opcode, operands), after checking the header.
-fn instructions(spirv: &[u8]) -> Result<Vec<(u32, Vec<u32>)>> {
+pub(super) fn instructions(spirv: &[u8]) -> Result<Vec<(u32, Vec<u32>)>> {
     const MAGIC: u32 = 0x0723_0203;
     if spirv.len() % 4 != 0 || spirv.len() < 20 {
         return Err(Error::ShaderInterface(format!("is not SPIR-V: {} bytes (a module is whole 32-bit words, 5 or more)", spirv.len())));
@@ -218,8 +218,8 @@ fn entry_workgroup_size(spirv: &[u8]) -> Result<[u32; 3]> {
     let all = instructions(spirv)?;
     // OpEntryPoint: execution model, function id, then the name as a NUL-terminated string packed in words.
     let main = all.iter().find_map(|(opcode, ops)| {
-        let name: Vec<u8> = ops.iter().skip(2).flat_map(|w| w.to_le_bytes()).take_while(|&b| b != 0).collect();
-        (*opcode == OP_ENTRY_POINT && ops.len() >= 3 && ops[0] == GL_COMPUTE && name == b"main").then(|| ops[1])
+        let name = crate::gpu::spirv_validity::literal_string(ops.get(2..).unwrap_or(&[]));
+        (*opcode == OP_ENTRY_POINT && ops.len() >= 3 && ops[0] == GL_COMPUTE && name == "main").then(|| ops[1])
     });
     let main = main.ok_or_else(|| Error::ShaderInterface("has no GLCompute entry point named \"main\"".into()))?;
     all.iter()
@@ -248,8 +248,7 @@ pub(crate) fn check_override(name: &str, spirv: &[u8], offers: crate::gpu::spirv
             (version >> 8) & 0xFF
         )));
     }
-    let words: Vec<u32> = spirv.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
-    crate::gpu::spirv_validity::check(&words, offers).map_err(fail)?;
+    crate::gpu::spirv_validity::check(spirv, offers).map_err(fail)?;
     let (size, expected_size) = (entry_workgroup_size(spirv).map_err(wrap)?, entry_workgroup_size(own.spirv)?);
     if size != expected_size {
         return Err(fail(format!("workgroup size {size:?}; dnsr dispatches {expected_size:?}")));

@@ -19,8 +19,10 @@ pub(crate) struct DeviceOffers {
 /// Longest validator message echoed in an error.
 const MAX_MESSAGE_CHARS: usize = 300;
 
-/// Checks `words` (a whole module, header included); `Err` says what is wrong, for the caller to name the override.
-pub(crate) fn check(words: &[u32], offers: DeviceOffers) -> Result<(), String> {
+/// Checks a whole module (its header already read by `shader::instructions`); `Err` says what is wrong, for the
+/// caller to name the override.
+pub(crate) fn check(spirv: &[u8], offers: DeviceOffers) -> Result<(), String> {
+    let words: Vec<u32> = spirv.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
     // The validator lets a nonzero reserved word through; Mesa's SPIR-V reader refuses it.
     if words[4] != 0 {
         return Err(format!("header word 4 (reserved, must be 0) is {:#x}", words[4]));
@@ -33,22 +35,17 @@ pub(crate) fn check(words: &[u32], offers: DeviceOffers) -> Result<(), String> {
     }
     let validator = spirv_tools::val::create(Some(spirv_tools::TargetEnv::Vulkan_1_1));
     let options = ValidatorOptions { max_limits: vec![(ValidatorLimits::IdBound, words.len() as u32)], ..Default::default() };
-    if let Err(e) = validator.validate(words, Some(options)) {
+    if let Err(e) = validator.validate(&words, Some(options)) {
         let what = e.diagnostic.as_ref().map_or_else(|| format!("{:?}", e.inner), |d| d.message.clone());
         return Err(format!("is not valid SPIR-V for Vulkan 1.1 (SPIRV-Tools: {})", cap(&what)));
     }
-    unreachable_block(words)?;
-    for (opcode, operands) in instructions(words) {
+    // The validator has accepted every word count: the walk cannot fail.
+    let all = super::shader::instructions(spirv).map_err(|e| e.to_string())?;
+    unreachable_block(&all)?;
+    for (opcode, operands) in &all {
+        let (opcode, operands) = (*opcode, operands.as_slice());
         match opcode {
-            OP_CAPABILITY => {
-                let c = operands[0];
-                if !capability_offered(c, offers) {
-                    return Err(match capability_name(c) {
-                        Some(name) => format!("declares capability {name}, which the device does not offer (or the host did not enable)"),
-                        None => format!("declares capability {c}, which dnsr does not accept in an override (docs/callbacks.md lists those it does)"),
-                    });
-                }
-            }
+            OP_CAPABILITY => check_capability(operands[0], offers)?,
             OP_EXTENSION | OP_EXT_INST_IMPORT => {
                 let name = literal_string(&operands[usize::from(opcode == OP_EXT_INST_IMPORT)..]);
                 let known = match opcode {
@@ -70,7 +67,7 @@ pub(crate) fn check(words: &[u32], offers: DeviceOffers) -> Result<(), String> {
 /// Refuses a function with a block that no branch and no merge or continue declaration reaches. The current
 /// SPIR-V rules allow some such blocks, but older validators (the layers engines run) and drivers (Mesa's
 /// reader) do not take all of them, and glslc writes none.
-fn unreachable_block(words: &[u32]) -> Result<(), String> {
+fn unreachable_block(all: &[(u32, Vec<u32>)]) -> Result<(), String> {
     const OP_FUNCTION: u32 = 54;
     const OP_FUNCTION_END: u32 = 56;
     const OP_LABEL: u32 = 248;
@@ -95,12 +92,12 @@ fn unreachable_block(words: &[u32]) -> Result<(), String> {
             None => Ok(()),
         }
     };
-    for (opcode, ops) in instructions(words) {
-        match opcode {
+    for (opcode, ops) in all {
+        match *opcode {
             OP_FUNCTION => blocks.clear(),
             OP_LABEL => blocks.push((ops[0], Vec::new())),
             OP_BRANCH | OP_LOOP_MERGE | OP_SELECTION_MERGE => {
-                let n = if opcode == OP_LOOP_MERGE { 2 } else { 1 };
+                let n = if *opcode == OP_LOOP_MERGE { 2 } else { 1 };
                 blocks.last_mut().into_iter().for_each(|b| b.1.extend(&ops[..n]));
             }
             OP_BRANCH_CONDITIONAL => blocks.last_mut().into_iter().for_each(|b| b.1.extend(&ops[1..3])),
@@ -118,18 +115,8 @@ const OP_EXTENSION: u32 = 10;
 const OP_EXT_INST_IMPORT: u32 = 11;
 const OP_CAPABILITY: u32 = 17;
 
-/// (opcode, operands) of every instruction; the module has passed the validator, so every word count is sound.
-fn instructions(words: &[u32]) -> impl Iterator<Item = (u32, &[u32])> {
-    let mut i = 5;
-    std::iter::from_fn(move || {
-        let count = (*words.get(i)? >> 16) as usize;
-        let out = (words[i] & 0xFFFF, &words[i + 1..i + count]);
-        i += count;
-        Some(out)
-    })
-}
-
-fn literal_string(words: &[u32]) -> String {
+/// A literal string operand (NUL-terminated, packed four bytes a word).
+pub(crate) fn literal_string(words: &[u32]) -> String {
     let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).take_while(|&b| b != 0).collect();
     String::from_utf8_lossy(&bytes).into_owned()
 }
@@ -141,47 +128,51 @@ fn cap(s: &str) -> String {
     }
 }
 
-/// Every Vulkan 1.1 device has these in compute shaders (dnsr's own passes use Shader, ImageQuery,
-/// StorageImageExtendedFormats and ImageBuffer); the rest need a feature the host enabled or a subgroup
-/// operation the device reports.
-fn capability_offered(c: u32, offers: DeviceOffers) -> bool {
-    use ash::vk::SubgroupFeatureFlags as S;
-    let subgroup = |f: S| offers.subgroup_operations.contains(f);
-    match c {
-        0 | 1 | 43 | 44 | 46 | 47 | 49 | 50 => true, // Matrix, Shader, Sampled1D, Image1D, SampledBuffer, ImageBuffer, StorageImageExtendedFormats, ImageQuery
-        9 | 4433 => offers.float16, // Float16, StorageBuffer16BitAccess
-        61 => subgroup(S::BASIC),
-        62 => subgroup(S::VOTE),
-        63 => subgroup(S::ARITHMETIC),
-        64 => subgroup(S::BALLOT),
-        65 => subgroup(S::SHUFFLE),
-        66 => subgroup(S::SHUFFLE_RELATIVE),
-        67 => subgroup(S::CLUSTERED),
-        68 => subgroup(S::QUAD),
-        _ => false,
-    }
+/// What an override may declare a capability with.
+#[derive(Clone, Copy)]
+enum Needs {
+    /// Every Vulkan 1.1 device has it in compute shaders (dnsr's own passes use Shader, ImageQuery,
+    /// StorageImageExtendedFormats and ImageBuffer).
+    Nothing,
+    /// The host enabled `EnabledFeatures::float16`.
+    Float16,
+    /// The device reports this subgroup operation for compute shaders.
+    Subgroup(ash::vk::SubgroupFeatureFlags),
 }
 
-fn capability_name(c: u32) -> Option<&'static str> {
-    Some(match c {
-        0 => "Matrix",
-        1 => "Shader",
-        9 => "Float16",
-        43 => "Sampled1D",
-        44 => "Image1D",
-        46 => "SampledBuffer",
-        47 => "ImageBuffer",
-        49 => "StorageImageExtendedFormats",
-        50 => "ImageQuery",
-        61 => "GroupNonUniform",
-        62 => "GroupNonUniformVote",
-        63 => "GroupNonUniformArithmetic",
-        64 => "GroupNonUniformBallot",
-        65 => "GroupNonUniformShuffle",
-        66 => "GroupNonUniformShuffleRelative",
-        67 => "GroupNonUniformClustered",
-        68 => "GroupNonUniformQuad",
-        4433 => "StorageBuffer16BitAccess",
-        _ => return None,
-    })
+const CAPABILITIES: &[(u32, &str, Needs)] = {
+    use ash::vk::SubgroupFeatureFlags as S;
+    &[
+        (0, "Matrix", Needs::Nothing),
+        (1, "Shader", Needs::Nothing),
+        (9, "Float16", Needs::Float16),
+        (43, "Sampled1D", Needs::Nothing),
+        (44, "Image1D", Needs::Nothing),
+        (46, "SampledBuffer", Needs::Nothing),
+        (47, "ImageBuffer", Needs::Nothing),
+        (49, "StorageImageExtendedFormats", Needs::Nothing),
+        (50, "ImageQuery", Needs::Nothing),
+        (61, "GroupNonUniform", Needs::Subgroup(S::BASIC)),
+        (62, "GroupNonUniformVote", Needs::Subgroup(S::VOTE)),
+        (63, "GroupNonUniformArithmetic", Needs::Subgroup(S::ARITHMETIC)),
+        (64, "GroupNonUniformBallot", Needs::Subgroup(S::BALLOT)),
+        (65, "GroupNonUniformShuffle", Needs::Subgroup(S::SHUFFLE)),
+        (66, "GroupNonUniformShuffleRelative", Needs::Subgroup(S::SHUFFLE_RELATIVE)),
+        (67, "GroupNonUniformClustered", Needs::Subgroup(S::CLUSTERED)),
+        (68, "GroupNonUniformQuad", Needs::Subgroup(S::QUAD)),
+        (4433, "StorageBuffer16BitAccess", Needs::Float16),
+    ]
+};
+
+/// Refuses a capability dnsr does not list, or one the device does not offer.
+fn check_capability(c: u32, offers: DeviceOffers) -> Result<(), String> {
+    let Some(&(_, name, needs)) = CAPABILITIES.iter().find(|(id, _, _)| *id == c) else {
+        return Err(format!("declares capability {c}, which dnsr does not accept in an override (docs/callbacks.md lists those it does)"));
+    };
+    let offered = match needs {
+        Needs::Nothing => true,
+        Needs::Float16 => offers.float16,
+        Needs::Subgroup(op) => offers.subgroup_operations.contains(op),
+    };
+    if offered { Ok(()) } else { Err(format!("declares capability {name}, which the device does not offer (or the host did not enable)")) }
 }

@@ -93,13 +93,14 @@ pub fn stored_signal(v: DVec2, scale: f64) -> DVec2 {
     if v.y < 0.0 {
         return DVec2::new(mean, -1.0);
     }
-    decode_signal([unorm16(mean), unorm16((v.y.sqrt() / scale).min(65000.0 / 65535.0))], scale)
+    let max = crate::state::SIGNAL_MAX_DEVIATION_CODE as f64 / 65535.0;
+    decode_signal([unorm16(mean), unorm16((v.y.sqrt() / scale).min(max))], scale)
 }
 
 /// A stored signal's two unorm16 codes read back as (mean, variance), as the shaders' dnsr_decode_signal does.
 pub fn decode_signal(codes: [u32; 2], scale: f64) -> DVec2 {
     let d = from_unorm16(codes[1]) * scale;
-    DVec2::new(from_unorm16(codes[0]), if codes[1] > 65500 { -1.0 } else { d * d })
+    DVec2::new(from_unorm16(codes[0]), if codes[1] > crate::state::SIGNAL_SKY_CODE_ABOVE { -1.0 } else { d * d })
 }
 
 /// The packed code of the zero normal (no usable normal).

@@ -23,6 +23,28 @@ timed command buffers. Each configuration gets a fresh Context; its first 2N fra
 most 5x --warmup-ms), then the timed frames. The output is R16_SFLOAT, resting in SHADER_READ_ONLY_OPTIMAL; HostSync \
 names compute-shader writes of the inputs and compute-shader reads of the output, as an engine's would.";
 
+/// Records frame `index` of every light into `cmd` and times the call. One light: record_shadows, as an engine with
+/// one light calls it; several: record_lights, with the dispatch's per-light fields moved into the light list.
+fn record(
+    ctx: &mut Context,
+    cmd: vk::CommandBuffer,
+    d: &ShadowsDispatch,
+    scene: &GpuScene,
+    index: usize,
+    outputs: &[TestImage],
+    guidance: Option<Guidance>,
+) -> (dnsr::Result<()>, std::time::Duration) {
+    let mut lights = [LightDispatch::default(); dnsr::MAX_LIGHTS_PER_RECORD];
+    for (k, (l, out)) in lights.iter_mut().zip(outputs).enumerate() {
+        *l = light(scene, index, k, out, guidance);
+    }
+    let shared = ShadowsDispatch { hit_mask: Default::default(), visibility: Default::default(), output: Default::default(),
+        hit_distance: None, light_angular_size: 0.0, reset: false, ..*d };
+    let t0 = Instant::now();
+    let r = if outputs.len() == 1 { ctx.record_shadows(cmd, d) } else { ctx.record_lights(cmd, &shared, &lights[..outputs.len()]) };
+    (r, t0.elapsed())
+}
+
 /// Wall microseconds of `frames` records (each submitted and waited for, as in `measure`) of a context without
 /// timestamps, after as many untimed ones as `measure`'s pixel-class pass records (a context's first records
 /// compile the pipelines of the specialization its frames use).
@@ -38,18 +60,8 @@ fn record_only(
     let mut us = Vec::with_capacity(frames);
     let skip = 2 * scene.frames.len();
     for index in 0..skip + frames {
-        let mut lights = [LightDispatch::default(); dnsr::MAX_LIGHTS_PER_RECORD];
-        for (k, (l, out)) in lights.iter_mut().zip(outputs).enumerate() {
-            *l = light(scene, index, k, out, guidance);
-        }
         let d = dispatch(scene, index, &outputs[0], guidance);
-        let shared = ShadowsDispatch { hit_mask: Default::default(), visibility: Default::default(), output: Default::default(),
-            hit_distance: None, light_angular_size: 0.0, reset: false, ..d };
-        let (r, elapsed) = gpu.submit_with(cmd, |cmd| {
-            let t0 = Instant::now();
-            let r = if outputs.len() == 1 { ctx.record_shadows(cmd, &d) } else { ctx.record_lights(cmd, &shared, &lights[..outputs.len()]) };
-            (r, t0.elapsed())
-        });
+        let (r, elapsed) = gpu.submit_with(cmd, |cmd| record(ctx, cmd, &d, scene, index, outputs, guidance));
         r.map_err(|e| format!("record without timestamps: {e}"))?;
         if index >= skip {
             us.push(elapsed.as_secs_f64() * 1e6);
@@ -218,19 +230,7 @@ fn measure(
 ) -> Result<Measured, String> {
     let mut recorded = 0u64;
     let mut frame = |ctx: &mut Context, d: &ShadowsDispatch, index: usize| -> Result<(PassTimings, f64), String> {
-        // One light: record_shadows, as an engine with one light calls it; several: record_lights, with the
-        // dispatch's per-light fields moved into the light list.
-        let mut lights = [LightDispatch::default(); dnsr::MAX_LIGHTS_PER_RECORD];
-        for (k, (l, out)) in lights.iter_mut().zip(outputs).enumerate() {
-            *l = light(scene, index, k, out, guidance);
-        }
-        let shared = ShadowsDispatch { hit_mask: Default::default(), visibility: Default::default(), output: Default::default(),
-            hit_distance: None, light_angular_size: 0.0, reset: false, ..*d };
-        let elapsed = gpu.submit_with(cmd, |cmd| {
-            let t0 = Instant::now();
-            let r = if outputs.len() == 1 { ctx.record_shadows(cmd, d) } else { ctx.record_lights(cmd, &shared, &lights[..outputs.len()]) };
-            (r, t0.elapsed())
-        });
+        let elapsed = gpu.submit_with(cmd, |cmd| record(ctx, cmd, d, scene, index, outputs, guidance));
         elapsed.0.map_err(|e| format!("record: {e}"))?;
         recorded += 1;
         let t = ctx.timings().map_err(|e| format!("timings: {e}"))?.ok_or("no timings after the frame completed")?;

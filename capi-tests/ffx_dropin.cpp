@@ -7,8 +7,10 @@
  *     compiled against the SDK's headers would pass garbage), and the enum values integrations switch on;
  *   - versions: the asserts the SDK's sample makes (SDK 1.1.4 through fpGetSDKVersion, denoiser 1.3.0);
  *   - frames: six frames of a 37x23 mask (four noisy, two all lit) through the FFX API equal, bit for bit, the same
- *     frames through dnsr.h with the FidelityFX settings (DNSR_PRESET_BALANCED, a fresh context's); a second FFX
- *     context writing the sample's RGBA8 output holds the same values, rounded, in every channel;
+ *     frames through dnsr.h with a fresh context's settings (dnsr's default, the Quality preset); a second FFX
+ *     context writing the sample's RGBA8 output holds the same values, rounded, in every channel; with
+ *     DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS in the description's flags, the same against dnsr.h with
+ *     DNSR_PRESET_BALANCED (the FidelityFX settings), and those frames differ from the default's;
  *   - the depth buffer itself (D32_SFLOAT, reverse-Z, FFX_DENOISER_ENABLE_DEPTH_INVERTED) equals dnsr.h with
  *     DNSR_CONTEXT_CREATE_DEPTH_INVERTED on it;
  *   - misuse the SDK does not catch (NULL pointers, a destroyed or never-created context, a create into a live
@@ -110,7 +112,7 @@ static Dispatch ffx_dispatch(VkCommandBuffer cmd, uint32_t frame, const HostImag
     return sample_dispatch(cmd, frame, mask, depth, velocity, normals, out);
 }
 
-// The same frame through dnsr.h: the FidelityFX settings are a fresh context's defaults.
+// The same frame through dnsr.h (the settings are the context's).
 static DnsrShadowsDispatch native_dispatch(VkCommandBuffer cmd, uint32_t frame)
 {
     DnsrShadowsDispatch d = host_dispatch(cmd, &mask, &depth, &velocity, &normals, &outNative);
@@ -219,17 +221,23 @@ static void integrate(Integration &in, uint32_t flags)
     FFX_CHECK(ffxDenoiserContextCreate(in.context.get(), &desc));
 }
 
-static void frames_match_native(void)
+// Returns the last noisy frame's output. fidelityfx: the FFX contexts get DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS and
+// the dnsr.h context DNSR_PRESET_BALANCED; else both run dnsr's default settings.
+static std::vector<float> frames_match_native(bool fidelityfx)
 {
     Integration in, in8;
+    uint32_t settings = fidelityfx ? DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS : 0u;
     // The sample's flags: shadows, plus the classifier's depth-inverted bit (1 << 3) the denoiser ignores.
-    integrate(in, FFX_DENOISER_SHADOWS | (1u << 3));
-    integrate(in8, FFX_DENOISER_SHADOWS);
+    integrate(in, FFX_DENOISER_SHADOWS | (1u << 3) | settings);
+    integrate(in8, FFX_DENOISER_SHADOWS | settings);
     DnsrContextCreateInfo info = host_create_info(&host, W, H);
+    DnsrSettings balanced;
+    DNSR_CHECK(dnsr_settings_init_preset(DNSR_PRESET_BALANCED, &balanced));
+    if (fidelityfx) info.pSettings = &balanced;
     DnsrContext native = nullptr;
     DNSR_CHECK(dnsr_context_create(&info, &native));
 
-    std::vector<float> a, b, c;
+    std::vector<float> a, b, c, lastNoisy;
     for (uint32_t frame = 0; frame < 6; frame++) {
         bool allLit = frame >= 4;
         upload_mask(frame, allLit);
@@ -252,15 +260,18 @@ static void frames_match_native(void)
         }
         float lo = a[0], hi = a[0];
         for (float v : a) lo = v < lo ? v : lo, hi = v > hi ? v : hi;
-        std::printf("frame %u: FFX API == dnsr.h on all %u pixels, output in [%g, %g]\n", frame, W * H, lo, hi);
+        std::printf("frame %u (%s settings): FFX API == dnsr.h on all %u pixels, output in [%g, %g]\n", frame,
+                    fidelityfx ? "FidelityFX" : "default", W * H, lo, hi);
         if (frame < 4) CHECK(hi > lo, "frame %u: a noisy mask gave a flat output", frame);
+        if (frame == 3) lastNoisy = a;
     }
-    // Two all-lit frames after noise: Balanced's history takes time, so only check the value is in range.
+    // Two all-lit frames after noise: the history takes time, so only check the value is in range.
     for (float v : a) CHECK(v >= 0.0f && v <= 1.0f, "output %g outside [0, 1]", v);
     host_expect_clean(&host, "frames");
     FFX_CHECK(ffxDenoiserContextDestroy(in.context.get()));
     FFX_CHECK(ffxDenoiserContextDestroy(in8.context.get()));
     DNSR_CHECK(dnsr_context_destroy(native));
+    return lastNoisy;
 }
 
 // ---- A pitching camera: the SDK's clip space has y up ----
@@ -534,7 +545,14 @@ int main(void)
     host_upload(&host, &velocity, velocityData.data(), velocityData.size() * sizeof(uint16_t));
     host_upload(&host, &normals, normalData.data(), normalData.size());
 
-    frames_match_native();
+    {
+        std::vector<float> quality = frames_match_native(false), fidelityfx = frames_match_native(true);
+        size_t differ = 0;
+        for (size_t i = 0; i < quality.size(); i++) differ += quality[i] != fidelityfx[i];
+        CHECK(differ > 0, "DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS changed no pixel of frame 3");
+        std::printf("DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS: %zu of %u pixels of frame 3 differ from the default's\n",
+                    differ, W * H);
+    }
     depth_buffer_reverse_z();
     misuse();
     pitching_camera();

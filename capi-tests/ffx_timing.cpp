@@ -143,7 +143,7 @@ int main(int argc, char **argv)
         });
         DNSR_CHECK(dnsr_context_destroy(ctx));
     }
-    std::printf("ffx_timing: %s, %ux%u, every tile mixed, FidelityFX settings, RGBA8 output, median of %d frames:\n",
+    std::printf("ffx_timing: %s, %ux%u, every tile mixed, default settings, RGBA8 output, median of %d frames:\n",
                 host.deviceName, w, h, frames - frames / 4);
     std::printf("  FFX API (include/ffx):                  %.3f ms\n", ffxMs);
     std::printf("  dnsr.h, descriptor sets:                %.3f ms\n", nativeMs[0]);

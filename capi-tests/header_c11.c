@@ -58,14 +58,20 @@ int main(void)
         failures++;
     }
 
-    /* Presets: Balanced is the default; Fast one pass; Quality four passes with stable history. */
+    /* Presets: Quality is the default (three passes, stable history); Balanced the FidelityFX values; Fast one pass. */
     DnsrSettings fast, balanced, quality;
     if (dnsr_settings_init_preset(DNSR_PRESET_FAST, &fast) != DNSR_SUCCESS || fast.filterPasses != 1
-        || dnsr_settings_init_preset(DNSR_PRESET_BALANCED, &balanced) != DNSR_SUCCESS || memcmp(&balanced, &s, sizeof s) != 0
-        || dnsr_settings_init_preset(DNSR_PRESET_QUALITY, &quality) != DNSR_SUCCESS || quality.filterPasses != 4
-        || quality.stableHistorySamples != 8.0f || quality.sType != DNSR_STRUCTURE_TYPE_SETTINGS) {
-        fprintf(stderr, "dnsr_settings_init_preset: fast %u passes, quality %u passes, stable %g\n", fast.filterPasses,
-                quality.filterPasses, (double)quality.stableHistorySamples);
+        || dnsr_settings_init_preset(DNSR_PRESET_QUALITY, &quality) != DNSR_SUCCESS || memcmp(&quality, &s, sizeof s) != 0
+        || quality.filterPasses != 3 || quality.stableHistorySamples != 8.0f || quality.sType != DNSR_STRUCTURE_TYPE_SETTINGS
+        || dnsr_settings_init_preset(DNSR_PRESET_BALANCED, &balanced) != DNSR_SUCCESS || balanced.filterPasses != 3
+        || balanced.stableHistorySamples != 0.0f || balanced.outputContrast != 1.2f) {
+        fprintf(stderr, "dnsr_settings_init_preset: fast %u passes, quality %u passes, stable %g, balanced stable %g\n",
+                fast.filterPasses, quality.filterPasses, (double)quality.stableHistorySamples,
+                (double)balanced.stableHistorySamples);
+        failures++;
+    }
+    if (DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS != (1u << 30)) {
+        fprintf(stderr, "DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS moved\n");
         failures++;
     }
 

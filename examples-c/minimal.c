@@ -348,7 +348,7 @@ static bool create_denoiser(App *app)
         .precision = DNSR_PRECISION_FP32,
         .outputFormat = VK_FORMAT_R32_SFLOAT, /* R16_SFLOAT and R8_UNORM work too */
         .lightCount = 1,
-        /* pSettings NULL: the FidelityFX defaults. */
+        /* pSettings NULL: dnsr's defaults (the Quality preset). */
     };
     DNSR_TRY(dnsr_context_create(&info, &app->denoiser));
     return true;

@@ -79,6 +79,14 @@
 #define DNSR_MAX_DIAGNOSES 8
 
 /**
+ * A bit of `FfxDenoiserContextDescription.flags` that dnsr's FidelityFX layer (include/ffx) reads: the context runs
+ * the FidelityFX shadow denoiser's settings (DNSR_PRESET_BALANCED, its output) instead of dnsr's default (the
+ * Quality preset). The SDK's own denoiser ignores bits it does not know, so an integration may set it and still
+ * build against either library.
+ */
+#define DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS (1 << 30)
+
+/**
  * Largest `DnsrShaderOverride::codeSize` accepted, in bytes (dnsr's own modules are under 100 KiB): a larger one is
  * refused with DNSR_ERROR_INVALID_ARGUMENT before anything is read.
  */
@@ -305,7 +313,8 @@ typedef uint32_t DnsrContextCreateFlags;
 typedef uint32_t DnsrPrecision;
 
 /**
- * Every constant of the algorithm. Initialise with `dnsr_settings_init_default` (FidelityFX defaults). Each
+ * Every constant of the algorithm. Initialise with `dnsr_settings_init_default` (the Quality preset) or
+ * `dnsr_settings_init_preset` (DNSR_PRESET_BALANCED: the FidelityFX values, given below where they differ). Each
  * field is checked against its range (NaN and infinities are refused) by dnsr_context_create and
  * dnsr_context_set_settings: DNSR_ERROR_INVALID_SETTING names the field, the value and the range.
  */
@@ -361,7 +370,7 @@ typedef struct DnsrSettings {
    */
   float fullHistorySamples;
   /**
-   * Current-frame weight with full history trust. Range [1e-3, 1]. Default 0.05.
+   * Current-frame weight with full history trust. Range [1e-3, 1]. Default 0.1 (FidelityFX 0.05).
    */
   float minCurrentWeight;
   /**
@@ -369,7 +378,7 @@ typedef struct DnsrSettings {
    */
   float maxHistorySamples;
   /**
-   * Cross-tap weight of the 3x3 kernel (corners get its square). Range [0, 1]. Default 2/3.
+   * Cross-tap weight of the 3x3 kernel (corners get its square). Range [0, 1]. Default 0.5 (FidelityFX 2/3).
    */
   float kernelCrossWeight;
   /**
@@ -377,7 +386,7 @@ typedef struct DnsrSettings {
    */
   float normalPower;
   /**
-   * Output pow(mean, max(contrast - variance, 1)). Range [1, 4]; 1 disables. Default 1.2.
+   * Output pow(mean, max(contrast - variance, 1)). Range [1, 4]; 1 disables. Default 1 (FidelityFX 1.2).
    */
   float outputContrast;
   /**
@@ -387,13 +396,13 @@ typedef struct DnsrSettings {
   /**
    * A pixel whose last n >= this-many samples were identical is clamped to within 3/n of them instead of to the
    * local distribution (hard shadow edges the input resolves stay sharp). Range [0, 4096]; 0 disables (the
-   * FidelityFX behaviour). Default 0; 8 in the Quality preset.
+   * FidelityFX behaviour). Default 8 (FidelityFX 0).
    */
   float stableHistorySamples;
   /**
    * After a stable run, this many samples of the other value in a row (or the first, where the local mean is
    * within 0.5 of it) restart the pixel's history at the local mean (a shadow moved over it). Range [0, 16];
-   * 0 disables; needs stableHistorySamples > 0. Default 0; 3 in the Quality preset.
+   * 0 disables; needs stableHistorySamples > 0. Default 3 (FidelityFX 0).
    */
   float historyFlipSamples;
   /**
@@ -403,7 +412,7 @@ typedef struct DnsrSettings {
    * creases, thin stripes). Under a moving camera, a receiver beside the sky whose neighbours of last frame
    * held the other value for this many samples or more, and two of whose 8 neighbours share its sample, takes
    * its sample as it is (a resolved silhouette; this part needs no stable history). Range [0, 4096]; 0
-   * disables; converged pixels need stableHistorySamples > 0. Default 0; 8 in the Quality preset.
+   * disables; converged pixels need stableHistorySamples > 0. Default 8 (FidelityFX 0).
    */
   float convergedSamples;
   /**
@@ -411,7 +420,7 @@ typedef struct DnsrSettings {
    * narrower than this many pixels either side of its edge and lie at least two pixel footprints away, a
    * receiver's output is its sample of this frame, neither accumulated nor filtered (one ray resolves it: a
    * hard light; where the estimate errs, the output is the input). Range [0, 16]; 0 disables (the FidelityFX
-   * behaviour). Default 0; 0.25 in the Quality preset.
+   * behaviour). Default 0.25 (FidelityFX 0).
    */
   float hardPenumbraPixels;
 } DnsrSettings;
@@ -604,7 +613,7 @@ typedef struct DnsrContextCreateInfo {
    */
   uint32_t maxFramesInFlight;
   /**
-   * Optional (NULL = FidelityFX defaults). Initial settings.
+   * Optional (NULL = dnsr_settings_init_default's: the Quality preset). Initial settings.
    */
   const struct DnsrSettings *pSettings;
   /**
@@ -1260,7 +1269,7 @@ typedef struct DnsrReferenceFrameInfo {
    */
   DnsrReferenceFlags flags;
   /**
-   * Optional (NULL = FidelityFX defaults).
+   * Optional (NULL = dnsr_settings_init_default's: the Quality preset).
    */
   const struct DnsrSettings *pSettings;
   /**
@@ -1601,19 +1610,21 @@ typedef struct DnsrDiagnosis {
 #define DNSR_SHADOW_INPUT_MAX_ENUM 2147483647
 
 /**
- * One filter pass: the cheapest setting whose error stays near the FidelityFX defaults'.
+ * The FidelityFX values with one filter pass: the cheapest setting whose error stays near Balanced's.
  */
 #define DNSR_PRESET_FAST 0
 
 /**
- * The FidelityFX defaults (same as `dnsr_settings_init_default`).
+ * The FidelityFX shadow denoiser's values: its output, for engines that need the old look (5% current-frame
+ * weight, output contrast 1.2, cross-tap weight 2/3, none of the run-based features).
  */
 #define DNSR_PRESET_BALANCED 1
 
 /**
- * The measured best knobs combined: 4 filter passes, 10% current-frame weight, no output contrast, cross-tap
- * weight 0.5, stable history after 8 identical samples, restarted after 3 samples of the other value, converged
- * after 8 identical samples (unfiltered among converged neighbours).
+ * The default (same as `dnsr_settings_init_default`): the measured best knobs combined. 3 filter passes, 10%
+ * current-frame weight, no output contrast, cross-tap weight 0.5, stable history after 8 identical samples,
+ * restarted after 3 samples of the other value, converged after 8 identical samples (unfiltered among converged
+ * neighbours), with penumbra guidance pixels under a penumbra narrower than a quarter pixel output as sampled.
  */
 #define DNSR_PRESET_QUALITY 2
 
@@ -1848,7 +1859,8 @@ DnsrResult dnsr_context_resize(DnsrContext context,
 DnsrResult dnsr_context_reset_history(DnsrContext context, uint32_t lightIndex);
 
 /**
- * Fills `*pSettings` with the FidelityFX defaults (sType included).
+ * Fills `*pSettings` with dnsr's default settings, the Quality preset (sType included). The FidelityFX values:
+ * `dnsr_settings_init_preset(DNSR_PRESET_BALANCED, ...)`.
  */
 DnsrResult dnsr_settings_init_default(struct DnsrSettings *pSettings);
 

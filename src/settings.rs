@@ -1,4 +1,5 @@
-//! Every constant of the algorithm, as a setting whose default is the FidelityFX value.
+//! Every constant of the algorithm, as a setting. The defaults are the Quality preset (the measured accurate mode);
+//! `Preset::Balanced` is the FidelityFX shadow denoiser's values.
 
 use crate::constants::FrameConstants;
 use crate::error::{Error, Result};
@@ -9,8 +10,9 @@ use crate::error::{Error, Result};
 /// uses so that a setting cannot be missed there.
 macro_rules! declare_settings {
     ($( $(#[doc = $doc:literal])* $name:ident : $t:ty = $default:expr, [$lo:expr, $hi:expr] $range:literal; )*) => {
-        /// Algorithm settings. `Settings::default()` reproduces the FidelityFX shadow denoiser. They can be
-        /// changed between frames with `Context::set_settings`; every field is range-checked (NaN refused).
+        /// Algorithm settings. `Settings::default()` is `Preset::Quality`, the accurate mode (docs/do-no-harm.md);
+        /// `Preset::Balanced` reproduces the FidelityFX shadow denoiser. They can be changed between frames with
+        /// `Context::set_settings`; every field is range-checked (NaN refused).
         #[derive(Clone, Copy, Debug, PartialEq)]
         pub struct Settings {
             $( $(#[doc = $doc])* #[doc = concat!(" Range ", $range, ". Default ", stringify!($default), ".")] pub $name: $t, )*
@@ -69,12 +71,12 @@ declare_settings! {
     /// local 17x17 distribution, and its history is not rejected: the input already resolves it (a hard shadow
     /// edge), and the local distribution, which straddles the edge, would pull it towards the edge's mean.
     /// 0 turns this off (the FidelityFX behaviour).
-    stable_history_samples: f32 = 0.0, [0.0, crate::passes::MAX_SAMPLE_RUN as f32] "[0, 4096]";
+    stable_history_samples: f32 = 8.0, [0.0, crate::passes::MAX_SAMPLE_RUN as f32] "[0, 4096]";
     /// After a stable run (`stable_history_samples`), this many samples of the other value in a row, or the first
     /// one where the local 17x17 mean is within 0.5 of it, restart the pixel's history at the local mean: the
     /// shadow moved over the pixel, with or without motion vectors. Whole samples (a fraction is dropped); 0 turns
     /// this off; it needs `stable_history_samples` > 0.
-    history_flip_samples: f32 = 0.0, [0.0, 16.0] "[0, 16]";
+    history_flip_samples: f32 = 3.0, [0.0, 16.0] "[0, 16]";
     /// A stable pixel (`stable_history_samples`) whose last n >= this-many samples were identical and whose
     /// moments hold no other sample is converged (variance 0); where at least half of its 3x3 receivers are
     /// converged too, the filter passes it through as its run's value. The 1-spp input then resolves it (a hard
@@ -84,7 +86,7 @@ declare_settings! {
     /// value held it for this many samples or more, and two of whose 8 neighbours share its sample, takes its
     /// sample as it is (a resolved silhouette, docs/do-no-harm.md). 0 turns this off (the FidelityFX behaviour);
     /// converged pixels need `stable_history_samples` > 0, resolved silhouettes do not.
-    converged_samples: f32 = 0.0, [0.0, crate::passes::MAX_SAMPLE_RUN as f32] "[0, 4096]";
+    converged_samples: f32 = 8.0, [0.0, crate::passes::MAX_SAMPLE_RUN as f32] "[0, 4096]";
     /// Penumbra guidance only (a dispatch with hit distances): where the blockers near a tile cast a penumbra
     /// narrower than this many pixels either side of its edge (from their mean hit distance, the light's angular
     /// size and the receiver's depth) and lie at least two pixel footprints away, a receiver's output is its
@@ -93,62 +95,64 @@ declare_settings! {
     /// wire's shadow), and where the estimate errs the output is the input, never worse. The price is on a still
     /// camera, whose accumulation would resolve the few pixels inside such a penumbra. 0 turns this off (the
     /// FidelityFX behaviour).
-    hard_penumbra_pixels: f32 = 0.0, [0.0, 16.0] "[0, 16]";
+    hard_penumbra_pixels: f32 = 0.25, [0.0, 16.0] "[0, 16]";
     /// Below this many accumulated samples the variance is boosted (raised to the spatial variance and
     /// multiplied by the missing samples), except on a pixel whose run is stable (`stable_history_samples`).
     variance_boost_samples: f32 = 16.0, [0.0, 1024.0] "[0, 1024]";
     /// Sample count from which the history gets its full weight.
     full_history_samples: f32 = 8.0, [1.0, 1024.0] "[1, 1024]";
     /// Weight of the current frame once the history is fully trusted.
-    min_current_weight: f32 = 0.05, [1e-3, 1.0] "[1e-3, 1]";
+    min_current_weight: f32 = 0.1, [1e-3, 1.0] "[1e-3, 1]";
     /// Bound on the temporal sample count, so the moments cannot grow without limit.
     max_history_samples: f32 = 32.0, [2.0, 4096.0] "[2, 4096]";
     /// Weight of the cross taps of the 3x3 kernel relative to the center (corners get its square).
-    kernel_cross_weight: f32 = 2.0 / 3.0, [0.0, 1.0] "[0, 1]";
+    kernel_cross_weight: f32 = 0.5, [0.0, 1.0] "[0, 1]";
     /// Exponent of the normal edge stop max(dot(Nc, Nq), 0)^p.
     normal_power: f32 = 32.0, [0.0, 256.0] "[0, 256]";
     /// Output contrast: the last pass writes pow(mean, max(contrast - variance, 1)); 1 = none.
-    output_contrast: f32 = 1.2, [1.0, 4.0] "[1, 4]";
+    output_contrast: f32 = 1.0, [1.0, 4.0] "[1, 4]";
     /// Floor of the shadow edge stop's standard deviation, keeps exp(-|c - n| / sigma) finite.
     min_shadow_sigma: f32 = 1e-4, [1e-6, 1.0] "[1e-6, 1]";
 }
 
-/// Named settings chosen from the accuracy measurements in docs/accuracy.md (`make accuracy`): on its truth-known
-/// sequences Fast and Balanced measure a mean RMSE of 0.060, Quality 0.023 with a shadow-jump lag of 1 frame
-/// instead of 14.
+/// Named settings chosen from the accuracy measurements in docs/accuracy.md (`make accuracy`) and the scene family
+/// of docs/do-no-harm.md: on the truth-known sequences Fast and Balanced measure a mean RMSE of 0.060, Quality 0.019
+/// with a shadow-jump lag of 1 frame instead of 14.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Preset {
-    /// One filter pass: the cheapest setting whose error stays near the defaults'.
+    /// The FidelityFX values with one filter pass: the cheapest setting whose error stays near Balanced's.
     Fast,
-    /// The FidelityFX defaults.
+    /// The FidelityFX shadow denoiser's values (its output, for engines that need the old look): 5% current-frame
+    /// weight, output contrast 1.2, cross-tap weight 2/3, none of the run-based features.
     Balanced,
-    /// The measured best knobs combined: 4 filter passes, 10% current-frame weight, no output contrast, cross
-    /// tap weight 0.5, history of pixels with 8 identical samples in a row clamped to their run and restarted
-    /// after 3 samples of the other value (1 where the neighbourhood agrees; see docs/accuracy.md for why each),
-    /// pixels with 8 identical samples in a row converged (passed through the filter among converged
-    /// neighbours; docs/do-no-harm.md), and, with penumbra guidance, pixels under a penumbra narrower than a quarter
-    /// of a pixel either side output as sampled.
+    /// The default (`Settings::default()`): the measured best knobs combined. 3 filter passes (a fourth's 16-px
+    /// kernel blurs small objects and silhouettes: docs/do-no-harm.md), 10% current-frame weight, no output
+    /// contrast, cross tap weight 0.5, history of pixels with 8 identical samples in a row clamped to their run and
+    /// restarted after 3 samples of the other value (1 where the neighbourhood agrees; see docs/accuracy.md for
+    /// why each), pixels with 8 identical samples in a row converged (passed through the filter among converged
+    /// neighbours; docs/do-no-harm.md), and, with penumbra guidance, pixels under a penumbra narrower than a
+    /// quarter of a pixel either side output as sampled.
     Quality,
 }
 
 impl Settings {
     /// The settings of a preset.
     pub fn preset(preset: Preset) -> Settings {
-        let balanced = Settings::default();
+        let quality = Settings::default();
+        let balanced = Settings {
+            min_current_weight: 0.05,
+            output_contrast: 1.2,
+            kernel_cross_weight: 2.0 / 3.0,
+            stable_history_samples: 0.0,
+            history_flip_samples: 0.0,
+            converged_samples: 0.0,
+            hard_penumbra_pixels: 0.0,
+            ..quality
+        };
         match preset {
             Preset::Fast => Settings { filter_passes: 1, ..balanced },
             Preset::Balanced => balanced,
-            Preset::Quality => Settings {
-                filter_passes: 4,
-                min_current_weight: 0.1,
-                output_contrast: 1.0,
-                kernel_cross_weight: 0.5,
-                stable_history_samples: 8.0,
-                history_flip_samples: 3.0,
-                converged_samples: 8.0,
-                hard_penumbra_pixels: 0.25,
-                ..balanced
-            },
+            Preset::Quality => quality,
         }
     }
 }
@@ -196,10 +200,13 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_preset_is_valid_and_balanced_is_the_default() {
+    fn every_preset_is_valid_and_quality_is_the_default() {
         for p in [Preset::Fast, Preset::Balanced, Preset::Quality] {
             Settings::preset(p).validate().unwrap();
         }
-        assert_eq!(Settings::preset(Preset::Balanced), Settings::default());
+        assert_eq!(Settings::preset(Preset::Quality), Settings::default());
+        // Balanced is FidelityFX: none of the run-based features, which FidelityFX does not have.
+        let b = Settings::preset(Preset::Balanced);
+        assert!(!b.uses_runs() && b.hard_penumbra_pixels == 0.0 && b.output_contrast == 1.2);
     }
 }

@@ -39,7 +39,7 @@ struct DenoiserSettings {
     // The engine's own G-buffer encoding (linear depth, octahedral normals): dnsr runs its passes compiled against
     // the engine's callbacks (examples-c/custom_gbuffer) instead of reading the default formats.
     bool packedGbuffer = false;
-    DnsrPreset preset = DNSR_PRESET_BALANCED;
+    DnsrPreset preset = DNSR_PRESET_QUALITY;
     bool classifier = false;  // hybrid shadows: recordClassify (DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER)
 };
 

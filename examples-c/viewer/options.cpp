@@ -60,7 +60,7 @@ const char *kUsage =
     "                          receiver's tangent plane to block it (default: two texels of the finest cascade)\n"
     "  --reverse-rays          hybrid: trace from the light's end of the classifier's interval towards the surface\n"
     "                          (with --hit-distance off: guidance needs the occluder nearest the surface)\n"
-    "  --preset NAME           dnsr's settings: fast, balanced (the FidelityFX defaults; default) or quality\n"
+    "  --preset NAME           dnsr's settings: fast, balanced (the FidelityFX values) or quality (default)\n"
     "  --validate              enable VK_LAYER_KHRONOS_validation; any validation message makes the exit status 1\n"
     "                          (the Vulkan loader's own notices are shown but not counted)\n"
     "  -h, --help              print this and exit\n"

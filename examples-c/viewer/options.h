@@ -32,7 +32,7 @@ struct Options {
     float panPerFrame = 0;  // headless: camera (eye and target) moves sideways by this fraction of its distance
     float lightElevationDeg = 50.0f;
     float lightAzimuthDeg = 100.0f;  // around the up axis from the starting view's direction
-    DnsrPreset preset = DNSR_PRESET_BALANCED;
+    DnsrPreset preset = DNSR_PRESET_QUALITY;
     View view = View::Composite;  // window mode: the view shown first
     // Hybrid shadows (RendererSettings::hybrid): start in hybrid mode, and its settings.
     bool hybrid = false;

@@ -6,7 +6,7 @@
 //! checked; structures that may grow carry sType/pNext.
 
 pub(crate) mod boundary;
-mod convert;
+pub(crate) mod convert;
 mod handles;
 pub mod reference;
 pub mod types;
@@ -195,7 +195,8 @@ pub extern "C" fn dnsr_context_reset_history(context: DnsrContext, light_index: 
     })
 }
 
-/// Fills `*pSettings` with the FidelityFX defaults (sType included).
+/// Fills `*pSettings` with dnsr's default settings, the Quality preset (sType included). The FidelityFX values:
+/// `dnsr_settings_init_preset(DNSR_PRESET_BALANCED, ...)`.
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_settings_init_default(p_settings: *mut DnsrSettings) -> DnsrResult {
     guard(|_| {

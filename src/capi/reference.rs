@@ -52,7 +52,7 @@ pub struct DnsrReferenceFrameInfo {
     pub height: u32,
     /// DNSR_REFERENCE_* bits.
     pub flags: DnsrReferenceFlags,
-    /// Optional (NULL = FidelityFX defaults).
+    /// Optional (NULL = dnsr_settings_init_default's: the Quality preset).
     pub p_settings: *const DnsrSettings,
     /// Motion vector multiplier.
     pub motion_vector_scale: [f32; 2],

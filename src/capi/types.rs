@@ -185,16 +185,24 @@ pub const DNSR_SHADOW_INPUT_MAX_ENUM: DnsrShadowInput = 0x7FFF_FFFF;
 
 /// Named settings (`dnsr_settings_init_preset`), chosen from the accuracy measurements in docs/accuracy.md.
 pub type DnsrPreset = u32;
-/// One filter pass: the cheapest setting whose error stays near the FidelityFX defaults'.
+/// The FidelityFX values with one filter pass: the cheapest setting whose error stays near Balanced's.
 pub const DNSR_PRESET_FAST: DnsrPreset = 0;
-/// The FidelityFX defaults (same as `dnsr_settings_init_default`).
+/// The FidelityFX shadow denoiser's values: its output, for engines that need the old look (5% current-frame
+/// weight, output contrast 1.2, cross-tap weight 2/3, none of the run-based features).
 pub const DNSR_PRESET_BALANCED: DnsrPreset = 1;
-/// The measured best knobs combined: 4 filter passes, 10% current-frame weight, no output contrast, cross-tap
-/// weight 0.5, stable history after 8 identical samples, restarted after 3 samples of the other value, converged
-/// after 8 identical samples (unfiltered among converged neighbours).
+/// The default (same as `dnsr_settings_init_default`): the measured best knobs combined. 3 filter passes, 10%
+/// current-frame weight, no output contrast, cross-tap weight 0.5, stable history after 8 identical samples,
+/// restarted after 3 samples of the other value, converged after 8 identical samples (unfiltered among converged
+/// neighbours), with penumbra guidance pixels under a penumbra narrower than a quarter pixel output as sampled.
 pub const DNSR_PRESET_QUALITY: DnsrPreset = 2;
 /// Forces 32 bits.
 pub const DNSR_PRESET_MAX_ENUM: DnsrPreset = 0x7FFF_FFFF;
+
+/// A bit of `FfxDenoiserContextDescription.flags` that dnsr's FidelityFX layer (include/ffx) reads: the context runs
+/// the FidelityFX shadow denoiser's settings (DNSR_PRESET_BALANCED, its output) instead of dnsr's default (the
+/// Quality preset). The SDK's own denoiser ignores bits it does not know, so an integration may set it and still
+/// build against either library.
+pub const DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS: u32 = 1 << 30;
 
 /// Bit convention of the hit mask.
 pub type DnsrHitMaskConvention = u32;
@@ -319,7 +327,8 @@ pub struct DnsrDebugNameCallback {
         Option<unsafe extern "C" fn(user_data: *mut c_void, object_type: VkObjectType, handle: u64, name: *const c_char)>,
 }
 
-/// Every constant of the algorithm. Initialise with `dnsr_settings_init_default` (FidelityFX defaults). Each
+/// Every constant of the algorithm. Initialise with `dnsr_settings_init_default` (the Quality preset) or
+/// `dnsr_settings_init_preset` (DNSR_PRESET_BALANCED: the FidelityFX values, given below where they differ). Each
 /// field is checked against its range (NaN and infinities are refused) by dnsr_context_create and
 /// dnsr_context_set_settings: DNSR_ERROR_INVALID_SETTING names the field, the value and the range.
 #[repr(C)]
@@ -351,25 +360,25 @@ pub struct DnsrSettings {
     pub variance_boost_samples: f32,
     /// Sample count of full history trust. Range [1, 1024]. Default 8.
     pub full_history_samples: f32,
-    /// Current-frame weight with full history trust. Range [1e-3, 1]. Default 0.05.
+    /// Current-frame weight with full history trust. Range [1e-3, 1]. Default 0.1 (FidelityFX 0.05).
     pub min_current_weight: f32,
     /// Bound on the temporal sample count. Range [2, 4096]. Default 32.
     pub max_history_samples: f32,
-    /// Cross-tap weight of the 3x3 kernel (corners get its square). Range [0, 1]. Default 2/3.
+    /// Cross-tap weight of the 3x3 kernel (corners get its square). Range [0, 1]. Default 0.5 (FidelityFX 2/3).
     pub kernel_cross_weight: f32,
     /// Normal edge-stop exponent. Range [0, 256]. Default 32.
     pub normal_power: f32,
-    /// Output pow(mean, max(contrast - variance, 1)). Range [1, 4]; 1 disables. Default 1.2.
+    /// Output pow(mean, max(contrast - variance, 1)). Range [1, 4]; 1 disables. Default 1 (FidelityFX 1.2).
     pub output_contrast: f32,
     /// Floor of the shadow edge-stop sigma. Range [1e-6, 1]. Default 1e-4.
     pub min_shadow_sigma: f32,
     /// A pixel whose last n >= this-many samples were identical is clamped to within 3/n of them instead of to the
     /// local distribution (hard shadow edges the input resolves stay sharp). Range [0, 4096]; 0 disables (the
-    /// FidelityFX behaviour). Default 0; 8 in the Quality preset.
+    /// FidelityFX behaviour). Default 8 (FidelityFX 0).
     pub stable_history_samples: f32,
     /// After a stable run, this many samples of the other value in a row (or the first, where the local mean is
     /// within 0.5 of it) restart the pixel's history at the local mean (a shadow moved over it). Range [0, 16];
-    /// 0 disables; needs stableHistorySamples > 0. Default 0; 3 in the Quality preset.
+    /// 0 disables; needs stableHistorySamples > 0. Default 3 (FidelityFX 0).
     pub history_flip_samples: f32,
     /// A stable pixel whose last n >= this-many samples were identical (each exactly 0 or 1), with no other sample
     /// in its history, is converged; where at least half of its 3x3 receivers are converged too, the filter passes
@@ -377,13 +386,13 @@ pub struct DnsrSettings {
     /// creases, thin stripes). Under a moving camera, a receiver beside the sky whose neighbours of last frame
     /// held the other value for this many samples or more, and two of whose 8 neighbours share its sample, takes
     /// its sample as it is (a resolved silhouette; this part needs no stable history). Range [0, 4096]; 0
-    /// disables; converged pixels need stableHistorySamples > 0. Default 0; 8 in the Quality preset.
+    /// disables; converged pixels need stableHistorySamples > 0. Default 8 (FidelityFX 0).
     pub converged_samples: f32,
     /// With penumbra guidance (DNSR_DISPATCH_USE_HIT_DISTANCE) only: where the blockers near a tile cast a penumbra
     /// narrower than this many pixels either side of its edge and lie at least two pixel footprints away, a
     /// receiver's output is its sample of this frame, neither accumulated nor filtered (one ray resolves it: a
     /// hard light; where the estimate errs, the output is the input). Range [0, 16]; 0 disables (the FidelityFX
-    /// behaviour). Default 0; 0.25 in the Quality preset.
+    /// behaviour). Default 0.25 (FidelityFX 0).
     pub hard_penumbra_pixels: f32,
 }
 
@@ -436,7 +445,7 @@ pub struct DnsrContextCreateInfo {
     /// descriptors dnsr rewrites one of this many descriptor-set slots per light on every record, so it never
     /// holds a host image view past that frame.
     pub max_frames_in_flight: u32,
-    /// Optional (NULL = FidelityFX defaults). Initial settings.
+    /// Optional (NULL = dnsr_settings_init_default's: the Quality preset). Initial settings.
     pub p_settings: *const DnsrSettings,
     /// Optional. CPU allocation callbacks for every Vulkan object dnsr creates; must outlive the context.
     pub p_allocation_callbacks: *const VkAllocationCallbacks,

@@ -311,7 +311,7 @@ fn with_context<T>(context: *mut FfxDenoiserContext, f: impl FnOnce(&mut Denoise
     }
 }
 
-/// The dnsr create info for an FFX description: FidelityFX settings, fp32, one light, R8_UNORM output until a
+/// The dnsr create info for an FFX description: dnsr's default settings (Quality), fp32, one light, R8_UNORM output until a
 /// dispatch names another, dnsr's descriptor sets (the FFX interface does not say which extensions are enabled).
 fn create_info(device: &resources::Device, width: u32, height: u32, depth_inverted: bool, output: vk::Format) -> DnsrContextCreateInfo {
     DnsrContextCreateInfo {
@@ -351,7 +351,8 @@ fn new_dnsr_context(info: &DnsrContextCreateInfo) -> Result<DnsrContext, Failure
     Ok(context)
 }
 
-/// ffx_denoiser.h: creates a shadow denoiser context (a dnsr context with the FidelityFX settings).
+/// ffx_denoiser.h: creates a shadow denoiser context (a dnsr context with dnsr's default settings, or the FidelityFX
+/// ones under DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS).
 #[unsafe(no_mangle)]
 pub extern "C" fn ffxDenoiserContextCreate(context: *mut FfxDenoiserContext, description: *const FfxDenoiserContextDescription) -> FfxErrorCode {
     guard(|| {
@@ -372,7 +373,12 @@ pub extern "C" fn ffxDenoiserContextCreate(context: *mut FfxDenoiserContext, des
         }
         let device = resources::Device::new(&scratch.device).map_err(|m| Failure(FFX_ERROR_NULL_DEVICE, Some(m)))?;
         let depth_inverted = d.flags & FFX_DENOISER_ENABLE_DEPTH_INVERTED != 0;
-        let dnsr = new_dnsr_context(&create_info(&device, width, height, depth_inverted, vk::Format::R8_UNORM))?;
+        let mut info = create_info(&device, width, height, depth_inverted, vk::Format::R8_UNORM);
+        let fidelityfx = crate::capi::convert::settings_to_c(&crate::Settings::preset(crate::Preset::Balanced));
+        if d.flags & DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS != 0 {
+            info.p_settings = &fidelityfx;
+        }
+        let dnsr = new_dnsr_context(&info)?;
         let id = NEXT_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         let denoiser = Denoiser { context: dnsr, device, output_format: None, depth_inverted, width, height, views: ViewRing::default(), dispatches: 0 };
         lock(&CONTEXTS).insert(id, denoiser);

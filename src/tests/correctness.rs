@@ -21,10 +21,21 @@ fn precisions(g: &Gpu) -> Vec<Precision> {
 }
 
 fn runner<'g>(g: &'g Gpu, w: u32, h: u32, precision: Precision) -> Runner<'g> {
+    runner_with(g, w, h, precision, crate::Settings::default())
+}
+
+fn runner_with<'g>(g: &'g Gpu, w: u32, h: u32, precision: Precision, settings: crate::Settings) -> Runner<'g> {
     let mut info = g.create_info(w, h);
     info.precision = precision;
+    info.settings = settings;
     info.output_format = vk::Format::R32_SFLOAT;
     Runner::new(g, &info).unwrap()
+}
+
+/// The FidelityFX settings (`Preset::Balanced`): every sample accumulates, nothing restarts on a run of the other
+/// value, so sample counts and restarts are predictable.
+fn fidelityfx_runner<'g>(g: &'g Gpu, w: u32, h: u32) -> Runner<'g> {
+    runner_with(g, w, h, Precision::Fp32, crate::Settings::preset(crate::Preset::Balanced))
 }
 
 /// Sample count n of every pixel after the last frame.
@@ -217,7 +228,7 @@ fn camera_pan_resets_the_disoccluded_strip_and_it_converges_again() {
 fn reset_flag_and_reset_history_clear_the_history() {
     let g = gpu();
     let (w, h) = (32, 24);
-    let mut r = runner(&g, w, h, Precision::Fp32);
+    let mut r = fidelityfx_runner(&g, w, h);
     let half = |_: f64, _: f64| 0.5;
     for frame in 0..12 {
         r.frame(&static_frame(w, h, &half, frame + 1), false);
@@ -428,7 +439,9 @@ fn debug_views_show_the_internal_state() {
     use crate::DebugView;
     let g = gpu();
     let (w, h) = (48, 32);
-    let mut r = runner(&g, w, h, Precision::Fp32);
+    // FidelityFX settings: with the default's history restarts (a run of the other value), a noisy 50% mask
+    // would restart a few pixels in any frame.
+    let mut r = fidelityfx_runner(&g, w, h);
     let cam = Camera::above(0.0, 0.0, 10.0);
     let view = |r: &mut Runner, f: &FrameInputs, v: DebugView, reset: bool| {
         r.run(f, &crate::ShadowsDispatch { debug_view: v, reset, ..r.dispatch(f) }).unwrap()
@@ -468,9 +481,10 @@ fn penumbra_guidance_keeps_contact_shadows_sharp_and_wide_penumbrae_smooth() {
     let (w, h) = (64, 48);
     let angle = 0.5f64;
     let cam = Camera::above(0.0, 0.0, 10.0);
-    // Mean absolute error after 10 frames, with and without guidance.
-    let error = |v: &dyn Fn(f64, f64) -> f64, blocker: f64, guided: bool| {
-        let mut r = runner(&g, w, h, Precision::Fp32);
+    // Mean absolute error after 10 frames, with and without guidance; the FidelityFX settings, whose filter
+    // guidance narrows (the default's converged pixels resolve a hard shadow with or without it: checked below).
+    let error_with = |settings, v: &dyn Fn(f64, f64) -> f64, blocker: f64, guided: bool| {
+        let mut r = runner_with(&g, w, h, Precision::Fp32, settings);
         r.guidance = guided.then_some(angle as f32);
         let mut out = Vec::new();
         let mut f = None;
@@ -481,11 +495,17 @@ fn penumbra_guidance_keeps_contact_shadows_sharp_and_wide_penumbrae_smooth() {
         }
         mae(&out, f.as_ref().unwrap())
     };
+    let error = |v: &dyn Fn(f64, f64) -> f64, blocker: f64, guided: bool| {
+        error_with(crate::Settings::preset(crate::Preset::Balanced), v, blocker, guided)
+    };
     // A 2-px line and a half plane, both in contact with the ground (blockers 1 mm away): a hard shadow.
     let contact = |x: f64, _z: f64| if (-0.4..0.0).contains(&x) || x < -3.0 { 0.0 } else { 1.0 };
     let (plain, guided) = (error(&contact, 0.001, false), error(&contact, 0.001, true));
     eprintln!("contact: MAE {plain:.4} without guidance, {guided:.4} with");
     assert!(guided < 0.5 * plain, "contact shadow: guidance should keep it sharp ({plain} -> {guided})");
+    let default = error_with(crate::Settings::default(), &contact, 0.001, false);
+    eprintln!("contact: MAE {default:.4} with the default settings, without guidance");
+    assert!(default <= guided, "contact shadow: the default settings blur it ({default}, FidelityFX guided {guided})");
     // A ramp 3 units (15 px) wide, cast by blockers as far away as that width implies.
     let width = 3.0;
     let wide = move |x: f64, _z: f64| ((x + width / 2.0) / width).clamp(0.0, 1.0);

@@ -3,12 +3,14 @@
  *
  * An integration of the SDK 1.1.x shadow denoiser on Vulkan builds against these headers unchanged (add
  * <dnsr>/include/ffx to the include path ahead of the SDK's, link libdnsr instead of ffx_denoiser_x64 and
- * ffx_backend_vk_x64) and runs dnsr with the FidelityFX settings (DNSR_PRESET_BALANCED). docs/migrating-from-ffx.md
- * says what changes, what dnsr fixes, and how to move on to dnsr.h step by step.
+ * ffx_backend_vk_x64) and runs dnsr with its default settings (the Quality preset: docs/do-no-harm.md); with
+ * DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS (dnsr.h) in FfxDenoiserContextDescription.flags, with the FidelityFX settings
+ * (DNSR_PRESET_BALANCED: the SDK's output). docs/migrating-from-ffx.md says what changes, what dnsr fixes, and how to
+ * move on to dnsr.h step by step.
  *
  * What is supported, function by function (every failure also sets dnsr_last_error_message()):
- *   ffxDenoiserContextCreate: FFX_DENOISER_SHADOWS, optionally FFX_DENOISER_ENABLE_DEPTH_INVERTED; other unknown
- *     bits are ignored, as the SDK does. FFX_DENOISER_REFLECTIONS: FFX_ERROR_INVALID_ARGUMENT (dnsr has no
+ *   ffxDenoiserContextCreate: FFX_DENOISER_SHADOWS, optionally FFX_DENOISER_ENABLE_DEPTH_INVERTED and dnsr's
+ *     DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS (1 << 30); other unknown bits are ignored, as the SDK does. FFX_DENOISER_REFLECTIONS: FFX_ERROR_INVALID_ARGUMENT (dnsr has no
  *     reflections denoiser), nothing created. The backend interface must come from ffxGetInterfaceVK (else
  *     FFX_ERROR_INCOMPLETE_INTERFACE). A NULL pointer gives FFX_ERROR_INVALID_POINTER, a zero window size
  *     FFX_ERROR_INVALID_ARGUMENT.

@@ -274,6 +274,8 @@ struct Denoiser {
     device: resources::Device,
     output_format: Option<vk::Format>,
     depth_inverted: bool,
+    /// DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS: the context runs Preset::Balanced.
+    fidelityfx: bool,
     width: u32,
     height: u32,
     views: ViewRing,
@@ -345,9 +347,15 @@ fn create_info(device: &resources::Device, width: u32, height: u32, depth_invert
     }
 }
 
-fn new_dnsr_context(info: &DnsrContextCreateInfo) -> Result<DnsrContext, Failure> {
+/// A dnsr context for an FFX context: `create_info`'s, with the FidelityFX settings where `fidelityfx`.
+fn new_dnsr_context(device: &resources::Device, width: u32, height: u32, depth_inverted: bool, fidelityfx: bool, output: vk::Format) -> Result<DnsrContext, Failure> {
+    let settings = crate::capi::convert::settings_to_c(&crate::Settings::preset(crate::Preset::Balanced));
+    let mut info = create_info(device, width, height, depth_inverted, output);
+    if fidelityfx {
+        info.p_settings = &settings;
+    }
     let mut context = std::ptr::null_mut();
-    check(dnsr_context_create(info, &mut context))?;
+    check(dnsr_context_create(&info, &mut context))?;
     Ok(context)
 }
 
@@ -373,14 +381,10 @@ pub extern "C" fn ffxDenoiserContextCreate(context: *mut FfxDenoiserContext, des
         }
         let device = resources::Device::new(&scratch.device).map_err(|m| Failure(FFX_ERROR_NULL_DEVICE, Some(m)))?;
         let depth_inverted = d.flags & FFX_DENOISER_ENABLE_DEPTH_INVERTED != 0;
-        let mut info = create_info(&device, width, height, depth_inverted, vk::Format::R8_UNORM);
-        let fidelityfx = crate::capi::convert::settings_to_c(&crate::Settings::preset(crate::Preset::Balanced));
-        if d.flags & DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS != 0 {
-            info.p_settings = &fidelityfx;
-        }
-        let dnsr = new_dnsr_context(&info)?;
+        let fidelityfx = d.flags & DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS != 0;
+        let dnsr = new_dnsr_context(&device, width, height, depth_inverted, fidelityfx, vk::Format::R8_UNORM)?;
         let id = NEXT_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let denoiser = Denoiser { context: dnsr, device, output_format: None, depth_inverted, width, height, views: ViewRing::default(), dispatches: 0 };
+        let denoiser = Denoiser { context: dnsr, device, output_format: None, depth_inverted, fidelityfx, width, height, views: ViewRing::default(), dispatches: 0 };
         lock(&CONTEXTS).insert(id, denoiser);
         out.data[1] = id as u32;
         out.data[2] = (id >> 32) as u32;
@@ -443,8 +447,7 @@ impl Denoiser {
             None if output_format != vk::Format::R8_UNORM => {
                 // Created for R8_UNORM before any dispatch named the output: recreate for this one (its history is
                 // empty either way).
-                let info = create_info(&self.device, self.width, self.height, self.depth_inverted, output_format);
-                let replacement = new_dnsr_context(&info)?;
+                let replacement = new_dnsr_context(&self.device, self.width, self.height, self.depth_inverted, self.fidelityfx, output_format)?;
                 dnsr_context_destroy(self.context);
                 self.context = replacement;
             }

@@ -42,8 +42,9 @@ fn random_frame(w: u32, h: u32, seed: u64, frame: u64) -> FrameInputs {
                 2 => f32::NAN,
                 3 => f32::INFINITY,
                 // Seed 4's blockers lie 1-10 pixel footprints from their receivers: on both sides of the nearest
-                // blocker a hard penumbra allows (HARD_PENUMBRA_MIN_BLOCKER_PIXELS).
-                _ => ((0.05 + 3.0 * r(5)) * if seed == 4 { 0.2 } else { 1.0 }) as f32,
+                // blocker a hard penumbra allows (HARD_PENUMBRA_MIN_BLOCKER_PIXELS). Seed 11's (a light of no size)
+                // lie closer than any: only the light's size makes its pixels hard.
+                _ => ((0.05 + 3.0 * r(5)) * match seed { 4 => 0.2, 11 => 0.01, _ => 1.0 }) as f32,
             };
             // Regions wide enough for uniform tiles (+-8 px): top-left lit, a bottom band shadowed, the rest noise
             // with a probability that varies across the image.
@@ -236,7 +237,8 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
         2 | 6 => Some(0.5),
         4 => Some(0.5),
         9 => Some(0.04),
-        11 => Some(0.03),
+        // A light of no size (checkerboard input): every traced pixel passes through, no untraced one.
+        11 => Some(0.0),
         7 => Some(1.0),
         _ => None,
     };

@@ -91,6 +91,7 @@ bench-smoke:
 		r = d["results"]; n = 4 * 3 * (1 if d["device"]["float16"] is False else 2); \
 		assert len(r) == n, f"{len(r)} results instead of {n}"; \
 		assert all(math.isfinite(x["total"]["median_ms"]) and len(x["passes"]) == 2 + x["filter_passes"] for x in r); \
+		assert all(0 < x["persistent_memory_bytes"] < x["memory_bytes"] for x in r); \
 		assert d["copy_bandwidth"]["gbps_median"] > 0; \
 		open("out/bench-smoke/bench.md").read(); print(f"bench smoke: {len(r)} configurations, valid bench.json")'
 

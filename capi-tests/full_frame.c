@@ -7,7 +7,8 @@
  *     exactly 0.0 after 3 more;
  *   - dnsr_context_get_timings: DNSR_NOT_READY before any frame completed, then DNSR_SUCCESS with finite,
  *     non-negative times of the most recent frame;
- *   - dnsr_context_get_memory_usage >= dnsr_get_memory_requirements for the same parameters;
+ *   - dnsr_context_get_memory_usage >= dnsr_get_memory_requirements for the same parameters, and likewise their
+ *     persistent parts (dnsr_context_get_persistent_memory_usage, dnsr_get_persistent_memory_requirements);
  *   - pGpuMemoryCallbacks: a tiny allocator (vkAllocateMemory per request) whose live allocations return to 0 at
  *     destroy; pAllocationCallbacks: counting CPU callbacks that balance by destroy; pLogCallback: a refused call
  *     logs exactly one error with the text of dnsr_last_error_message(); pDebugNameCallback: every name starts
@@ -355,6 +356,13 @@ int main(void)
     CHECK(usage >= required, "usage %llu < requirements %llu", (unsigned long long)usage, (unsigned long long)required);
     CHECK(gpu_allocator.bytes >= usage, "the allocator handed out %llu bytes, dnsr reports %llu",
           (unsigned long long)gpu_allocator.bytes, (unsigned long long)usage);
+    uint64_t kept = 0, keptRequired = 0;
+    DNSR_CHECK(dnsr_context_get_persistent_memory_usage(ctx, &kept));
+    DNSR_CHECK(dnsr_get_persistent_memory_requirements(W, H, DNSR_PRECISION_FP32, 1, &keptRequired));
+    printf("memory kept between records: %llu bytes (requirements %llu)\n", (unsigned long long)kept,
+           (unsigned long long)keptRequired);
+    CHECK(kept >= keptRequired && kept < usage, "persistent %llu (requirements %llu) of %llu", (unsigned long long)kept,
+          (unsigned long long)keptRequired, (unsigned long long)usage);
 
     create_images();
     static float out[W * H];

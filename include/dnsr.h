@@ -1903,6 +1903,23 @@ DnsrResult dnsr_context_get_classifier_timings(DnsrContext context,
 DnsrResult dnsr_context_get_memory_usage(DnsrContext context, uint64_t *pBytes);
 
 /**
+ * The part of dnsr_context_get_memory_usage's bytes whose contents must survive from one record of a light to
+ * the next (each light's moments, depth copies and history); the rest is written and read within one record.
+ */
+DnsrResult dnsr_context_get_persistent_memory_usage(DnsrContext context,
+                                                    uint64_t *pBytes);
+
+/**
+ * The part of dnsr_get_memory_requirements' bytes that persists between records (as
+ * dnsr_context_get_persistent_memory_usage), before driver padding. Needs no device.
+ */
+DnsrResult dnsr_get_persistent_memory_requirements(uint32_t width,
+                                                   uint32_t height,
+                                                   DnsrPrecision precision,
+                                                   uint32_t lightCount,
+                                                   uint64_t *pBytes);
+
+/**
  * Bytes of device memory a context would allocate for this size, before driver padding. Needs no device.
  */
 DnsrResult dnsr_get_memory_requirements(uint32_t width,

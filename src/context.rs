@@ -42,6 +42,15 @@ pub fn memory_requirements_for_input(
     Ok(per_light * light_count as u64 + crate::state::guide_bytes([width, height], filter_passes) + constants_bytes(light_count))
 }
 
+/// Bytes of the part of `memory_requirements` whose contents must survive from one record of a light to the next
+/// (each light's moments, depth copies and history: `state::Lifetime`); the rest is written and read within one
+/// record. Needs no device.
+pub fn persistent_memory_requirements(width: u32, height: u32, precision: Precision, light_count: u32) -> Result<u64> {
+    validate::extent("render size", width, height, u32::MAX)?;
+    validate::light_count(light_count)?;
+    Ok(crate::state::persistent_texel_bytes([width, height], precision) * light_count as u64)
+}
+
 /// Bytes between the constants of consecutive lights of one record: the block rounded up to 256, the largest
 /// minUniformBufferOffsetAlignment Vulkan allows, so the layout needs no device query.
 const CONSTANTS_STRIDE: vk::DeviceSize = (std::mem::size_of::<FrameConstants>() as vk::DeviceSize).next_multiple_of(256);
@@ -442,6 +451,14 @@ impl Context {
         let guide = self.guide.as_ref().map_or(0, |g| g.bytes);
         let classifier = self.classifier.as_ref().map_or(0, |c| c.bytes());
         self.lights.iter().map(LightState::bytes).sum::<u64>() + guide + constants_bytes(self.light_count) + classifier
+    }
+
+    /// The part of `memory_bytes` whose contents must survive from one record of a light to the next (each light's
+    /// moments, depth copies and history, driver padding included); the rest (tile state, the temporal result, the
+    /// filter's intermediates and guide, the constants, the classifier's buffers) is written and read within one
+    /// record.
+    pub fn persistent_memory_bytes(&self) -> u64 {
+        self.lights.iter().flat_map(LightState::persistent_images).map(|i| i.bytes).sum()
     }
 
     /// The classifier's tile list and counts (`ContextCreateInfo::enable_classifier`), which the engine's trace
@@ -896,6 +913,17 @@ impl Context {
     pub(crate) fn last_moments(&self, light: usize) -> vk::Image {
         let l = &self.lights[light];
         l.moments[l.parity ^ 1].image
+    }
+
+    /// Every transient image (`state::Lifetime::Transient`: each light's and the guide) with its format, and the
+    /// count of persistent ones: a test fills the transient ones with garbage between records.
+    pub(crate) fn transient_images(&self) -> (Vec<(vk::Image, vk::Format)>, usize) {
+        let mut images: Vec<(vk::Image, vk::Format)> = Vec::new();
+        for l in &self.lights {
+            images.extend(l.transient_images().map(|i| (i.image, i.format)));
+        }
+        images.extend(self.guide.iter().map(|g| (g.image, g.format)));
+        (images, self.lights.iter().map(|l| l.persistent_images().count()).sum())
     }
 
     /// Frames recorded so far and the parity of `light`: changes exactly when something was recorded.

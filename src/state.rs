@@ -94,34 +94,57 @@ pub(crate) fn guide_bytes(extent: [u32; 2], filter_passes: u32) -> u64 {
     if guide_needed(filter_passes) { format_bytes(GUIDE_FORMAT) * extent[0] as u64 * extent[1] as u64 } else { 0 }
 }
 
+/// Whether an image's contents must survive from one record of its light to the next.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Lifetime {
+    /// Read by a later frame: the moments, the depth copy (both halves of each ping-pong pair: the next frame reads
+    /// the half this one wrote) and the history.
+    Persistent,
+    /// Written and read within one record (tile state, the temporal result, the filter's intermediates, the guide,
+    /// the reconstructed visibility): its contents between records do not matter.
+    Transient,
+}
+
+/// One internal image of a light: format, size, debug name, lifetime.
+type ImageSpec = (vk::Format, [u32; 2], &'static str, Lifetime);
+
 /// Every internal image of one light that `filter_passes` passes use, in the order `LightState::new` consumes
 /// them (the optional ones last).
-fn image_specs(extent: [u32; 2], precision: Precision, filter_passes: u32) -> impl Iterator<Item = (vk::Format, [u32; 2], &'static str)> {
+fn image_specs(extent: [u32; 2], precision: Precision, filter_passes: u32) -> impl Iterator<Item = ImageSpec> {
+    use Lifetime::*;
     let tiles = [extent[0].div_ceil(8), extent[1].div_ceil(4)];
     let rg = intermediate_format(precision);
-    let fixed: [_; FIXED_IMAGES] = [
-        (TILE_FORMAT, tiles, "tile_mask"),
-        (TILE_FORMAT, tiles, "tile_dark"),
-        (TILE_FORMAT, tiles, "tile_meta"),
-        (TILE_BLOCKER_FORMAT, tiles, "tile_blocker"),
-        (rg, extent, "reprojection"),
-        (rg, extent, "history"),
-        (DEPTH_FORMAT, extent, "depth_copy_0"),
-        (DEPTH_FORMAT, extent, "depth_copy_1"),
-        (MOMENTS_FORMAT, extent, "moments_0"),
-        (MOMENTS_FORMAT, extent, "moments_1"),
+    let fixed: [ImageSpec; FIXED_IMAGES] = [
+        (TILE_FORMAT, tiles, "tile_mask", Transient),
+        (TILE_FORMAT, tiles, "tile_dark", Transient),
+        (TILE_FORMAT, tiles, "tile_meta", Transient),
+        (TILE_BLOCKER_FORMAT, tiles, "tile_blocker", Transient),
+        (rg, extent, "reprojection", Transient),
+        (rg, extent, "history", Persistent),
+        (DEPTH_FORMAT, extent, "depth_copy_0", Persistent),
+        (DEPTH_FORMAT, extent, "depth_copy_1", Persistent),
+        (MOMENTS_FORMAT, extent, "moments_0", Persistent),
+        (MOMENTS_FORMAT, extent, "moments_1", Persistent),
     ];
     fixed.into_iter().chain(OPTIONAL.into_iter().filter(move |o| o.needed(filter_passes)).map(move |o| {
         let (format, name) = o.spec(precision);
-        (format, extent, name)
+        (format, extent, name, Transient)
     }))
 }
 
 /// Texel bytes of the internal images of one light, before any driver padding or alignment.
 pub(crate) fn texel_bytes(extent: [u32; 2], precision: Precision, filter_passes: u32) -> u64 {
-    image_specs(extent, precision, filter_passes)
-        .map(|(format, [w, h], _)| format_bytes(format) * w as u64 * h as u64)
-        .sum()
+    image_specs(extent, precision, filter_passes).map(spec_bytes).sum()
+}
+
+/// Texel bytes of one light's persistent images (`Lifetime::Persistent`); the guide and every other image of a
+/// context are transient.
+pub(crate) fn persistent_texel_bytes(extent: [u32; 2], precision: Precision) -> u64 {
+    image_specs(extent, precision, 1).filter(|s| s.3 == Lifetime::Persistent).map(spec_bytes).sum()
+}
+
+fn spec_bytes((format, [w, h], _, _): ImageSpec) -> u64 {
+    format_bytes(format) * w as u64 * h as u64
 }
 
 /// Images every light has (`image_specs`).
@@ -156,7 +179,7 @@ impl LightState {
     /// A light's images; `checkerboard` adds the reconstructed visibility of a checkerboard input.
     pub(crate) fn new(vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32, checkerboard: bool) -> Result<LightState> {
         let mut made: Vec<InternalImage> = Vec::new();
-        for (format, size, name) in image_specs(extent, precision, 1) {
+        for (format, size, name, _) in image_specs(extent, precision, 1) {
             match InternalImage::new(vk, format, size, &format!("dnsr.light{light}.{name}")) {
                 Ok(img) => made.push(img),
                 Err(e) => {
@@ -214,16 +237,24 @@ impl LightState {
     }
 
     pub(crate) fn images(&self) -> impl Iterator<Item = &InternalImage> {
-        [&self.tile_mask, &self.tile_dark, &self.tile_meta, &self.tile_blocker, &self.reprojection, &self.history]
-            .into_iter()
-            .chain(self.depth.iter())
-            .chain(self.moments.iter())
-            .chain(self.tmp.iter())
-            .chain(self.reconstructed.iter())
+        self.persistent_images().chain(self.transient_images())
     }
 
     pub(crate) fn bytes(&self) -> u64 {
         self.images().map(|i| i.bytes).sum()
+    }
+
+    /// The images whose contents the next frame reads (`Lifetime::Persistent`).
+    pub(crate) fn persistent_images(&self) -> impl Iterator<Item = &InternalImage> {
+        [&self.history].into_iter().chain(self.depth.iter()).chain(self.moments.iter())
+    }
+
+    /// Every other image: written and read within one record.
+    pub(crate) fn transient_images(&self) -> impl Iterator<Item = &InternalImage> {
+        [&self.tile_mask, &self.tile_dark, &self.tile_meta, &self.tile_blocker, &self.reprojection]
+            .into_iter()
+            .chain(self.tmp.iter())
+            .chain(self.reconstructed.iter())
     }
 
     pub(crate) fn destroy(&mut self, vk: &Vk) {

@@ -293,6 +293,36 @@ pub extern "C" fn dnsr_context_get_memory_usage(context: DnsrContext, p_bytes: *
     })
 }
 
+/// The part of dnsr_context_get_memory_usage's bytes whose contents must survive from one record of a light to
+/// the next (each light's moments, depth copies and history); the rest is written and read within one record.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_context_get_persistent_memory_usage(context: DnsrContext, p_bytes: *mut u64) -> DnsrResult {
+    guard(|sink| {
+        let entry = handles::get(context)?;
+        *sink = entry.log;
+        let out = unsafe { p_bytes.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pBytes is NULL".into()))?;
+        *out = entry.lock()?.persistent_memory_bytes();
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// The part of dnsr_get_memory_requirements' bytes that persists between records (as
+/// dnsr_context_get_persistent_memory_usage), before driver padding. Needs no device.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_get_persistent_memory_requirements(
+    width: u32,
+    height: u32,
+    precision: DnsrPrecision,
+    light_count: u32,
+    p_bytes: *mut u64,
+) -> DnsrResult {
+    guard(|_| {
+        let out = unsafe { p_bytes.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pBytes is NULL".into()))?;
+        *out = crate::persistent_memory_requirements(width, height, precision_from_c(precision)?, light_count)?;
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
 /// Bytes of device memory a context would allocate for this size, before driver padding. Needs no device.
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_get_memory_requirements(

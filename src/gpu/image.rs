@@ -19,6 +19,9 @@ pub(crate) struct InternalImage {
     pub memory: Memory,
     /// Bytes of device memory bound to the image.
     pub bytes: u64,
+    /// Tests that write an image's texels need it.
+    #[cfg_attr(not(test), allow(dead_code))]
+    pub format: vk::Format,
 }
 
 /// Checks that the device can sample and store `format` with optimal tiling.
@@ -43,7 +46,7 @@ impl InternalImage {
         let image = vk_check("vkCreateImage", unsafe { d.create_image(&info, vk.alloc()) })?;
         let req = unsafe { d.get_image_memory_requirements(image) };
         let mut out =
-            InternalImage { image, view: vk::ImageView::null(), memory: Memory::default(), bytes: req.size };
+            InternalImage { image, view: vk::ImageView::null(), memory: Memory::default(), bytes: req.size, format };
         let result = (|| {
             out.memory = memory::allocate(vk, req, ResourceKind::Image)?;
             vk_check("vkBindImageMemory", unsafe { d.bind_image_memory(image, out.memory.memory, out.memory.offset) })?;

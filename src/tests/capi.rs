@@ -134,6 +134,10 @@ fn handles_codes_and_messages() {
     let mut bytes = 0u64;
     assert_eq!(dnsr_context_get_memory_usage(ctx, &mut bytes), DnsrResult::DNSR_SUCCESS);
     assert!(bytes > 0);
+    let mut kept = 0u64;
+    assert_eq!(dnsr_context_get_persistent_memory_usage(ctx, &mut kept), DnsrResult::DNSR_SUCCESS);
+    assert!(kept > 0 && kept < bytes, "persistent {kept} of {bytes}");
+    assert_eq!(dnsr_context_get_persistent_memory_usage(ctx, std::ptr::null_mut()), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);
     let mut timings = DnsrPassTimings {
         s_type: DNSR_STRUCTURE_TYPE_PASS_TIMINGS,
         p_next: std::ptr::null_mut(),
@@ -168,6 +172,11 @@ fn handles_codes_and_messages() {
     assert_eq!(dnsr_get_memory_requirements(1920, 1080, DNSR_PRECISION_FP32, 3, 1, &mut needed), DnsrResult::DNSR_SUCCESS);
     assert!(needed > 1920 * 1080 * 40);
     assert_eq!(dnsr_get_memory_requirements(1920, 1080, 5, 3, 1, &mut needed), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);
+    let mut kept = 0u64;
+    assert_eq!(dnsr_get_persistent_memory_requirements(1920, 1080, DNSR_PRECISION_FP32, 1, &mut kept), DnsrResult::DNSR_SUCCESS);
+    assert!(kept > 0 && kept < needed, "persistent {kept} of {needed}");
+    assert_eq!(dnsr_get_persistent_memory_requirements(1920, 1080, DNSR_PRECISION_FP32, 0, &mut kept), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);
+    assert_eq!(dnsr_get_persistent_memory_requirements(1920, 1080, DNSR_PRECISION_FP32, 1, std::ptr::null_mut()), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);
     let name = |r: i32| unsafe { CStr::from_ptr(dnsr_result_to_string(r)) }.to_str().unwrap().to_owned();
     assert_eq!(name(DnsrResult::DNSR_ERROR_NON_FINITE as i32), "DNSR_ERROR_NON_FINITE");
     assert_eq!(name(12345), "DNSR_RESULT_UNKNOWN");

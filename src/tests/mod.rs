@@ -13,6 +13,7 @@ mod interface;
 mod lights;
 mod resources;
 mod shader_overrides;
+mod transient;
 
 use crate::testing::gpu::{Gpu, GpuOptions};
 use crate::testing::scene::{render, Camera, FrameInputs};

@@ -110,6 +110,12 @@ fn timestamps_and_memory_are_reported() {
     assert!(bytes >= minimum && bytes < minimum * 2 + 65536, "memory_bytes {bytes}, expected about {minimum}");
     let estimate = crate::memory_requirements(w, h, crate::Precision::Fp32, 3, 1).unwrap();
     assert!(estimate >= minimum && estimate <= bytes, "memory_requirements {estimate}, allocated {bytes}");
+    // What persists between records: the history (4 B), two depth copies (4 B each), two moments (8 B each).
+    let persistent = r.ctx.persistent_memory_bytes();
+    let persistent_estimate = crate::persistent_memory_requirements(w, h, crate::Precision::Fp32, 1).unwrap();
+    assert_eq!(persistent_estimate, px * (4 + 2 * 4 + 2 * 8));
+    assert!(persistent >= persistent_estimate && persistent < bytes, "persistent {persistent} of {bytes}");
+    assert_eq!(crate::persistent_memory_requirements(w, h, crate::Precision::Fp32, 3).unwrap(), 3 * persistent_estimate);
     drop(r);
 
     // One filter pass needs no guide (8 B); going to two passes allocates it, four add the fourth-pass intermediate

@@ -36,6 +36,7 @@ pub struct Summary {
     pub record_us: Vec<f64>,
     pub record_us_untimed: Vec<f64>,
     pub memory_bytes: u64,
+    pub persistent_bytes: u64,
     pub counts: PixelCounts,
     pub coverage: [f64; 4],
     pub warmup: WarmupDone,
@@ -111,6 +112,7 @@ impl Summary {
             record_us: run.record_us,
             record_us_untimed: run.record_us_untimed,
             memory_bytes: run.memory_bytes,
+            persistent_bytes: run.persistent_bytes,
             counts: run.counts,
             coverage,
             warmup: run.warmup,
@@ -215,6 +217,7 @@ impl Report<'_> {
                     ),
                     ("memory_bytes", s.memory_bytes.into()),
                     ("memory_bytes_per_pixel", (s.memory_bytes as f64 / s.pixels()).into()),
+                    ("persistent_memory_bytes", s.persistent_bytes.into()),
                     ("pixel_classes", s.counts.to_json()),
                     (
                         "scene_coverage",
@@ -337,7 +340,7 @@ impl Report<'_> {
             s += &format!("- Skipped: {sk}\n");
         }
         s += "\nTimes in ms (GPU timestamps). GB/s and x roofline use the byte model below: x roofline = time / (model bytes / copy bandwidth). \
-              Record CPU = median wall time of Context::record_shadows. Memory = Context::memory_bytes per pixel.\n";
+              Record CPU = median wall time of Context::record_shadows. Memory = Context::memory_bytes per pixel, of which kept = Context::persistent_memory_bytes (the rest is transient: written and read within one record).\n";
 
         for precision in [Precision::Fp32, Precision::Fp16] {
             let rows: Vec<&Summary> = self.results.iter().filter(|r| r.precision == precision).collect();
@@ -350,9 +353,9 @@ impl Report<'_> {
             for k in 0..filters {
                 s += &format!(" filter {k} |");
             }
-            s += " total median | total p95 | GB/s | x roofline | record CPU µs | record CPU µs, no timestamps | memory B/px |\n|---|---|---|---|---|";
+            s += " total median | total p95 | GB/s | x roofline | record CPU µs | record CPU µs, no timestamps | memory B/px | kept B/px |\n|---|---|---|---|---|";
             s += &"---|".repeat(filters as usize);
-            s += "---|---|---|---|---|---|---|\n";
+            s += "---|---|---|---|---|---|---|---|\n";
             for r in &rows {
                 let (gbps, ratio) = rates(r.total.bytes(), r.total.median_ms, c);
                 s += &format!("| {}x{} | {} | {} |", r.size.0, r.size.1, r.scene.name(), r.preset_cell());
@@ -363,14 +366,15 @@ impl Report<'_> {
                     }
                 }
                 s += &format!(
-                    " {:.3} | {:.3} | {} | {} | {:.1} | {:.1} | {:.1} |\n",
+                    " {:.3} | {:.3} | {} | {} | {:.1} | {:.1} | {:.1} | {:.1} |\n",
                     r.total.median_ms,
                     r.total.p95_ms,
                     fmt_gbps(gbps),
                     fmt_ratio(ratio),
                     median(&r.record_us),
                     median(&r.record_us_untimed),
-                    r.memory_bytes as f64 / r.pixels()
+                    r.memory_bytes as f64 / r.pixels(),
+                    r.persistent_bytes as f64 / r.pixels()
                 );
             }
             s += &format!("\n### {} per pass: model MB, achieved GB/s, x roofline\n\n", precision_name(precision));

@@ -81,6 +81,8 @@ pub struct ConfigRun {
     pub record_us_untimed: Vec<f64>,
     pub counts: PixelCounts,
     pub memory_bytes: u64,
+    /// Context::persistent_memory_bytes: kept between records.
+    pub persistent_bytes: u64,
     pub filter_passes: u32,
     pub warmup: WarmupDone,
 }
@@ -189,11 +191,12 @@ pub fn run(
         gpu.destroy_image(img);
     }
     let memory_bytes = ctx.memory_bytes();
+    let persistent_bytes = ctx.persistent_memory_bytes();
     drop(ctx);
     outputs.iter().for_each(|o| gpu.destroy_image(o));
     let (timings, record_us, counts, warmup) = result?;
     let record_us_untimed = untimed.transpose()?.unwrap_or_default();
-    Ok(ConfigRun { timings, record_us, record_us_untimed, counts, memory_bytes, filter_passes: Settings::preset(preset).filter_passes, warmup })
+    Ok(ConfigRun { timings, record_us, record_us_untimed, counts, memory_bytes, persistent_bytes, filter_passes: Settings::preset(preset).filter_passes, warmup })
 }
 
 /// How long to warm up before the timed frames.

@@ -188,6 +188,12 @@ pub(crate) fn required<'a, T>(p: *const T, name: &str) -> Result<&'a T, CallErro
     unsafe { p.as_ref() }.ok_or_else(|| CallError::InvalidArgument(format!("{name} is NULL")))
 }
 
+/// An out-parameter: `name` is NULL is an invalid argument.
+pub(crate) fn out<'a, T>(p: *mut T, name: &str) -> Result<&'a mut T, CallError> {
+    // SAFETY: the C caller guarantees a non-null pointer points at a valid, aligned, writable object for the call.
+    unsafe { p.as_mut() }.ok_or_else(|| CallError::InvalidArgument(format!("{name} is NULL")))
+}
+
 /// Checks a structure's sType.
 pub(crate) fn check_type(actual: u32, expected: u32, expected_name: &str, what: &str) -> Result<(), CallError> {
     if actual == expected {

@@ -11,7 +11,7 @@ mod handles;
 pub mod reference;
 pub mod types;
 
-use boundary::{check_no_next, check_type, guard, last_error_ptr, required, CallError};
+use boundary::{check_no_next, check_type, guard, last_error_ptr, out, required};
 use convert::{classify_from_c, create_info_from_c, dispatch_from_c, lights_from_c, precision_from_c, preset_from_c, settings_from_c, settings_to_c};
 use std::ffi::c_char;
 use types::*;
@@ -52,7 +52,7 @@ pub extern "C" fn dnsr_get_shader_variants(p_count: *mut u32, p_variants: *mut D
     use std::sync::OnceLock;
     static STRINGS: OnceLock<Vec<[CString; 3]>> = OnceLock::new();
     guard(|_| {
-        let count = unsafe { p_count.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pCount is NULL".into()))?;
+        let count = out(p_count, "pCount")?;
         let all = STRINGS.get_or_init(|| {
             let c = |s: &str| CString::new(s).expect("variant strings have no NUL");
             crate::shader_variants().map(|v| [c(v.name), c(v.source), c(&v.defines.join(" "))]).collect()
@@ -77,7 +77,7 @@ pub extern "C" fn dnsr_get_shader_variants(p_count: *mut u32, p_variants: *mut D
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_context_create(p_create_info: *const DnsrContextCreateInfo, p_context: *mut DnsrContext) -> DnsrResult {
     guard(|sink| {
-        let out = unsafe { p_context.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pContext is NULL".into()))?;
+        let out = out(p_context, "pContext")?;
         *out = std::ptr::null_mut();
         let c = required(p_create_info, "pCreateInfo")?;
         let info = create_info_from_c(c, sink)?;
@@ -161,7 +161,7 @@ pub extern "C" fn dnsr_context_get_classifier_buffers(context: DnsrContext, p_bu
     guard(|sink| {
         let entry = handles::get(context)?;
         *sink = entry.log;
-        let out = unsafe { p_buffers.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pBuffers is NULL".into()))?;
+        let out = out(p_buffers, "pBuffers")?;
         check_type(out.s_type, DNSR_STRUCTURE_TYPE_CLASSIFIER_BUFFERS, "DNSR_STRUCTURE_TYPE_CLASSIFIER_BUFFERS", "pBuffers")?;
         check_no_next(out.p_next, "pBuffers")?;
         let b = entry.lock()?.classifier_buffers()?;
@@ -200,7 +200,7 @@ pub extern "C" fn dnsr_context_reset_history(context: DnsrContext, light_index: 
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_settings_init_default(p_settings: *mut DnsrSettings) -> DnsrResult {
     guard(|_| {
-        let out = unsafe { p_settings.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pSettings is NULL".into()))?;
+        let out = out(p_settings, "pSettings")?;
         *out = settings_to_c(&crate::Settings::default());
         Ok(DnsrResult::DNSR_SUCCESS)
     })
@@ -211,7 +211,7 @@ pub extern "C" fn dnsr_settings_init_default(p_settings: *mut DnsrSettings) -> D
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_settings_init_preset(preset: DnsrPreset, p_settings: *mut DnsrSettings) -> DnsrResult {
     guard(|_| {
-        let out = unsafe { p_settings.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pSettings is NULL".into()))?;
+        let out = out(p_settings, "pSettings")?;
         *out = settings_to_c(&crate::Settings::preset(preset_from_c(preset)?));
         Ok(DnsrResult::DNSR_SUCCESS)
     })
@@ -220,11 +220,17 @@ pub extern "C" fn dnsr_settings_init_preset(preset: DnsrPreset, p_settings: *mut
 /// Writes the context's current settings to `*pSettings`.
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_context_get_settings(context: DnsrContext, p_settings: *mut DnsrSettings) -> DnsrResult {
+    query(context, p_settings, "pSettings", |c| settings_to_c(&c.settings()))
+}
+
+/// A query of a live context written to an out-parameter: the handle's lookup (its log sink from then on), the
+/// NULL check and the lock in one place.
+fn query<T>(context: DnsrContext, p_out: *mut T, name: &str, value: impl FnOnce(&crate::Context) -> T) -> DnsrResult {
     guard(|sink| {
         let entry = handles::get(context)?;
         *sink = entry.log;
-        let out = unsafe { p_settings.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pSettings is NULL".into()))?;
-        *out = settings_to_c(&entry.lock()?.settings());
+        let out = out(p_out, name)?;
+        *out = value(&*entry.lock()?);
         Ok(DnsrResult::DNSR_SUCCESS)
     })
 }
@@ -249,7 +255,7 @@ pub extern "C" fn dnsr_context_get_timings(context: DnsrContext, p_timings: *mut
     guard(|sink| {
         let entry = handles::get(context)?;
         *sink = entry.log;
-        let out = unsafe { p_timings.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pTimings is NULL".into()))?;
+        let out = out(p_timings, "pTimings")?;
         check_type(out.s_type, DNSR_STRUCTURE_TYPE_PASS_TIMINGS, "DNSR_STRUCTURE_TYPE_PASS_TIMINGS", "pTimings")?;
         check_no_next(out.p_next, "pTimings")?;
         let Some(t) = entry.lock()?.timings()? else { return Ok(DnsrResult::DNSR_NOT_READY) };
@@ -271,7 +277,7 @@ pub extern "C" fn dnsr_context_get_classifier_timings(context: DnsrContext, p_ti
     guard(|sink| {
         let entry = handles::get(context)?;
         *sink = entry.log;
-        let out = unsafe { p_timings.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pTimings is NULL".into()))?;
+        let out = out(p_timings, "pTimings")?;
         check_type(out.s_type, DNSR_STRUCTURE_TYPE_CLASSIFIER_TIMINGS, "DNSR_STRUCTURE_TYPE_CLASSIFIER_TIMINGS", "pTimings")?;
         check_no_next(out.p_next, "pTimings")?;
         let Some(t) = entry.lock()?.classifier_timings()? else { return Ok(DnsrResult::DNSR_NOT_READY) };
@@ -284,26 +290,14 @@ pub extern "C" fn dnsr_context_get_classifier_timings(context: DnsrContext, p_ti
 /// Bytes of device memory the context allocated (driver padding included).
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_context_get_memory_usage(context: DnsrContext, p_bytes: *mut u64) -> DnsrResult {
-    guard(|sink| {
-        let entry = handles::get(context)?;
-        *sink = entry.log;
-        let out = unsafe { p_bytes.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pBytes is NULL".into()))?;
-        *out = entry.lock()?.memory_bytes();
-        Ok(DnsrResult::DNSR_SUCCESS)
-    })
+    query(context, p_bytes, "pBytes", crate::Context::memory_bytes)
 }
 
 /// The part of dnsr_context_get_memory_usage's bytes whose contents must survive from one record of a light to
 /// the next (each light's moments, depth copies and history); the rest is written and read within one record.
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_context_get_persistent_memory_usage(context: DnsrContext, p_bytes: *mut u64) -> DnsrResult {
-    guard(|sink| {
-        let entry = handles::get(context)?;
-        *sink = entry.log;
-        let out = unsafe { p_bytes.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pBytes is NULL".into()))?;
-        *out = entry.lock()?.persistent_memory_bytes();
-        Ok(DnsrResult::DNSR_SUCCESS)
-    })
+    query(context, p_bytes, "pBytes", crate::Context::persistent_memory_bytes)
 }
 
 /// The part of dnsr_get_memory_requirements' bytes that persists between records (as
@@ -317,7 +311,7 @@ pub extern "C" fn dnsr_get_persistent_memory_requirements(
     p_bytes: *mut u64,
 ) -> DnsrResult {
     guard(|_| {
-        let out = unsafe { p_bytes.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pBytes is NULL".into()))?;
+        let out = out(p_bytes, "pBytes")?;
         *out = crate::persistent_memory_requirements(width, height, precision_from_c(precision)?, light_count)?;
         Ok(DnsrResult::DNSR_SUCCESS)
     })
@@ -334,7 +328,7 @@ pub extern "C" fn dnsr_get_memory_requirements(
     p_bytes: *mut u64,
 ) -> DnsrResult {
     guard(|_| {
-        let out = unsafe { p_bytes.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pBytes is NULL".into()))?;
+        let out = out(p_bytes, "pBytes")?;
         *out = crate::memory_requirements(width, height, precision_from_c(precision)?, filter_passes, light_count)?;
         Ok(DnsrResult::DNSR_SUCCESS)
     })
@@ -351,7 +345,7 @@ static OPTIONAL_EXTENSIONS: ExtensionNames =
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_get_device_requirements(p_requirements: *mut DnsrDeviceRequirements) -> DnsrResult {
     guard(|_| {
-        let out = unsafe { p_requirements.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pRequirements is NULL".into()))?;
+        let out = out(p_requirements, "pRequirements")?;
         check_type(out.s_type, DNSR_STRUCTURE_TYPE_DEVICE_REQUIREMENTS, "DNSR_STRUCTURE_TYPE_DEVICE_REQUIREMENTS", "pRequirements")?;
         check_no_next(out.p_next, "pRequirements")?;
         out.min_api_version = crate::MIN_API_VERSION;

@@ -1,7 +1,7 @@
 //! The CPU reference from C: the engine hands one frame of its own data through read callbacks and receives
 //! every result through write callbacks, to diff against dnsr's GPU output on the same data.
 
-use super::boundary::{check_no_next, check_type, guard, required, CallError};
+use super::boundary::{check_no_next, check_type, guard, out, required, CallError};
 use super::convert::settings_from_c;
 use super::types::{DnsrResult, DnsrSettings, DnsrStructureType, DNSR_STRUCTURE_TYPE_REFERENCE_FRAME_INFO};
 use crate::reference::memory::{filled, Frame};
@@ -385,7 +385,7 @@ pub extern "C" fn dnsr_reference_diagnose(
     use crate::reference::diagnostics::{diagnose, Diagnosis, HostFrame};
     guard(|_| {
         // SAFETY: a non-null count points at a u32 the caller owns.
-        let count = unsafe { p_diagnosis_count.as_mut() }.ok_or_else(|| CallError::InvalidArgument("pDiagnosisCount is NULL".into()))?;
+        let count = out(p_diagnosis_count, "pDiagnosisCount")?;
         let (info, cb) = checked(p_info, p_callbacks)?;
         let raw = RawInputs::read(info, cb)?;
         let frame = HostFrame {

@@ -193,6 +193,9 @@ static void create_calls(void)
     /* Known bits are set next to the unknown one on purpose: the message must name only the unknown bits. */
     CREATE_CASE("create: unknown flag bits", DNSR_ERROR_INVALID_ARGUMENT, "pCreateInfo->flags has unknown bits 0x80",
                 info.flags = DNSR_CONTEXT_CREATE_DEPTH_INVERTED | (1u << 7));
+    CREATE_CASE("create: aliased transient memory without pGpuMemoryCallbacks", DNSR_ERROR_INVALID_ARGUMENT,
+                "DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY) is true; it needs hooks.gpuMemory (pGpuMemoryCallbacks)",
+                info.flags = DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY);
     CREATE_CASE("create: unknown feature bits", DNSR_ERROR_INVALID_ARGUMENT,
                 "pCreateInfo->enabledFeatures has unknown bits 0x200", info.enabledFeatures |= 1u << 9);
     CREATE_CASE("create: precision 7", DNSR_ERROR_INVALID_ARGUMENT, "precision 7", info.precision = 7);

@@ -10,7 +10,9 @@
  *   - dnsr_context_get_memory_usage >= dnsr_get_memory_requirements for the same parameters, and likewise their
  *     persistent parts (dnsr_context_get_persistent_memory_usage, dnsr_get_persistent_memory_requirements);
  *   - pGpuMemoryCallbacks: a tiny allocator (vkAllocateMemory per request) whose live allocations return to 0 at
- *     destroy; pAllocationCallbacks: counting CPU callbacks that balance by destroy; pLogCallback: a refused call
+ *     destroy, with DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY: the persistent images come as
+ *     DNSR_RESOURCE_KIND_IMAGE (their bytes are dnsr_context_get_persistent_memory_usage's), the others as
+ *     DNSR_RESOURCE_KIND_TRANSIENT_IMAGE; pAllocationCallbacks: counting CPU callbacks that balance by destroy; pLogCallback: a refused call
  *     logs exactly one error with the text of dnsr_last_error_message(); pDebugNameCallback: every name starts
  *     with "dnsr." (and is forwarded to vkSetDebugUtilsObjectNameEXT, as the header suggests).
  * The callback structs live on the stack of the function that creates the context and are wiped right after
@@ -39,16 +41,17 @@ static Host host;
 /* GPU memory: one vkAllocateMemory per request. */
 typedef struct GpuAllocator {
     int live;
-    unsigned images, buffers;
+    unsigned images, buffers, transientImages;
     uint64_t nextHandle;
-    VkDeviceSize bytes;
+    VkDeviceSize bytes, imageBytes;
 } GpuAllocator;
 
 static VkResult gpu_allocate(void *user, const VkMemoryRequirements *req, DnsrResourceKind kind,
                              DnsrGpuAllocation *out)
 {
     GpuAllocator *a = (GpuAllocator *)user;
-    CHECK(kind == DNSR_RESOURCE_KIND_IMAGE || kind == DNSR_RESOURCE_KIND_BUFFER, "unknown resource kind %u", kind);
+    CHECK(kind == DNSR_RESOURCE_KIND_IMAGE || kind == DNSR_RESOURCE_KIND_BUFFER || kind == DNSR_RESOURCE_KIND_TRANSIENT_IMAGE,
+          "unknown resource kind %u", kind);
     VkMemoryAllocateInfo info = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
         .allocationSize = req->size,
@@ -62,7 +65,8 @@ static VkResult gpu_allocate(void *user, const VkMemoryRequirements *req, DnsrRe
     out->userHandle = ++a->nextHandle;
     a->live++;
     a->bytes += req->size;
-    if (kind == DNSR_RESOURCE_KIND_IMAGE) a->images++;
+    if (kind == DNSR_RESOURCE_KIND_IMAGE) a->images++, a->imageBytes += req->size;
+    else if (kind == DNSR_RESOURCE_KIND_TRANSIENT_IMAGE) a->transientImages++;
     else a->buffers++;
     return VK_SUCCESS;
 }
@@ -200,7 +204,8 @@ static DnsrContext create_context(void)
     DnsrDebugNameCallback namer = {&names, on_name};
 
     DnsrContextCreateInfo info = host_create_info(&host, W, H);
-    info.flags = DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS;
+    /* The host may alias the transient images' memory: they come as DNSR_RESOURCE_KIND_TRANSIENT_IMAGE. */
+    info.flags = DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS | DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY;
     info.pAllocationCallbacks = &cpu_callbacks;
     info.pGpuMemoryCallbacks = &gpu;
     info.pLogCallback = &log;
@@ -363,6 +368,9 @@ int main(void)
            (unsigned long long)keptRequired);
     CHECK(kept >= keptRequired && kept < usage, "persistent %llu (requirements %llu) of %llu", (unsigned long long)kept,
           (unsigned long long)keptRequired, (unsigned long long)usage);
+    CHECK(gpu_allocator.imageBytes == kept && gpu_allocator.transientImages > 0,
+          "the allocator saw %llu bytes of persistent images (dnsr keeps %llu) and %u transient images",
+          (unsigned long long)gpu_allocator.imageBytes, (unsigned long long)kept, gpu_allocator.transientImages);
 
     create_images();
     static float out[W * H];

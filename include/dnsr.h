@@ -1564,6 +1564,18 @@ typedef struct DnsrDiagnosis {
 #define DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER (1 << 3)
 
 /**
+ * The host aliases dnsr's transient memory (needs pGpuMemoryCallbacks). The images whose contents do not outlive
+ * one record (tile state, the temporal result, the filter's intermediates and guide, the reconstructed visibility:
+ * dnsr_context_get_memory_usage less dnsr_context_get_persistent_memory_usage, the constants buffer aside) are
+ * allocated with DNSR_RESOURCE_KIND_TRANSIENT_IMAGE, and every record moves them out of VK_IMAGE_LAYOUT_UNDEFINED.
+ * The host may bind that memory to its own resources too, provided its use of them has finished before a record
+ * of dnsr's begins (dnsr's first barrier waits for the stages and accesses the dispatch's sync names as
+ * inputSrcStages / inputSrcAccess, and for earlier compute and transfer work) and begins after it ends (order it
+ * after the stages named as outputDstStages). Costs one layout transition per transient image on every record.
+ */
+#define DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY (1 << 4)
+
+/**
  * Forces 32 bits.
  */
 #define DNSR_CONTEXT_CREATE_MAX_ENUM 2147483647
@@ -1707,6 +1719,12 @@ typedef struct DnsrDiagnosis {
  * The constants buffer.
  */
 #define DNSR_RESOURCE_KIND_BUFFER 1
+
+/**
+ * An internal image whose contents do not outlive one record, with DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY only
+ * (otherwise such images come as DNSR_RESOURCE_KIND_IMAGE): its memory may be aliased, as that flag says.
+ */
+#define DNSR_RESOURCE_KIND_TRANSIENT_IMAGE 2
 
 /**
  * Forces 32 bits.

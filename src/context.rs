@@ -127,6 +127,9 @@ pub struct Context {
     light_count: u32,
     /// The filter's guide, shared by the lights (see state::guide_needed); None with one filter pass.
     guide: Option<crate::gpu::image::InternalImage>,
+    /// How transient images are allocated: `TransientImage` where the host aliases them
+    /// (`ContextCreateInfo::alias_transient_memory`; every record then moves them out of UNDEFINED), else `Image`.
+    transient_kind: ResourceKind,
     /// False until a recorded frame has moved the guide out of its initial layout and cleared it.
     guide_initialized: bool,
     timestamps: Option<Timestamps>,
@@ -217,6 +220,13 @@ impl Context {
         validate::extent("render size", info.width, info.height, props.limits.max_image_dimension2_d)?;
         validate::light_count(info.light_count)?;
         validate::frames_in_flight(info.max_frames_in_flight)?;
+        if info.alias_transient_memory && info.hooks.gpu_memory.is_none() {
+            return Err(Error::InvalidValue {
+                field: "alias_transient_memory (DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY)",
+                value: "true".into(),
+                allowed: "it needs hooks.gpu_memory (pGpuMemoryCallbacks): the host's allocator is what aliases the memory",
+            });
+        }
         info.settings.validate()?;
         check_features(&vk, info)?;
         // After the API version check: the override check queries Vulkan 1.1 properties.
@@ -251,6 +261,7 @@ impl Context {
             lights: Vec::new(),
             light_count: info.light_count,
             guide: None,
+            transient_kind: if info.alias_transient_memory { ResourceKind::TransientImage } else { ResourceKind::Image },
             guide_initialized: false,
             timestamps: None,
             frames_recorded: 0,
@@ -366,7 +377,7 @@ impl Context {
     fn allocate_lights(&mut self) -> Result<()> {
         for index in 0..self.light_count {
             let checkerboard = self.shadow_input == ShadowInput::Checkerboard;
-            let light = LightState::new(&self.vk, index, self.size, self.precision, self.settings.filter_passes, checkerboard)?;
+            let light = LightState::new(&self.vk, index, self.size, self.precision, self.settings.filter_passes, checkerboard, self.transient_kind)?;
             self.lights.push(light);
         }
         self.allocate_guide(self.settings.filter_passes)
@@ -375,7 +386,7 @@ impl Context {
     /// Allocates the shared guide if `filter_passes` need it and there is none; its first frame initialises it.
     fn allocate_guide(&mut self, filter_passes: u32) -> Result<()> {
         if crate::state::guide_needed(filter_passes) && self.guide.is_none() {
-            self.guide = Some(crate::gpu::image::InternalImage::new(&self.vk, crate::state::GUIDE_FORMAT, self.size, "dnsr.guide")?);
+            self.guide = Some(crate::gpu::image::InternalImage::new(&self.vk, crate::state::GUIDE_FORMAT, self.size, "dnsr.guide", self.transient_kind)?);
             self.guide_initialized = false;
         }
         Ok(())
@@ -430,7 +441,7 @@ impl Context {
         settings.validate()?;
         self.allocate_guide(settings.filter_passes)?;
         for (index, light) in self.lights.iter_mut().enumerate() {
-            if light.allocate_optional(&self.vk, index as u32, self.size, self.precision, settings.filter_passes)? {
+            if light.allocate_optional(&self.vk, index as u32, self.size, self.precision, settings.filter_passes, self.transient_kind)? {
                 light.initialized = false;
             }
         }
@@ -740,24 +751,15 @@ impl Context {
         // Earlier frames (dnsr's compute and the constants update), the host's input writes and its earlier use
         // of the outputs, all before anything this frame reads or writes.
         barrier::memory(dev, cmd, src_stages, src_access, dst_stages, dst_access, &outputs[..count]);
+        // Aliased transient images (`alias_transient_memory`): the host may have used their memory since the last
+        // record, so each record moves them out of UNDEFINED (their contents are lost, which they may be:
+        // tests/transient.rs). Before the first-use clears below, which then keep their effect.
+        if self.transient_kind == ResourceKind::TransientImage {
+            let lights = ds.iter().flat_map(|d| self.lights[d.light_index as usize].transient_images());
+            transition_from_undefined(dev, cmd, lights.chain(self.guide.iter()), [src_stages, dst_stages], [src_access, dst_access]);
+        }
         if new_images().next().is_some() {
-            let mut chunk = [vk::ImageMemoryBarrier::default(); 16];
-            let mut images = new_images().peekable();
-            while images.peek().is_some() {
-                let mut n = 0;
-                for img in images.by_ref().take(chunk.len()) {
-                    chunk[n] = barrier::layout_transition(
-                        img.image,
-                        vk::ImageAspectFlags::COLOR,
-                        vk::ImageLayout::UNDEFINED,
-                        vk::ImageLayout::GENERAL,
-                        vk::AccessFlags::empty(),
-                        vk::AccessFlags::TRANSFER_WRITE,
-                    );
-                    n += 1;
-                }
-                barrier::memory(dev, cmd, src_stages, src_access, dst_stages, dst_access, &chunk[..n]);
-            }
+            transition_from_undefined(dev, cmd, new_images(), [src_stages, dst_stages], [src_access, dst_access]);
         }
         // Defined contents from the first frame on: no NaN garbage can be sampled even by a bad reset path.
         let zero = vk::ClearColorValue { float32: [0.0; 4] };
@@ -874,6 +876,36 @@ impl Context {
     /// Whether a record of several lights runs the later filter passes for several lights per dispatch.
     pub(crate) fn has_light_slot_pipelines(&self) -> bool {
         self.pipelines.as_ref().is_some_and(|p| p.filter_lights.is_some())
+    }
+}
+
+/// Moves `images` from UNDEFINED to GENERAL (their contents discarded) after the `stages[0]` / `access[0]` work, for
+/// the `stages[1]` / `access[1]` work, in barriers of a few images each (no array sized for every image a record
+/// could transition).
+fn transition_from_undefined<'a>(
+    dev: &ash::Device,
+    cmd: vk::CommandBuffer,
+    images: impl Iterator<Item = &'a crate::gpu::image::InternalImage>,
+    stages: [vk::PipelineStageFlags; 2],
+    access: [vk::AccessFlags; 2],
+) {
+    let mut chunk = [vk::ImageMemoryBarrier::default(); 16];
+    let mut images = images.peekable();
+    while images.peek().is_some() {
+        let mut n = 0;
+        for img in images.by_ref().take(chunk.len()) {
+            chunk[n] = barrier::layout_transition(
+                img.image,
+                vk::ImageAspectFlags::COLOR,
+                vk::ImageLayout::UNDEFINED,
+                vk::ImageLayout::GENERAL,
+                // An aliased image was written before (by dnsr or by the host): the transition waits for that.
+                access[0],
+                access[1],
+            );
+            n += 1;
+        }
+        barrier::memory(dev, cmd, stages[0], access[0], stages[1], access[1], &chunk[..n]);
     }
 }
 

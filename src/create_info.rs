@@ -108,6 +108,16 @@ pub struct ContextCreateInfo {
     pub enable_classifier: bool,
     /// Initial settings.
     pub settings: Settings,
+    /// The host aliases dnsr's transient memory: the images whose contents do not outlive one record (tile state,
+    /// the temporal result, the filter's intermediates and guide, the reconstructed visibility; the difference
+    /// between `Context::memory_bytes` and `Context::persistent_memory_bytes`) are allocated through
+    /// `hooks.gpu_memory` (required then) as `ResourceKind::TransientImage`, and every record moves them out of
+    /// `VK_IMAGE_LAYOUT_UNDEFINED`, so their contents may be lost between records. The host may then bind that
+    /// memory to its own resources as well, provided that its use of them is finished before a record of dnsr's
+    /// begins (dnsr's first barrier waits for the stages and accesses a dispatch's `HostSync` names as
+    /// `input_src_*`, and for earlier compute and transfer work) and starts after it ends (order it after the
+    /// stages named as `output_dst_*`). Costs one layout transition per transient image on every record.
+    pub alias_transient_memory: bool,
     /// Host allocators and debug names (all optional).
     pub hooks: HostHooks,
     /// Pass variants the engine compiled itself, against its own callbacks file (docs/callbacks.md); the
@@ -160,6 +170,7 @@ impl ContextCreateInfo {
             enable_timestamps: false,
             enable_classifier: false,
             settings: Settings::default(),
+            alias_transient_memory: false,
             hooks: HostHooks::default(),
             shader_overrides: Vec::new(),
         }

@@ -10,6 +10,10 @@ use std::sync::Arc;
 pub enum ResourceKind {
     /// An internal image (history, moments, tiles, depth copy).
     Image,
+    /// An internal image whose contents do not outlive one record (`ContextCreateInfo::alias_transient_memory`
+    /// only; otherwise such images come as `Image`): the host may bind the same memory to its own resources too
+    /// (memory aliasing), as that field says.
+    TransientImage,
     /// The per-frame constants buffer.
     Buffer,
 }

@@ -4,6 +4,7 @@ use crate::create_info::Precision;
 use crate::error::Result;
 use crate::gpu::image::InternalImage;
 use crate::gpu::loader::Vk;
+use crate::host::ResourceKind;
 use crate::settings::MAX_FILTER_PASSES;
 use ash::vk;
 
@@ -176,11 +177,13 @@ pub(crate) struct LightState {
 }
 
 impl LightState {
-    /// A light's images; `checkerboard` adds the reconstructed visibility of a checkerboard input.
-    pub(crate) fn new(vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32, checkerboard: bool) -> Result<LightState> {
+    /// A light's images; `checkerboard` adds the reconstructed visibility of a checkerboard input. The transient
+    /// ones are allocated as `transient` (`ResourceKind::TransientImage` where the host aliases them).
+    pub(crate) fn new(vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32, checkerboard: bool, transient: ResourceKind) -> Result<LightState> {
         let mut made: Vec<InternalImage> = Vec::new();
-        for (format, size, name, _) in image_specs(extent, precision, 1) {
-            match InternalImage::new(vk, format, size, &format!("dnsr.light{light}.{name}")) {
+        for (format, size, name, lifetime) in image_specs(extent, precision, 1) {
+            let kind = if lifetime == Lifetime::Transient { transient } else { ResourceKind::Image };
+            match InternalImage::new(vk, format, size, &format!("dnsr.light{light}.{name}"), kind) {
                 Ok(img) => made.push(img),
                 Err(e) => {
                     made.iter_mut().for_each(|i| i.destroy(vk));
@@ -205,8 +208,8 @@ impl LightState {
             initialized: false,
             pending_reset: true,
         };
-        let reconstructed = || InternalImage::new(vk, RECONSTRUCTED_FORMAT, extent, &format!("dnsr.light{light}.reconstructed_visibility"));
-        let made = state.allocate_optional(vk, light, extent, precision, filter_passes).and_then(|_| {
+        let reconstructed = || InternalImage::new(vk, RECONSTRUCTED_FORMAT, extent, &format!("dnsr.light{light}.reconstructed_visibility"), transient);
+        let made = state.allocate_optional(vk, light, extent, precision, filter_passes, transient).and_then(|_| {
             state.reconstructed = if checkerboard { Some(reconstructed()?) } else { None };
             Ok(())
         });
@@ -221,7 +224,7 @@ impl LightState {
 
     /// Allocates the optional images `filter_passes` passes need and this light lacks; true if it made any (their
     /// first frame initialises them, like a new light's).
-    pub(crate) fn allocate_optional(&mut self, vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32) -> Result<bool> {
+    pub(crate) fn allocate_optional(&mut self, vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32, transient: ResourceKind) -> Result<bool> {
         let mut made = false;
         for o in OPTIONAL.into_iter().filter(|o| o.needed(filter_passes)) {
             let slot = match o {
@@ -229,7 +232,7 @@ impl LightState {
             };
             if slot.is_none() {
                 let (format, name) = o.spec(precision);
-                *slot = Some(InternalImage::new(vk, format, extent, &format!("dnsr.light{light}.{name}"))?);
+                *slot = Some(InternalImage::new(vk, format, extent, &format!("dnsr.light{light}.{name}"), transient)?);
                 made = true;
             }
         }

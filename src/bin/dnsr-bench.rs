@@ -44,6 +44,9 @@ const USAGE: &str = "usage: dnsr-bench [options]
   --float-gbuffer             feed R32_SFLOAT depth, R32G32B32A32_SFLOAT normals and R32G32_SFLOAT velocity instead
                               of what engines render (default: D32_SFLOAT depth, A2B10G10R10_UNORM_PACK32 normals,
                               R16G16_SFLOAT velocity)
+  --alias-transient           the contexts let the host alias their transient memory (ContextCreateInfo::
+                              alias_transient_memory, with a host allocator): every record moves the transient
+                              images out of UNDEFINED
 
 The device is the first whose name contains $DNSR_DEVICE (any device when unset). The commit recorded is
 $DNSR_COMMIT, else `git rev-parse HEAD` of the working directory.";
@@ -106,6 +109,7 @@ struct Options {
     checkerboard: bool,
     push_descriptors: bool,
     host: HostFormats,
+    alias_transient: bool,
 }
 
 fn parse_args() -> Options {
@@ -127,6 +131,7 @@ fn parse_args() -> Options {
         checkerboard: false,
         push_descriptors: true,
         host: HostFormats::Engine,
+        alias_transient: false,
     };
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
@@ -146,6 +151,7 @@ fn parse_args() -> Options {
             "--checkerboard" => o.checkerboard = true,
             "--no-push-descriptors" => o.push_descriptors = false,
             "--float-gbuffer" => o.host = HostFormats::Float,
+            "--alias-transient" => o.alias_transient = true,
             "--lights" => {
                 let max = dnsr::MAX_LIGHTS_PER_RECORD;
                 o.lights = list(args.next(), "--lights", |s| s.parse().ok().filter(|n| (1..=max).contains(n)));
@@ -201,6 +207,7 @@ fn main() {
             let t = Instant::now();
             let mut gpu_scene = build(&gpu, scene, size.0, size.1, opts.rays, opts.host);
             gpu_scene.checkerboard = opts.checkerboard;
+            gpu_scene.alias_transient = opts.alias_transient;
             eprintln!("dnsr-bench: {}x{} {}: {} frames generated in {:.1} s", size.0, size.1, scene.id(), gpu_scene.frames.len(), t.elapsed().as_secs_f64());
             for &precision in &precisions {
                 for (&preset, &lights) in opts.presets.iter().flat_map(|p| opts.lights.iter().map(move |l| (p, l))) {

@@ -56,6 +56,7 @@ impl GpuMemoryAllocator for CGpuMemory {
         let kind = match kind {
             ResourceKind::Image => DNSR_RESOURCE_KIND_IMAGE,
             ResourceKind::Buffer => DNSR_RESOURCE_KIND_BUFFER,
+            ResourceKind::TransientImage => DNSR_RESOURCE_KIND_TRANSIENT_IMAGE,
         };
         let mut out = DnsrGpuAllocation::default();
         let allocate = self.0.allocate.expect("checked at creation");
@@ -104,7 +105,10 @@ pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo, sink: &mut Option<Lo
         let unknown = c.enabled_features & !known_features;
         return Err(CallError::InvalidArgument(format!("pCreateInfo->enabledFeatures has unknown bits {unknown:#x}")));
     }
-    let known_flags = DNSR_CONTEXT_CREATE_DEPTH_INVERTED | DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS | DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER;
+    let known_flags = DNSR_CONTEXT_CREATE_DEPTH_INVERTED
+        | DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS
+        | DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER
+        | DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY;
     if c.flags & !known_flags != 0 {
         let unknown = c.flags & !known_flags;
         return Err(CallError::InvalidArgument(format!("pCreateInfo->flags has unknown bits {unknown:#x}")));
@@ -167,6 +171,7 @@ pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo, sink: &mut Option<Lo
         },
         enable_timestamps: c.flags & DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS != 0,
         enable_classifier: c.flags & DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER != 0,
+        alias_transient_memory: c.flags & DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY != 0,
         settings,
         hooks,
         shader_overrides: shader_overrides_from_c(c)?,

@@ -154,6 +154,15 @@ pub const DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS: DnsrContextCreateFlags = 1 << 2
 /// Create the hybrid-shadows classifier (`dnsr_classify_record`): its pipelines and its tile list and counts
 /// buffers (16 B per 8x4 tile, about 0.5 B/px, plus 1 KiB).
 pub const DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER: DnsrContextCreateFlags = 1 << 3;
+/// The host aliases dnsr's transient memory (needs pGpuMemoryCallbacks). The images whose contents do not outlive
+/// one record (tile state, the temporal result, the filter's intermediates and guide, the reconstructed visibility:
+/// dnsr_context_get_memory_usage less dnsr_context_get_persistent_memory_usage, the constants buffer aside) are
+/// allocated with DNSR_RESOURCE_KIND_TRANSIENT_IMAGE, and every record moves them out of VK_IMAGE_LAYOUT_UNDEFINED.
+/// The host may bind that memory to its own resources too, provided its use of them has finished before a record
+/// of dnsr's begins (dnsr's first barrier waits for the stages and accesses the dispatch's sync names as
+/// inputSrcStages / inputSrcAccess, and for earlier compute and transfer work) and begins after it ends (order it
+/// after the stages named as outputDstStages). Costs one layout transition per transient image on every record.
+pub const DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY: DnsrContextCreateFlags = 1 << 4;
 /// Forces 32 bits.
 pub const DNSR_CONTEXT_CREATE_MAX_ENUM: DnsrContextCreateFlags = 0x7FFF_FFFF;
 
@@ -245,6 +254,9 @@ pub type DnsrResourceKind = u32;
 pub const DNSR_RESOURCE_KIND_IMAGE: DnsrResourceKind = 0;
 /// The constants buffer.
 pub const DNSR_RESOURCE_KIND_BUFFER: DnsrResourceKind = 1;
+/// An internal image whose contents do not outlive one record, with DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY only
+/// (otherwise such images come as DNSR_RESOURCE_KIND_IMAGE): its memory may be aliased, as that flag says.
+pub const DNSR_RESOURCE_KIND_TRANSIENT_IMAGE: DnsrResourceKind = 2;
 /// Forces 32 bits.
 pub const DNSR_RESOURCE_KIND_MAX_ENUM: DnsrResourceKind = 0x7FFF_FFFF;
 

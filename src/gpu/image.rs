@@ -31,7 +31,7 @@ pub(crate) fn check_internal_format(vk: &Vk, format: vk::Format) -> Result<()> {
 }
 
 impl InternalImage {
-    pub(crate) fn new(vk: &Vk, format: vk::Format, extent: [u32; 2], name: &str) -> Result<InternalImage> {
+    pub(crate) fn new(vk: &Vk, format: vk::Format, extent: [u32; 2], name: &str, kind: ResourceKind) -> Result<InternalImage> {
         let d = &vk.device;
         let info = vk::ImageCreateInfo::default()
             .image_type(vk::ImageType::TYPE_2D)
@@ -48,7 +48,7 @@ impl InternalImage {
         let mut out =
             InternalImage { image, view: vk::ImageView::null(), memory: Memory::default(), bytes: req.size, format };
         let result = (|| {
-            out.memory = memory::allocate(vk, req, ResourceKind::Image)?;
+            out.memory = memory::allocate(vk, req, kind)?;
             vk_check("vkBindImageMemory", unsafe { d.bind_image_memory(image, out.memory.memory, out.memory.offset) })?;
             let view_info = vk::ImageViewCreateInfo::default()
                 .image(image)

@@ -1,14 +1,35 @@
 //! What dnsr calls transient state (`state::Lifetime::Transient`, the part of the memory that
 //! `Context::persistent_memory_bytes` leaves out) really is: garbage written into every transient image between
-//! two records changes no output bit, in every configuration whose passes read different transient images.
+//! two records changes no output bit, in every configuration whose passes read different transient images; and a
+//! host that aliases that memory (`alias_transient_memory`) gets it as `ResourceKind::TransientImage`.
 
 use super::correctness::smooth;
 use super::gpu;
 use crate::gpu::barrier;
 use crate::testing::scene::{render_with_blockers, Camera};
 use crate::testing::Runner;
-use crate::{Preset, Settings, ShadowInput};
+use crate::{GpuAllocation, GpuMemoryAllocator, Preset, ResourceKind, Settings, ShadowInput};
 use ash::vk;
+use std::sync::{Arc, Mutex};
+
+/// A GPU allocator with one vkAllocateMemory per request that logs each request's kind and size.
+struct LoggingAllocator {
+    device: ash::Device,
+    memory_type: u32,
+    log: Mutex<Vec<(ResourceKind, u64)>>,
+}
+
+impl GpuMemoryAllocator for LoggingAllocator {
+    fn allocate(&self, req: &vk::MemoryRequirements, kind: ResourceKind) -> Result<GpuAllocation, vk::Result> {
+        let info = vk::MemoryAllocateInfo::default().allocation_size(req.size).memory_type_index(self.memory_type);
+        let memory = unsafe { self.device.allocate_memory(&info, None) }?;
+        self.log.lock().unwrap().push((kind, req.size));
+        Ok(GpuAllocation { memory, offset: 0, user_handle: 0 })
+    }
+    fn free(&self, a: &GpuAllocation) {
+        unsafe { self.device.free_memory(a.memory, None) };
+    }
+}
 
 /// A value no pass writes: NaN in float images, a mid-range value in unorm ones (a NaN clear turns into 0 there),
 /// set bits in integer ones.
@@ -25,24 +46,46 @@ fn transient_images_carry_nothing_between_records() {
     let g = gpu();
     let (w, h) = (72u32, 48u32);
     let quality = Settings::default();
-    let configs: [(&str, Settings, ShadowInput, Option<f32>); 5] = [
-        ("Quality", quality, ShadowInput::HitMask, None),
-        ("Quality, guided", quality, ShadowInput::HitMask, Some(0.05)),
-        ("Balanced, four passes", Settings { filter_passes: 4, ..Settings::preset(Preset::Balanced) }, ShadowInput::HitMask, None),
-        ("Fast", Settings::preset(Preset::Fast), ShadowInput::HitMask, None),
-        ("Quality, checkerboard", quality, ShadowInput::Checkerboard, None),
+    let props = unsafe { g.instance.get_physical_device_memory_properties(g.physical_device) };
+    let memory_type = (0..props.memory_type_count)
+        .find(|&i| props.memory_types[i as usize].property_flags.contains(vk::MemoryPropertyFlags::DEVICE_LOCAL))
+        .unwrap();
+    // The last field: the scrambled context aliases its transient memory (allocated by the host, moved out of
+    // UNDEFINED on every record).
+    let configs: [(&str, Settings, ShadowInput, Option<f32>, bool); 6] = [
+        ("Quality", quality, ShadowInput::HitMask, None, false),
+        ("Quality, guided", quality, ShadowInput::HitMask, Some(0.05), false),
+        ("Balanced, four passes", Settings { filter_passes: 4, ..Settings::preset(Preset::Balanced) }, ShadowInput::HitMask, None, false),
+        ("Fast", Settings::preset(Preset::Fast), ShadowInput::HitMask, None, false),
+        ("Quality, checkerboard", quality, ShadowInput::Checkerboard, None, false),
+        ("Quality, aliased", quality, ShadowInput::HitMask, None, true),
     ];
-    for (name, settings, input, guidance) in configs {
-        let runner = || {
+    for (name, settings, input, guidance, alias) in configs {
+        let allocator = Arc::new(LoggingAllocator { device: g.device.clone(), memory_type, log: Mutex::new(Vec::new()) });
+        let runner = |alias: bool| {
             let mut info = g.create_info(w, h);
             info.settings = settings;
             info.shadow_input = input;
             info.output_format = vk::Format::R32_SFLOAT;
+            if alias {
+                info.alias_transient_memory = true;
+                info.hooks.gpu_memory = Some(allocator.clone());
+            }
             let mut r = Runner::new(&g, &info).unwrap();
             r.guidance = guidance;
             r
         };
-        let (mut plain, mut scrambled) = (runner(), runner());
+        let (mut plain, mut scrambled) = (runner(false), runner(alias));
+        if alias {
+            // The host sees every transient image as such, and every persistent one as an image.
+            let log = allocator.log.lock().unwrap().clone();
+            let bytes = |kind| log.iter().filter(|(k, _)| *k == kind).map(|(_, b)| b).sum::<u64>();
+            let ctx = &scrambled.ctx;
+            assert_eq!(bytes(ResourceKind::Image), ctx.persistent_memory_bytes(), "{name}: persistent images");
+            let buffer = bytes(ResourceKind::Buffer);
+            assert_eq!(bytes(ResourceKind::TransientImage), ctx.memory_bytes() - ctx.persistent_memory_bytes() - buffer, "{name}");
+            assert!(bytes(ResourceKind::TransientImage) > 0);
+        }
         let (images, persistent) = scrambled.ctx.transient_images();
         assert!(images.len() >= 5 && persistent == 5, "{name}: {} transient, {persistent} persistent images", images.len());
         // A camera panning across a soft shadow with sky at the sides: history, disocclusion and cleared tiles.
@@ -67,6 +110,16 @@ fn transient_images_carry_nothing_between_records() {
             assert_eq!(differing, 0, "{name}, frame {frame}: {differing} pixels depend on a transient image's old contents");
         }
     }
+    g.assert_clean();
+}
+
+#[test]
+fn aliasing_transient_memory_needs_the_hosts_allocator() {
+    let g = gpu();
+    let mut info = g.create_info(16, 16);
+    info.alias_transient_memory = true;
+    let e = crate::Context::new(&info).err().expect("aliasing without a host allocator");
+    assert!(e.to_string().contains("DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY) is true; it needs hooks.gpu_memory"), "{e}");
     g.assert_clean();
 }
 

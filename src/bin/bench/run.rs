@@ -169,6 +169,10 @@ pub fn run(
         info.shadow_input = dnsr::ShadowInput::Checkerboard;
     }
     info.light_count = lights as u32;
+    if scene.alias_transient {
+        info.alias_transient_memory = true;
+        info.hooks.gpu_memory = Some(std::sync::Arc::new(HostAllocator::new(gpu)));
+    }
     let mut ctx = Context::new(&info).map_err(|e| format!("Context::new: {e}"))?;
     let outputs: Vec<TestImage> = (0..lights).map(|_| gpu.image(vk::Format::R16_SFLOAT, w, h, READ)).collect();
     let cmd = gpu.command_buffer();
@@ -324,4 +328,33 @@ fn measure(
         record_us.push(us);
     }
     Ok((timings, record_us, counts, done))
+}
+
+/// The host allocator of `--alias-transient`: one vkAllocateMemory per request (an engine would alias the
+/// transient ones; the bench measures what the aliasing costs dnsr: a layout transition per transient image and
+/// record).
+struct HostAllocator {
+    device: ash::Device,
+    memory_type: u32,
+}
+
+impl HostAllocator {
+    fn new(gpu: &Gpu) -> HostAllocator {
+        let props = unsafe { gpu.instance.get_physical_device_memory_properties(gpu.physical_device) };
+        let memory_type = (0..props.memory_type_count)
+            .find(|&i| props.memory_types[i as usize].property_flags.contains(vk::MemoryPropertyFlags::DEVICE_LOCAL))
+            .expect("a device-local memory type");
+        HostAllocator { device: gpu.device.clone(), memory_type }
+    }
+}
+
+impl dnsr::GpuMemoryAllocator for HostAllocator {
+    fn allocate(&self, req: &vk::MemoryRequirements, _kind: dnsr::ResourceKind) -> Result<dnsr::GpuAllocation, vk::Result> {
+        let info = vk::MemoryAllocateInfo::default().allocation_size(req.size).memory_type_index(self.memory_type);
+        let memory = unsafe { self.device.allocate_memory(&info, None) }?;
+        Ok(dnsr::GpuAllocation { memory, offset: 0, user_handle: 0 })
+    }
+    fn free(&self, a: &dnsr::GpuAllocation) {
+        unsafe { self.device.free_memory(a.memory, None) };
+    }
 }

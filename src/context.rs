@@ -127,9 +127,9 @@ pub struct Context {
     light_count: u32,
     /// The filter's guide, shared by the lights (see state::guide_needed); None with one filter pass.
     guide: Option<crate::gpu::image::InternalImage>,
-    /// How transient images are allocated: `TransientImage` where the host aliases them
-    /// (`ContextCreateInfo::alias_transient_memory`; every record then moves them out of UNDEFINED), else `Image`.
-    transient_kind: ResourceKind,
+    /// The host aliases the transient images (`ContextCreateInfo::alias_transient_memory`): they are allocated as
+    /// `ResourceKind::TransientImage`, and every record moves them out of UNDEFINED.
+    alias_transient: bool,
     /// False until a recorded frame has moved the guide out of its initial layout and cleared it.
     guide_initialized: bool,
     timestamps: Option<Timestamps>,
@@ -261,7 +261,7 @@ impl Context {
             lights: Vec::new(),
             light_count: info.light_count,
             guide: None,
-            transient_kind: if info.alias_transient_memory { ResourceKind::TransientImage } else { ResourceKind::Image },
+            alias_transient: info.alias_transient_memory,
             guide_initialized: false,
             timestamps: None,
             frames_recorded: 0,
@@ -377,7 +377,7 @@ impl Context {
     fn allocate_lights(&mut self) -> Result<()> {
         for index in 0..self.light_count {
             let checkerboard = self.shadow_input == ShadowInput::Checkerboard;
-            let light = LightState::new(&self.vk, index, self.size, self.precision, self.settings.filter_passes, checkerboard, self.transient_kind)?;
+            let light = LightState::new(&self.vk, index, self.size, self.precision, self.settings.filter_passes, checkerboard, self.alias_transient)?;
             self.lights.push(light);
         }
         self.allocate_guide(self.settings.filter_passes)
@@ -386,7 +386,7 @@ impl Context {
     /// Allocates the shared guide if `filter_passes` need it and there is none; its first frame initialises it.
     fn allocate_guide(&mut self, filter_passes: u32) -> Result<()> {
         if crate::state::guide_needed(filter_passes) && self.guide.is_none() {
-            self.guide = Some(crate::gpu::image::InternalImage::new(&self.vk, crate::state::GUIDE_FORMAT, self.size, "dnsr.guide", self.transient_kind)?);
+            self.guide = Some(crate::gpu::image::InternalImage::new(&self.vk, crate::state::GUIDE_FORMAT, self.size, "dnsr.guide", false, self.alias_transient)?);
             self.guide_initialized = false;
         }
         Ok(())
@@ -441,7 +441,7 @@ impl Context {
         settings.validate()?;
         self.allocate_guide(settings.filter_passes)?;
         for (index, light) in self.lights.iter_mut().enumerate() {
-            if light.allocate_optional(&self.vk, index as u32, self.size, self.precision, settings.filter_passes, self.transient_kind)? {
+            if light.allocate_optional(&self.vk, index as u32, self.size, self.precision, settings.filter_passes, self.alias_transient)? {
                 light.initialized = false;
             }
         }
@@ -754,7 +754,7 @@ impl Context {
         // Aliased transient images (`alias_transient_memory`): the host may have used their memory since the last
         // record, so each record moves them out of UNDEFINED (their contents are lost, which they may be:
         // tests/transient.rs). Before the first-use clears below, which then keep their effect.
-        if self.transient_kind == ResourceKind::TransientImage {
+        if self.alias_transient {
             let lights = ds.iter().flat_map(|d| self.lights[d.light_index as usize].transient_images());
             transition_from_undefined(dev, cmd, lights.chain(self.guide.iter()), [src_stages, dst_stages], [src_access, dst_access]);
         }

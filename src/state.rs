@@ -4,7 +4,6 @@ use crate::create_info::Precision;
 use crate::error::Result;
 use crate::gpu::image::InternalImage;
 use crate::gpu::loader::Vk;
-use crate::host::ResourceKind;
 use crate::settings::MAX_FILTER_PASSES;
 use ash::vk;
 
@@ -177,13 +176,12 @@ pub(crate) struct LightState {
 }
 
 impl LightState {
-    /// A light's images; `checkerboard` adds the reconstructed visibility of a checkerboard input. The transient
-    /// ones are allocated as `transient` (`ResourceKind::TransientImage` where the host aliases them).
-    pub(crate) fn new(vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32, checkerboard: bool, transient: ResourceKind) -> Result<LightState> {
+    /// A light's images; `checkerboard` adds the reconstructed visibility of a checkerboard input. `alias`: the host
+    /// aliases the transient ones (`ResourceKind::TransientImage`).
+    pub(crate) fn new(vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32, checkerboard: bool, alias: bool) -> Result<LightState> {
         let mut made: Vec<InternalImage> = Vec::new();
         for (format, size, name, lifetime) in image_specs(extent, precision, 1) {
-            let kind = if lifetime == Lifetime::Transient { transient } else { ResourceKind::Image };
-            match InternalImage::new(vk, format, size, &format!("dnsr.light{light}.{name}"), kind) {
+            match InternalImage::new(vk, format, size, &format!("dnsr.light{light}.{name}"), lifetime == Lifetime::Persistent, alias) {
                 Ok(img) => made.push(img),
                 Err(e) => {
                     made.iter_mut().for_each(|i| i.destroy(vk));
@@ -208,8 +206,8 @@ impl LightState {
             initialized: false,
             pending_reset: true,
         };
-        let reconstructed = || InternalImage::new(vk, RECONSTRUCTED_FORMAT, extent, &format!("dnsr.light{light}.reconstructed_visibility"), transient);
-        let made = state.allocate_optional(vk, light, extent, precision, filter_passes, transient).and_then(|_| {
+        let reconstructed = || InternalImage::new(vk, RECONSTRUCTED_FORMAT, extent, &format!("dnsr.light{light}.reconstructed_visibility"), false, alias);
+        let made = state.allocate_optional(vk, light, extent, precision, filter_passes, alias).and_then(|_| {
             state.reconstructed = if checkerboard { Some(reconstructed()?) } else { None };
             Ok(())
         });
@@ -224,7 +222,7 @@ impl LightState {
 
     /// Allocates the optional images `filter_passes` passes need and this light lacks; true if it made any (their
     /// first frame initialises them, like a new light's).
-    pub(crate) fn allocate_optional(&mut self, vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32, transient: ResourceKind) -> Result<bool> {
+    pub(crate) fn allocate_optional(&mut self, vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32, alias: bool) -> Result<bool> {
         let mut made = false;
         for o in OPTIONAL.into_iter().filter(|o| o.needed(filter_passes)) {
             let slot = match o {
@@ -232,7 +230,7 @@ impl LightState {
             };
             if slot.is_none() {
                 let (format, name) = o.spec(precision);
-                *slot = Some(InternalImage::new(vk, format, extent, &format!("dnsr.light{light}.{name}"), transient)?);
+                *slot = Some(InternalImage::new(vk, format, extent, &format!("dnsr.light{light}.{name}"), false, alias)?);
                 made = true;
             }
         }
@@ -240,24 +238,26 @@ impl LightState {
     }
 
     pub(crate) fn images(&self) -> impl Iterator<Item = &InternalImage> {
-        self.persistent_images().chain(self.transient_images())
+        [&self.tile_mask, &self.tile_dark, &self.tile_meta, &self.tile_blocker, &self.reprojection, &self.history]
+            .into_iter()
+            .chain(self.depth.iter())
+            .chain(self.moments.iter())
+            .chain(self.tmp.iter())
+            .chain(self.reconstructed.iter())
     }
 
     pub(crate) fn bytes(&self) -> u64 {
         self.images().map(|i| i.bytes).sum()
     }
 
-    /// The images whose contents the next frame reads (`Lifetime::Persistent`).
+    /// The images whose contents the next frame reads (`Lifetime::Persistent` in `image_specs`).
     pub(crate) fn persistent_images(&self) -> impl Iterator<Item = &InternalImage> {
-        [&self.history].into_iter().chain(self.depth.iter()).chain(self.moments.iter())
+        self.images().filter(|i| i.persistent)
     }
 
     /// Every other image: written and read within one record.
     pub(crate) fn transient_images(&self) -> impl Iterator<Item = &InternalImage> {
-        [&self.tile_mask, &self.tile_dark, &self.tile_meta, &self.tile_blocker, &self.reprojection]
-            .into_iter()
-            .chain(self.tmp.iter())
-            .chain(self.reconstructed.iter())
+        self.images().filter(|i| !i.persistent)
     }
 
     pub(crate) fn destroy(&mut self, vk: &Vk) {

@@ -22,6 +22,8 @@ pub(crate) struct InternalImage {
     /// Tests that write an image's texels need it.
     #[cfg_attr(not(test), allow(dead_code))]
     pub format: vk::Format,
+    /// Its contents must survive from one record to the next (state::Lifetime).
+    pub persistent: bool,
 }
 
 /// Checks that the device can sample and store `format` with optimal tiling.
@@ -31,7 +33,10 @@ pub(crate) fn check_internal_format(vk: &Vk, format: vk::Format) -> Result<()> {
 }
 
 impl InternalImage {
-    pub(crate) fn new(vk: &Vk, format: vk::Format, extent: [u32; 2], name: &str, kind: ResourceKind) -> Result<InternalImage> {
+    /// `persistent`: its contents survive from one record to the next. The others are allocated as
+    /// `ResourceKind::TransientImage` where `alias_transient` (the host aliases them), else as `Image`.
+    pub(crate) fn new(vk: &Vk, format: vk::Format, extent: [u32; 2], name: &str, persistent: bool, alias_transient: bool) -> Result<InternalImage> {
+        let kind = if !persistent && alias_transient { ResourceKind::TransientImage } else { ResourceKind::Image };
         let d = &vk.device;
         let info = vk::ImageCreateInfo::default()
             .image_type(vk::ImageType::TYPE_2D)
@@ -46,7 +51,7 @@ impl InternalImage {
         let image = vk_check("vkCreateImage", unsafe { d.create_image(&info, vk.alloc()) })?;
         let req = unsafe { d.get_image_memory_requirements(image) };
         let mut out =
-            InternalImage { image, view: vk::ImageView::null(), memory: Memory::default(), bytes: req.size, format };
+            InternalImage { image, view: vk::ImageView::null(), memory: Memory::default(), bytes: req.size, format, persistent };
         let result = (|| {
             out.memory = memory::allocate(vk, req, kind)?;
             vk_check("vkBindImageMemory", unsafe { d.bind_image_memory(image, out.memory.memory, out.memory.offset) })?;

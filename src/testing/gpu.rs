@@ -481,3 +481,36 @@ impl Drop for Gpu {
         }
     }
 }
+
+/// A host GPU allocator for tests and the bench: one vkAllocateMemory of device-local memory per request, each
+/// request's kind and size logged.
+pub struct HostAllocator {
+    device: ash::Device,
+    memory: vk::PhysicalDeviceMemoryProperties,
+    /// (kind, bytes) of every allocation, in order.
+    pub log: Mutex<Vec<(crate::ResourceKind, u64)>>,
+}
+
+impl HostAllocator {
+    /// An allocator on `gpu`'s device.
+    pub fn new(gpu: &Gpu) -> HostAllocator {
+        let memory = unsafe { gpu.instance.get_physical_device_memory_properties(gpu.physical_device) };
+        HostAllocator { device: gpu.device.clone(), memory, log: Mutex::new(Vec::new()) }
+    }
+}
+
+impl crate::GpuMemoryAllocator for HostAllocator {
+    fn allocate(&self, req: &vk::MemoryRequirements, kind: crate::ResourceKind) -> Result<crate::GpuAllocation, vk::Result> {
+        let types = &self.memory.memory_types[..self.memory.memory_type_count as usize];
+        let index = (0..types.len() as u32)
+            .find(|&i| req.memory_type_bits & (1 << i) != 0 && types[i as usize].property_flags.contains(vk::MemoryPropertyFlags::DEVICE_LOCAL))
+            .ok_or(vk::Result::ERROR_OUT_OF_DEVICE_MEMORY)?;
+        let info = vk::MemoryAllocateInfo::default().allocation_size(req.size).memory_type_index(index);
+        let memory = unsafe { self.device.allocate_memory(&info, None) }?;
+        self.log.lock().unwrap().push((kind, req.size));
+        Ok(crate::GpuAllocation { memory, offset: 0, user_handle: 0 })
+    }
+    fn free(&self, a: &crate::GpuAllocation) {
+        unsafe { self.device.free_memory(a.memory, None) };
+    }
+}

@@ -8,28 +8,10 @@ use super::gpu;
 use crate::gpu::barrier;
 use crate::testing::scene::{render_with_blockers, Camera};
 use crate::testing::Runner;
-use crate::{GpuAllocation, GpuMemoryAllocator, Preset, ResourceKind, Settings, ShadowInput};
+use crate::testing::gpu::HostAllocator;
+use crate::{Preset, ResourceKind, Settings, ShadowInput};
 use ash::vk;
-use std::sync::{Arc, Mutex};
-
-/// A GPU allocator with one vkAllocateMemory per request that logs each request's kind and size.
-struct LoggingAllocator {
-    device: ash::Device,
-    memory_type: u32,
-    log: Mutex<Vec<(ResourceKind, u64)>>,
-}
-
-impl GpuMemoryAllocator for LoggingAllocator {
-    fn allocate(&self, req: &vk::MemoryRequirements, kind: ResourceKind) -> Result<GpuAllocation, vk::Result> {
-        let info = vk::MemoryAllocateInfo::default().allocation_size(req.size).memory_type_index(self.memory_type);
-        let memory = unsafe { self.device.allocate_memory(&info, None) }?;
-        self.log.lock().unwrap().push((kind, req.size));
-        Ok(GpuAllocation { memory, offset: 0, user_handle: 0 })
-    }
-    fn free(&self, a: &GpuAllocation) {
-        unsafe { self.device.free_memory(a.memory, None) };
-    }
-}
+use std::sync::Arc;
 
 /// A value no pass writes: NaN in float images, a mid-range value in unorm ones (a NaN clear turns into 0 there),
 /// set bits in integer ones.
@@ -46,10 +28,6 @@ fn transient_images_carry_nothing_between_records() {
     let g = gpu();
     let (w, h) = (72u32, 48u32);
     let quality = Settings::default();
-    let props = unsafe { g.instance.get_physical_device_memory_properties(g.physical_device) };
-    let memory_type = (0..props.memory_type_count)
-        .find(|&i| props.memory_types[i as usize].property_flags.contains(vk::MemoryPropertyFlags::DEVICE_LOCAL))
-        .unwrap();
     // The last field: the scrambled context aliases its transient memory (allocated by the host, moved out of
     // UNDEFINED on every record).
     let configs: [(&str, Settings, ShadowInput, Option<f32>, bool); 6] = [
@@ -61,7 +39,7 @@ fn transient_images_carry_nothing_between_records() {
         ("Quality, aliased", quality, ShadowInput::HitMask, None, true),
     ];
     for (name, settings, input, guidance, alias) in configs {
-        let allocator = Arc::new(LoggingAllocator { device: g.device.clone(), memory_type, log: Mutex::new(Vec::new()) });
+        let allocator = Arc::new(HostAllocator::new(&g));
         let runner = |alias: bool| {
             let mut info = g.create_info(w, h);
             info.settings = settings;

@@ -171,7 +171,9 @@ pub fn run(
     info.light_count = lights as u32;
     if scene.alias_transient {
         info.alias_transient_memory = true;
-        info.hooks.gpu_memory = Some(std::sync::Arc::new(HostAllocator::new(gpu)));
+        // One allocation per image: an engine would alias the transient ones; the bench measures what aliasing
+        // costs dnsr (a layout transition per transient image and record).
+        info.hooks.gpu_memory = Some(std::sync::Arc::new(dnsr::testing::gpu::HostAllocator::new(gpu)));
     }
     let mut ctx = Context::new(&info).map_err(|e| format!("Context::new: {e}"))?;
     let outputs: Vec<TestImage> = (0..lights).map(|_| gpu.image(vk::Format::R16_SFLOAT, w, h, READ)).collect();
@@ -330,31 +332,3 @@ fn measure(
     Ok((timings, record_us, counts, done))
 }
 
-/// The host allocator of `--alias-transient`: one vkAllocateMemory per request (an engine would alias the
-/// transient ones; the bench measures what the aliasing costs dnsr: a layout transition per transient image and
-/// record).
-struct HostAllocator {
-    device: ash::Device,
-    memory_type: u32,
-}
-
-impl HostAllocator {
-    fn new(gpu: &Gpu) -> HostAllocator {
-        let props = unsafe { gpu.instance.get_physical_device_memory_properties(gpu.physical_device) };
-        let memory_type = (0..props.memory_type_count)
-            .find(|&i| props.memory_types[i as usize].property_flags.contains(vk::MemoryPropertyFlags::DEVICE_LOCAL))
-            .expect("a device-local memory type");
-        HostAllocator { device: gpu.device.clone(), memory_type }
-    }
-}
-
-impl dnsr::GpuMemoryAllocator for HostAllocator {
-    fn allocate(&self, req: &vk::MemoryRequirements, _kind: dnsr::ResourceKind) -> Result<dnsr::GpuAllocation, vk::Result> {
-        let info = vk::MemoryAllocateInfo::default().allocation_size(req.size).memory_type_index(self.memory_type);
-        let memory = unsafe { self.device.allocate_memory(&info, None) }?;
-        Ok(dnsr::GpuAllocation { memory, offset: 0, user_handle: 0 })
-    }
-    fn free(&self, a: &dnsr::GpuAllocation) {
-        unsafe { self.device.free_memory(a.memory, None) };
-    }
-}

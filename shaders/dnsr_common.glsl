@@ -60,12 +60,13 @@ float dnsr_pixel_footprint(vec4 pen, float zc) { return pen.y + pen.z * zc; }
 // average (-1: none known), cast a penumbra narrower than that many pixels either side of its edge on a receiver at
 // linear depth zc (pen: the light's penumbra constants), and lie DNSR_HARD_PENUMBRA_MIN_BLOCKER_PIXELS pixel
 // footprints or more from it (src/passes/mod.rs says why). One ray resolves such a pixel: its output is its sample.
-// A light of no size (angular size 0) casts no penumbra at all: one ray resolves every pixel whose tile knows a
-// blocker, however near (contact shadows). (Written as one condition: an early `return true` for it made lavapipe,
-// Mesa 22.3, leak JIT memory on every dispatch, which the minimal example's LeakSanitizer run caught.)
+// A light of no size (angular size 0) casts no penumbra at all: one ray resolves every pixel, whether its tile knows
+// a blocker or not (faces turned from the light) and however near (contact shadows). (Written as one condition with
+// the others: an early `return true` for it made lavapipe, Mesa 22.3, leak JIT memory on every dispatch, which the
+// minimal example's LeakSanitizer run caught.)
 bool dnsr_hard_penumbra(float blocker, vec4 pen, float zc) {
     float radius = dnsr_get_run_settings().w;
-    if (!DNSR_SPEC_PENUMBRA_GUIDED || !(radius > 0.0) || blocker < 0.0) return false;
+    if (!DNSR_SPEC_PENUMBRA_GUIDED || !(radius > 0.0) || !(blocker >= 0.0 || pen.x == 0.0)) return false;
     float footprint = dnsr_pixel_footprint(pen, zc);
     return footprint > 0.0 && blocker * pen.x < radius * footprint
         && (pen.x == 0.0 || blocker >= float(DNSR_HARD_PENUMBRA_MIN_BLOCKER_PIXELS) * footprint);

@@ -36,7 +36,11 @@ fn random_frame(w: u32, h: u32, seed: u64, frame: u64) -> FrameInputs {
                 f.velocity[i] = [0.37 / w as f32, -0.41 / h as f32];
             }
             // Hit distances for penumbra guidance, with unusable values (zero, negative, NaN, infinite) mixed in.
+            // Seed 11's right half knows no blocker at all (faces turned from the light): a light of no size makes
+            // its pixels hard too.
+            let unknown = seed == 11 && x >= w / 2;
             f.hit_distance[i] = match (x * 7 + y * 3) % 29 {
+                _ if unknown => f32::INFINITY,
                 0 => 0.0,
                 1 => -2.0,
                 2 => f32::NAN,

@@ -887,7 +887,9 @@ typedef struct DnsrShadowsDispatch {
    * there that is not finite and > 0 counts as unknown, so a tracer may write anything (0, say) on a miss.
    * The filter narrows its kernel to the penumbra width the blockers imply: contact shadows stay sharp, wide
    * penumbrae are filtered as without guidance, and under penumbrae narrower than
-   * DnsrSettings::hardPenumbraPixels the output is the ray's own result. Sampled layouts as for the hit mask.
+   * DnsrSettings::hardPenumbraPixels the output is the ray's own result, as it is where no pixel within +-8 px
+   * of a tile has a known distance (its shadowed pixels face away from the light): write every hit's distance.
+   * Sampled layouts as for the hit mask.
    */
   struct DnsrHostImage hitDistance;
   /**

@@ -71,6 +71,12 @@ bool dnsr_hard_penumbra(float blocker, vec4 pen, float zc) {
     return footprint > 0.0 && blocker * pen.x < radius * footprint
         && (pen.x == 0.0 || blocker >= float(DNSR_HARD_PENUMBRA_MIN_BLOCKER_PIXELS) * footprint);
 }
+
+// Penumbra guidance, Settings::hard_penumbra_pixels: no blocker known anywhere within +-8 px of the tile (every
+// shadowed pixel there is a face turned from the light, or the window holds none): its samples are exact.
+bool dnsr_no_blocker(float blocker) {
+    return DNSR_SPEC_PENUMBRA_GUIDED && dnsr_get_run_settings().w > 0.0 && blocker < 0.0;
+}
 #endif
 
 // Vulkan NDC: uv (0,0) is the top-left corner and maps to ndc (-1,-1).

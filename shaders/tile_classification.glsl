@@ -641,7 +641,8 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
 #ifdef DNSR_VISIBILITY_INPUT
     own_sample = !untraced;
 #endif
-    if (own_sample && dnsr_hard_penumbra(blocker, dnsr_get_penumbra_settings(), dnsr_linear_depth(ndc, depth))) {
+    if (own_sample && (dnsr_hard_penumbra(blocker, dnsr_get_penumbra_settings(), dnsr_linear_depth(ndc, depth))
+                       || dnsr_no_blocker(blocker))) {
         shadow = x;
         variance = 0.0;
     }

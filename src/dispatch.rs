@@ -114,7 +114,9 @@ pub struct ShadowsDispatch {
     /// positive counts as unknown. With it, the filter derives how wide the penumbra can be around each pixel
     /// (from `light_angular_size`, the blockers' distance and the view depth) and narrows its kernel to that:
     /// contact shadows stay sharp, wide penumbrae are filtered as without it, and under penumbrae narrower than
-    /// `Settings::hard_penumbra_pixels` the output is the ray's own result. `None`: no guidance.
+    /// `Settings::hard_penumbra_pixels` the output is the ray's own result, as it is where no pixel within +-8 px
+    /// of a tile has a known distance (its shadowed pixels face away from the light): give every ray that hit its
+    /// distance. `None`: no guidance.
     pub hit_distance: Option<HostImage>,
     /// Angular diameter of the light seen from the receivers, in radians (the sun: about 0.0093), in [0, pi).
     /// Used only with `hit_distance`; 0 means a point light (every penumbra hard, no spatial filtering).

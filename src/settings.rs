@@ -90,8 +90,8 @@ declare_settings! {
     /// Penumbra guidance only (a dispatch with hit distances): where the blockers near a tile cast a penumbra
     /// narrower than this many pixels either side of its edge (from their mean hit distance, the light's angular
     /// size and the receiver's depth) and lie at least two pixel footprints away (under a light of angular size 0:
-    /// every receiver, its blockers known or not), a receiver's output is its sample of this frame, neither
-    /// accumulated nor filtered. One ray then resolves the pixel (a hard light, a
+    /// blockers at any distance), or where no blocker is known within +-8 px of the tile (its shadowed pixels face
+    /// away from the light), a receiver's output is its sample of this frame, neither accumulated nor filtered. One ray then resolves the pixel (a hard light, a
     /// distant sun's blocker); accumulating it under a moving camera blurs edges and loses sub-pixel features (a
     /// wire's shadow), and where the estimate errs the output is the input, never worse. The price is on a still
     /// camera, whose accumulation would resolve the few pixels inside such a penumbra. 0 turns this off (the

@@ -203,17 +203,18 @@ impl Penumbra {
         self.pixel_size + self.pixel_size_per_depth * z
     }
 
-    /// Whether blockers `blocker` away on average (negative: none known) cast a penumbra narrower than `radius`
-    /// pixels either side on a receiver at linear depth `z` (`Settings::hard_penumbra_pixels`; 0 never) from
-    /// `HARD_PENUMBRA_MIN_BLOCKER_PIXELS` pixel footprints or more: shaders/dnsr_common.glsl, dnsr_hard_penumbra,
-    /// compared in the same form. A light of no size casts no penumbra: blockers at any distance, or none known.
+    /// Whether blockers `blocker` away on average cast a penumbra narrower than `radius` pixels either side on a
+    /// receiver at linear depth `z` (`Settings::hard_penumbra_pixels`; 0 never) from
+    /// `HARD_PENUMBRA_MIN_BLOCKER_PIXELS` pixel footprints or more: shaders/dnsr_common.glsl, dnsr_hard_penumbra
+    /// and dnsr_no_blocker, compared in the same form. A light of no size casts no penumbra: blockers at any
+    /// distance. No blocker known (`blocker` negative: every shadowed pixel near the tile faces away from the
+    /// light) leaves no penumbra either, whatever the light.
     pub fn is_hard(&self, blocker: f64, z: f64, radius: f64) -> bool {
         let footprint = self.footprint(z);
-        radius > 0.0
-            && (blocker >= 0.0 || self.tan_half_angle == 0.0)
-            && footprint > 0.0
+        let narrow = footprint > 0.0
             && blocker * self.tan_half_angle < radius * footprint
-            && (self.tan_half_angle == 0.0 || blocker >= crate::passes::HARD_PENUMBRA_MIN_BLOCKER_PIXELS as f64 * footprint)
+            && (self.tan_half_angle == 0.0 || blocker >= crate::passes::HARD_PENUMBRA_MIN_BLOCKER_PIXELS as f64 * footprint);
+        radius > 0.0 && (blocker < 0.0 || narrow)
     }
 
     /// Half-width in pixels of the penumbra a blocker `blocker` away casts on a receiver at linear depth `z`

@@ -36,9 +36,9 @@ fn random_frame(w: u32, h: u32, seed: u64, frame: u64) -> FrameInputs {
                 f.velocity[i] = [0.37 / w as f32, -0.41 / h as f32];
             }
             // Hit distances for penumbra guidance, with unusable values (zero, negative, NaN, infinite) mixed in.
-            // Seed 11's right half knows no blocker at all (faces turned from the light): a light of no size makes
-            // its pixels hard too.
-            let unknown = seed == 11 && x >= w / 2;
+            // The right half of seeds 4 and 11 knows no blocker at all (faces turned from the light): its pixels
+            // are hard, under a light of any size.
+            let unknown = (seed == 4 || seed == 11) && x >= w / 2;
             f.hit_distance[i] = match (x * 7 + y * 3) % 29 {
                 _ if unknown => f32::INFINITY,
                 0 => 0.0,

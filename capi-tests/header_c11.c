@@ -58,9 +58,10 @@ int main(void)
         failures++;
     }
 
-    /* Presets: Quality is the default (three passes, stable history); Balanced the FidelityFX values; Fast one pass. */
+    /* Presets: Quality is the default (three passes, stable history); Balanced the FidelityFX values; Fast Quality in one pass. */
     DnsrSettings fast, balanced, quality;
     if (dnsr_settings_init_preset(DNSR_PRESET_FAST, &fast) != DNSR_SUCCESS || fast.filterPasses != 1
+        || fast.stableHistorySamples != 8.0f
         || dnsr_settings_init_preset(DNSR_PRESET_QUALITY, &quality) != DNSR_SUCCESS || memcmp(&quality, &s, sizeof s) != 0
         || quality.filterPasses != 3 || quality.stableHistorySamples != 8.0f || quality.sType != DNSR_STRUCTURE_TYPE_SETTINGS
         || dnsr_settings_init_preset(DNSR_PRESET_BALANCED, &balanced) != DNSR_SUCCESS || balanced.filterPasses != 3

@@ -1624,7 +1624,8 @@ typedef struct DnsrDiagnosis {
 #define DNSR_SHADOW_INPUT_MAX_ENUM 2147483647
 
 /**
- * The FidelityFX values with one filter pass: the cheapest setting whose error stays near Balanced's.
+ * Quality's values with one filter pass: the cheapest setting with Quality's do-no-harm features (runs,
+ * converged pixels, hard penumbrae); docs/do-no-harm.md measures both.
  */
 #define DNSR_PRESET_FAST 0
 

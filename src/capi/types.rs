@@ -194,7 +194,8 @@ pub const DNSR_SHADOW_INPUT_MAX_ENUM: DnsrShadowInput = 0x7FFF_FFFF;
 
 /// Named settings (`dnsr_settings_init_preset`), chosen from the accuracy measurements in docs/accuracy.md.
 pub type DnsrPreset = u32;
-/// The FidelityFX values with one filter pass: the cheapest setting whose error stays near Balanced's.
+/// Quality's values with one filter pass: the cheapest setting with Quality's do-no-harm features (runs,
+/// converged pixels, hard penumbrae); docs/do-no-harm.md measures both.
 pub const DNSR_PRESET_FAST: DnsrPreset = 0;
 /// The FidelityFX shadow denoiser's values: its output, for engines that need the old look (5% current-frame
 /// weight, output contrast 1.2, cross-tap weight 2/3, none of the run-based features).

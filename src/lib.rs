@@ -14,9 +14,13 @@ mod create_info;
 mod dispatch;
 mod error;
 pub mod ffx;
+mod glsl;
 mod gpu;
 mod host;
+mod interface;
+mod light;
 mod passes;
+mod pipeline;
 pub mod reference;
 mod settings;
 mod state;
@@ -24,7 +28,7 @@ mod timestamps;
 mod validate;
 
 pub use ash;
-pub use classify::{
+pub use passes::classify::{
     ClassifierBuffers, ClassifyDispatch, ShadowCascade, CLASSIFY_COUNTS_BYTES, CLASSIFY_TAP_COUNTS, CLASSIFY_TILE_BYTES, MAX_CASCADES,
 };
 pub use context::{memory_requirements, memory_requirements_for_input, persistent_memory_requirements, Context, MIN_API_VERSION};
@@ -32,7 +36,7 @@ pub use create_info::{
     ContextCreateInfo, DepthFlags, EnabledFeatures, Precision, ShaderOverride, ShadowInput, DEFAULT_MAX_FRAMES_IN_FLIGHT, MAX_FRAMES_IN_FLIGHT,
     MAX_LIGHT_COUNT,
 };
-pub use gpu::shader::{shader_variants, ShaderVariantInfo, SHADER_COMPILE_ARGS};
+pub use passes::variants::{shader_variants, ShaderVariantInfo, SHADER_COMPILE_ARGS};
 pub use dispatch::{
     DebugView, EngineImage, HitMaskConvention, HostImage, HostSync, LightDispatch, Rect, ShadowsDispatch, ENGINE_BINDING_BASE, MAX_ENGINE_IMAGES,
     MAX_LIGHTS_PER_RECORD,

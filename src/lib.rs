@@ -4,6 +4,22 @@
 //! [`Context::record_shadows`] to record dnsr's compute passes (prepare, tile classification, a-trous filter)
 //! into its own `VkCommandBuffer`. dnsr never submits, waits, or owns a queue, and never links the Vulkan
 //! loader: every function is loaded through the host's `vkGetInstanceProcAddr` / `vkGetDeviceProcAddr`.
+//!
+//! # Layers
+//!
+//! The modules import one way, down (`cargo test layers` fails on an import upward; no cycle between them):
+//!
+//! - API, on top: `capi` (the C ABI) and `ffx` (the FidelityFX API over it).
+//! - Contexts: `context` (the denoiser: pipelines, recording), `light` (a light's images), `classify` (the
+//!   classifier's buffers and recording), `pipeline` and `interface` (a pass's pipeline and its reflected
+//!   interface), `validate`, `timestamps`. They may import everything below.
+//! - Vulkan plumbing: `gpu` (loading, memory, images, barriers, descriptors, pipelines, SPIR-V checks). Of the
+//!   data it knows `error` and `host` only; binding numbers and types, descriptors and formats come as parameters.
+//! - The CPU reference, `reference`: the data layer only.
+//! - Data, at the bottom: `error`, `host`, `settings`, `dispatch`, `create_info`, `glsl` (blocks with a GLSL twin),
+//!   `state` (the image table), `passes` (each pass's bindings, roles, group sizes and variants; `passes::classify`
+//!   the classifier's tables and dispatch), `constants` (the frame's constants and the generated GLSL, from every
+//!   table). No Vulkan object is made there; they use `ash::vk` types and one another.
 #![deny(missing_docs)]
 
 pub mod capi;

@@ -2,47 +2,15 @@
 //!
 //! `shaders/generated/dnsr_constants.glsl` is written from these definitions (`DNSR_BLESS=1 cargo test
 //! generated_glsl`) and a test fails when the committed file differs, so the shader and host layouts cannot
-//! drift apart. Every member is a 16-byte vector or a matrix, which makes `#[repr(C)]` and std140 agree without
-//! padding rules to remember.
+//! drift apart. The blocks are declared with `gpu_block!` (glsl.rs); those of one pass with that pass (the filter's
+//! push constants in passes/filter.rs, the classifier's constants in passes/classify), and the header gathers
+//! them with the flags and sizes of every table below it.
 
+use crate::glsl::gpu_block;
+use crate::passes::classify::{ClassifyConstants, CLASSIFY_BOUND_INTERVAL, CLASSIFY_CASCADES_INVERTED, CLASSIFY_REJECT_LIT};
+use crate::passes::filter::{FilterPush, PASS_SKIP_CLEARED, PASS_WRITE_GUIDE, PASS_WRITE_GUIDE_EVERYWHERE, PASS_WRITE_INTERNAL};
+use crate::settings::Settings;
 use std::fmt::Write as _;
-
-/// A Rust type with a GLSL spelling of identical std140 / `repr(C)` layout.
-#[cfg_attr(not(test), allow(dead_code))]
-pub(crate) trait GlslType {
-    const GLSL: &'static str;
-}
-impl GlslType for [f32; 4] {
-    const GLSL: &'static str = "vec4";
-}
-impl GlslType for [u32; 4] {
-    const GLSL: &'static str = "uvec4";
-}
-impl GlslType for [[f32; 4]; 4] {
-    const GLSL: &'static str = "mat4";
-}
-
-/// Declares a `#[repr(C)]` Pod struct and the GLSL struct of the same layout.
-macro_rules! gpu_block {
-    ($(#[$m:meta])* pub(crate) struct $name:ident as $glsl:literal {
-        $( $(#[$fm:meta])* $f:ident : $t:ty ),* $(,)?
-    }) => {
-        $(#[$m])*
-        #[repr(C)]
-        #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
-        pub(crate) struct $name { $( $(#[$fm])* pub $f: $t ),* }
-        #[cfg_attr(not(test), allow(dead_code))]
-        impl $name {
-            /// The GLSL declaration of this block's struct.
-            pub(crate) fn glsl() -> String {
-                let mut s = format!("struct {} {{\n", $glsl);
-                $( let _ = writeln!(s, "    {} {};", <$t as GlslType>::GLSL, stringify!($f)); )*
-                s.push_str("};\n");
-                s
-            }
-        }
-    };
-}
 
 gpu_block! {
     /// Per-dispatch constants, written with `vkCmdUpdateBuffer` at the start of each recorded frame.
@@ -83,54 +51,26 @@ gpu_block! {
     }
 }
 
-gpu_block! {
-    /// Push constants of one filter pass.
-    pub(crate) struct FilterPush as "DnsrFilterPush" {
-        /// x: tap step in pixels; y: DNSR_PASS_* bits; z: pass index; w: DNSR_DEBUG_VIEW_* (final pass).
-        pass: [u32; 4],
-        /// The light-slot variants (several lights per dispatch; zero otherwise): x: lights in this dispatch
-        /// (1..=DNSR_LIGHT_SLOTS); y: bit s set when slot s has penumbra guidance; zw: unused.
-        lights: [u32; 4],
-        /// The light-slot variants: slot s's tan(light angular diameter / 2) (penumbra.x of its constants; the
-        /// other penumbra constants depend on the camera only and are read from slot 0's).
-        light_tan_half_angle: [f32; 4],
+impl FrameConstants {
+    /// Fills the settings part of the per-frame constants.
+    pub(crate) fn set_settings(&mut self, s: &Settings) {
+        self.disocclusion = [
+            s.disocclusion_threshold_facing,
+            s.disocclusion_threshold_grazing,
+            s.disocclusion_angle_exponent,
+            s.history_clamp_sigmas,
+        ];
+        self.rejection = [
+            s.history_rejection_falloff,
+            s.history_rejection_min_sigma,
+            s.variance_boost_samples,
+            crate::state::signal_scale(s.variance_boost_samples),
+        ];
+        self.runs = [s.stable_history_samples, s.history_flip_samples, s.converged_samples, s.hard_penumbra_pixels];
+        self.temporal = [s.full_history_samples, s.min_current_weight, s.max_history_samples, s.spatial_falloff];
+        self.filtering = [s.kernel_cross_weight, s.normal_power, s.output_contrast, s.min_shadow_sigma];
     }
 }
-
-gpu_block! {
-    /// Constants of the hybrid-shadows classifier (`Context::record_classify`), written with `vkCmdUpdateBuffer`
-    /// next to the frame constants it also reads (render rectangle, camera, normal decode).
-    pub(crate) struct ClassifyConstants as "DnsrClassifyConstants" {
-        /// Cascade 0: world position (w = 1) to (u, v, depth) of its shadow map; affine.
-        cascade0: [[f32; 4]; 4],
-        /// Cascade 1, as cascade 0.
-        cascade1: [[f32; 4]; 4],
-        /// Cascade 2, as cascade 0.
-        cascade2: [[f32; 4]; 4],
-        /// Cascade 3, as cascade 0.
-        cascade3: [[f32; 4]; 4],
-        /// Column i, cascade i: x: its depth units per world unit along the light direction (> 0); y, z: its u and
-        /// v units per world unit across the light direction; w: the blocker offset in its depth units.
-        cascade_units: [[f32; 4]; 4],
-        /// Column i, cascade i: the world displacement (xyz) of a unit step along its u at constant v and depth
-        /// (the inverse matrix's first column): where the blocker-search taps lie in the world.
-        cascade_axes_u: [[f32; 4]; 4],
-        /// Column i, cascade i: as `cascade_axes_u`, along v.
-        cascade_axes_v: [[f32; 4]; 4],
-        /// xyz: unit world-space direction from the surfaces toward the light; w: tan(angular diameter / 2).
-        light: [f32; 4],
-        /// x: cascade count; y: blocker-search taps; z: tile cut-off (a tile is listed with more pixels to trace
-        /// than this); w: DNSR_CLASSIFY_* bits.
-        settings: [u32; 4],
-    }
-}
-
-/// Classifier flag: pixels every blocker-search tap finds unoccluded are decided lit (else they are traced).
-pub(crate) const CLASSIFY_REJECT_LIT: u32 = 1 << 0;
-/// Classifier flag: the ray interval of a listed tile is bounded by the blockers the cascades show.
-pub(crate) const CLASSIFY_BOUND_INTERVAL: u32 = 1 << 1;
-/// Classifier flag: the shadow maps hold 1 at the light's near plane and 0 at its far plane.
-pub(crate) const CLASSIFY_CASCADES_INVERTED: u32 = 1 << 2;
 
 /// Frame flag: treat every pixel as disoccluded (camera cut, first frame, resize).
 pub(crate) const FLAG_RESET: u32 = 1 << 0;
@@ -140,17 +80,6 @@ pub(crate) const FLAG_DEPTH_INVERTED: u32 = 1 << 1;
 pub(crate) const FLAG_LIT_BIT_MASK: u32 = 1 << 2;
 /// Frame flag: a checkerboard input (flags.y holds the phase): classification knows which pixels were traced.
 pub(crate) const FLAG_CHECKERBOARD: u32 = 1 << 3;
-/// Filter pass flag: write mean and variance to the internal intermediate image.
-pub(crate) const PASS_WRITE_INTERNAL: u32 = 1 << 0;
-/// Filter pass flag: groups whose two tiles are cleared write nothing (what the pass would write there is
-/// already in place).
-pub(crate) const PASS_SKIP_CLEARED: u32 = 1 << 1;
-/// Filter pass flag: write the guide (linear depth and normal) that the later passes read per tap.
-pub(crate) const PASS_WRITE_GUIDE: u32 = 1 << 2;
-/// Filter pass flag (with PASS_WRITE_GUIDE): write the guide in every block, not only where this light's later
-/// passes tap it. The first light of a record of several writes it for all of them, and the others' first passes
-/// write none (the guide is the same for every light: 16 B per pixel each of them no longer writes).
-pub(crate) const PASS_WRITE_GUIDE_EVERYWHERE: u32 = 1 << 3;
 
 /// Binding names shared by shaders and host. The host finds each binding's number through reflection.
 #[cfg_attr(not(test), allow(dead_code))]
@@ -186,18 +115,18 @@ pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
     ("DNSR_WIDE_GROUP_HEIGHT", crate::passes::WIDE_GROUP[1]),
     ("DNSR_CLASSIFY_TILES_PER_GROUP", crate::passes::classify::TILES_PER_GROUP),
     ("DNSR_MOMENT_RADIUS", crate::passes::MOMENT_RADIUS),
-    ("DNSR_MAX_SAMPLE_RUN", crate::passes::MAX_SAMPLE_RUN),
+    ("DNSR_MAX_SAMPLE_RUN", crate::settings::MAX_SAMPLE_RUN),
     ("DNSR_RUN_CLAMP_SAMPLES", crate::passes::RUN_CLAMP_SAMPLES),
     ("DNSR_UNCONVERGED_VARIANCE_INV", crate::passes::UNCONVERGED_VARIANCE_INV),
     ("DNSR_UNCONVERGED_VARIANCE_INV_FP16", crate::passes::UNCONVERGED_VARIANCE_INV_FP16),
     ("DNSR_SIGNAL_MAX_DEVIATION_CODE", crate::state::SIGNAL_MAX_DEVIATION_CODE),
     ("DNSR_SIGNAL_SKY_CODE_ABOVE", crate::state::SIGNAL_SKY_CODE_ABOVE),
     ("DNSR_HARD_PENUMBRA_MIN_BLOCKER_PIXELS", crate::passes::HARD_PENUMBRA_MIN_BLOCKER_PIXELS),
-    ("DNSR_SPEC_ID_PENUMBRA_GUIDED", crate::gpu::shader::SPEC_PENUMBRA_GUIDED),
-    ("DNSR_SPEC_ID_STABLE_HISTORY", crate::gpu::shader::SPEC_STABLE_HISTORY),
+    ("DNSR_SPEC_ID_PENUMBRA_GUIDED", crate::passes::SPEC_PENUMBRA_GUIDED),
+    ("DNSR_SPEC_ID_STABLE_HISTORY", crate::passes::SPEC_STABLE_HISTORY),
     ("DNSR_LIGHT_SLOTS", crate::passes::LIGHT_SLOTS as u32),
-    ("DNSR_MAX_CASCADES", crate::classify::MAX_CASCADES as u32),
-    ("DNSR_MAX_CLASSIFY_TAPS", crate::classify::MAX_TAPS as u32),
+    ("DNSR_MAX_CASCADES", crate::passes::classify::MAX_CASCADES as u32),
+    ("DNSR_MAX_CLASSIFY_TAPS", crate::passes::classify::MAX_TAPS as u32),
 ];
 
 /// The complete text of `shaders/generated/dnsr_constants.glsl`.
@@ -221,9 +150,9 @@ pub(crate) fn generated_glsl() -> String {
         let _ = writeln!(s, "#define {name} {value}");
     }
     // The classifier's blocker-search taps: the first n of these for n taps (each prefix is spread over the disc).
-    let _ = writeln!(s, "\n#define DNSR_CLASSIFY_MAX_SLOPE {:?}", crate::classify::MAX_SLOPE);
+    let _ = writeln!(s, "\n#define DNSR_CLASSIFY_MAX_SLOPE {:?}", crate::passes::classify::MAX_SLOPE);
     s += "const vec2 DNSR_CLASSIFY_DISC[DNSR_MAX_CLASSIFY_TAPS] = vec2[](\n";
-    let disc = crate::classify::blocker_disc();
+    let disc = crate::passes::classify::blocker_disc();
     for (i, [x, y]) in disc.iter().enumerate() {
         let _ = writeln!(s, "    vec2({x:?}, {y:?}){}", if i + 1 < disc.len() { "," } else { "" });
     }

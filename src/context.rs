@@ -5,17 +5,19 @@ use crate::create_info::{ContextCreateInfo, EnabledFeatures, Precision, ShadowIn
 use crate::dispatch::{HitMaskConvention, LightDispatch, Rect, ShadowsDispatch, MAX_LIGHTS_PER_RECORD};
 use crate::error::{vk_check, Error, Result};
 use crate::gpu::barrier;
-use crate::gpu::descriptors::{roles, Binder, RecordSets};
+use crate::gpu::descriptors::{Binder, RecordSets};
 use crate::gpu::image::{check_internal_format, color_range};
+use crate::gpu::loader::{HostDevice, Vk};
 use crate::gpu::memory::{self, Memory};
 use crate::host::ResourceKind;
-use crate::gpu::loader::Vk;
-use crate::gpu::shader::{variant, Pipeline, SPEC_PENUMBRA_GUIDED, SPEC_STABLE_HISTORY};
+use crate::light::LightState;
 use crate::passes::bindings::{image, Binding};
-use crate::passes::{FrameViews, Pass, Role, LIGHT_SLOTS};
+use crate::passes::variants::{is_light_slot_variant, variant};
 use crate::passes::{filter, prepare, tile_classification};
+use crate::passes::{roles, FrameViews, Pass, Role, LIGHT_SLOTS, SPEC_PENUMBRA_GUIDED, SPEC_STABLE_HISTORY};
+use crate::pipeline::PassPipeline;
 use crate::settings::{check_filter_passes, Settings};
-use crate::state::{intermediate_format, LightState, DEPTH_FORMAT, MOMENTS_FORMAT, TILE_FORMAT};
+use crate::state::{intermediate_format, DEPTH_FORMAT, MOMENTS_FORMAT, TILE_FORMAT};
 use crate::timestamps::{ClassifierTimings, PassTimings, Timestamps};
 use crate::validate;
 use ash::vk;
@@ -64,19 +66,19 @@ fn constants_bytes(light_count: u32) -> u64 {
 pub const MIN_API_VERSION: u32 = vk::API_VERSION_1_1;
 
 struct Pipelines {
-    prepare: Pipeline,
-    classification: Pipeline,
-    filter_first: Pipeline,
-    filter_later: Pipeline,
-    filter_final: Pipeline,
-    filter_only: Pipeline,
+    prepare: PassPipeline,
+    classification: PassPipeline,
+    filter_first: PassPipeline,
+    filter_later: PassPipeline,
+    filter_final: PassPipeline,
+    filter_only: PassPipeline,
     /// The light-slot variants of the later filter passes (intermediate, final), which filter up to LIGHT_SLOTS
     /// lights per dispatch: a context of several lights without shader overrides has them.
-    filter_lights: Option<[Pipeline; 2]>,
+    filter_lights: Option<[PassPipeline; 2]>,
 }
 
 impl Pipelines {
-    fn all_mut(&mut self) -> impl Iterator<Item = &mut Pipeline> {
+    fn all_mut(&mut self) -> impl Iterator<Item = &mut PassPipeline> {
         [
             &mut self.prepare,
             &mut self.classification,
@@ -89,7 +91,7 @@ impl Pipelines {
         .chain(self.filter_lights.iter_mut().flatten())
     }
 
-    fn for_role(&self, role: Role) -> &Pipeline {
+    fn for_role(&self, role: Role) -> &PassPipeline {
         match role {
             Role::Prepare => &self.prepare,
             Role::Classification => &self.classification,
@@ -146,6 +148,19 @@ pub struct Context {
     classifier: Option<crate::classify::Classifier>,
 }
 
+/// What loading the host's device takes from the create info.
+fn host_device(info: &ContextCreateInfo) -> HostDevice<'_> {
+    HostDevice {
+        instance: info.instance,
+        physical_device: info.physical_device,
+        device: info.device,
+        get_instance_proc_addr: info.get_instance_proc_addr,
+        get_device_proc_addr: info.get_device_proc_addr,
+        push_descriptor: info.features.push_descriptor,
+        hooks: &info.hooks,
+    }
+}
+
 fn check_features(vk: &Vk, info: &ContextCreateInfo) -> Result<()> {
     let props = unsafe { vk.instance.get_physical_device_properties(vk.physical_device) };
     validate::api_version(info.api_version, props.api_version, MIN_API_VERSION)?;
@@ -189,13 +204,13 @@ fn check_shader_overrides(vk: &Vk, info: &ContextCreateInfo) -> Result<()> {
     let overrides = &info.shader_overrides;
     let offers = if overrides.is_empty() { Default::default() } else { override_offers(vk, info) };
     for (i, o) in overrides.iter().enumerate() {
-        if crate::gpu::shader::is_light_slot_variant(&o.variant) {
+        if is_light_slot_variant(&o.variant) {
             return Err(Error::ShaderInterface(format!(
                 "shader override {i}: \"{}\" filters several lights per dispatch and is dnsr's own; a context with overrides runs a dispatch per light instead",
                 o.variant
             )));
         }
-        if !crate::shader_variants().any(|v| v.name == o.variant) {
+        if !crate::passes::variants::shader_variants().any(|v| v.name == o.variant) {
             // Not a variant: echo no more of the name than a variant's could be.
             let shown: String = o.variant.chars().take(64).collect();
             let more = if shown.len() < o.variant.len() { "..." } else { "" };
@@ -206,7 +221,7 @@ fn check_shader_overrides(vk: &Vk, info: &ContextCreateInfo) -> Result<()> {
         if overrides[..i].iter().any(|p| p.variant == o.variant) {
             return Err(Error::ShaderInterface(format!("shader override {i}: \"{}\" is overridden twice", o.variant)));
         }
-        crate::gpu::shader::check_override(&o.variant, &o.spirv, offers)?;
+        crate::interface::check_override(&o.variant, &o.spirv, offers)?;
     }
     Ok(())
 }
@@ -215,7 +230,7 @@ impl Context {
     /// Creates pipelines and internal state for `info.width` x `info.height`. Every unsupported combination
     /// is reported here rather than at the first dispatch.
     pub fn new(info: &ContextCreateInfo) -> Result<Context> {
-        let vk = Vk::load(info)?;
+        let vk = Vk::load(&host_device(info), validate::known_formats())?;
         let props = unsafe { vk.instance.get_physical_device_properties(vk.physical_device) };
         validate::extent("render size", info.width, info.height, props.limits.max_image_dimension2_d)?;
         validate::light_count(info.light_count)?;
@@ -277,7 +292,9 @@ impl Context {
         let layouts = roles().map(|r| pipelines.for_role(r));
         ctx.engine_images_declared = layouts.iter().any(|p| p.interface.bindings.iter().any(|b| b.resource.engine_slot().is_some()));
         let push_descriptors = push.is_some();
-        ctx.binder = Some(Binder::new(&ctx.vk, push, layouts, info.light_count, info.max_frames_in_flight)?);
+        // One set per role in each ring slot: a pass's set is at its role's set_index.
+        let set_layouts = layouts.map(|p| &p.vulkan);
+        ctx.binder = Some(Binder::new(&ctx.vk, push, &set_layouts, info.light_count, info.max_frames_in_flight)?);
         ctx.create_sampler_and_constants()?;
         if info.enable_timestamps {
             ctx.timestamps = Some(Timestamps::new(&ctx.vk, info.queue_family_index)?);
@@ -305,19 +322,19 @@ impl Context {
     /// every pipeline of this context that reads it (all but prepare) is overridden. Where one is not, dnsr's own
     /// decode runs there and the G-buffer must be in dnsr's formats (an override set compiled for a hit-mask
     /// context leaves a checkerboard context's classification variant, say, to dnsr).
-    fn engine_decodes(&self, overrides: &[crate::ShaderOverride]) -> bool {
+    fn engine_decodes(&self, overrides: &[crate::create_info::ShaderOverride]) -> bool {
         self.pipeline_names()[1..].iter().all(|name| overrides.iter().any(|o| o.variant == *name))
     }
 
-    fn create_pipelines(&self, push: bool, overrides: &[crate::ShaderOverride]) -> Result<Pipelines> {
+    fn create_pipelines(&self, push: bool, overrides: &[crate::create_info::ShaderOverride]) -> Result<Pipelines> {
         // Several lights per dispatch only with dnsr's own variants: an engine's override of the later pass would
         // not be the one that runs for several lights (and light-slot variants are never overridden).
         let light_slots = if self.light_count > 1 && overrides.is_empty() { &self.light_slot_names()[..] } else { &[] };
         let names = self.pipeline_names().into_iter().chain(light_slots.iter().copied());
-        let mut made: Vec<Pipeline> = Vec::with_capacity(8);
+        let mut made: Vec<PassPipeline> = Vec::with_capacity(8);
         for name in names {
             let spirv = overrides.iter().find(|o| o.variant == name).map_or(variant(name).spirv, |o| &o.spirv[..]);
-            match Pipeline::new(&self.vk, name, spirv, push) {
+            match PassPipeline::new(&self.vk, name, spirv, push) {
                 Ok(p) => made.push(p),
                 Err(e) => {
                     made.iter_mut().for_each(|p| p.destroy(&self.vk));
@@ -474,7 +491,7 @@ impl Context {
 
     /// The classifier's tile list and counts (`ContextCreateInfo::enable_classifier`), which the engine's trace
     /// reads after `record_classify`. They change only with `resize`.
-    pub fn classifier_buffers(&self) -> Result<crate::ClassifierBuffers> {
+    pub fn classifier_buffers(&self) -> Result<crate::passes::classify::ClassifierBuffers> {
         let c = self.classifier.as_ref().ok_or(Error::ClassifierNotEnabled)?;
         if !c.has_buffers() {
             return Err(Error::NotResized);
@@ -486,7 +503,7 @@ impl Context {
     /// the shadow maps' verdicts and lists the tiles with pixels left to trace in `classifier_buffers()`, with
     /// indirect-dispatch counts. The engine then traces the listed pixels (ORing its bits into the mask) and
     /// records the denoiser with that mask. On error nothing is recorded.
-    pub fn record_classify(&mut self, cmd: vk::CommandBuffer, d: &crate::ClassifyDispatch) -> Result<()> {
+    pub fn record_classify(&mut self, cmd: vk::CommandBuffer, d: &crate::passes::classify::ClassifyDispatch) -> Result<()> {
         if cmd == vk::CommandBuffer::null() {
             return Err(Error::NullHandle("command_buffer"));
         }
@@ -496,7 +513,7 @@ impl Context {
         }
         let engine_decodes = classifier.engine_decodes(d.cascade_array.is_some());
         let rect = validate::classify(&self.vk, d, self.size, self.supported_stages, engine_decodes)?;
-        let classify = crate::classify::constants(d)?;
+        let classify = crate::passes::classify::constants(d)?;
         let shadows = ShadowsDispatch {
             depth: d.depth,
             normals: d.normals,
@@ -554,8 +571,12 @@ impl Context {
         let light = &self.lights[d.light_index as usize];
         let host = |h: &crate::dispatch::HostImage| image(h.view, h.layout);
         FrameViews {
-            constants: self.constants_buffer,
-            constants_offset: slot as vk::DeviceSize * CONSTANTS_STRIDE,
+            constants: Binding {
+                buffer: self.constants_buffer,
+                offset: slot as vk::DeviceSize * CONSTANTS_STRIDE,
+                range: std::mem::size_of::<FrameConstants>() as vk::DeviceSize,
+                ..Default::default()
+            },
             hit_mask: host(&d.hit_mask),
             visibility: light.reconstructed.as_ref().map_or(host(&d.visibility), |r| image(r.view, vk::ImageLayout::GENERAL)),
             visibility_out: light.reconstructed.as_ref().map_or(vk::ImageView::null(), |r| r.view),
@@ -599,7 +620,7 @@ impl Context {
             for b in &pipelines.for_role(pass.role).interface.bindings {
                 if let Some(slot) = b.resource.engine_slot() {
                     let storage = b.descriptor_type == vk::DescriptorType::STORAGE_IMAGE;
-                    validate::engine_image(crate::ENGINE_BINDING_BASE + slot as u32, storage, d.engine_images[slot])?;
+                    validate::engine_image(crate::dispatch::ENGINE_BINDING_BASE + slot as u32, storage, d.engine_images[slot])?;
                 }
             }
         }
@@ -694,9 +715,9 @@ impl Context {
             for index in 0..pass_count {
                 for k in 0..dispatch_count(index) {
                     let pass = build(index, k);
-                    let set = sets[first_light(index, k)].as_ref().expect("one per dispatch").get(pass.role);
+                    let set = binder.set(sets[first_light(index, k)].expect("one per dispatch"), pass.role.set_index());
                     if pass.enabled {
-                        binder.write(&self.vk.device, set, pipelines.for_role(pass.role), &pass.bindings, self.sampler);
+                        binder.write(&self.vk.device, set, || pipelines.for_role(pass.role).descriptors(&pass.bindings, self.sampler));
                     }
                 }
             }
@@ -792,13 +813,13 @@ impl Context {
                 }
                 let groups = pass.group_count(extent);
                 unsafe {
-                    dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.for_frame(pass.spec));
+                    dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.vulkan.for_frame(pass.spec));
                     if let Some(push) = &pass.push {
-                        dev.cmd_push_constants(cmd, pipeline.layout, vk::ShaderStageFlags::COMPUTE, 0, bytemuck::bytes_of(push));
+                        dev.cmd_push_constants(cmd, pipeline.vulkan.layout, vk::ShaderStageFlags::COMPUTE, 0, bytemuck::bytes_of(push));
                     }
                 }
-                let set = sets[first_light(index, k)].as_ref().expect("one per dispatch").get(pass.role);
-                binder.bind(dev, cmd, pipeline, &pass.bindings, self.sampler, set);
+                let set = binder.set(sets[first_light(index, k)].expect("one per dispatch"), pass.role.set_index());
+                binder.bind(dev, cmd, &pipeline.vulkan, || pipeline.descriptors(&pass.bindings, self.sampler), set);
                 unsafe { dev.cmd_dispatch(cmd, groups[0], groups[1], groups[2]) };
             }
             stamp(index as u32 + 1);
@@ -866,7 +887,7 @@ impl Context {
             penumbra: penumbra_constants(d, rect.height),
             ..Default::default()
         };
-        self.settings.write_to(&mut c);
+        c.set_settings(&self.settings);
         c
     }
 }
@@ -983,7 +1004,7 @@ impl Default for Hazards {
 impl Hazards {
     /// Whether `pass` must wait for the passes since the last barrier (read-after-write, write-after-write or
     /// write-after-read on one of its images); records its own accesses either way.
-    fn needs_barrier(&mut self, pipeline: &Pipeline, pass: &Pass) -> bool {
+    fn needs_barrier(&mut self, pipeline: &PassPipeline, pass: &Pass) -> bool {
         let accesses = || {
             pipeline.interface.bindings.iter().filter_map(|b| {
                 let view = pass.bindings[b.resource as usize].view;

@@ -4,6 +4,22 @@
 //! [`Context::record_shadows`] to record dnsr's compute passes (prepare, tile classification, a-trous filter)
 //! into its own `VkCommandBuffer`. dnsr never submits, waits, or owns a queue, and never links the Vulkan
 //! loader: every function is loaded through the host's `vkGetInstanceProcAddr` / `vkGetDeviceProcAddr`.
+//!
+//! # Layers
+//!
+//! The modules import one way, down (`cargo test layers` fails on an import upward; no cycle between them):
+//!
+//! - API, on top: `capi` (the C ABI) and `ffx` (the FidelityFX API over it).
+//! - Contexts: `context` (the denoiser: pipelines, recording), `light` (a light's images), `classify` (the
+//!   classifier's buffers and recording), `pipeline` and `interface` (a pass's pipeline and its reflected
+//!   interface), `validate`, `timestamps`. They may import everything below.
+//! - Vulkan plumbing: `gpu` (loading, memory, images, barriers, descriptors, pipelines, SPIR-V checks). Of the
+//!   data it knows `error` and `host` only; binding numbers and types, descriptors and formats come as parameters.
+//! - The CPU reference, `reference`: the data layer only.
+//! - Data, at the bottom: `error`, `host`, `settings`, `dispatch`, `create_info`, `glsl` (blocks with a GLSL twin),
+//!   `state` (the image table), `passes` (each pass's bindings, roles, group sizes and variants; `passes::classify`
+//!   the classifier's tables and dispatch), `constants` (the frame's constants and the generated GLSL, from every
+//!   table). No Vulkan object is made there; they use `ash::vk` types and one another.
 #![deny(missing_docs)]
 
 pub mod capi;
@@ -14,9 +30,13 @@ mod create_info;
 mod dispatch;
 mod error;
 pub mod ffx;
+mod glsl;
 mod gpu;
 mod host;
+mod interface;
+mod light;
 mod passes;
+mod pipeline;
 pub mod reference;
 mod settings;
 mod state;
@@ -24,7 +44,7 @@ mod timestamps;
 mod validate;
 
 pub use ash;
-pub use classify::{
+pub use passes::classify::{
     ClassifierBuffers, ClassifyDispatch, ShadowCascade, CLASSIFY_COUNTS_BYTES, CLASSIFY_TAP_COUNTS, CLASSIFY_TILE_BYTES, MAX_CASCADES,
 };
 pub use context::{memory_requirements, memory_requirements_for_input, persistent_memory_requirements, Context, MIN_API_VERSION};
@@ -32,7 +52,7 @@ pub use create_info::{
     ContextCreateInfo, DepthFlags, EnabledFeatures, Precision, ShaderOverride, ShadowInput, DEFAULT_MAX_FRAMES_IN_FLIGHT, MAX_FRAMES_IN_FLIGHT,
     MAX_LIGHT_COUNT,
 };
-pub use gpu::shader::{shader_variants, ShaderVariantInfo, SHADER_COMPILE_ARGS};
+pub use passes::variants::{shader_variants, ShaderVariantInfo, SHADER_COMPILE_ARGS};
 pub use dispatch::{
     DebugView, EngineImage, HitMaskConvention, HostImage, HostSync, LightDispatch, Rect, ShadowsDispatch, ENGINE_BINDING_BASE, MAX_ENGINE_IMAGES,
     MAX_LIGHTS_PER_RECORD,

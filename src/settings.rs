@@ -1,7 +1,6 @@
 //! Every constant of the algorithm, as a setting. The defaults are the Quality preset (the measured accurate mode);
 //! `Preset::Balanced` is the FidelityFX shadow denoiser's values.
 
-use crate::constants::FrameConstants;
 use crate::error::{Error, Result};
 
 /// Declares every setting once: its doc, type, default, valid range (low, high, and the interval as messages and
@@ -71,7 +70,7 @@ declare_settings! {
     /// local 17x17 distribution, and its history is not rejected: the input already resolves it (a hard shadow
     /// edge), and the local distribution, which straddles the edge, would pull it towards the edge's mean.
     /// 0 turns this off (the FidelityFX behaviour).
-    stable_history_samples: f32 = 8.0, [0.0, crate::passes::MAX_SAMPLE_RUN as f32] "[0, 4096]";
+    stable_history_samples: f32 = 8.0, [0.0, MAX_SAMPLE_RUN as f32] "[0, 4096]";
     /// After a stable run (`stable_history_samples`), this many samples of the other value in a row, or the first
     /// one where the local 17x17 mean is within 0.5 of it, restart the pixel's history at the local mean: the
     /// shadow moved over the pixel, with or without motion vectors. Whole samples (a fraction is dropped); 0 turns
@@ -86,7 +85,7 @@ declare_settings! {
     /// value held it for this many samples or more, and two of whose 8 neighbours share its sample, takes its
     /// sample as it is (a resolved silhouette, docs/do-no-harm.md). 0 turns this off (the FidelityFX behaviour);
     /// converged pixels need `stable_history_samples` > 0, resolved silhouettes do not.
-    converged_samples: f32 = 8.0, [0.0, crate::passes::MAX_SAMPLE_RUN as f32] "[0, 4096]";
+    converged_samples: f32 = 8.0, [0.0, MAX_SAMPLE_RUN as f32] "[0, 4096]";
     /// Penumbra guidance only (a dispatch with hit distances): where the blockers near a tile cast a penumbra
     /// narrower than this many pixels either side of its edge (from their mean hit distance, the light's angular
     /// size and the receiver's depth) and lie at least two pixel footprints away (under a light of angular size 0:
@@ -173,26 +172,9 @@ impl Settings {
 /// guide of cleared blocks only within one block of a tile it filters.
 pub const MAX_FILTER_PASSES: u32 = 4;
 
-impl Settings {
-    /// Fills the settings part of the per-frame constants.
-    pub(crate) fn write_to(&self, c: &mut FrameConstants) {
-        c.disocclusion = [
-            self.disocclusion_threshold_facing,
-            self.disocclusion_threshold_grazing,
-            self.disocclusion_angle_exponent,
-            self.history_clamp_sigmas,
-        ];
-        c.rejection = [
-            self.history_rejection_falloff,
-            self.history_rejection_min_sigma,
-            self.variance_boost_samples,
-            crate::state::signal_scale(self.variance_boost_samples),
-        ];
-        c.runs = [self.stable_history_samples, self.history_flip_samples, self.converged_samples, self.hard_penumbra_pixels];
-        c.temporal = [self.full_history_samples, self.min_current_weight, self.max_history_samples, self.spatial_falloff];
-        c.filtering = [self.kernel_cross_weight, self.normal_power, self.output_contrast, self.min_shadow_sigma];
-    }
-}
+/// Longest run of identical samples a pixel's moments record (moments.w: +n lit, -n shadowed); a cleared tile
+/// records the longest run. Bounds the run settings. Generated into GLSL.
+pub(crate) const MAX_SAMPLE_RUN: u32 = 4096;
 
 /// Checks a filter pass count (outside a `Settings`, e.g. for `memory_requirements`).
 pub(crate) fn check_filter_passes(passes: u32) -> Result<()> {

@@ -1,9 +1,7 @@
-//! Internal state of one light: everything that carries over from frame to frame.
+//! The image table of one light: every internal image's format, size, name and lifetime, and the byte counts that
+//! follow from them. Plain data: light.rs creates the images from it.
 
-use crate::create_info::Precision;
-use crate::error::Result;
-use crate::gpu::image::InternalImage;
-use crate::gpu::loader::Vk;
+use crate::create_info::{Precision, ShadowInput};
 use crate::settings::MAX_FILTER_PASSES;
 use ash::vk;
 
@@ -44,26 +42,26 @@ pub(crate) fn signal_scale(variance_boost_samples: f32) -> f32 {
 /// Images of a light that only some filter pass counts use, allocated when the settings first need them (and kept
 /// when they no longer do).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Optional {
+pub(crate) enum Optional {
     /// Fourth-pass intermediate: four passes.
     Tmp,
 }
 
 impl Optional {
-    fn needed(self, filter_passes: u32) -> bool {
+    pub(crate) fn needed(self, filter_passes: u32) -> bool {
         match self {
             Optional::Tmp => filter_passes == MAX_FILTER_PASSES,
         }
     }
 
-    fn spec(self, precision: Precision) -> (vk::Format, &'static str) {
+    pub(crate) fn spec(self, precision: Precision) -> (vk::Format, &'static str) {
         match self {
             Optional::Tmp => (intermediate_format(precision), "filter_tmp"),
         }
     }
 }
 
-const OPTIONAL: [Optional; 1] = [Optional::Tmp];
+pub(crate) const OPTIONAL: [Optional; 1] = [Optional::Tmp];
 
 /// The filter's guide is the same for every light (the G-buffer's linear depth and normal), so a context holds one,
 /// written by each light's first filter pass where its later passes read it: two or more passes need it.
@@ -84,9 +82,9 @@ fn format_bytes(format: vk::Format) -> u64 {
 }
 
 /// Texel bytes a light's shadow input adds: the reconstructed visibility of a checkerboard input.
-pub(crate) fn input_bytes(extent: [u32; 2], input: crate::ShadowInput) -> u64 {
+pub(crate) fn input_bytes(extent: [u32; 2], input: ShadowInput) -> u64 {
     let texels = extent[0] as u64 * extent[1] as u64;
-    if input == crate::ShadowInput::Checkerboard { format_bytes(RECONSTRUCTED_FORMAT) * texels } else { 0 }
+    if input == ShadowInput::Checkerboard { format_bytes(RECONSTRUCTED_FORMAT) * texels } else { 0 }
 }
 
 /// Texel bytes of the context's guide (none with one filter pass).
@@ -106,11 +104,11 @@ pub(crate) enum Lifetime {
 }
 
 /// One internal image of a light: format, size, debug name, lifetime.
-type ImageSpec = (vk::Format, [u32; 2], &'static str, Lifetime);
+pub(crate) type ImageSpec = (vk::Format, [u32; 2], &'static str, Lifetime);
 
 /// Every internal image of one light that `filter_passes` passes use, in the order `LightState::new` consumes
 /// them (the optional ones last).
-fn image_specs(extent: [u32; 2], precision: Precision, filter_passes: u32) -> impl Iterator<Item = ImageSpec> {
+pub(crate) fn image_specs(extent: [u32; 2], precision: Precision, filter_passes: u32) -> impl Iterator<Item = ImageSpec> {
     use Lifetime::*;
     let tiles = [extent[0].div_ceil(8), extent[1].div_ceil(4)];
     let rg = intermediate_format(precision);
@@ -149,126 +147,3 @@ fn spec_bytes((format, [w, h], _, _): ImageSpec) -> u64 {
 
 /// Images every light has (`image_specs`).
 const FIXED_IMAGES: usize = 10;
-
-pub(crate) struct LightState {
-    pub tile_mask: InternalImage,
-    /// The exactly shadowed pixels of each tile, written by prepare with a visibility input; 4 bytes per tile, so
-    /// always allocated.
-    pub tile_dark: InternalImage,
-    pub tile_meta: InternalImage,
-    /// Written and read only with penumbra guidance; 4 bytes per tile, so always allocated.
-    pub tile_blocker: InternalImage,
-    pub reprojection: InternalImage,
-    pub history: InternalImage,
-    /// None until four passes are configured.
-    pub tmp: Option<InternalImage>,
-    /// The visibility prepare reconstructs from a checkerboard input (None for other inputs).
-    pub reconstructed: Option<InternalImage>,
-    /// Ping-pong pairs indexed by `parity` (current) and `parity ^ 1` (previous frame).
-    pub depth: [InternalImage; 2],
-    pub moments: [InternalImage; 2],
-    /// Flips once per recorded frame of this light: advances with recording, not with frameIndex.
-    pub parity: usize,
-    /// False until the first frame's commands (layout transitions + clears) have been recorded.
-    pub initialized: bool,
-    /// The next frame discards history (reset_history or a new allocation).
-    pub pending_reset: bool,
-}
-
-impl LightState {
-    /// A light's images; `checkerboard` adds the reconstructed visibility of a checkerboard input. `alias`: the host
-    /// aliases the transient ones (`ResourceKind::TransientImage`).
-    pub(crate) fn new(vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32, checkerboard: bool, alias: bool) -> Result<LightState> {
-        let mut made: Vec<InternalImage> = Vec::new();
-        for (format, size, name, lifetime) in image_specs(extent, precision, 1) {
-            match InternalImage::new(vk, format, size, &format!("dnsr.light{light}.{name}"), lifetime == Lifetime::Persistent, alias) {
-                Ok(img) => made.push(img),
-                Err(e) => {
-                    made.iter_mut().for_each(|i| i.destroy(vk));
-                    return Err(e);
-                }
-            }
-        }
-        let mut it = made.into_iter();
-        let mut next = || it.next().expect("one image per spec");
-        let mut state = LightState {
-            tile_mask: next(),
-            tile_dark: next(),
-            tile_meta: next(),
-            tile_blocker: next(),
-            reprojection: next(),
-            history: next(),
-            depth: [next(), next()],
-            moments: [next(), next()],
-            tmp: None,
-            reconstructed: None,
-            parity: 0,
-            initialized: false,
-            pending_reset: true,
-        };
-        let reconstructed = || InternalImage::new(vk, RECONSTRUCTED_FORMAT, extent, &format!("dnsr.light{light}.reconstructed_visibility"), false, alias);
-        let made = state.allocate_optional(vk, light, extent, precision, filter_passes, alias).and_then(|_| {
-            state.reconstructed = if checkerboard { Some(reconstructed()?) } else { None };
-            Ok(())
-        });
-        match made {
-            Ok(()) => Ok(state),
-            Err(e) => {
-                state.destroy(vk);
-                Err(e)
-            }
-        }
-    }
-
-    /// Allocates the optional images `filter_passes` passes need and this light lacks; true if it made any (their
-    /// first frame initialises them, like a new light's).
-    pub(crate) fn allocate_optional(&mut self, vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32, alias: bool) -> Result<bool> {
-        let mut made = false;
-        for o in OPTIONAL.into_iter().filter(|o| o.needed(filter_passes)) {
-            let slot = match o {
-                Optional::Tmp => &mut self.tmp,
-            };
-            if slot.is_none() {
-                let (format, name) = o.spec(precision);
-                *slot = Some(InternalImage::new(vk, format, extent, &format!("dnsr.light{light}.{name}"), false, alias)?);
-                made = true;
-            }
-        }
-        Ok(made)
-    }
-
-    pub(crate) fn images(&self) -> impl Iterator<Item = &InternalImage> {
-        [&self.tile_mask, &self.tile_dark, &self.tile_meta, &self.tile_blocker, &self.reprojection, &self.history]
-            .into_iter()
-            .chain(self.depth.iter())
-            .chain(self.moments.iter())
-            .chain(self.tmp.iter())
-            .chain(self.reconstructed.iter())
-    }
-
-    pub(crate) fn bytes(&self) -> u64 {
-        self.images().map(|i| i.bytes).sum()
-    }
-
-    /// The images whose contents the next frame reads (`Lifetime::Persistent` in `image_specs`).
-    pub(crate) fn persistent_images(&self) -> impl Iterator<Item = &InternalImage> {
-        self.images().filter(|i| i.persistent)
-    }
-
-    /// Every other image: written and read within one record.
-    pub(crate) fn transient_images(&self) -> impl Iterator<Item = &InternalImage> {
-        self.images().filter(|i| !i.persistent)
-    }
-
-    pub(crate) fn destroy(&mut self, vk: &Vk) {
-        for img in [&mut self.tile_mask, &mut self.tile_dark, &mut self.tile_meta, &mut self.tile_blocker, &mut self.reprojection, &mut self.history]
-            .into_iter()
-            .chain(self.depth.iter_mut())
-            .chain(self.moments.iter_mut())
-            .chain(self.tmp.iter_mut())
-            .chain(self.reconstructed.iter_mut())
-        {
-            img.destroy(vk);
-        }
-    }
-}

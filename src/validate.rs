@@ -45,8 +45,8 @@ pub(crate) fn known_formats() -> impl Iterator<Item = F> {
         TILE_FORMAT,
         DEPTH_FORMAT,
         MOMENTS_FORMAT,
-        intermediate_format(crate::Precision::Fp32),
-        intermediate_format(crate::Precision::Fp16),
+        intermediate_format(crate::create_info::Precision::Fp32),
+        intermediate_format(crate::create_info::Precision::Fp16),
     ];
     [DEPTH_FORMATS, VELOCITY_FORMATS, NORMAL_FORMATS, OUTPUT_FORMATS, &[F::R32_UINT]]
         .into_iter()
@@ -276,8 +276,8 @@ fn render_rect(rect: Option<Rect>, size: [u32; 2]) -> Result<Rect> {
 /// Validates a classify dispatch for a context of render size `size`; returns the effective render rect.
 /// A classify dispatch; `engine_decodes`: the variant it runs is an engine's, which decodes depth and normals of
 /// any sampled format.
-pub(crate) fn classify(vk: &Vk, d: &crate::ClassifyDispatch, size: [u32; 2], supported_stages: vk::PipelineStageFlags, engine_decodes: bool) -> Result<Rect> {
-    use crate::classify::{CLASSIFY_TAP_COUNTS, MAX_CASCADES};
+pub(crate) fn classify(vk: &Vk, d: &crate::passes::classify::ClassifyDispatch, size: [u32; 2], supported_stages: vk::PipelineStageFlags, engine_decodes: bool) -> Result<Rect> {
+    use crate::passes::classify::{CLASSIFY_TAP_COUNTS, MAX_CASCADES};
     let sampled = vk::FormatFeatureFlags::SAMPLED_IMAGE;
     let tiles = [size[0].div_ceil(8), size[1].div_ceil(4)];
     let decoded = |formats| decoded_formats(engine_decodes, formats);
@@ -387,8 +387,8 @@ fn input_images(d: &ShadowsDispatch) -> impl Iterator<Item = (ImageRole, vk::Ima
 /// Checks what `record_lights` adds to the single-light rules: 1..=MAX_LIGHTS_PER_RECORD lights, each light and
 /// each output once, and the shared dispatch's per-light fields left at their defaults (a value there would
 /// otherwise be silently ignored). Each light's own fields are checked as a single dispatch's.
-pub(crate) fn light_list(shared: &ShadowsDispatch, lights: &[crate::LightDispatch]) -> Result<()> {
-    if lights.is_empty() || lights.len() > crate::MAX_LIGHTS_PER_RECORD {
+pub(crate) fn light_list(shared: &ShadowsDispatch, lights: &[crate::dispatch::LightDispatch]) -> Result<()> {
+    if lights.is_empty() || lights.len() > crate::dispatch::MAX_LIGHTS_PER_RECORD {
         return Err(Error::InvalidValue {
             field: "lights",
             value: format!("{} lights", lights.len()),
@@ -420,7 +420,7 @@ pub(crate) fn light_list(shared: &ShadowsDispatch, lights: &[crate::LightDispatc
             return refuse("output", format!("the image of lights[{j}]"), "every light writes its own output image");
         }
         // Another light's input (its own are checked with the rest of its dispatch).
-        let read_by = |o: &crate::LightDispatch| input_images(&o.apply(shared)).any(|(_, img)| img == l.output.image);
+        let read_by = |o: &crate::dispatch::LightDispatch| input_images(&o.apply(shared)).any(|(_, img)| img == l.output.image);
         let own = l.output.image != vk::Image::null();
         if let Some(j) = (0..lights.len()).find(|&j| own && j != i && read_by(&lights[j])) {
             return refuse("output", format!("an input image of lights[{j}]"), "every light writes an image no light reads");
@@ -431,7 +431,7 @@ pub(crate) fn light_list(shared: &ShadowsDispatch, lights: &[crate::LightDispatc
 
 /// Checks one engine image at `binding` that an engine-compiled variant declares as a sampled or (`storage`) a
 /// storage image: given, with a view, in a layout its descriptor type can be used in.
-pub(crate) fn engine_image(binding: u32, storage: bool, image: Option<crate::EngineImage>) -> Result<()> {
+pub(crate) fn engine_image(binding: u32, storage: bool, image: Option<crate::dispatch::EngineImage>) -> Result<()> {
     let invalid = |value: String, allowed: &'static str| Err(Error::InvalidValue { field: "engine_images", value, allowed });
     let layouts: &[L] = if storage { &[L::GENERAL] } else { SAMPLED_LAYOUTS };
     match image {

@@ -1,6 +1,5 @@
 //! Loads every Vulkan function dnsr uses through the host's `vkGetInstanceProcAddr` / `vkGetDeviceProcAddr`.
 
-use crate::create_info::ContextCreateInfo;
 use crate::error::{Error, Result};
 use crate::host::HostHooks;
 use ash::vk;
@@ -19,8 +18,21 @@ pub(crate) struct Vk {
     format_features: Vec<(vk::Format, vk::FormatFeatureFlags)>,
 }
 
+/// What loading takes from the host: its handles and entry points (each checked here), whether it enabled
+/// VK_KHR_push_descriptor, and its hooks.
+pub(crate) struct HostDevice<'a> {
+    pub instance: vk::Instance,
+    pub physical_device: vk::PhysicalDevice,
+    pub device: vk::Device,
+    pub get_instance_proc_addr: Option<vk::PFN_vkGetInstanceProcAddr>,
+    pub get_device_proc_addr: Option<vk::PFN_vkGetDeviceProcAddr>,
+    pub push_descriptor: bool,
+    pub hooks: &'a HostHooks,
+}
+
 impl Vk {
-    pub(crate) fn load(info: &ContextCreateInfo) -> Result<Vk> {
+    /// Loads the host's device; `formats`: the formats whose features are queried once, here.
+    pub(crate) fn load(info: &HostDevice, formats: impl Iterator<Item = vk::Format>) -> Result<Vk> {
         if info.instance == vk::Instance::null() {
             return Err(Error::NullHandle("instance"));
         }
@@ -44,7 +56,7 @@ impl Vk {
             std::mem::transmute::<vk::PFN_vkVoidFunction, *const c_void>(gdpa(vk_device, name.as_ptr()))
         };
         let device = unsafe { ash::Device::load_with(load_device, vk_device) };
-        let push_descriptor = if info.features.push_descriptor {
+        let push_descriptor = if info.push_descriptor {
             if load_device(c"vkCmdPushDescriptorSetKHR").is_null() {
                 return Err(Error::MissingFeature(
                     "features.push_descriptor is set but vkCmdPushDescriptorSetKHR is not available on the device",
@@ -55,7 +67,7 @@ impl Vk {
             None
         };
         let physical_device = info.physical_device;
-        let format_features = crate::validate::known_formats()
+        let format_features = formats
             .map(|f| (f, unsafe { instance.get_physical_device_format_properties(physical_device, f) }.optimal_tiling_features))
             .collect();
         Ok(Vk { instance, device, physical_device, push_descriptor, hooks: info.hooks.clone(), format_features })

@@ -1,5 +1,6 @@
-//! Vulkan plumbing: function loading through the host's entry points, pipelines from embedded SPIR-V with
-//! layouts from reflection, internal images, barriers and descriptor binding.
+//! Vulkan plumbing: function loading through the host's entry points, pipelines with the layouts their callers
+//! reflected, internal images, barriers and descriptor binding. It knows nothing of the passes, the classifier or
+//! the settings (the crate docs' "Layers"): what it needs of them comes as parameters.
 
 pub(crate) mod barrier;
 pub(crate) mod descriptors;

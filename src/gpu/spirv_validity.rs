@@ -5,6 +5,7 @@
 //! validator (SPIRV-Tools, the Vulkan 1.1 environment) first, with its id bound tied to the module's size, and
 //! may only ask for capabilities, extensions and instruction sets the device is known to have.
 
+use super::shader::{instructions, literal_string};
 use spirv_tools::val::{Validator, ValidatorLimits, ValidatorOptions};
 
 /// What the device offers beyond what every Vulkan 1.1 device does.
@@ -40,7 +41,7 @@ pub(crate) fn check(spirv: &[u8], offers: DeviceOffers) -> Result<(), String> {
         return Err(format!("is not valid SPIR-V for Vulkan 1.1 (SPIRV-Tools: {})", cap(&what)));
     }
     // The validator has accepted every word count: the walk cannot fail.
-    let all = super::shader::instructions(spirv).map_err(|e| e.to_string())?;
+    let all = instructions(spirv).map_err(|e| e.to_string())?;
     unreachable_block(&all)?;
     for (opcode, operands) in &all {
         let (opcode, operands) = (*opcode, operands.as_slice());
@@ -114,12 +115,6 @@ fn unreachable_block(all: &[(u32, Vec<u32>)]) -> Result<(), String> {
 const OP_EXTENSION: u32 = 10;
 const OP_EXT_INST_IMPORT: u32 = 11;
 const OP_CAPABILITY: u32 = 17;
-
-/// A literal string operand (NUL-terminated, packed four bytes a word).
-pub(crate) fn literal_string(words: &[u32]) -> String {
-    let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).take_while(|&b| b != 0).collect();
-    String::from_utf8_lossy(&bytes).into_owned()
-}
 
 fn cap(s: &str) -> String {
     match s.char_indices().nth(MAX_MESSAGE_CHARS) {

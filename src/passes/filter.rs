@@ -9,14 +9,39 @@
 //! output, so a pass that writes only there skips groups whose two tiles are cleared.
 
 use super::bindings::Resource;
-use super::{internal, FrameViews, Grid, Pass, Role, LIGHT_SLOTS, WIDE_GROUP};
-use crate::gpu::shader::SPEC_PENUMBRA_GUIDED;
-use crate::constants::{FilterPush, PASS_SKIP_CLEARED, PASS_WRITE_GUIDE, PASS_WRITE_GUIDE_EVERYWHERE, PASS_WRITE_INTERNAL};
+use super::{internal, FrameViews, Grid, Pass, Role, LIGHT_SLOTS, SPEC_PENUMBRA_GUIDED, WIDE_GROUP};
 use super::GuideWrites;
+use super::variants::variant_name;
 use crate::create_info::Precision;
 use crate::dispatch::DebugView;
-use crate::gpu::shader::variant_name;
+use crate::glsl::gpu_block;
 use ash::vk;
+
+gpu_block! {
+    /// Push constants of one filter pass.
+    pub(crate) struct FilterPush as "DnsrFilterPush" {
+        /// x: tap step in pixels; y: DNSR_PASS_* bits; z: pass index; w: DNSR_DEBUG_VIEW_* (final pass).
+        pass: [u32; 4],
+        /// The light-slot variants (several lights per dispatch; zero otherwise): x: lights in this dispatch
+        /// (1..=DNSR_LIGHT_SLOTS); y: bit s set when slot s has penumbra guidance; zw: unused.
+        lights: [u32; 4],
+        /// The light-slot variants: slot s's tan(light angular diameter / 2) (penumbra.x of its constants; the
+        /// other penumbra constants depend on the camera only and are read from slot 0's).
+        light_tan_half_angle: [f32; 4],
+    }
+}
+
+/// Filter pass flag: write mean and variance to the internal intermediate image.
+pub(crate) const PASS_WRITE_INTERNAL: u32 = 1 << 0;
+/// Filter pass flag: groups whose two tiles are cleared write nothing (what the pass would write there is
+/// already in place).
+pub(crate) const PASS_SKIP_CLEARED: u32 = 1 << 1;
+/// Filter pass flag: write the guide (linear depth and normal) that the later passes read per tap.
+pub(crate) const PASS_WRITE_GUIDE: u32 = 1 << 2;
+/// Filter pass flag (with PASS_WRITE_GUIDE): write the guide in every block, not only where this light's later
+/// passes tap it. The first light of a record of several writes it for all of them, and the others' first passes
+/// write none (the guide is the same for every light: 16 B per pixel each of them no longer writes).
+pub(crate) const PASS_WRITE_GUIDE_EVERYWHERE: u32 = 1 << 3;
 
 /// The variant of the first pass (`later` false: step 1, shared-memory apron, writes the guide) or of a later pass
 /// (reads the guide), intermediate or final (writing `final_output`).

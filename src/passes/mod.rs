@@ -7,14 +7,16 @@ pub(crate) mod bindings;
 pub(crate) mod classify;
 pub(crate) mod filter;
 pub(crate) mod prepare;
+mod roles;
 pub(crate) mod tile_classification;
+pub(crate) mod variants;
 
-use crate::constants::FilterPush;
 use crate::dispatch::DebugView;
 use crate::settings::MAX_FILTER_PASSES;
-use crate::gpu::shader::Specialization;
 use ash::vk;
 use bindings::{image, Binding, BindingTable, Resource};
+use filter::FilterPush;
+pub(crate) use roles::{roles, Role};
 
 /// Pixels of one hit-mask tile (one uint32): 8 x 4. Generated into GLSL as DNSR_TILE_SIZE.
 pub(crate) const TILE: [u32; 2] = [8, 4];
@@ -44,24 +46,6 @@ const WINDOW_TILE_COUNT: u32 = (WIDE_GROUP[0] / TILE[0] + 2) * (WIDE_GROUP[1] / 
 const _: () = assert!((WIDE_GROUP[0] * WIDE_GROUP[1]) % WINDOW_TILE_COUNT == 0 && 32 % (WIDE_GROUP[0] * WIDE_GROUP[1] / WINDOW_TILE_COUNT) == 0);
 const _: () = assert!(1 << (MAX_FILTER_PASSES - 1) <= GROUP[0] && 1 << (MAX_FILTER_PASSES - 1) <= GROUP[1]);
 
-/// Which pipeline a pass runs, and so which descriptor set of a ring slot it uses. Filter passes 0..=2 can be
-/// intermediate passes; the last filter pass runs a final pipeline, which writes the host's output. Pass 0 runs
-/// the first pass's variant (step 1 from shared memory, writes the guide), the others the later passes' variant.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Role {
-    Prepare,
-    Classification,
-    Filter(u32),
-    /// The last of two or more passes.
-    FilterFinal,
-    /// A single filter pass: the first pass's variant writing the output.
-    FilterOnly,
-    /// Intermediate later pass `n` (1..) for several lights at once (the light-slot variant).
-    FilterLights(u32),
-    /// The last of two or more passes for several lights at once.
-    FilterLightsFinal,
-}
-
 /// Lights one dispatch of the filter's light-slot variants filters (a record of more lights runs several).
 /// Generated into GLSL as DNSR_LIGHT_SLOTS.
 pub(crate) const LIGHT_SLOTS: usize = 4;
@@ -85,6 +69,21 @@ pub(crate) fn light_group(n: usize, k: usize) -> std::ops::Range<usize> {
     start..start + len
 }
 
+/// Specialization constants (booleans) that select what a pass compiles in; their ids are generated into GLSL.
+/// Features only some frames use sit behind them rather than behind runtime branches: merely present behind a
+/// branch that was never taken, penumbra guidance slowed unguided classification on an H100 at 4K from 0.409 to
+/// 0.513 ms (and the filter's never-executed tile-blocker fetch made lavapipe leak JIT memory every frame), and
+/// the stable-run-aware history slowed Balanced, which never uses it, from 0.410 to 0.463 ms.
+/// `DNSR_SPEC_PENUMBRA_GUIDED`: the dispatch has hit distances.
+pub(crate) const SPEC_PENUMBRA_GUIDED: u32 = 0;
+/// `DNSR_SPEC_STABLE_HISTORY`: the run features are on (`Settings::uses_runs`: stable history or converged pixels).
+pub(crate) const SPEC_STABLE_HISTORY: u32 = 1;
+/// Specialization constant ids the passes set: 0..SPEC_COUNT.
+pub(crate) const SPEC_COUNT: usize = 2;
+
+/// Which specialization constants are on for one dispatch of a pass (bit i: constant id i).
+pub(crate) type Specialization = u32;
+
 /// What one invocation of a pass covers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Grid {
@@ -104,7 +103,7 @@ pub(crate) struct Pass {
     /// Invocations per workgroup, x by y (the shader's local size).
     pub group: [u32; 2],
     pub push: Option<FilterPush>,
-    /// The specialization constants on for this dispatch (see gpu::shader::Specialization).
+    /// The specialization constants on for this dispatch (see `Specialization`).
     pub spec: Specialization,
     /// A disabled pass is not dispatched; its timestamp is still written, so its time reads as zero.
     pub enabled: bool,
@@ -163,9 +162,6 @@ pub(crate) fn frame(v: &FrameViews, filter_passes: u32, run_prepare: bool, debug
     FramePasses { passes, count }
 }
 
-/// Longest run of identical samples a pixel's moments record (moments.w: +n lit, -n shadowed); a cleared tile
-/// records the longest run. Generated into GLSL.
-pub(crate) const MAX_SAMPLE_RUN: u32 = 4096;
 /// A stable pixel (`Settings::stable_history_samples`) whose last n samples were identical has its history clamped
 /// to within this many / n of them (the rule of three). Generated into GLSL.
 pub(crate) const RUN_CLAMP_SAMPLES: u32 = 3;
@@ -195,9 +191,8 @@ const GENERAL: vk::ImageLayout = vk::ImageLayout::GENERAL;
 
 /// Everything the passes of one frame of one light bind.
 pub(crate) struct FrameViews {
-    pub constants: vk::Buffer,
-    /// This light's slot of the constants buffer.
-    pub constants_offset: vk::DeviceSize,
+    /// This light's slot of the constants buffer (its `FrameConstants`).
+    pub constants: Binding,
     pub hit_mask: Binding,
     /// The host's visibility (a visibility input), the reconstructed one (a checkerboard input), or null (no
     /// pass declares it).
@@ -231,7 +226,7 @@ pub(crate) struct FrameViews {
     pub moments: vk::ImageView,
     pub guide: vk::ImageView,
     /// The engine's own images (slot i: binding ENGINE_BINDING_BASE + i), for its shader variants.
-    pub engine: [Binding; crate::MAX_ENGINE_IMAGES],
+    pub engine: [Binding; crate::dispatch::MAX_ENGINE_IMAGES],
     /// tan(light angular diameter / 2) of penumbra guidance (0 without): the one per-light filter constant.
     pub penumbra_tan_half_angle: f32,
     /// Where this light's first filter pass writes the shared guide (when later passes read it).
@@ -264,12 +259,7 @@ impl FrameViews {
     /// The bindings every pass shares: constants, the G-buffer and the engine's images.
     fn base_table(&self) -> BindingTable {
         let mut t: BindingTable = [Binding::default(); bindings::RESOURCE_COUNT];
-        t[Resource::Constants as usize] = Binding {
-            buffer: self.constants,
-            offset: self.constants_offset,
-            range: std::mem::size_of::<crate::constants::FrameConstants>() as vk::DeviceSize,
-            ..Default::default()
-        };
+        t[Resource::Constants as usize] = self.constants;
         t[Resource::Depth as usize] = self.depth;
         t[Resource::Normals as usize] = self.normals;
         for (slot, &b) in self.engine.iter().enumerate() {
@@ -289,7 +279,7 @@ mod tests {
 
     #[test]
     fn light_groups_cover_every_light_once() {
-        for n in 1..=crate::MAX_LIGHTS_PER_RECORD {
+        for n in 1..=crate::dispatch::MAX_LIGHTS_PER_RECORD {
             let groups: Vec<_> = (0..light_group_count(n)).map(|k| light_group(n, k)).collect();
             let lights: Vec<usize> = groups.iter().flat_map(|g| g.clone()).collect();
             assert_eq!(lights, (0..n).collect::<Vec<_>>(), "{n} lights: {groups:?}");

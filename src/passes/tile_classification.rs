@@ -14,7 +14,7 @@ pub(crate) fn shader(precision: Precision, output: vk::Format, input: ShadowInpu
         // A checkerboard input reaches classification as the visibility prepare reconstructed.
         ShadowInput::Visibility | ShadowInput::Checkerboard => "tile_classification_visibility",
     };
-    crate::gpu::shader::variant_name(stem, Some(output), precision)
+    super::variants::variant_name(stem, Some(output), precision)
 }
 
 /// One invocation per pixel, groups of `WIDE_GROUP` pixels (2x2 blocks of two tiles each).

@@ -6,8 +6,7 @@
 //! shadow-map depth at the blocker limit, a normal at the terminator), and the parity test compares the tiles
 //! without a fragile pixel exactly.
 
-use crate::classify::{blocker_disc, constants, ClassifyDispatch, MAX_SLOPE};
-use crate::constants::ClassifyConstants;
+use crate::passes::classify::{blocker_disc, constants, ClassifyConstants, ClassifyDispatch, MAX_SLOPE};
 use crate::dispatch::HitMaskConvention;
 use crate::error::Result;
 use glam::{DMat4, DVec2, DVec3, DVec4};

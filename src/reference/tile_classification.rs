@@ -2,7 +2,8 @@
 //! temporal moments and the history blend, pixel by pixel in f64.
 
 use super::{inside, SKY_SIGNAL, is_receiver, linear_depth, pixel_uv, tile_bit, uv_to_ndc, Coord, Read, Write, TILE};
-use crate::passes::{MAX_SAMPLE_RUN, RUN_CLAMP_SAMPLES, TILE_CLEARED, TILE_LIT};
+use crate::passes::{RUN_CLAMP_SAMPLES, TILE_CLEARED, TILE_LIT};
+use crate::settings::MAX_SAMPLE_RUN;
 use glam::{DVec2, DVec4};
 
 /// Radius of the local-moment window (17x17).
@@ -255,7 +256,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
         // An untraced stable pixel takes its run's value as this frame's sample (and keeps its run, below), unless
         // its neighbours' mean lies more than 0.5 from that value.
         let contradicted = (x - if m.w > 0.0 { 1.0 } else { 0.0 }).abs() > 0.5;
-        if untraced && !contradicted && stable_after > 0.0 && m.w.abs() >= stable_after && m.w.abs() <= crate::passes::MAX_SAMPLE_RUN as f64 {
+        if untraced && !contradicted && stable_after > 0.0 && m.w.abs() >= stable_after && m.w.abs() <= MAX_SAMPLE_RUN as f64 {
             x = if m.w > 0.0 { 1.0 } else { 0.0 };
         }
         // A moving camera puts history_uv between texels, and next to a hard edge the bilinear footprint lies

@@ -33,7 +33,7 @@ fn assert_state_finite(r: &Runner, what: &str) {
         assert!(m[1].is_finite() && m[1] >= 0.0 && m[1] <= max_n, "{what}: moments.sum of pixel {i} = {}", m[1]);
         assert!(m[2].is_finite() && m[2] >= 0.0 && m[2] <= max_n, "{what}: moments.n of pixel {i} = {}", m[2]);
         let run = m[3].abs();
-        let longest = crate::passes::MAX_SAMPLE_RUN as f64;
+        let longest = crate::settings::MAX_SAMPLE_RUN as f64;
         assert!(run <= longest && (run.fract() == 0.0 || run.fract() == 0.5), "{what}: sample run of pixel {i} = {}", m[3]);
     }
 }

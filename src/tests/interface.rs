@@ -1,10 +1,12 @@
 //! The shader/host contract: committed SPIR-V and generated GLSL are current, and reflection sees exactly the
 //! interface the host binds. `DNSR_BLESS=1 cargo test bless_` rewrites the committed files instead of comparing.
 
-use crate::constants::{generated_glsl, FilterPush, FrameConstants};
+use crate::constants::{generated_glsl, FrameConstants};
 use crate::gpu::reflect::reflect_module;
-use crate::gpu::shader::{reflect, VARIANTS};
+use crate::interface::reflect;
 use crate::passes::bindings::Resource;
+use crate::passes::filter::FilterPush;
+use crate::passes::variants::VARIANTS;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -77,7 +79,7 @@ fn bless_bench_copy_spirv_matches_glslc() {
 fn reflected_interfaces_match_what_the_host_binds() {
     use Resource::*;
     // (variant, bindings, push-constant bytes, specialization constants declared)
-    use crate::gpu::shader::{SPEC_PENUMBRA_GUIDED as GUIDED, SPEC_STABLE_HISTORY as STABLE};
+    use crate::passes::{SPEC_PENUMBRA_GUIDED as GUIDED, SPEC_STABLE_HISTORY as STABLE};
     let expect: &[(&str, &[Resource], u32, u32)] = &[
         ("prepare", &[Constants, HitMask, TileMaskOut], 0, 0),
         (

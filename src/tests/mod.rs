@@ -10,6 +10,7 @@ mod diagnostics;
 mod extremes;
 mod parity;
 mod interface;
+mod layers;
 mod lights;
 mod resources;
 mod shader_overrides;

@@ -1,0 +1,186 @@
+//! The interface between the passes' shaders and the host, read from SPIR-V: each binding a module declares
+//! resolved to the resource the passes bind there (passes::bindings), checked against the constant blocks the host
+//! writes; and the check of an engine's override against dnsr's own variant of the pass.
+
+use crate::dispatch::{ENGINE_BINDING_BASE, MAX_ENGINE_IMAGES};
+use crate::error::{Error, Result};
+use crate::gpu::descriptors::MAX_BINDINGS;
+use crate::gpu::reflect::{reflect_module, MemberLayout};
+use crate::gpu::shader::{instructions, literal_string};
+use crate::gpu::spirv_validity::{self, DeviceOffers};
+use crate::passes::bindings::Resource;
+use crate::passes::variants::{is_classify_variant, variant};
+use crate::passes::{Specialization, SPEC_COUNT};
+use ash::vk;
+
+/// One binding of a pass as reflected from its SPIR-V.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct ReflectedBinding {
+    pub binding: u32,
+    pub resource: Resource,
+    pub descriptor_type: vk::DescriptorType,
+}
+
+/// The binding interface of a SPIR-V module: its descriptor bindings (set 0) and push-constant size.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) struct Interface {
+    pub bindings: Vec<ReflectedBinding>,
+    pub push_constant_bytes: u32,
+    pub uniform_bytes: Option<u32>,
+    /// The members of each uniform block and of the push constants (`None`), as the module reads them.
+    pub layouts: Vec<(Option<Resource>, Vec<MemberLayout>)>,
+    /// The specialization constants the module declares.
+    pub specializes: Specialization,
+}
+
+/// The specialization constant ids a module declares (OpDecorate SpecId), as a mask; an id dnsr does not set is
+/// refused.
+fn specialization_ids(spirv: &[u8]) -> Result<Specialization> {
+    const OP_DECORATE: u32 = 71;
+    const DECORATION_SPEC_ID: u32 = 1;
+    let mut mask = 0;
+    for (opcode, ops) in instructions(spirv)? {
+        if opcode == OP_DECORATE && ops.len() >= 3 && ops[1] == DECORATION_SPEC_ID {
+            let id = ops[2];
+            if id >= SPEC_COUNT as u32 {
+                return Err(Error::ShaderInterface(format!("specialization constant id {id}; dnsr sets ids 0..{SPEC_COUNT}")));
+            }
+            mask |= 1 << id;
+        }
+    }
+    Ok(mask)
+}
+
+/// The workgroup size of the module's GLCompute entry point named "main"; an error without one.
+fn entry_workgroup_size(spirv: &[u8]) -> Result<[u32; 3]> {
+    const OP_ENTRY_POINT: u32 = 15;
+    const OP_EXECUTION_MODE: u32 = 16;
+    const GL_COMPUTE: u32 = 5;
+    const LOCAL_SIZE: u32 = 17;
+    let all = instructions(spirv)?;
+    // OpEntryPoint: execution model, function id, then the name as a NUL-terminated string packed in words.
+    let main = all.iter().find_map(|(opcode, ops)| {
+        let name = literal_string(ops.get(2..).unwrap_or(&[]));
+        (*opcode == OP_ENTRY_POINT && ops.len() >= 3 && ops[0] == GL_COMPUTE && name == "main").then(|| ops[1])
+    });
+    let main = main.ok_or_else(|| Error::ShaderInterface("has no GLCompute entry point named \"main\"".into()))?;
+    all.iter()
+        .find_map(|(opcode, ops)| {
+            (*opcode == OP_EXECUTION_MODE && ops.len() == 5 && ops[0] == main && ops[1] == LOCAL_SIZE).then(|| [ops[2], ops[3], ops[4]])
+        })
+        .ok_or_else(|| Error::ShaderInterface("entry point \"main\" has no literal LocalSize (dnsr dispatches fixed workgroups)".into()))
+}
+
+/// Checks an engine's SPIR-V for `name` against what dnsr relies on in its own variant: the entry point and
+/// workgroup size its dispatches assume, each binding it declares at the number and of the type dnsr binds
+/// there (it may leave some out), the push-constant and constants-block sizes, the specialization constants.
+pub(crate) fn check_override(name: &str, spirv: &[u8], offers: DeviceOffers) -> Result<()> {
+    let fail = |what: String| Error::ShaderInterface(format!("shader override \"{name}\": {what}"));
+    let wrap = |e: Error| match e {
+        Error::ShaderInterface(m) => fail(m),
+        other => other,
+    };
+    let own = variant(name);
+    let version = instructions(spirv).map(|_| u32::from_le_bytes([spirv[4], spirv[5], spirv[6], spirv[7]])).map_err(wrap)?;
+    // The reflection library dnsr uses aborts the process on SPIR-V 1.4 and later, and misses buffers before 1.3.
+    if version != 0x0001_0300 {
+        return Err(fail(format!(
+            "SPIR-V {}.{}; dnsr reads SPIR-V 1.3 (compile with --target-env=vulkan1.1)",
+            (version >> 16) & 0xFF,
+            (version >> 8) & 0xFF
+        )));
+    }
+    spirv_validity::check(spirv, offers).map_err(fail)?;
+    let (size, expected_size) = (entry_workgroup_size(spirv).map_err(wrap)?, entry_workgroup_size(own.spirv)?);
+    if size != expected_size {
+        return Err(fail(format!("workgroup size {size:?}; dnsr dispatches {expected_size:?}")));
+    }
+    let (theirs, ours) = (reflect(spirv).map_err(wrap)?, reflect(own.spirv)?);
+    for b in theirs.bindings.iter().filter(|b| b.resource.engine_slot().is_none()) {
+        let Some(expected) = ours.bindings.iter().find(|o| o.resource == b.resource) else {
+            return Err(fail(format!("binds {:?} (binding {}), which this pass is not given", b.resource, b.binding)));
+        };
+        if b.binding != expected.binding {
+            return Err(fail(format!("{:?} is binding {}; dnsr binds it at {}", b.resource, b.binding, expected.binding)));
+        }
+    }
+    if let Some(b) = theirs.bindings.iter().find(|b| is_classify_variant(name) && b.resource.engine_slot().is_some()) {
+        return Err(fail(format!("declares an engine image at binding {}; the classifier's dispatch has no engine images", b.binding)));
+    }
+    if theirs.push_constant_bytes != ours.push_constant_bytes {
+        return Err(fail(format!("push constants of {} bytes; dnsr pushes {}", theirs.push_constant_bytes, ours.push_constant_bytes)));
+    }
+    if theirs.uniform_bytes.is_some_and(|b| Some(b) != ours.uniform_bytes) {
+        return Err(fail(format!("constants block of {:?} bytes; dnsr writes {:?}", theirs.uniform_bytes, ours.uniform_bytes)));
+    }
+    for (block, layout) in &theirs.layouts {
+        let own = ours.layouts.iter().find(|(b, _)| b == block).map(|(_, l)| l);
+        if let Some(own) = own.filter(|own| !layout.is_empty() && *own != layout) {
+            let what = block.map_or("push constants".to_string(), |r| format!("{r:?} block"));
+            let at = layout.iter().zip(own).position(|(a, b)| a != b).unwrap_or(own.len().min(layout.len()));
+            return Err(fail(format!(
+                "its {what} differs from dnsr's at member {at} (offset, size or type; keep dnsr_common.glsl's declarations)"
+            )));
+        }
+    }
+    if theirs.specializes != ours.specializes {
+        return Err(fail(format!(
+            "declares specialization constants (mask) {:#b}; dnsr's variant declares {:#b} (keep dnsr_common.glsl's declarations)",
+            theirs.specializes, ours.specializes
+        )));
+    }
+    Ok(())
+}
+
+/// Reflects a module and checks every binding against the interface dnsr knows.
+pub(crate) fn reflect(spirv: &[u8]) -> Result<Interface> {
+    let (raw, push_constant_bytes, push_layout) = reflect_module(spirv)?;
+    let mut bindings = Vec::with_capacity(raw.len());
+    let mut layouts = vec![(None, push_layout)];
+    let mut uniform_bytes = None;
+    for b in raw {
+        let [name, type_name] = &b.names;
+        let found = Resource::from_glsl_name(name).or_else(|| Resource::from_glsl_name(type_name));
+        // Any other name is an engine image when it sits in the engine's binding range as an image.
+        let engine = || {
+            let slot = b.binding.checked_sub(ENGINE_BINDING_BASE)? as usize;
+            let image = matches!(b.descriptor_type, Some(vk::DescriptorType::SAMPLED_IMAGE | vk::DescriptorType::STORAGE_IMAGE));
+            Some((Resource::engine(slot).filter(|_| image)?, b.descriptor_type?))
+        };
+        let (resource, expected) = found.or_else(engine).ok_or_else(|| {
+            Error::ShaderInterface(format!(
+                "unknown binding '{name}' ({type_name}) at binding {}: dnsr's own are named dnsr_*, an engine's own \
+                 images go at bindings {}..{} of set 0 (sampled or storage images)",
+                b.binding,
+                ENGINE_BINDING_BASE,
+                ENGINE_BINDING_BASE + MAX_ENGINE_IMAGES as u32 - 1
+            ))
+        })?;
+        if b.descriptor_type != Some(expected) || b.set != 0 || b.count != 1 {
+            return Err(Error::ShaderInterface(format!(
+                "binding '{name}' is set {} binding {} of type {:?} x{}; dnsr expects set 0, one {expected:?}",
+                b.set, b.binding, b.descriptor_type, b.count
+            )));
+        }
+        if resource == Resource::Constants {
+            uniform_bytes = Some(b.block_bytes);
+        }
+        if expected == vk::DescriptorType::UNIFORM_BUFFER {
+            layouts.push((Some(resource), b.block_layout));
+        }
+        let classify_bytes = std::mem::size_of::<crate::passes::classify::ClassifyConstants>() as u32;
+        if resource == Resource::ClassifyConstants && b.block_bytes != classify_bytes {
+            return Err(Error::ShaderInterface(format!("classify constants block is {} bytes, host writes {classify_bytes}", b.block_bytes)));
+        }
+        if bindings.iter().any(|x: &ReflectedBinding| x.resource == resource || x.binding == b.binding) {
+            return Err(Error::ShaderInterface(format!("binding '{name}' or number {} declared twice", b.binding)));
+        }
+        bindings.push(ReflectedBinding { binding: b.binding, resource, descriptor_type: expected });
+    }
+    if bindings.len() > MAX_BINDINGS {
+        return Err(Error::ShaderInterface(format!("{} bindings; at most {}", bindings.len(), MAX_BINDINGS)));
+    }
+    bindings.sort_by_key(|b| b.binding);
+    let specializes = specialization_ids(spirv)?;
+    Ok(Interface { bindings, push_constant_bytes, uniform_bytes, layouts, specializes })
+}

@@ -10,7 +10,7 @@ const ivec2 DNSR_GROUP_SIZE = ivec2(DNSR_GROUP_WIDTH, DNSR_GROUP_HEIGHT);
 // blocks are cleared and return at once.
 const ivec2 DNSR_WIDE_GROUP_SIZE = ivec2(DNSR_WIDE_GROUP_WIDTH, DNSR_WIDE_GROUP_HEIGHT);
 const int DNSR_WIDE_GROUP_INVOCATIONS = DNSR_WIDE_GROUP_WIDTH * DNSR_WIDE_GROUP_HEIGHT;
-// Features only some frames use are specialization constants (ids generated from src/gpu/shader.rs, which says
+// Features only some frames use are specialization constants (ids generated from src/passes/mod.rs, which says
 // why): the host binds the pipeline specialized for what the frame uses, and the others run without that code.
 // Each is declared only by the passes that use it: the host reads from the SPIR-V which ones a pass has and
 // compiles a pipeline per combination.

@@ -970,6 +970,15 @@ impl Context {
         l.moments[l.parity ^ 1].image
     }
 
+    /// The image of the state table's row `image` (half `copy` of a pair) of `light`, or the context's own for
+    /// `light` None, if it has one: a test compares them with the table.
+    pub(crate) fn state_image(&self, light: Option<usize>, image: crate::state::table::Image, copy: u32) -> Option<&crate::gpu::image::InternalImage> {
+        match light {
+            Some(l) => self.lights[l].image(image, copy),
+            None => self.guide.as_ref().filter(|_| image == crate::state::table::Image::Guide && copy == 0),
+        }
+    }
+
     /// Every transient image (`state::Lifetime::Transient`: each light's and the guide) with its format, and the
     /// count of persistent ones: a test fills the transient ones with garbage between records.
     pub(crate) fn transient_images(&self) -> (Vec<(vk::Image, vk::Format)>, usize) {

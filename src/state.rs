@@ -3,6 +3,8 @@
 //! check. Plain data: light.rs and context.rs create the images from it.
 
 pub mod table;
+#[cfg(test)]
+mod tests;
 
 use crate::create_info::{Precision, ShadowInput};
 use ash::vk;

@@ -17,7 +17,6 @@ use crate::passes::{filter, prepare, tile_classification};
 use crate::passes::{roles, FrameViews, Pass, Role, LIGHT_SLOTS, SPEC_PENUMBRA_GUIDED, SPEC_STABLE_HISTORY};
 use crate::pipeline::PassPipeline;
 use crate::settings::{check_filter_passes, Settings};
-use crate::state::{intermediate_format, DEPTH_FORMAT, MOMENTS_FORMAT, TILE_FORMAT};
 use crate::timestamps::{ClassifierTimings, PassTimings, Timestamps};
 use crate::validate;
 use ash::vk;
@@ -40,8 +39,9 @@ pub fn memory_requirements_for_input(
     validate::extent("render size", width, height, u32::MAX)?;
     check_filter_passes(filter_passes)?;
     validate::light_count(light_count)?;
-    let per_light = crate::state::texel_bytes([width, height], precision, filter_passes) + crate::state::input_bytes([width, height], input);
-    Ok(per_light * light_count as u64 + crate::state::guide_bytes([width, height], filter_passes) + constants_bytes(light_count))
+    use crate::state::{table::Scope, texel_bytes};
+    let per_light = texel_bytes(Scope::Light, [width, height], precision, filter_passes, input);
+    Ok(per_light * light_count as u64 + texel_bytes(Scope::Context, [width, height], precision, filter_passes, input) + constants_bytes(light_count))
 }
 
 /// Bytes of the part of `memory_requirements` whose contents must survive from one record of a light to the next
@@ -181,7 +181,7 @@ fn check_features(vk: &Vk, info: &ContextCreateInfo) -> Result<()> {
     {
         return Err(Error::UnsupportedFormat { role: Some(crate::error::ImageRole::Output), format: info.output_format });
     }
-    for format in [TILE_FORMAT, DEPTH_FORMAT, MOMENTS_FORMAT, intermediate_format(info.precision)] {
+    for format in crate::state::formats(info.precision) {
         check_internal_format(vk, format)?;
     }
     Ok(())
@@ -393,8 +393,8 @@ impl Context {
 
     fn allocate_lights(&mut self) -> Result<()> {
         for index in 0..self.light_count {
-            let checkerboard = self.shadow_input == ShadowInput::Checkerboard;
-            let light = LightState::new(&self.vk, index, self.size, self.precision, self.settings.filter_passes, checkerboard, self.alias_transient)?;
+            let (passes, input) = (self.settings.filter_passes, self.shadow_input);
+            let light = LightState::new(&self.vk, index, self.size, self.precision, passes, input, self.alias_transient)?;
             self.lights.push(light);
         }
         self.allocate_guide(self.settings.filter_passes)
@@ -403,7 +403,9 @@ impl Context {
     /// Allocates the shared guide if `filter_passes` need it and there is none; its first frame initialises it.
     fn allocate_guide(&mut self, filter_passes: u32) -> Result<()> {
         if crate::state::guide_needed(filter_passes) && self.guide.is_none() {
-            self.guide = Some(crate::gpu::image::InternalImage::new(&self.vk, crate::state::GUIDE_FORMAT, self.size, "dnsr.guide", false, self.alias_transient)?);
+            let spec = crate::state::specs_of_image(crate::state::table::Image::Guide, self.size, self.precision).next().expect("one guide");
+            let (name, persistent) = (format!("dnsr.{}", spec.name()), spec.lifetime == crate::state::Lifetime::Persistent);
+            self.guide = Some(crate::gpu::image::InternalImage::new(&self.vk, spec.format, spec.extent, &name, persistent, self.alias_transient)?);
             self.guide_initialized = false;
         }
         Ok(())
@@ -958,7 +960,7 @@ impl Context {
             history: l.history.image,
             moments: l.moments[l.parity ^ 1].image,
             depth: l.depth[l.parity ^ 1].image,
-            intermediate_format: intermediate_format(self.precision),
+            intermediate_format: crate::state::intermediate_format(self.precision),
         }
     }
 
@@ -966,6 +968,15 @@ impl Context {
     pub(crate) fn last_moments(&self, light: usize) -> vk::Image {
         let l = &self.lights[light];
         l.moments[l.parity ^ 1].image
+    }
+
+    /// The image of the state table's row `image` (half `copy` of a pair) of `light`, or the context's own for
+    /// `light` None, if it has one: a test compares them with the table.
+    pub(crate) fn state_image(&self, light: Option<usize>, image: crate::state::table::Image, copy: u32) -> Option<&crate::gpu::image::InternalImage> {
+        match light {
+            Some(l) => self.lights[l].image(image, copy),
+            None => self.guide.as_ref().filter(|_| image == crate::state::table::Image::Guide && copy == 0),
+        }
     }
 
     /// Every transient image (`state::Lifetime::Transient`: each light's and the guide) with its format, and the

@@ -17,9 +17,10 @@
 //!   data it knows `error` and `host` only; binding numbers and types, descriptors and formats come as parameters.
 //! - The CPU reference, `reference`: the data layer only.
 //! - Data, at the bottom: `error`, `host`, `settings`, `dispatch`, `create_info`, `glsl` (blocks with a GLSL twin),
-//!   `state` (the image table), `passes` (each pass's bindings, roles, group sizes and variants; `passes::classify`
-//!   the classifier's tables and dispatch), `constants` (the frame's constants and the generated GLSL, from every
-//!   table). No Vulkan object is made there; they use `ash::vk` types and one another.
+//!   `state` (the state table: every internal image and the passes' accesses to it), `passes` (each pass's
+//!   bindings, roles, group sizes and variants; `passes::classify` the classifier's tables and dispatch), `constants`
+//!   (the frame's constants and the generated GLSL, from every table). No Vulkan object is made there; they use
+//!   `ash::vk` types and one another.
 #![deny(missing_docs)]
 
 pub mod capi;
@@ -61,6 +62,10 @@ pub use error::{Error, ImageRole, Result};
 pub use glam;
 pub use host::{DebugNamer, GpuAllocation, GpuMemoryAllocator, HostHooks, ResourceKind};
 pub use settings::{Preset, Settings, MAX_FILTER_PASSES};
+/// The state table (src/state/table.rs), for tooling only: dnsr-bench derives its byte model from it. Not a stable
+/// API.
+#[doc(hidden)]
+pub use state::table as state_table;
 pub use timestamps::{ClassifierTimings, PassTimings};
 
 #[cfg(any(test, feature = "demo"))]

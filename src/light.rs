@@ -1,11 +1,12 @@
-//! Internal state of one light: its images, created from the image table (state.rs), and everything that carries
-//! over from frame to frame.
+//! Internal state of one light: its images, created from the state table (src/state/table.rs), and everything that
+//! carries over from frame to frame.
 
-use crate::create_info::Precision;
+use crate::create_info::{Precision, ShadowInput};
 use crate::error::Result;
 use crate::gpu::image::InternalImage;
 use crate::gpu::loader::Vk;
-use crate::state::{image_specs, Lifetime, Optional, OPTIONAL, RECONSTRUCTED_FORMAT};
+use crate::state::table::{Image, Needed, Scope, RESOURCES};
+use crate::state::{image_specs, specs_of_image, ImageSpec, Lifetime};
 
 pub(crate) struct LightState {
     pub tile_mask: InternalImage,
@@ -32,82 +33,94 @@ pub(crate) struct LightState {
     pub pending_reset: bool,
 }
 
+fn create(vk: &Vk, light: u32, spec: &ImageSpec, alias: bool) -> Result<InternalImage> {
+    InternalImage::new(vk, spec.format, spec.extent, &format!("dnsr.light{light}.{}", spec.name()), spec.lifetime == Lifetime::Persistent, alias)
+}
+
 impl LightState {
-    /// A light's images; `checkerboard` adds the reconstructed visibility of a checkerboard input. `alias`: the host
-    /// aliases the transient ones (`ResourceKind::TransientImage`).
-    pub(crate) fn new(vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32, checkerboard: bool, alias: bool) -> Result<LightState> {
-        let mut made: Vec<InternalImage> = Vec::new();
-        for (format, size, name, lifetime) in image_specs(extent, precision, 1) {
-            match InternalImage::new(vk, format, size, &format!("dnsr.light{light}.{name}"), lifetime == Lifetime::Persistent, alias) {
-                Ok(img) => made.push(img),
+    /// A light's images: every light image of the state table that `filter_passes` passes and shadow input `input`
+    /// need. `alias`: the host aliases the transient ones (`ResourceKind::TransientImage`).
+    pub(crate) fn new(vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32, input: ShadowInput, alias: bool) -> Result<LightState> {
+        let mut made: Vec<(ImageSpec, InternalImage)> = Vec::new();
+        for spec in image_specs(Scope::Light, extent, precision, filter_passes, input) {
+            match create(vk, light, &spec, alias) {
+                Ok(img) => made.push((spec, img)),
                 Err(e) => {
-                    made.iter_mut().for_each(|i| i.destroy(vk));
+                    made.iter_mut().for_each(|(_, i)| i.destroy(vk));
                     return Err(e);
                 }
             }
         }
-        let mut it = made.into_iter();
-        let mut next = || it.next().expect("one image per spec");
-        let mut state = LightState {
-            tile_mask: next(),
-            tile_dark: next(),
-            tile_meta: next(),
-            tile_blocker: next(),
-            reprojection: next(),
-            history: next(),
-            depth: [next(), next()],
-            moments: [next(), next()],
-            tmp: None,
-            reconstructed: None,
+        let mut take = |image: Image, copy: u32| {
+            let at = made.iter().position(|(s, _)| s.image == image && s.copy == copy)?;
+            Some(made.swap_remove(at).1)
+        };
+        let mut always = |image: Image, copy: u32| take(image, copy).expect("a light image the table always allocates");
+        Ok(LightState {
+            tile_mask: always(Image::TileMask, 0),
+            tile_dark: always(Image::TileDark, 0),
+            tile_meta: always(Image::TileMeta, 0),
+            tile_blocker: always(Image::TileBlocker, 0),
+            reprojection: always(Image::Reprojection, 0),
+            history: always(Image::History, 0),
+            depth: [always(Image::DepthCopy, 0), always(Image::DepthCopy, 1)],
+            moments: [always(Image::Moments, 0), always(Image::Moments, 1)],
+            tmp: take(Image::Tmp, 0),
+            reconstructed: take(Image::Reconstructed, 0),
             parity: 0,
             initialized: false,
             pending_reset: true,
-        };
-        let reconstructed = || InternalImage::new(vk, RECONSTRUCTED_FORMAT, extent, &format!("dnsr.light{light}.reconstructed_visibility"), false, alias);
-        let made = state.allocate_optional(vk, light, extent, precision, filter_passes, alias).and_then(|_| {
-            state.reconstructed = if checkerboard { Some(reconstructed()?) } else { None };
-            Ok(())
-        });
-        match made {
-            Ok(()) => Ok(state),
-            Err(e) => {
-                state.destroy(vk);
-                Err(e)
-            }
-        }
+        })
     }
 
-    /// Allocates the optional images `filter_passes` passes need and this light lacks; true if it made any (their
-    /// first frame initialises them, like a new light's).
+    /// The image of the state table's row `image` (the half `copy` of a pair), if this light has it.
+    pub(crate) fn image(&self, image: Image, copy: u32) -> Option<&InternalImage> {
+        let single = match image {
+            Image::TileMask => Some(&self.tile_mask),
+            Image::TileDark => Some(&self.tile_dark),
+            Image::TileMeta => Some(&self.tile_meta),
+            Image::TileBlocker => Some(&self.tile_blocker),
+            Image::Reprojection => Some(&self.reprojection),
+            Image::History => Some(&self.history),
+            Image::DepthCopy => return self.depth.get(copy as usize),
+            Image::Moments => return self.moments.get(copy as usize),
+            Image::Tmp => self.tmp.as_ref(),
+            Image::Reconstructed => self.reconstructed.as_ref(),
+            Image::Guide => None,
+        };
+        single.filter(|_| copy == 0)
+    }
+
+    /// Allocates the images `filter_passes` passes need (the table's `Needed::Passes` light images) and this light
+    /// lacks; true if it made any (their first frame initialises them, like a new light's).
     pub(crate) fn allocate_optional(&mut self, vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32, alias: bool) -> Result<bool> {
         let mut made = false;
-        for o in OPTIONAL.into_iter().filter(|o| o.needed(filter_passes)) {
-            let slot = match o {
-                Optional::Tmp => &mut self.tmp,
+        let optional = RESOURCES.iter().filter(|r| r.scope == Scope::Light && matches!(r.needed, Needed::Passes(_)));
+        for r in optional.filter(|r| r.needed.holds(filter_passes, ShadowInput::HitMask)) {
+            let slot = match r.image {
+                Image::Tmp => &mut self.tmp,
+                other => unreachable!("{other:?}: a light image allocated with the filter passes has a slot here"),
             };
             if slot.is_none() {
-                let (format, name) = o.spec(precision);
-                *slot = Some(InternalImage::new(vk, format, extent, &format!("dnsr.light{light}.{name}"), false, alias)?);
+                for spec in specs_of_image(r.image, extent, precision) {
+                    *slot = Some(create(vk, light, &spec, alias)?);
+                }
                 made = true;
             }
         }
         Ok(made)
     }
 
+    /// Every image this light has, in table order.
     pub(crate) fn images(&self) -> impl Iterator<Item = &InternalImage> {
-        [&self.tile_mask, &self.tile_dark, &self.tile_meta, &self.tile_blocker, &self.reprojection, &self.history]
-            .into_iter()
-            .chain(self.depth.iter())
-            .chain(self.moments.iter())
-            .chain(self.tmp.iter())
-            .chain(self.reconstructed.iter())
+        RESOURCES.iter().filter(|r| r.scope == Scope::Light).flat_map(move |r| (0..r.copies).filter_map(move |c| self.image(r.image, c)))
     }
 
     pub(crate) fn bytes(&self) -> u64 {
         self.images().map(|i| i.bytes).sum()
     }
 
-    /// The images whose contents the next frame reads (`Lifetime::Persistent` in `image_specs`).
+    /// The images whose contents the next frame reads (`Lifetime::Persistent` in the state table).
     pub(crate) fn persistent_images(&self) -> impl Iterator<Item = &InternalImage> {
         self.images().filter(|i| i.persistent)
     }

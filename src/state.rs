@@ -1,30 +1,25 @@
-//! The image table of one light: every internal image's format, size, name and lifetime, and the byte counts that
-//! follow from them. Plain data: light.rs creates the images from it.
+//! The state of a context as data: the table of its internal images and of the passes' accesses to them
+//! (`table`), and what follows from it: the images a light and a context create, their byte counts, the formats to
+//! check. Plain data: light.rs and context.rs create the images from it.
+
+pub mod table;
+#[cfg(test)]
+mod tests;
 
 use crate::create_info::{Precision, ShadowInput};
-use crate::settings::MAX_FILTER_PASSES;
 use ash::vk;
+pub(crate) use table::Lifetime;
+use table::{format_bytes, resource_of, Image, Per, Resource, Scope, RESOURCES};
 
-pub(crate) const TILE_FORMAT: vk::Format = vk::Format::R32_UINT;
-pub(crate) const DEPTH_FORMAT: vk::Format = vk::Format::R32_SFLOAT;
-/// Per tile: the blocker distance of penumbra guidance.
-pub(crate) const TILE_BLOCKER_FORMAT: vk::Format = vk::Format::R32_SFLOAT;
-/// Per pixel: mean (unorm16), sum of squared deviations and sample count (float16), run of identical samples
-/// (int16), packed into two words (shaders/dnsr_storage.glsl, src/reference/storage.rs).
-pub(crate) const MOMENTS_FORMAT: vk::Format = vk::Format::R32G32_UINT;
-/// The filter's geometry per pixel (linear depth as float32, -1 for sky; octahedral unit normal, 2 x snorm16): one
-/// texel per tap for the passes after the first instead of a depth and a normal fetch, each decoded again.
-pub(crate) const GUIDE_FORMAT: vk::Format = vk::Format::R32G32_UINT;
-// A context without a guide binds a light's moments in its place (Context::frame_views): same format.
-const _: () = assert!(GUIDE_FORMAT.as_raw() == MOMENTS_FORMAT.as_raw());
+/// The moments' format (packed: src/reference/storage.rs), for tests that read and write them.
+#[cfg_attr(not(test), allow(dead_code))]
+pub(crate) const MOMENTS_FORMAT: vk::Format = resource_of(Image::Moments).format.fp32;
 
-/// The filter's signal (mean, variance) between passes and as history: R16G16_UNORM in the fp32 path (the mean,
-/// and the standard deviation over `signal_scale`: shaders/dnsr_storage.glsl), float16 in the fp16 path.
+/// The filter's signal (mean, variance) between passes and as history (`table::Image::History`'s format: every
+/// intermediate of the filter has it), for tests that read it.
+#[cfg(test)]
 pub(crate) fn intermediate_format(precision: Precision) -> vk::Format {
-    match precision {
-        Precision::Fp32 => vk::Format::R16G16_UNORM,
-        Precision::Fp16 => vk::Format::R16G16_SFLOAT,
-    }
+    resource_of(Image::History).format.get(precision)
 }
 
 /// Largest unorm16 code a stored signal's deviation takes: a device's unorm write may round to either neighbouring
@@ -39,111 +34,97 @@ pub(crate) fn signal_scale(variance_boost_samples: f32) -> f32 {
     (0.5 * variance_boost_samples.max(1.0)).sqrt()
 }
 
-/// Images of a light that only some filter pass counts use, allocated when the settings first need them (and kept
-/// when they no longer do).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Optional {
-    /// Fourth-pass intermediate: four passes.
-    Tmp,
-}
-
-impl Optional {
-    pub(crate) fn needed(self, filter_passes: u32) -> bool {
-        match self {
-            Optional::Tmp => filter_passes == MAX_FILTER_PASSES,
-        }
-    }
-
-    pub(crate) fn spec(self, precision: Precision) -> (vk::Format, &'static str) {
-        match self {
-            Optional::Tmp => (intermediate_format(precision), "filter_tmp"),
-        }
-    }
-}
-
-pub(crate) const OPTIONAL: [Optional; 1] = [Optional::Tmp];
-
 /// The filter's guide is the same for every light (the G-buffer's linear depth and normal), so a context holds one,
 /// written by each light's first filter pass where its later passes read it: two or more passes need it.
 pub(crate) fn guide_needed(filter_passes: u32) -> bool {
-    filter_passes > 1
+    resource_of(Image::Guide).needed.holds(filter_passes, ShadowInput::HitMask)
 }
 
-/// The visibility prepare reconstructs from a checkerboard input.
-pub(crate) const RECONSTRUCTED_FORMAT: vk::Format = vk::Format::R32_SFLOAT;
+/// Every persistent image is a light's and always allocated (`persistent_texel_bytes` relies on it).
+const _: () = {
+    let mut i = 0;
+    while i < RESOURCES.len() {
+        let r = &RESOURCES[i];
+        assert!(!matches!(r.lifetime, Lifetime::Persistent) || (matches!(r.needed, table::Needed::Always) && matches!(r.scope, Scope::Light)));
+        i += 1;
+    }
+};
 
-/// Bytes of one texel of the internal formats.
-fn format_bytes(format: vk::Format) -> u64 {
-    match format {
-        vk::Format::R32G32B32A32_SFLOAT => 16,
-        vk::Format::R32G32_SFLOAT | vk::Format::R32G32_UINT => 8,
-        _ => 4, // R32_UINT, R32_SFLOAT, R16G16_SFLOAT
+/// One internal image to create: which row and copy of the table, format, size, lifetime.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct ImageSpec {
+    pub image: Image,
+    /// Which half of a ping-pong pair (0 otherwise).
+    pub copy: u32,
+    pub format: vk::Format,
+    pub extent: [u32; 2],
+    pub lifetime: Lifetime,
+}
+
+impl ImageSpec {
+    /// Its debug name after `dnsr.light{n}.` (or `dnsr.` for a context's): `history`, `depth_copy_1`.
+    pub(crate) fn name(&self) -> String {
+        let r = resource_of(self.image);
+        if r.copies > 1 { format!("{}_{}", r.name, self.copy) } else { r.name.to_string() }
     }
 }
 
-/// Texel bytes a light's shadow input adds: the reconstructed visibility of a checkerboard input.
-pub(crate) fn input_bytes(extent: [u32; 2], input: ShadowInput) -> u64 {
-    let texels = extent[0] as u64 * extent[1] as u64;
-    if input == ShadowInput::Checkerboard { format_bytes(RECONSTRUCTED_FORMAT) * texels } else { 0 }
+/// The size of an image of `per` for a render size `extent`.
+pub(crate) fn image_extent(per: Per, extent: [u32; 2]) -> [u32; 2] {
+    let tile = crate::passes::TILE;
+    match per {
+        Per::Pixel => extent,
+        Per::Tile => [extent[0].div_ceil(tile[0]), extent[1].div_ceil(tile[1])],
+    }
 }
 
-/// Texel bytes of the context's guide (none with one filter pass).
-pub(crate) fn guide_bytes(extent: [u32; 2], filter_passes: u32) -> u64 {
-    if guide_needed(filter_passes) { format_bytes(GUIDE_FORMAT) * extent[0] as u64 * extent[1] as u64 } else { 0 }
+fn specs_of(r: &'static Resource, extent: [u32; 2], precision: Precision) -> impl Iterator<Item = ImageSpec> {
+    (0..r.copies).map(move |copy| ImageSpec {
+        image: r.image,
+        copy,
+        format: r.format.get(precision),
+        extent: image_extent(r.per, extent),
+        lifetime: r.lifetime,
+    })
 }
 
-/// Whether an image's contents must survive from one record of its light to the next.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Lifetime {
-    /// Read by a later frame: the moments, the depth copy (both halves of each ping-pong pair: the next frame reads
-    /// the half this one wrote) and the history.
-    Persistent,
-    /// Written and read within one record (tile state, the temporal result, the filter's intermediates, the guide,
-    /// the reconstructed visibility): its contents between records do not matter.
-    Transient,
+/// Every image of `scope` that a context with `filter_passes` passes and shadow input `input` holds (each light
+/// its own for `Scope::Light`), in table order.
+pub(crate) fn image_specs(
+    scope: Scope,
+    extent: [u32; 2],
+    precision: Precision,
+    filter_passes: u32,
+    input: ShadowInput,
+) -> impl Iterator<Item = ImageSpec> {
+    RESOURCES
+        .iter()
+        .filter(move |r| r.scope == scope && r.needed.holds(filter_passes, input))
+        .flat_map(move |r| specs_of(r, extent, precision))
 }
 
-/// One internal image of a light: format, size, debug name, lifetime.
-pub(crate) type ImageSpec = (vk::Format, [u32; 2], &'static str, Lifetime);
-
-/// Every internal image of one light that `filter_passes` passes use, in the order `LightState::new` consumes
-/// them (the optional ones last).
-pub(crate) fn image_specs(extent: [u32; 2], precision: Precision, filter_passes: u32) -> impl Iterator<Item = ImageSpec> {
-    use Lifetime::*;
-    let tiles = [extent[0].div_ceil(8), extent[1].div_ceil(4)];
-    let rg = intermediate_format(precision);
-    let fixed: [ImageSpec; FIXED_IMAGES] = [
-        (TILE_FORMAT, tiles, "tile_mask", Transient),
-        (TILE_FORMAT, tiles, "tile_dark", Transient),
-        (TILE_FORMAT, tiles, "tile_meta", Transient),
-        (TILE_BLOCKER_FORMAT, tiles, "tile_blocker", Transient),
-        (rg, extent, "reprojection", Transient),
-        (rg, extent, "history", Persistent),
-        (DEPTH_FORMAT, extent, "depth_copy_0", Persistent),
-        (DEPTH_FORMAT, extent, "depth_copy_1", Persistent),
-        (MOMENTS_FORMAT, extent, "moments_0", Persistent),
-        (MOMENTS_FORMAT, extent, "moments_1", Persistent),
-    ];
-    fixed.into_iter().chain(OPTIONAL.into_iter().filter(move |o| o.needed(filter_passes)).map(move |o| {
-        let (format, name) = o.spec(precision);
-        (format, extent, name, Transient)
-    }))
+/// The images of `image`'s row (both halves of a pair), needed or not.
+pub(crate) fn specs_of_image(image: Image, extent: [u32; 2], precision: Precision) -> impl Iterator<Item = ImageSpec> {
+    specs_of(resource_of(image), extent, precision)
 }
 
-/// Texel bytes of the internal images of one light, before any driver padding or alignment.
-pub(crate) fn texel_bytes(extent: [u32; 2], precision: Precision, filter_passes: u32) -> u64 {
-    image_specs(extent, precision, filter_passes).map(spec_bytes).sum()
+/// Texel bytes of the images of `scope` (of one light for `Scope::Light`), before any driver padding or alignment.
+pub(crate) fn texel_bytes(scope: Scope, extent: [u32; 2], precision: Precision, filter_passes: u32, input: ShadowInput) -> u64 {
+    image_specs(scope, extent, precision, filter_passes, input).map(spec_bytes).sum()
 }
 
 /// Texel bytes of one light's persistent images (`Lifetime::Persistent`); the guide and every other image of a
 /// context are transient.
 pub(crate) fn persistent_texel_bytes(extent: [u32; 2], precision: Precision) -> u64 {
-    image_specs(extent, precision, 1).filter(|s| s.3 == Lifetime::Persistent).map(spec_bytes).sum()
+    image_specs(Scope::Light, extent, precision, 1, ShadowInput::HitMask).filter(|s| s.lifetime == Lifetime::Persistent).map(spec_bytes).sum()
 }
 
-fn spec_bytes((format, [w, h], _, _): ImageSpec) -> u64 {
-    format_bytes(format) * w as u64 * h as u64
+fn spec_bytes(s: ImageSpec) -> u64 {
+    format_bytes(s.format) * s.extent[0] as u64 * s.extent[1] as u64
 }
 
-/// Images every light has (`image_specs`).
-const FIXED_IMAGES: usize = 10;
+/// Every format of the table with `precision`, once each: the device must sample and store them.
+pub(crate) fn formats(precision: Precision) -> impl Iterator<Item = vk::Format> {
+    let all = RESOURCES.map(|r| r.format.get(precision));
+    all.into_iter().enumerate().filter(move |&(i, f)| !all[..i].contains(&f)).map(|(_, f)| f)
+}

@@ -40,14 +40,8 @@ pub(crate) const OUTPUT_FORMATS: &[F] = &[F::R8_UNORM, F::R16_SFLOAT, F::R32_SFL
 
 /// Every format a host image may have or dnsr creates (their features are queried once per context).
 pub(crate) fn known_formats() -> impl Iterator<Item = F> {
-    use crate::state::{intermediate_format, DEPTH_FORMAT, MOMENTS_FORMAT, TILE_FORMAT};
-    let internal = [
-        TILE_FORMAT,
-        DEPTH_FORMAT,
-        MOMENTS_FORMAT,
-        intermediate_format(crate::create_info::Precision::Fp32),
-        intermediate_format(crate::create_info::Precision::Fp16),
-    ];
+    use crate::create_info::Precision;
+    let internal = crate::state::formats(Precision::Fp32).chain(crate::state::formats(Precision::Fp16));
     [DEPTH_FORMATS, VELOCITY_FORMATS, NORMAL_FORMATS, OUTPUT_FORMATS, &[F::R32_UINT]]
         .into_iter()
         .flatten()

@@ -22,6 +22,9 @@ pub(crate) struct InternalImage {
     /// Tests that write an image's texels need it.
     #[cfg_attr(not(test), allow(dead_code))]
     pub format: vk::Format,
+    /// Width and height (a test compares them with the state table).
+    #[cfg_attr(not(test), allow(dead_code))]
+    pub extent: [u32; 2],
     /// Its contents must survive from one record to the next (state::Lifetime).
     pub persistent: bool,
 }
@@ -51,7 +54,7 @@ impl InternalImage {
         let image = vk_check("vkCreateImage", unsafe { d.create_image(&info, vk.alloc()) })?;
         let req = unsafe { d.get_image_memory_requirements(image) };
         let mut out =
-            InternalImage { image, view: vk::ImageView::null(), memory: Memory::default(), bytes: req.size, format, persistent };
+            InternalImage { image, view: vk::ImageView::null(), memory: Memory::default(), bytes: req.size, format, extent, persistent };
         let result = (|| {
             out.memory = memory::allocate(vk, req, kind)?;
             vk_check("vkBindImageMemory", unsafe { d.bind_image_memory(image, out.memory.memory, out.memory.offset) })?;

@@ -170,6 +170,13 @@ impl Resource {
     pub(crate) fn from_glsl_name(name: &str) -> Option<(Resource, vk::DescriptorType)> {
         TABLE.iter().find(|(n, _, _)| *n == name).map(|&(_, r, t)| (r, t))
     }
+
+    /// The descriptor type a shader declares the named resource at `index` of a `BindingTable` as (None for an
+    /// engine image).
+    #[cfg(test)]
+    pub(crate) fn descriptor_type_at(index: usize) -> Option<vk::DescriptorType> {
+        TABLE.iter().find(|(_, r, _)| *r as usize == index).map(|&(_, _, t)| t)
+    }
 }
 
 /// What one resource is bound to for one dispatch.

@@ -3,10 +3,11 @@
 //! linear depth and normals) and the later passes (DNSR_LATER_PASS; read the guide per tap). Pass 0 writes the
 //! history of the next frame; the final pass writes the host output.
 //!
-//! Intermediates: pass 0 reprojection -> history, pass 1 history -> reprojection, pass 2 reprojection -> tmp,
-//! pass 3 tmp -> (output only). The reprojection image is free once pass 0 consumed it, so three passes need no
-//! extra image. Tile classification already wrote the cleared tiles' values into the reprojection image and the
-//! output, so a pass that writes only there skips groups whose two tiles are cleared.
+//! Intermediates (the state table's `FILTER_INPUT` and `FILTER_OUTPUT`, src/state/table.rs): pass 0 reprojection
+//! -> history, pass 1 history -> reprojection, pass 2 reprojection -> tmp, pass 3 tmp -> (output only). The
+//! reprojection image is free once pass 0 consumed it, so three passes need no extra image. Tile classification
+//! already wrote the cleared tiles' values into the reprojection image and the output, so a pass that writes only
+//! there skips groups whose two tiles are cleared.
 
 use super::bindings::Resource;
 use super::{internal, FrameViews, Grid, Pass, Role, LIGHT_SLOTS, SPEC_PENUMBRA_GUIDED, WIDE_GROUP};
@@ -15,6 +16,7 @@ use super::variants::variant_name;
 use crate::create_info::Precision;
 use crate::dispatch::DebugView;
 use crate::glsl::gpu_block;
+use crate::state::table::{Image, FILTER_INPUT, FILTER_OUTPUT};
 use ash::vk;
 
 gpu_block! {
@@ -62,12 +64,22 @@ pub(crate) fn lights_shader(precision: Precision, final_output: Option<vk::Forma
     variant_name(stem, final_output, precision)
 }
 
+/// The image of the filter's signal that `image` is in this frame.
+fn signal(v: &FrameViews, image: Image) -> vk::ImageView {
+    match image {
+        Image::Reprojection => v.reprojection,
+        Image::History => v.history,
+        Image::Tmp => v.tmp,
+        other => unreachable!("{other:?} is not an image of the filter's signal"),
+    }
+}
+
 fn input(v: &FrameViews, pass: u32) -> vk::ImageView {
-    [v.reprojection, v.history, v.reprojection, v.tmp][pass as usize]
+    signal(v, FILTER_INPUT[pass as usize])
 }
 
 fn output(v: &FrameViews, pass: u32) -> vk::ImageView {
-    let natural = [v.history, v.reprojection, v.tmp, v.reprojection][pass as usize];
+    let natural = signal(v, FILTER_OUTPUT[pass as usize]);
     // A final third pass writes no intermediate; bind something that is not its input.
     if natural == vk::ImageView::null() { v.history } else { natural }
 }

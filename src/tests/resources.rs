@@ -263,3 +263,57 @@ mod hooks {
         g.assert_clean();
     }
 }
+
+/// The state table (src/state/table.rs) is what the images are created with: every row's images exist exactly where
+/// its `Needed` says, per light or per context, with its format for the precision, its size (per pixel or per tile)
+/// and its lifetime; also after the settings add passes to a context.
+#[test]
+fn state_table_is_what_the_images_are_created_with() {
+    use crate::state::table::{Scope, RESOURCES};
+    use crate::{Precision, Settings, ShadowInput};
+    let g = super::gpu();
+    let (w, h) = (44u32, 26u32);
+    let check = |ctx: &crate::Context, what: &str, lights: usize, precision: Precision, passes: u32, input: ShadowInput| {
+        let mut count = 0;
+        for r in RESOURCES {
+            let owners: Vec<Option<usize>> = if r.scope == Scope::Light { (0..lights).map(Some).collect() } else { vec![None] };
+            for owner in owners {
+                for copy in 0..=r.copies {
+                    let made = ctx.state_image(owner, r.image, copy);
+                    let wanted = copy < r.copies && r.needed.holds(passes, input);
+                    assert_eq!(made.is_some(), wanted, "{what}: {:?} {owner:?} copy {copy}", r.image);
+                    let Some(img) = made else { continue };
+                    count += 1;
+                    assert_eq!(img.format, r.format.get(precision), "{what}: {:?}", r.image);
+                    assert_eq!(img.extent, crate::state::image_extent(r.per, [w, h]), "{what}: {:?}", r.image);
+                    assert_eq!(img.persistent, r.lifetime == crate::state::Lifetime::Persistent, "{what}: {:?}", r.image);
+                }
+            }
+        }
+        // The table lists every image the context has (its transient and persistent images, counted apart).
+        let (transient, persistent) = ctx.transient_images();
+        assert_eq!(transient.len() + persistent, count, "{what}");
+    };
+    let mut precisions = vec![Precision::Fp32];
+    if g.features.float16 {
+        precisions.push(Precision::Fp16);
+    }
+    for precision in precisions {
+        for (input, passes) in [(ShadowInput::HitMask, 1), (ShadowInput::HitMask, 3), (ShadowInput::Checkerboard, 4), (ShadowInput::Visibility, 2)] {
+            let mut info = g.create_info(w, h);
+            info.precision = precision;
+            info.shadow_input = input;
+            info.light_count = 2;
+            info.settings.filter_passes = passes;
+            let mut ctx = crate::Context::new(&info).unwrap();
+            let what = format!("{precision:?}, {input:?}, {passes} passes");
+            check(&ctx, &what, 2, precision, passes, input);
+            if passes == 1 {
+                // The settings allocate what more passes need (and keep it when they need less again).
+                ctx.set_settings(Settings { filter_passes: 4, ..ctx.settings() }).unwrap();
+                check(&ctx, &format!("{what}, then 4"), 2, precision, 4, input);
+            }
+        }
+    }
+    g.assert_clean();
+}

@@ -2,69 +2,18 @@
 //! neighbouring taps in the caches), nothing for constants or push constants. This is the traffic of the
 //! current passes, not the algorithm's floor (DESIGN.md puts that near 30-40 B/px for a whole frame).
 //!
-//! `model` is the one table to update when a format or a pass changes. Each row: which pass, which resource,
-//! bytes per unit with the fp32 and the fp16 path, read or write, which pixels it covers (bytes are per pixel
-//! of that class, per tile for `Tiles`), and in which filter passes it applies. The bench measures the size of
-//! every pixel class on the device (through dnsr's debug views) and multiplies out.
+//! Each row: which pass, which resource, bytes per unit with the fp32 and the fp16 path, read or write, which
+//! pixels it covers (bytes are per pixel of that class, per tile for `Tiles`), and in which filter passes it
+//! applies. The rows of dnsr's internal images come from the library's state table (`dnsr::state_table::ACCESSES`,
+//! src/state/table.rs: formats, accesses, pixel classes, filter passes), so a format or an access changes there,
+//! once; only the rows of the host's images (whose formats are the bench's inputs) are written here. The bench
+//! measures the size of every pixel class on the device (through dnsr's debug views) and multiplies out.
 
 use super::json::Json;
 use super::scenes::HostFormats;
+use dnsr::state_table::{format_bytes, Config, ACCESSES};
+use dnsr::state_table::{Access, Pass, Pixels, When};
 use dnsr::Precision;
-
-#[derive(Clone, Copy, PartialEq, Eq, Debug)]
-pub enum Pass {
-    Prepare,
-    TileClassification,
-    /// Every filter pass (see `When`).
-    Filter,
-}
-
-#[derive(Clone, Copy, PartialEq, Eq, Debug)]
-pub enum Access {
-    Read,
-    Write,
-}
-
-/// Which pixels a row covers. Every class stays measurable whether or not the table uses it today.
-#[allow(dead_code)]
-#[derive(Clone, Copy, PartialEq, Eq, Debug)]
-pub enum Pixels {
-    /// One unit per 8x4 tile (bytes per tile).
-    Tiles,
-    /// Every pixel of the render rectangle.
-    All,
-    /// Receivers: 0 < depth < 1 (not sky).
-    Receivers,
-    /// Receivers in tiles that tile classification did not clear: the temporal path
-    /// (`DebugView::TileClassification` shows 0.5 there).
-    Active,
-    /// Active receivers that reuse last frame's history: not disoccluded, reset or rejected
-    /// (`DebugView::Disocclusion` shows 0 there).
-    History,
-    /// Pixels of the 8x8 groups (two tiles) with at least one tile not cleared: the filter skips the other
-    /// groups, tile classification writes them early.
-    ActiveGroups,
-    /// Receivers in those groups.
-    ActiveGroupReceivers,
-    /// Pixels of the other groups (both tiles cleared): tile classification writes their final output.
-    ClearedGroups,
-}
-
-/// In which filter passes a filter row applies (other passes' rows always apply).
-#[derive(Clone, Copy, PartialEq, Eq, Debug)]
-pub enum When {
-    Always,
-    /// Pass 0 (it writes the next frame's history) and every pass but the last.
-    WritesIntermediate,
-    /// The last pass (it writes the host output).
-    FinalPass,
-    /// Pass 0 (step 1 from shared memory).
-    FirstPass,
-    /// Pass 0 when later passes follow (it writes the guide they read).
-    FirstOfSeveral,
-    /// Every pass after the first (taps read the guide).
-    LaterPasses,
-}
 
 pub struct Row {
     pub pass: Pass,
@@ -85,38 +34,57 @@ use Pass::*;
 use Pixels::*;
 use When::*;
 
-/// The bytes of one frame's passes with the host G-buffer in `host`'s formats (hit mask R32_UINT, output
-/// R16_SFLOAT). Internal formats from src/state.rs.
-pub fn model(host: HostFormats) -> Vec<Row> {
+/// The rows of the host's images in `host`'s formats (hit mask R32_UINT, output R16_SFLOAT).
+fn host_rows(host: HostFormats) -> Vec<Row> {
     let (depth, velocity, normals) = host.bytes();
     let depth_name = format!("depth (host, {:?})", host.depth());
     let velocity_name = format!("velocity (host, {:?})", host.velocity());
     let normals_name = format!("normals (host, {:?})", host.normals());
     vec![
         row(Prepare, "hit mask (host, R32_UINT)", 4.0, 4.0, Read, Tiles, Always),
-        row(Prepare, "tile mask (R32_UINT)", 4.0, 4.0, Write, Tiles, Always),
-        row(TileClassification, "tile mask (R32_UINT)", 4.0, 4.0, Read, Tiles, Always),
         row(TileClassification, &depth_name, depth, depth, Read, All, Always),
         row(TileClassification, &velocity_name, velocity, velocity, Read, ActiveGroupReceivers, Always),
         row(TileClassification, &normals_name, normals, normals, Read, Active, Always),
-        row(TileClassification, "previous depth copy (R32_SFLOAT)", 4.0, 4.0, Read, Active, Always),
-        row(TileClassification, "previous moments (R32G32_UINT, packed)", 8.0, 8.0, Read, History, Always),
-        row(TileClassification, "history (R16G16_UNORM / R16G16_SFLOAT)", 4.0, 4.0, Read, History, Always),
-        row(TileClassification, "depth copy (R32_SFLOAT)", 4.0, 4.0, Write, All, Always),
-        row(TileClassification, "moments (R32G32_UINT, packed)", 8.0, 8.0, Write, All, Always),
-        row(TileClassification, "reprojection (R16G16_UNORM / R16G16_SFLOAT)", 4.0, 4.0, Write, All, Always),
-        row(TileClassification, "tile meta (R32_UINT)", 4.0, 4.0, Write, Tiles, Always),
         row(TileClassification, "output (host, R16_SFLOAT)", 2.0, 2.0, Write, ClearedGroups, Always),
-        row(Filter, "tile meta (R32_UINT)", 4.0, 4.0, Read, Tiles, Always),
         row(Filter, &depth_name, depth, depth, Read, All, FirstPass),
         row(Filter, &depth_name, depth, depth, Read, ClearedGroups, LaterPasses),
         row(Filter, &normals_name, normals, normals, Read, ActiveGroups, FirstPass),
-        row(Filter, "guide (R32G32_UINT, packed)", 8.0, 8.0, Write, ActiveGroups, FirstOfSeveral),
-        row(Filter, "guide (R32G32_UINT, packed)", 8.0, 8.0, Read, ActiveGroups, LaterPasses),
-        row(Filter, "filter input (R16G16_UNORM / R16G16_SFLOAT)", 4.0, 4.0, Read, ActiveGroups, Always),
-        row(Filter, "filter output (R16G16_UNORM / R16G16_SFLOAT)", 4.0, 4.0, Write, All, WritesIntermediate),
         row(Filter, "output (host, R16_SFLOAT)", 2.0, 2.0, Write, All, FinalPass),
     ]
+}
+
+/// The rows of dnsr's internal images: the state table's accesses in the bench's configuration (a hit-mask input,
+/// no penumbra guidance, no debug view), bytes per texel from their formats.
+fn internal_rows() -> Vec<Row> {
+    ACCESSES
+        .iter()
+        .filter(|a| a.config == Config::Any)
+        .map(|a| {
+            let f = a.target.formats();
+            row(a.pass, &a.target.label(), format_bytes(f.fp32) as f64, format_bytes(f.fp16) as f64, a.access, a.pixels, a.when)
+        })
+        .collect()
+}
+
+/// The bytes of one frame's passes with the host G-buffer in `host`'s formats. Per pass: the tile state it reads,
+/// the host images it reads, the rest of its internal images (src/state/table.rs), the host image it writes.
+pub fn model(host: HostFormats) -> Vec<Row> {
+    let (host, internal) = (host_rows(host), internal_rows());
+    let tile_read = |r: &Row| r.pixels == Tiles && r.access == Read;
+    let mut rows = Vec::new();
+    for pass in [Prepare, TileClassification, Filter] {
+        let of = |rows: &[Row], keep: &dyn Fn(&Row) -> bool| -> Vec<Row> {
+            rows.iter()
+                .filter(|r| r.pass == pass && keep(r))
+                .map(|r| row(r.pass, &r.resource, r.fp32, r.fp16, r.access, r.pixels, r.when))
+                .collect()
+        };
+        rows.extend(of(&internal, &tile_read));
+        rows.extend(of(&host, &|r| r.access == Read));
+        rows.extend(of(&internal, &|r| !tile_read(r)));
+        rows.extend(of(&host, &|r| r.access == Write));
+    }
+    rows
 }
 
 /// Size of every pixel class in one frame (averaged over the frames measured).
@@ -180,14 +148,7 @@ impl PassId {
     fn applies(self, r: &Row, filter_passes: u32) -> bool {
         match (self, r.pass) {
             (PassId::Prepare, Prepare) | (PassId::TileClassification, TileClassification) => true,
-            (PassId::Filter(k), Filter) => match r.when {
-                Always => true,
-                WritesIntermediate => k == 0 || k + 1 < filter_passes,
-                FinalPass => k + 1 == filter_passes,
-                FirstPass => k == 0,
-                FirstOfSeveral => k == 0 && filter_passes > 1,
-                LaterPasses => k > 0,
-            },
+            (PassId::Filter(k), Filter) => r.when.applies(k, filter_passes),
             _ => false,
         }
     }

@@ -1,0 +1,439 @@
+//! The state model as data: every internal image dnsr keeps, declared once (`RESOURCES`: format per precision, per
+//! pixel or per tile, per light or per context, persistent or transient, when it is allocated), and every access
+//! the passes make to them (`ACCESSES`: which pass reads or writes which image, over which pixels, in which filter
+//! passes, in which configuration). Plain data, no Vulkan object made.
+//!
+//! Derived from it: the images a light and a context create (src/state.rs `image_specs`, src/light.rs), the format
+//! checks at context creation, `memory_requirements`, `Context::memory_bytes` (the images it sums) and the
+//! persistent/transient split (`Context::persistent_memory_bytes`, the transient images a host may alias), the
+//! filter's ping-pong between its intermediates (`FILTER_INPUT`, `FILTER_OUTPUT`: src/passes/filter.rs binds them)
+//! and dnsr-bench's byte model (its rows for internal images are `ACCESSES` in the bench's configuration,
+//! `Config::Any`; bytes per texel from `format_bytes`). Barriers are not: the recorder derives them from the
+//! bindings of each pass (src/context.rs).
+//!
+//! Public (hidden) as `dnsr::state_table` for tooling only (dnsr-bench's byte model): not a stable API.
+
+use crate::create_info::{Precision, ShadowInput};
+use crate::settings::MAX_FILTER_PASSES;
+use ash::vk;
+
+/// An internal image of the table (a ping-pong pair counts as one: `Resource::copies`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Image {
+    /// The lit-bit tile mask prepare writes from the host's hit mask (or visibility).
+    TileMask,
+    /// The exactly shadowed pixels of each tile (a per-pixel visibility input).
+    TileDark,
+    /// Tile metadata (`TILE_CLEARED`, `TILE_LIT`) of tile classification, read by the filter.
+    TileMeta,
+    /// Each tile's blocker estimate (penumbra guidance).
+    TileBlocker,
+    /// The temporal result of tile classification: filter pass 0's input, later reused as an intermediate.
+    Reprojection,
+    /// Filter pass 0's output, which the next frame's classification reads.
+    History,
+    /// The depth copy of each frame, read by the next one (ping-pong pair).
+    DepthCopy,
+    /// The temporal moments of each frame, read by the next one (ping-pong pair).
+    Moments,
+    /// The fourth pass's input (four filter passes only).
+    Tmp,
+    /// The visibility prepare reconstructs from a checkerboard input.
+    Reconstructed,
+    /// The filter's geometry per pixel (two or more filter passes), one per context.
+    Guide,
+}
+
+/// The formats of an image: the fp32 path's and the fp16 path's (`Precision`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Formats {
+    /// With `Precision::Fp32`.
+    pub fp32: vk::Format,
+    /// With `Precision::Fp16`.
+    pub fp16: vk::Format,
+}
+
+impl Formats {
+    const fn both(format: vk::Format) -> Formats {
+        Formats { fp32: format, fp16: format }
+    }
+
+    /// The format with `precision`.
+    pub const fn get(self, precision: Precision) -> vk::Format {
+        match precision {
+            Precision::Fp32 => self.fp32,
+            Precision::Fp16 => self.fp16,
+        }
+    }
+
+    /// "R32_UINT", or "R16G16_UNORM / R16G16_SFLOAT" where the paths differ; ", packed" for words that pack
+    /// several values.
+    pub fn label(self, packed: bool) -> String {
+        let formats = if self.fp32 == self.fp16 { format!("{:?}", self.fp32) } else { format!("{:?} / {:?}", self.fp32, self.fp16) };
+        if packed { format!("{formats}, packed") } else { formats }
+    }
+}
+
+/// What one texel of an image covers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Per {
+    /// A pixel of the render size.
+    Pixel,
+    /// An 8x4 tile (`passes::TILE`), the render size rounded up.
+    Tile,
+}
+
+/// Who owns an image.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scope {
+    /// Every light has its own (src/light.rs).
+    Light,
+    /// The context holds one for all its lights (src/context.rs).
+    Context,
+}
+
+/// Whether an image's contents must survive from one record of its light to the next.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Lifetime {
+    /// Read by a later frame: the moments, the depth copy (both halves of each ping-pong pair: the next frame reads
+    /// the half this one wrote) and the history.
+    Persistent,
+    /// Written and read within one record (tile state, the temporal result, the filter's intermediates, the guide,
+    /// the reconstructed visibility): its contents between records do not matter.
+    Transient,
+}
+
+/// When an image is allocated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Needed {
+    /// Always.
+    Always,
+    /// With at least this many filter passes (allocated when the settings first need it, kept when they no longer
+    /// do).
+    Passes(u32),
+    /// With `ShadowInput::Checkerboard`.
+    Checkerboard,
+}
+
+impl Needed {
+    /// Whether a context with `filter_passes` passes and shadow input `input` has the image.
+    pub fn holds(self, filter_passes: u32, input: ShadowInput) -> bool {
+        match self {
+            Needed::Always => true,
+            Needed::Passes(n) => filter_passes >= n,
+            Needed::Checkerboard => input == ShadowInput::Checkerboard,
+        }
+    }
+}
+
+/// One internal image (or ping-pong pair) of the table.
+#[derive(Clone, Copy, Debug)]
+pub struct Resource {
+    /// Which image (`RESOURCES[image as usize]`).
+    pub image: Image,
+    /// Its debug-name stem (`dnsr.light{n}.{name}`, `_{copy}` after it for a pair; `dnsr.{name}` per context); with
+    /// spaces for underscores, its name in the byte model and docs/performance.md.
+    pub name: &'static str,
+    /// Its format per precision.
+    pub format: Formats,
+    /// Its words pack several values (shaders/dnsr_storage.glsl, src/reference/storage.rs).
+    pub packed: bool,
+    /// What a texel covers.
+    pub per: Per,
+    /// Per light or per context.
+    pub scope: Scope,
+    /// Images of it: 2 for a ping-pong pair (the current frame writes one, the previous frame wrote the other).
+    pub copies: u32,
+    /// Persistent or transient.
+    pub lifetime: Lifetime,
+    /// When it is allocated.
+    pub needed: Needed,
+}
+
+impl Resource {
+    /// Its name in the byte model and the docs: the debug-name stem with spaces.
+    pub fn display_name(&self) -> String {
+        self.name.replace('_', " ")
+    }
+
+    /// Bytes of one texel with `precision`.
+    pub fn texel_bytes(&self, precision: Precision) -> u64 {
+        format_bytes(self.format.get(precision))
+    }
+}
+
+/// The filter's signal (mean and variance) between passes and as history: R16G16_UNORM in the fp32 path (the mean,
+/// and the standard deviation over `state::signal_scale`: shaders/dnsr_storage.glsl), float16 in the fp16 path.
+const SIGNAL: Formats = Formats { fp32: vk::Format::R16G16_UNORM, fp16: vk::Format::R16G16_SFLOAT };
+
+const fn resource(
+    image: Image,
+    name: &'static str,
+    format: Formats,
+    per: Per,
+    scope: Scope,
+    copies: u32,
+    lifetime: Lifetime,
+    needed: Needed,
+) -> Resource {
+    Resource { image, name, format, packed: false, per, scope, copies, lifetime, needed }
+}
+
+const fn packed(r: Resource) -> Resource {
+    Resource { packed: true, ..r }
+}
+
+use Lifetime::{Persistent, Transient};
+use Per::{Pixel, Tile};
+use Scope::{Context, Light};
+
+/// Every internal image, in `Image` order (which is the order a light creates them in).
+pub const RESOURCES: [Resource; 11] = [
+    resource(Image::TileMask, "tile_mask", Formats::both(vk::Format::R32_UINT), Tile, Light, 1, Transient, Needed::Always),
+    // 4 bytes per tile, so allocated whatever the input.
+    resource(Image::TileDark, "tile_dark", Formats::both(vk::Format::R32_UINT), Tile, Light, 1, Transient, Needed::Always),
+    resource(Image::TileMeta, "tile_meta", Formats::both(vk::Format::R32_UINT), Tile, Light, 1, Transient, Needed::Always),
+    // The blocker distance of penumbra guidance; 4 bytes per tile, so allocated with or without guidance.
+    resource(Image::TileBlocker, "tile_blocker", Formats::both(vk::Format::R32_SFLOAT), Tile, Light, 1, Transient, Needed::Always),
+    resource(Image::Reprojection, "reprojection", SIGNAL, Pixel, Light, 1, Transient, Needed::Always),
+    resource(Image::History, "history", SIGNAL, Pixel, Light, 1, Persistent, Needed::Always),
+    resource(Image::DepthCopy, "depth_copy", Formats::both(vk::Format::R32_SFLOAT), Pixel, Light, 2, Persistent, Needed::Always),
+    // Per pixel: mean (unorm16), sum of squared deviations and sample count (float16), run of identical samples
+    // (int16), packed into two words.
+    packed(resource(Image::Moments, "moments", Formats::both(vk::Format::R32G32_UINT), Pixel, Light, 2, Persistent, Needed::Always)),
+    resource(Image::Tmp, "filter_tmp", SIGNAL, Pixel, Light, 1, Transient, Needed::Passes(MAX_FILTER_PASSES)),
+    resource(Image::Reconstructed, "reconstructed_visibility", Formats::both(vk::Format::R32_SFLOAT), Pixel, Light, 1, Transient, Needed::Checkerboard),
+    // Linear depth as float32 (-1 for sky), octahedral unit normal as 2 x snorm16: one texel per tap for the passes
+    // after the first instead of a depth and a normal fetch, each decoded again. The same for every light.
+    packed(resource(Image::Guide, "guide", Formats::both(vk::Format::R32G32_UINT), Pixel, Context, 1, Transient, Needed::Passes(2))),
+];
+
+/// The row of `image`.
+pub const fn resource_of(image: Image) -> &'static Resource {
+    &RESOURCES[image as usize]
+}
+
+// `resource_of` indexes by the enum.
+const _: () = {
+    let mut i = 0;
+    while i < RESOURCES.len() {
+        assert!(RESOURCES[i].image as usize == i);
+        i += 1;
+    }
+};
+// A context without a guide binds a light's moments in its place (Context::frame_views): same format.
+const _: () = assert!(resource_of(Image::Guide).format.fp32.as_raw() == resource_of(Image::Moments).format.fp32.as_raw());
+
+/// The image filter pass k reads (`FILTER_INPUT[k]`) and writes when it writes an intermediate
+/// (`FILTER_OUTPUT[k]`; `When::WritesIntermediate`): the reprojection is free once pass 0 consumed it, so three
+/// passes need no image beyond it and the history. (A fourth pass is always the last: its output entry is only
+/// bound, never written.)
+pub const FILTER_INPUT: [Image; MAX_FILTER_PASSES as usize] = [Image::Reprojection, Image::History, Image::Reprojection, Image::Tmp];
+/// See `FILTER_INPUT`.
+pub const FILTER_OUTPUT: [Image; MAX_FILTER_PASSES as usize] = [Image::History, Image::Reprojection, Image::Tmp, Image::Reprojection];
+
+/// Bytes of one texel of the internal formats.
+///
+/// # Panics
+/// On a format no row of `RESOURCES` has (a unit test covers every row).
+pub fn format_bytes(format: vk::Format) -> u64 {
+    match format {
+        vk::Format::R32G32_UINT => 8,
+        vk::Format::R32_UINT | vk::Format::R32_SFLOAT | vk::Format::R16G16_UNORM | vk::Format::R16G16_SFLOAT => 4,
+        _ => panic!("state table: no texel size for {format:?} (add it to format_bytes)"),
+    }
+}
+
+/// A pass of dnsr's frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pass {
+    /// prepare (skipped when the host's mask already holds lit bits; tile classification then reads that mask in
+    /// place of the tile mask).
+    Prepare,
+    /// tile classification.
+    TileClassification,
+    /// Every filter pass (see `When`).
+    Filter,
+}
+
+/// Read or write.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Access {
+    /// The pass samples it.
+    Read,
+    /// The pass stores to it.
+    Write,
+}
+
+/// Which pixels an access covers. dnsr-bench measures each class on the device through the debug views; every
+/// class stays measurable whether or not the table uses it today.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pixels {
+    /// One unit per 8x4 tile (bytes per tile).
+    Tiles,
+    /// Every pixel of the render rectangle.
+    All,
+    /// Receivers: 0 < depth < 1 (not sky).
+    Receivers,
+    /// Receivers in tiles that tile classification did not clear: the temporal path
+    /// (`DebugView::TileClassification` shows 0.5 there).
+    Active,
+    /// Active receivers that reuse last frame's history: not disoccluded, reset or rejected
+    /// (`DebugView::Disocclusion` shows 0 there).
+    History,
+    /// Pixels of the 8x8 groups (two tiles) with at least one tile not cleared: the filter skips the other
+    /// groups, tile classification writes them early.
+    ActiveGroups,
+    /// Receivers in those groups.
+    ActiveGroupReceivers,
+    /// Pixels of the other groups (both tiles cleared): tile classification writes their final output.
+    ClearedGroups,
+}
+
+/// In which filter passes a filter access happens (other passes' accesses always do).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum When {
+    /// Every pass.
+    Always,
+    /// Pass 0 (it writes the next frame's history) and every pass but the last.
+    WritesIntermediate,
+    /// The last pass (it writes the host output).
+    FinalPass,
+    /// Pass 0 (step 1 from shared memory).
+    FirstPass,
+    /// Pass 0 when later passes follow (it writes the guide they read).
+    FirstOfSeveral,
+    /// Every pass after the first (taps read the guide).
+    LaterPasses,
+}
+
+impl When {
+    /// Whether filter pass `pass` of `passes` makes the access.
+    pub fn applies(self, pass: u32, passes: u32) -> bool {
+        match self {
+            When::Always => true,
+            When::WritesIntermediate => pass == 0 || pass + 1 < passes,
+            When::FinalPass => pass + 1 == passes,
+            When::FirstPass => pass == 0,
+            When::FirstOfSeveral => pass == 0 && passes > 1,
+            When::LaterPasses => pass > 0,
+        }
+    }
+}
+
+/// In which configuration an access happens.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Config {
+    /// In every one: a hit-mask input without penumbra guidance or debug view (the byte model's configuration)
+    /// and every other.
+    Any,
+    /// A per-pixel visibility input: `ShadowInput::Visibility` or `Checkerboard`.
+    VisibilityInput,
+    /// `ShadowInput::Checkerboard`.
+    CheckerboardInput,
+    /// Penumbra guidance (`ShadowsDispatch::hit_distance`). Tile classification writes the blocker of the tiles it
+    /// did not clear only: `Pixels::Tiles` is a bound.
+    PenumbraGuidance,
+    /// A debug view (`ShadowsDispatch::debug_view`).
+    DebugView,
+}
+
+/// What an access touches.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Target {
+    /// The image; of a ping-pong pair, the half the current frame writes.
+    Image(Image),
+    /// The half of a ping-pong pair that the previous frame wrote.
+    Previous(Image),
+    /// The filter pass's input: pass k reads `FILTER_INPUT[k]`.
+    FilterInput,
+    /// The filter pass's intermediate output: pass k writes `FILTER_OUTPUT[k]`.
+    FilterOutput,
+}
+
+impl Target {
+    /// The image filter pass `pass` touches (any pass for the targets other than the filter's input and output).
+    pub fn image(self, pass: u32) -> Image {
+        match self {
+            Target::Image(i) | Target::Previous(i) => i,
+            Target::FilterInput => FILTER_INPUT[pass as usize],
+            Target::FilterOutput => FILTER_OUTPUT[pass as usize],
+        }
+    }
+
+    /// The formats of what it touches (the filter's input and output: `FILTER_INPUT`'s and `FILTER_OUTPUT`'s,
+    /// one format, which a unit test checks).
+    pub fn formats(self) -> Formats {
+        resource_of(self.image(0)).format
+    }
+
+    /// Its name in the byte model: "previous moments (R32G32_UINT, packed)", "filter input (R16G16_UNORM /
+    /// R16G16_SFLOAT)".
+    pub fn label(self) -> String {
+        let r = resource_of(self.image(0));
+        let name = match self {
+            Target::Image(_) => r.display_name(),
+            Target::Previous(_) => format!("previous {}", r.display_name()),
+            Target::FilterInput => "filter input".into(),
+            Target::FilterOutput => "filter output".into(),
+        };
+        let packed = r.packed && matches!(self, Target::Image(_) | Target::Previous(_));
+        format!("{name} ({})", r.format.label(packed))
+    }
+}
+
+/// One access of a pass to internal state. Its bytes per unit of `pixels` are those of a texel of the target's
+/// format, every texel counted once per pass (perfect reuse of neighbouring taps in the caches).
+#[derive(Clone, Copy, Debug)]
+pub struct StateAccess {
+    /// The pass.
+    pub pass: Pass,
+    /// What it touches.
+    pub target: Target,
+    /// Read or write.
+    pub access: Access,
+    /// Over which pixels.
+    pub pixels: Pixels,
+    /// In which filter passes (`When::Always` for the other passes).
+    pub when: When,
+    /// In which configuration.
+    pub config: Config,
+}
+
+const fn a(pass: Pass, target: Target, access: Access, pixels: Pixels, when: When, config: Config) -> StateAccess {
+    StateAccess { pass, target, access, pixels, when, config }
+}
+
+/// Every access of the passes to internal state, in pass order. The byte model (dnsr-bench) counts those of
+/// `Config::Any` with the host images' beside them; its notes (BENCHMARKS.md "Byte model") say what it leaves out.
+pub const ACCESSES: &[StateAccess] = {
+    use Access::{Read, Write};
+    use Image::*;
+    use Pass::{Filter, Prepare, TileClassification};
+    use Pixels::{Active, ActiveGroups, All, Tiles};
+    use Target::{FilterInput, FilterOutput, Image as I, Previous};
+    &[
+        a(Prepare, I(TileMask), Write, Tiles, When::Always, Config::Any),
+        a(Prepare, I(TileDark), Write, Tiles, When::Always, Config::VisibilityInput),
+        a(Prepare, I(Reconstructed), Write, All, When::Always, Config::CheckerboardInput),
+        a(TileClassification, I(TileMask), Read, Tiles, When::Always, Config::Any),
+        a(TileClassification, I(TileDark), Read, Tiles, When::Always, Config::VisibilityInput),
+        a(TileClassification, I(Reconstructed), Read, All, When::Always, Config::CheckerboardInput),
+        a(TileClassification, Previous(DepthCopy), Read, Active, When::Always, Config::Any),
+        a(TileClassification, Previous(Moments), Read, Pixels::History, When::Always, Config::Any),
+        a(TileClassification, I(History), Read, Pixels::History, When::Always, Config::Any),
+        a(TileClassification, I(DepthCopy), Write, All, When::Always, Config::Any),
+        a(TileClassification, I(Moments), Write, All, When::Always, Config::Any),
+        a(TileClassification, I(Reprojection), Write, All, When::Always, Config::Any),
+        a(TileClassification, I(TileMeta), Write, Tiles, When::Always, Config::Any),
+        a(TileClassification, I(TileBlocker), Write, Tiles, When::Always, Config::PenumbraGuidance),
+        a(Filter, I(TileMeta), Read, Tiles, When::Always, Config::Any),
+        a(Filter, I(TileBlocker), Read, Tiles, When::Always, Config::PenumbraGuidance),
+        a(Filter, I(Guide), Write, ActiveGroups, When::FirstOfSeveral, Config::Any),
+        a(Filter, I(Guide), Read, ActiveGroups, When::LaterPasses, Config::Any),
+        a(Filter, FilterInput, Read, ActiveGroups, When::Always, Config::Any),
+        a(Filter, FilterOutput, Write, All, When::WritesIntermediate, Config::Any),
+        // The moments debug views.
+        a(Filter, I(Moments), Read, All, When::FinalPass, Config::DebugView),
+    ]
+};

@@ -1,0 +1,242 @@
+//! The state table against what it is used for: the byte counts, the passes' bindings, the filter's ping-pong and
+//! docs/performance.md. (src/tests/resources.rs checks it against the images a context creates.)
+
+use super::table::*;
+use super::{formats, image_specs, persistent_texel_bytes, texel_bytes};
+use crate::create_info::{Precision, ShadowInput};
+use crate::dispatch::DebugView;
+use crate::passes::bindings::{image, Binding, Resource as Bound};
+use crate::passes::{frame, FrameViews, GuideWrites};
+use crate::settings::MAX_FILTER_PASSES;
+use ash::vk;
+use ash::vk::Handle;
+
+const PRECISIONS: [Precision; 2] = [Precision::Fp32, Precision::Fp16];
+const INPUTS: [ShadowInput; 3] = [ShadowInput::HitMask, ShadowInput::Visibility, ShadowInput::Checkerboard];
+
+#[test]
+fn every_format_has_a_size_and_is_checked() {
+    for precision in PRECISIONS {
+        let checked: Vec<vk::Format> = formats(precision).collect();
+        for r in &RESOURCES {
+            assert!(r.texel_bytes(precision) > 0, "{:?}", r.image);
+            assert_eq!(checked.iter().filter(|&&f| f == r.format.get(precision)).count(), 1, "{:?}", r.image);
+        }
+    }
+}
+
+/// The byte counts follow the table; the numbers are those of docs/performance.md's "State model" (28 B/px kept).
+#[test]
+fn memory_follows_the_table() {
+    for [w, h] in [[64u32, 32u32], [1921, 1081]] {
+        let (px, tiles) = ((w * h) as u64, (w.div_ceil(8) * h.div_ceil(4)) as u64);
+        for precision in PRECISIONS {
+            for passes in 1..=MAX_FILTER_PASSES {
+                for input in INPUTS {
+                    // Per light: tile mask, dark mask, metadata and blocker (4 B per tile each); reprojection and
+                    // history (4 B), two depth copies (4 B), two moments (8 B); the fourth pass's intermediate (4 B);
+                    // a checkerboard input's reconstructed visibility (4 B). Per context: the guide (8 B, two or more
+                    // passes).
+                    let tmp = if passes == 4 { 4 } else { 0 };
+                    let reconstructed = if input == ShadowInput::Checkerboard { 4 } else { 0 };
+                    let light = 4 * 4 * tiles + px * (4 + 4 + 2 * 4 + 2 * 8 + tmp + reconstructed);
+                    assert_eq!(texel_bytes(Scope::Light, [w, h], precision, passes, input), light, "{precision:?} {passes} {input:?}");
+                    let guide = if passes > 1 { 8 * px } else { 0 };
+                    assert_eq!(texel_bytes(Scope::Context, [w, h], precision, passes, input), guide, "{precision:?} {passes} {input:?}");
+                }
+            }
+            assert_eq!(persistent_texel_bytes([w, h], precision), 28 * px);
+        }
+    }
+}
+
+/// Every image an access touches exists in every configuration where the access happens: the filter's ping-pong
+/// (`FILTER_INPUT`, `FILTER_OUTPUT`) stays within the images the pass count allocates, and the filter's signal is
+/// one format.
+#[test]
+fn accesses_touch_allocated_images() {
+    for a in ACCESSES {
+        for passes in 1..=MAX_FILTER_PASSES {
+            let input = match a.config {
+                Config::VisibilityInput => ShadowInput::Visibility,
+                Config::CheckerboardInput => ShadowInput::Checkerboard,
+                _ => ShadowInput::HitMask,
+            };
+            let ks = if a.pass == Pass::Filter { 0..passes } else { 0..1 };
+            for k in ks.filter(|&k| a.pass != Pass::Filter || a.when.applies(k, passes)) {
+                let r = resource_of(a.target.image(k));
+                assert!(r.needed.holds(passes, input), "{a:?}: pass {k} of {passes} touches {:?}, not allocated", r.image);
+                assert!(!matches!(a.target, Target::Previous(_)) || r.copies == 2, "{a:?}: no previous half");
+            }
+        }
+    }
+    for image in FILTER_INPUT.into_iter().chain(FILTER_OUTPUT) {
+        let r = resource_of(image);
+        assert_eq!(r.format, resource_of(Image::History).format, "{image:?}");
+        assert_eq!((r.per, r.scope, r.copies), (Per::Pixel, Scope::Light, 1), "{image:?}");
+    }
+}
+
+/// A distinct view per internal image (and half of a pair: copy 0 is the current frame's, copy 1 the previous
+/// frame's) and per host image.
+fn view(image: Image, copy: u32) -> vk::ImageView {
+    vk::ImageView::from_raw(1 + 2 * image as u64 + copy as u64)
+}
+
+/// The image (and half) of a view of `view`, for messages.
+fn named(v: vk::ImageView) -> String {
+    let raw = v.as_raw() - 1;
+    let image = RESOURCES.iter().map(|r| r.image).find(|&i| i as u64 == raw / 2).expect("an internal view");
+    format!("{image:?} copy {}", raw % 2)
+}
+
+fn host(n: u64) -> Binding {
+    image(vk::ImageView::from_raw(1000 + n), vk::ImageLayout::GENERAL)
+}
+
+fn views() -> FrameViews {
+    let internal = |i: Image| image(view(i, 0), vk::ImageLayout::GENERAL);
+    FrameViews {
+        constants: Binding::default(),
+        hit_mask: host(0),
+        // A checkerboard input: classification reads the reconstructed visibility.
+        visibility: internal(Image::Reconstructed),
+        visibility_out: view(Image::Reconstructed, 0),
+        depth: host(1),
+        velocity: host(2),
+        normals: host(3),
+        hit_distance: host(4),
+        tile_blocker: view(Image::TileBlocker, 0),
+        spec: 0,
+        output: vk::ImageView::from_raw(1005),
+        tile_mask: internal(Image::TileMask),
+        tile_dark: view(Image::TileDark, 0),
+        tile_meta: view(Image::TileMeta, 0),
+        reprojection: view(Image::Reprojection, 0),
+        history: view(Image::History, 0),
+        tmp: view(Image::Tmp, 0),
+        previous_depth: view(Image::DepthCopy, 1),
+        depth_copy: view(Image::DepthCopy, 0),
+        previous_moments: view(Image::Moments, 1),
+        moments: view(Image::Moments, 0),
+        guide: view(Image::Guide, 0),
+        engine: [Binding::default(); crate::dispatch::MAX_ENGINE_IMAGES],
+        penumbra_tan_half_angle: 0.0,
+        guide_writes: GuideWrites::Tapped,
+    }
+}
+
+/// (view, access) of every internal image one pass binds, read (sampled) or written (storage).
+fn bound(bindings: &crate::passes::bindings::BindingTable) -> Vec<(vk::ImageView, Access)> {
+    let mut out = Vec::new();
+    for (i, b) in bindings.iter().enumerate() {
+        let raw = b.view.as_raw();
+        if raw == 0 || raw >= 1000 {
+            continue;
+        }
+        let storage = Bound::descriptor_type_at(i) == Some(vk::DescriptorType::STORAGE_IMAGE);
+        out.push((b.view, if storage { Access::Write } else { Access::Read }));
+    }
+    out
+}
+
+/// The accesses are the passes' bindings (src/passes/): every access a pass of a frame of 1-4 filter passes makes
+/// is to an image it binds as the access needs (storage to write, sampled to read), and every internal image a pass
+/// binds is in an access of that pass (the prepare pass binds the reconstructed visibility as the input of the
+/// visibility variant, which a checkerboard's variant does not declare).
+#[test]
+fn accesses_are_what_the_passes_bind() {
+    let v = views();
+    for passes in 1..=MAX_FILTER_PASSES {
+        let frame = frame(&v, passes, true, DebugView::None);
+        for (index, p) in frame.iter().enumerate() {
+            let (pass, k) = match index {
+                0 => (Pass::Prepare, 0),
+                1 => (Pass::TileClassification, 0),
+                _ => (Pass::Filter, index as u32 - 2),
+            };
+            let bound = bound(&p.bindings);
+            let mine = || ACCESSES.iter().filter(|a| a.pass == pass);
+            for a in mine().filter(|a| pass != Pass::Filter || a.when.applies(k, passes)) {
+                assert!(bound.contains(&(target_view(a.target, k), a.access)), "{a:?}: pass {k} of {passes} does not bind it so");
+            }
+            for &(bound_view, access) in &bound {
+                let declared = mine().any(|a| {
+                    a.access == access && (0..passes).any(|any| target_view(a.target, if pass == Pass::Filter { any } else { 0 }) == bound_view)
+                });
+                let exempt = pass == Pass::Prepare && bound_view == view(Image::Reconstructed, 0) && access == Access::Read;
+                assert!(declared || exempt, "{pass:?} {k} of {passes} binds {} ({access:?}) that no access declares", named(bound_view));
+            }
+        }
+    }
+}
+
+/// The view of what `t` touches in filter pass `k` (any pass for the other targets).
+fn target_view(t: Target, k: u32) -> vk::ImageView {
+    view(t.image(k), if matches!(t, Target::Previous(_)) { 1 } else { 0 })
+}
+
+/// docs/performance.md's "State model" table is the table's: one row per image (or several images of one format
+/// size), its per-pixel or per-tile size, its bytes, its lifetime, the format it names (or "as history"), a pair as
+/// "(x2, ping-pong)" and the context's images as "(one per context)".
+#[test]
+fn performance_doc_states_the_table() {
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/performance.md")).unwrap();
+    let section = doc.split("## State model").nth(1).expect("a State model section").split("\n## ").next().unwrap();
+    let table = section.split("| image | per | format | bytes | kept |").nth(1).expect("the table of images");
+    let rows: Vec<Vec<&str>> = table
+        .lines()
+        .skip(2)
+        .take_while(|l| l.starts_with("| "))
+        .map(|l| l.trim_matches('|').split(" | ").map(str::trim).collect())
+        .collect();
+    assert!(rows.len() >= 5, "{rows:?}");
+    let mut seen = Vec::new();
+    for row in &rows {
+        let [names, per, format, bytes, kept, ..] = row[..] else { panic!("row {row:?}") };
+        let (list, note) = names.split_once(" (").map_or((names, ""), |(l, n)| (l, n));
+        for name in list.split(", ") {
+            let r = RESOURCES.iter().find(|r| r.display_name() == name).unwrap_or_else(|| panic!("{name}: no image of that name"));
+            seen.push(r.image);
+            let want_per = match r.per {
+                Per::Pixel => "px",
+                Per::Tile => "tile",
+            };
+            assert_eq!(per, want_per, "{name}");
+            assert_eq!(note.contains("x2, ping-pong"), r.copies == 2, "{name}: {names}");
+            assert_eq!(note.contains("one per context"), r.scope == Scope::Context, "{name}: {names}");
+            let each = r.copies > 1 || list.contains(", ");
+            let texel = r.texel_bytes(Precision::Fp32);
+            assert_eq!(texel, r.texel_bytes(Precision::Fp16), "{name}: one byte count");
+            assert_eq!(bytes, if each { format!("{texel} each") } else { texel.to_string() }, "{name}");
+            let want_kept = match r.lifetime {
+                Lifetime::Persistent => "persistent",
+                Lifetime::Transient => "transient",
+            };
+            assert_eq!(kept, want_kept, "{name}");
+            if format == "as history" {
+                assert_eq!(r.format, resource_of(Image::History).format, "{name}");
+            } else {
+                for f in [r.format.fp32, r.format.fp16] {
+                    assert!(format.contains(&format!("{f:?}")), "{name}: {format} does not name {f:?}");
+                }
+            }
+        }
+    }
+    for r in &RESOURCES {
+        assert_eq!(seen.iter().filter(|&&i| i == r.image).count(), 1, "{:?}: one row of docs/performance.md", r.image);
+    }
+}
+
+/// A light's images in table order, the order src/light.rs creates them in.
+#[test]
+fn specs_are_in_table_order() {
+    let names: Vec<String> = image_specs(Scope::Light, [16, 8], Precision::Fp32, 4, ShadowInput::Checkerboard).map(|s| s.name()).collect();
+    assert_eq!(
+        names,
+        [
+            "tile_mask", "tile_dark", "tile_meta", "tile_blocker", "reprojection", "history", "depth_copy_0", "depth_copy_1", "moments_0",
+            "moments_1", "filter_tmp", "reconstructed_visibility"
+        ]
+    );
+}

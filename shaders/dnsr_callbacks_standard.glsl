@@ -101,7 +101,7 @@ layout(set = 0, binding = 7) uniform texture2D dnsr_previous_depth;
 layout(set = 0, binding = 8, r32f) uniform writeonly image2D dnsr_depth_copy;
 layout(set = 0, binding = 9) uniform utexture2D dnsr_previous_moments;
 layout(set = 0, binding = 10, rg32ui) uniform writeonly uimage2D dnsr_moments;
-layout(set = 0, binding = 11) uniform sampler2D dnsr_history;
+layout(set = 0, binding = 11) uniform texture2D dnsr_history;
 layout(set = 0, binding = 12, DNSR_INTERMEDIATE_FORMAT) uniform writeonly image2D dnsr_reprojection;
 layout(set = 0, binding = 13, r32ui) uniform writeonly uimage2D dnsr_tile_meta_out;
 
@@ -122,12 +122,22 @@ vec2 dnsr_read_velocity(ivec2 p) {
 float dnsr_read_previous_depth(ivec2 p) { return texelFetch(dnsr_previous_depth, p + dnsr_get_offset(), 0).r; }
 // (mean, sum of squared deviations, sample count, run of identical samples: +n lit, -n shadowed).
 vec4 dnsr_read_previous_moments(ivec2 p) { return dnsr_unpack_moments(texelFetch(dnsr_previous_moments, p + dnsr_get_offset(), 0).xy); }
-// Bilinear history at a rect-relative uv; the sampler clamps to the edge of the internal image.
-float dnsr_read_history(vec2 uv) {
-    vec2 texel = (uv * vec2(dnsr_get_extent()) + vec2(dnsr_get_offset())) / vec2(textureSize(dnsr_history, 0));
-    return textureLod(dnsr_history, texel, 0.0).r;
-}
 float dnsr_read_history_texel(ivec2 p) { return texelFetch(dnsr_history, p + dnsr_get_offset(), 0).r; }
+// Bilinear history at a rect-relative uv, clamped to the rectangle's edge: four texels blended with float weights.
+// Not the sampler's filter: its weights have only subTexelPrecisionBits of sub-texel resolution (8 on NVIDIA), and
+// the history moves the rejection, which scales the stored moments, so the parity suite failed on NVIDIA under
+// sub-pixel camera motion (a stored sum of squared deviations 4 float16 steps from the reference's).
+float dnsr_read_history(vec2 uv) {
+    vec2 t = uv * vec2(dnsr_get_extent()) - 0.5;
+    vec2 f = t - floor(t);
+    ivec2 base = ivec2(floor(t));
+    ivec2 last = dnsr_get_extent() - 1;
+    float h00 = dnsr_read_history_texel(clamp(base, ivec2(0), last));
+    float h10 = dnsr_read_history_texel(clamp(base + ivec2(1, 0), ivec2(0), last));
+    float h01 = dnsr_read_history_texel(clamp(base + ivec2(0, 1), ivec2(0), last));
+    float h11 = dnsr_read_history_texel(clamp(base + ivec2(1, 1), ivec2(0), last));
+    return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
+}
 void dnsr_write_depth_copy(ivec2 p, float depth) { imageStore(dnsr_depth_copy, p + dnsr_get_offset(), vec4(depth)); }
 void dnsr_write_moments(ivec2 p, vec4 m) { imageStore(dnsr_moments, p + dnsr_get_offset(), uvec4(dnsr_pack_moments(m), 0u, 0u)); }
 void dnsr_write_reprojection(ivec2 p, vec2 mean_var) { imageStore(dnsr_reprojection, p + dnsr_get_offset(), dnsr_encode_signal(mean_var, dnsr_get_signal_scale())); }

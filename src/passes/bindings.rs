@@ -120,7 +120,7 @@ const TABLE: [(&str, Resource, vk::DescriptorType); NAMED_COUNT] = [
     ("dnsr_depth_copy", Resource::DepthCopy, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_previous_moments", Resource::PreviousMoments, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_moments", Resource::Moments, vk::DescriptorType::STORAGE_IMAGE),
-    ("dnsr_history", Resource::History, vk::DescriptorType::COMBINED_IMAGE_SAMPLER),
+    ("dnsr_history", Resource::History, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_reprojection", Resource::Reprojection, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_tile_meta_out", Resource::TileMetaOut, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_tile_meta", Resource::TileMeta, vk::DescriptorType::SAMPLED_IMAGE),

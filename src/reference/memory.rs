@@ -231,7 +231,7 @@ impl Read for Frame {
         self.previous_moments[self.px(p)]
     }
     fn read_history(&self, uv: DVec2) -> f64 {
-        // Bilinear with clamp-to-edge, texel centers at integer + 0.5, as the GPU sampler.
+        // Bilinear with clamp to the rectangle, texel centers at integer + 0.5, float weights: as dnsr_read_history.
         let [w, h] = self.extent;
         let s = DVec2::new(uv.x * w as f64 - 0.5, uv.y * h as f64 - 0.5);
         let (x0, y0) = (s.x.floor(), s.y.floor());

@@ -136,9 +136,9 @@ fn worst(name: &'static str, gpu: impl Iterator<Item = f64>, cpu: impl Iterator<
 
 /// Where float rounding differs between a device and the f64 reference (a stored count one float16 step apart, an
 /// approximate exp or sqrt on a steep slope), a value may move by more than the tolerance: up to this share of a
-/// case's pixels may, each within `ROUNDING_BOUND` (2/255, what an 8-bit output shows). An NVIDIA H200 has 9 such
-/// pixels in seed 5's 2560 (history up to 1.7e-4 from the reference, beside stored counts one step apart; an H100
-/// the same largest difference); lavapipe none. A wrong formula moves far more pixels, or further.
+/// case's pixels may, each within `ROUNDING_BOUND` (2/255, what an 8-bit output shows). While the history was read
+/// through the sampler's bilinear filter (8 sub-texel bits on NVIDIA), an NVIDIA H200 had 9 such pixels in seed 5's
+/// 2560 (history up to 1.7e-4 from the reference); lavapipe none. A wrong formula moves far more pixels, or further.
 const ROUNDING_SHARE: f64 = 0.005;
 const ROUNDING_BOUND: f64 = 2.0 / 255.0;
 

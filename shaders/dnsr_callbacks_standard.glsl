@@ -97,8 +97,8 @@ void dnsr_write_visibility(ivec2 p, float v) { imageStore(dnsr_visibility_out, p
 #ifdef DNSR_PASS_TILE_CLASSIFICATION
 layout(set = 0, binding = 3) uniform utexture2D dnsr_tile_mask;
 layout(set = 0, binding = 5) uniform texture2D dnsr_velocity;
-layout(set = 0, binding = 7) uniform texture2D dnsr_previous_depth;
-layout(set = 0, binding = 8, r32f) uniform writeonly image2D dnsr_depth_copy;
+layout(set = 0, binding = 7) uniform utexture2D dnsr_previous_depth;
+layout(set = 0, binding = 8, r16ui) uniform writeonly uimage2D dnsr_depth_copy;
 layout(set = 0, binding = 9) uniform utexture2D dnsr_previous_moments;
 layout(set = 0, binding = 10, rg32ui) uniform writeonly uimage2D dnsr_moments;
 layout(set = 0, binding = 11) uniform texture2D dnsr_history;
@@ -119,7 +119,8 @@ uint dnsr_read_tile_dark(ivec2 tile) { return texelFetch(dnsr_tile_dark, tile + 
 vec2 dnsr_read_velocity(ivec2 p) {
     return texelFetch(dnsr_velocity, p + dnsr_get_offset(), 0).xy * dnsr_constants.motion_normals.xy;
 }
-float dnsr_read_previous_depth(ivec2 p) { return texelFetch(dnsr_previous_depth, p + dnsr_get_offset(), 0).r; }
+// Last frame's linear depth at p (its depth copy: dnsr_pack_linear_depth).
+float dnsr_read_previous_depth(ivec2 p) { return dnsr_unpack_linear_depth(texelFetch(dnsr_previous_depth, p + dnsr_get_offset(), 0).r); }
 // (mean, sum of squared deviations, sample count, run of identical samples: +n lit, -n shadowed).
 vec4 dnsr_read_previous_moments(ivec2 p) { return dnsr_unpack_moments(texelFetch(dnsr_previous_moments, p + dnsr_get_offset(), 0).xy); }
 float dnsr_read_history_texel(ivec2 p) { return texelFetch(dnsr_history, p + dnsr_get_offset(), 0).r; }
@@ -138,7 +139,7 @@ float dnsr_read_history(vec2 uv) {
     float h11 = dnsr_read_history_texel(clamp(base + ivec2(1, 1), ivec2(0), last));
     return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
 }
-void dnsr_write_depth_copy(ivec2 p, float depth) { imageStore(dnsr_depth_copy, p + dnsr_get_offset(), vec4(depth)); }
+void dnsr_write_depth_copy(ivec2 p, float linear_depth) { imageStore(dnsr_depth_copy, p + dnsr_get_offset(), uvec4(dnsr_pack_linear_depth(linear_depth))); }
 void dnsr_write_moments(ivec2 p, vec4 m) { imageStore(dnsr_moments, p + dnsr_get_offset(), uvec4(dnsr_pack_moments(m), 0u, 0u)); }
 void dnsr_write_reprojection(ivec2 p, vec2 mean_var) { imageStore(dnsr_reprojection, p + dnsr_get_offset(), dnsr_encode_signal(mean_var, dnsr_get_signal_scale())); }
 void dnsr_write_tile_meta(ivec2 tile, uint meta) { imageStore(dnsr_tile_meta_out, tile + dnsr_get_tile_offset(), uvec4(meta)); }

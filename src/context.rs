@@ -586,7 +586,7 @@ impl Context {
             velocity: host(&d.velocity),
             normals: host(&d.normals),
             // Without hit distances the binding takes an image of a float format that the pass only samples.
-            hit_distance: d.hit_distance.as_ref().map_or(image(light.depth[cur ^ 1].view, vk::ImageLayout::GENERAL), host),
+            hit_distance: d.hit_distance.as_ref().map_or(image(light.history.view, vk::ImageLayout::GENERAL), host),
             tile_blocker: light.tile_blocker.view,
             spec: (if d.hit_distance.is_some() { 1 << SPEC_PENUMBRA_GUIDED } else { 0 })
                 | (if self.settings.uses_runs() { 1 << SPEC_STABLE_HISTORY } else { 0 }),

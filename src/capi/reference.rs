@@ -282,7 +282,7 @@ pub extern "C" fn dnsr_reference_run_frame(
                 if let Some((prev_depth, prev_moments, history)) = previous {
                     let mut m = [0f32; 4];
                     unsafe {
-                        f.previous_depth[i] = prev_depth(user, x, y) as f64;
+                        f.previous_depth[i] = crate::reference::depth_copy(&f, [x, y], prev_depth(user, x, y) as f64);
                         prev_moments(user, x, y, m.as_mut_ptr());
                         f.history[i] = history(user, x, y) as f64;
                     }

@@ -44,7 +44,7 @@ pub struct Frame {
     pub velocity: Vec<DVec2>,
     /// Decoded normals per pixel (unit or zero).
     pub normals: Vec<DVec3>,
-    /// Previous frame's depth copy.
+    /// Previous frame's depth copy: linear depths as stored (`storage::stored_linear_depth`).
     pub previous_depth: Vec<f64>,
     /// Previous frame's moments.
     pub previous_moments: Vec<DVec4>,
@@ -58,7 +58,7 @@ pub struct Frame {
     pub tile_meta: Vec<u32>,
     /// Output: each tile's blocker distance (penumbra guidance).
     pub tile_blocker: Vec<f64>,
-    /// Output: depth copy.
+    /// Output: depth copy (linear depths as stored).
     pub depth_copy: Vec<f64>,
     /// Output: moments.
     pub moments: Vec<DVec4>,
@@ -109,14 +109,15 @@ impl Frame {
             depth: filled(n, 1.0)?,
             velocity: filled(n, DVec2::ZERO)?,
             normals: filled(n, DVec3::ZERO)?,
-            previous_depth: filled(n, 1.0)?,
+            // A new depth copy is cleared to 0: the first code.
+            previous_depth: filled(n, super::storage::unpack_linear_depth(0))?,
             previous_moments: filled(n, DVec4::ZERO)?,
             history: filled(n, 0.0)?,
             tile_mask: filled(tiles, 0)?,
             tile_dark: filled(tiles, 0)?,
             tile_meta: filled(tiles, 0)?,
             tile_blocker: filled(tiles, -1.0)?,
-            depth_copy: filled(n, 0.0)?,
+            depth_copy: filled(n, super::storage::unpack_linear_depth(0))?,
             moments: filled(n, DVec4::ZERO)?,
             reprojection_out: filled(n, DVec2::ZERO)?,
             filter_out,
@@ -279,9 +280,9 @@ impl Write for Frame {
         let i = self.tile(tile);
         self.tile_dark[i] = dark_bits;
     }
-    fn write_depth_copy(&mut self, p: Coord, depth: f64) {
+    fn write_depth_copy(&mut self, p: Coord, linear_depth: f64) {
         let i = self.px(p);
-        self.depth_copy[i] = depth;
+        self.depth_copy[i] = linear_depth;
     }
     fn write_moments(&mut self, p: Coord, m: DVec4) {
         let i = self.px(p);

@@ -71,7 +71,7 @@ pub trait Read: Get {
     fn read_velocity(&self, p: Coord) -> DVec2;
     /// Decoded unit world normal, or zero when unusable.
     fn read_normal(&self, p: Coord) -> DVec3;
-    /// Previous frame's raw depth.
+    /// Previous frame's linear depth, as its depth copy holds it (`depth_copy`).
     fn read_previous_depth(&self, p: Coord) -> f64;
     /// Previous frame's moments (mean, Welford sum, sample count).
     fn read_previous_moments(&self, p: Coord) -> DVec4;
@@ -101,8 +101,8 @@ pub trait Write {
     fn write_tile_dark(&mut self, tile: Coord, dark_bits: u32);
     /// A pixel's visibility reconstructed from a checkerboard input (what `read_visibility` returns after it).
     fn write_visibility(&mut self, p: Coord, v: f64);
-    /// This frame's depth copy.
-    fn write_depth_copy(&mut self, p: Coord, depth: f64);
+    /// This frame's depth copy: a linear depth (`depth_copy`).
+    fn write_depth_copy(&mut self, p: Coord, linear_depth: f64);
     /// This frame's moments.
     fn write_moments(&mut self, p: Coord, m: DVec4);
     /// Temporal result (mean, variance).
@@ -160,6 +160,12 @@ pub fn uv_to_ndc(uv: DVec2) -> DVec2 {
 pub fn linear_depth<G: Get + ?Sized>(io: &G, ndc: DVec2, depth: f64) -> f64 {
     let v = io.projection_inverse() * DVec4::new(ndc.x, ndc.y, depth, 1.0);
     (v.z / v.w).abs()
+}
+
+/// The depth copy of pixel p whose depth is `depth`: its linear depth (what the next frame compares), as the
+/// 16-bit code holds it.
+pub fn depth_copy<G: Get + ?Sized>(io: &G, p: Coord, depth: f64) -> f64 {
+    storage::stored_linear_depth(linear_depth(io, uv_to_ndc(pixel_uv(io, p)), depth))
 }
 
 /// What turns a blocker distance into a penumbra radius in pixels (the dispatch's penumbra guidance).

@@ -238,7 +238,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     let clamp_px = |v: DVec2| [((v.x * e[0] as f64) as i32).clamp(0, e[0] - 1), ((v.y * e[1] as f64) as i32).clamp(0, e[1] - 1)];
     let mut disoccluded = io.is_reset() || !on_screen;
     if !disoccluded {
-        let previous = linear_depth(io, prev_ndc.truncate(), io.read_previous_depth(clamp_px(prev_uv)));
+        let previous = io.read_previous_depth(clamp_px(prev_uv));
         let expected = linear_depth(io, prev_ndc.truncate(), prev_ndc.z);
         disoccluded = !((previous - expected).abs() < threshold * expected);
     }
@@ -482,7 +482,7 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
                 for x in tx * TILE[0]..((tx + 1) * TILE[0]).min(e[0]) {
                     let p = [x, y];
                     let depth = io.read_depth(p);
-                    io.write_depth_copy(p, depth);
+                    io.write_depth_copy(p, super::depth_copy(io, p, depth));
                     let receiver = is_receiver(depth);
                     let (moments, result) = if state != 0 {
                         let value = if state == 1 { 1.0 } else { 0.0 };

@@ -197,7 +197,7 @@ pub const RESOURCES: [Resource; 11] = [
     resource(Image::TileBlocker, "tile_blocker", Formats::both(vk::Format::R32_SFLOAT), Tile, Light, 1, Transient, Needed::Always),
     resource(Image::Reprojection, "reprojection", SIGNAL, Pixel, Light, 1, Transient, Needed::Always),
     resource(Image::History, "history", SIGNAL, Pixel, Light, 1, Persistent, Needed::Always),
-    resource(Image::DepthCopy, "depth_copy", Formats::both(vk::Format::R32_SFLOAT), Pixel, Light, 2, Persistent, Needed::Always),
+    resource(Image::DepthCopy, "depth_copy", Formats::both(vk::Format::R16_UINT), Pixel, Light, 2, Persistent, Needed::Always),
     // Per pixel: mean (unorm16), sum of squared deviations and sample count (float16), run of identical samples
     // (int16), packed into two words.
     packed(resource(Image::Moments, "moments", Formats::both(vk::Format::R32G32_UINT), Pixel, Light, 2, Persistent, Needed::Always)),
@@ -239,6 +239,7 @@ pub const FILTER_OUTPUT: [Image; MAX_FILTER_PASSES as usize] = [Image::History, 
 pub fn format_bytes(format: vk::Format) -> u64 {
     match format {
         vk::Format::R32G32_UINT => 8,
+        vk::Format::R16_UINT => 2,
         vk::Format::R32_UINT | vk::Format::R32_SFLOAT | vk::Format::R16G16_UNORM | vk::Format::R16G16_SFLOAT => 4,
         _ => panic!("state table: no texel size for {format:?} (add it to format_bytes)"),
     }

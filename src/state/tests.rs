@@ -25,7 +25,7 @@ fn every_format_has_a_size_and_is_checked() {
     }
 }
 
-/// The byte counts follow the table; the numbers are those of docs/performance.md's "State model" (28 B/px kept).
+/// The byte counts follow the table; the numbers are those of docs/performance.md's "State model" (24 B/px kept).
 #[test]
 fn memory_follows_the_table() {
     for [w, h] in [[64u32, 32u32], [1921, 1081]] {
@@ -34,18 +34,18 @@ fn memory_follows_the_table() {
             for passes in 1..=MAX_FILTER_PASSES {
                 for input in INPUTS {
                     // Per light: tile mask, dark mask, metadata and blocker (4 B per tile each); reprojection and
-                    // history (4 B), two depth copies (4 B), two moments (8 B); the fourth pass's intermediate (4 B);
+                    // history (4 B), two depth copies (2 B), two moments (8 B); the fourth pass's intermediate (4 B);
                     // a checkerboard input's reconstructed visibility (4 B). Per context: the guide (8 B, two or more
                     // passes).
                     let tmp = if passes == 4 { 4 } else { 0 };
                     let reconstructed = if input == ShadowInput::Checkerboard { 4 } else { 0 };
-                    let light = 4 * 4 * tiles + px * (4 + 4 + 2 * 4 + 2 * 8 + tmp + reconstructed);
+                    let light = 4 * 4 * tiles + px * (4 + 4 + 2 * 2 + 2 * 8 + tmp + reconstructed);
                     assert_eq!(texel_bytes(Scope::Light, [w, h], precision, passes, input), light, "{precision:?} {passes} {input:?}");
                     let guide = if passes > 1 { 8 * px } else { 0 };
                     assert_eq!(texel_bytes(Scope::Context, [w, h], precision, passes, input), guide, "{precision:?} {passes} {input:?}");
                 }
             }
-            assert_eq!(persistent_texel_bytes([w, h], precision), 28 * px);
+            assert_eq!(persistent_texel_bytes([w, h], precision), 24 * px);
         }
     }
 }

@@ -289,7 +289,7 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
         g.upload(&TestImage::borrowed(before.moments, crate::state::MOMENTS_FORMAT, w, h, vk::ImageLayout::GENERAL), bytemuck::cast_slice(&packed));
         prev_moments = packed.into_iter().map(storage::unpack_moments).collect();
     }
-    let prev_depth: Vec<f32> = download(g, before.depth, vk::Format::R32_SFLOAT, w, h);
+    let prev_depth: Vec<u16> = download(g, before.depth, vk::Format::R16_UINT, w, h);
     let history = download_rg(g, before.history, fmt, w, h, &info.settings);
 
     let f = random_frame(w, h, seed, frames);
@@ -302,6 +302,7 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     let tile_meta: Vec<u32> = download(g, after.tile_meta, vk::Format::R32_UINT, tw, th);
     let tile_blocker: Vec<f32> = download(g, after.tile_blocker, vk::Format::R32_SFLOAT, tw, th);
     let moments = crate::testing::download_moments(g, after.moments, w, h);
+    let depth_copy: Vec<u16> = download(g, after.depth, vk::Format::R16_UINT, w, h);
     let reprojection = download_rg(g, after.reprojection, fmt, w, h, &info.settings);
     let history_out = download_rg(g, after.history, fmt, w, h, &info.settings);
 
@@ -321,7 +322,7 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     cpu.depth = f.depth.iter().map(|&v| v as f64).collect();
     cpu.velocity = f.velocity.iter().map(|v| DVec2::new(v[0] as f64, v[1] as f64)).collect();
     cpu.normals = f.normals.iter().map(|n| reference::decode_normal(DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64), 1.0, 0.0)).collect();
-    cpu.previous_depth = prev_depth.iter().map(|&v| v as f64).collect();
+    cpu.previous_depth = prev_depth.iter().map(|&c| storage::unpack_linear_depth(c as u32)).collect();
     cpu.previous_moments = prev_moments;
     cpu.history = history.iter().map(|v| v.x).collect();
     cpu.half_intermediates = precision == Precision::Fp16;
@@ -337,6 +338,11 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
         assert!(cpu.tile_meta.contains(&state), "tile state {state} missing from the test input");
     }
     assert_stored_moments_match(&moments, &cpu.moments, &format!("{precision:?} {w}x{h} seed {seed}"));
+    // The depth copy in its code's steps: one at most (float32 log2 on the GPU against f64 here).
+    for (i, (&gpu, &cpu)) in depth_copy.iter().zip(&cpu.depth_copy).enumerate() {
+        let steps = (gpu as i64 - storage::pack_linear_depth(cpu) as i64).abs();
+        assert!(steps <= 1, "depth copy at pixel {i}: code {gpu}, reference {} ({steps} steps)", storage::pack_linear_depth(cpu));
+    }
     if info.settings.converged_samples > 0.0 {
         let signals: &[(&str, &[DVec2], &[DVec2])] =
             &[("reprojection", &reprojection, &cpu.reprojection_out), ("history (filter 0)", &history_out, &cpu.filter_out[0])];

@@ -900,6 +900,11 @@ impl Context {
     pub(crate) fn has_light_slot_pipelines(&self) -> bool {
         self.pipelines.as_ref().is_some_and(|p| p.filter_lights.is_some())
     }
+
+    /// The pipeline stages a `HostSync` may name on this context's device.
+    pub(crate) fn supported_stages(&self) -> vk::PipelineStageFlags {
+        self.supported_stages
+    }
 }
 
 /// Moves `images` from UNDEFINED to GENERAL (their contents discarded) after the `stages[0]` / `access[0]` work, for

@@ -380,7 +380,10 @@ fn bad_dispatches_record_nothing() {
             |e| matches!(e, Error::InvalidValue { field: "visibility", .. }),
         ),
     ];
-    refused_record_nothing(&mut r, &shadow, &good, cases);
+    // A device with ray-tracing pipelines accepts that stage (an NVIDIA H100 does; lavapipe does not).
+    let rt = r.ctx.supported_stages().contains(vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR);
+    let cases: Vec<DispatchCase> = cases.iter().copied().filter(|c| !(rt && c.0.starts_with("ray-tracing stage"))).collect();
+    refused_record_nothing(&mut r, &shadow, &good, &cases);
     // A null command buffer.
     assert_eq!(r.ctx.record_shadows(vk::CommandBuffer::null(), &good), Err(Error::NullHandle("command_buffer")));
     // Settings are validated too, and a refused change keeps the old settings.

@@ -810,9 +810,9 @@ typedef struct DnsrShadowsDispatch {
    * D32_SFLOAT_S8_UINT, D16_UNORM_S8_UINT (depth-aspect view), R32_SFLOAT, R16_SFLOAT or R16_UNORM. Receivers
    * have 0 < depth < 1. Layout GENERAL, SHADER_READ_ONLY_OPTIMAL, READ_ONLY_OPTIMAL,
    * DEPTH_STENCIL_READ_ONLY_OPTIMAL, DEPTH_READ_ONLY_OPTIMAL or DEPTH_READ_ONLY_STENCIL_ATTACHMENT_OPTIMAL.
-   * The history is kept where the linear (view-space) depth that projectionInverse gives lies within 2^-8 to
-   * 2^24 view units (4 mm to 16000 km in metres): dnsr keeps last frame's depth in that range, and a receiver
-   * outside it starts afresh every frame.
+   * The history is kept where the linear (view-space) depth that projectionInverse gives lies within 2^-16 to
+   * 2^48 view units (any scene scale): dnsr keeps last frame's depth in that range, and a receiver outside it
+   * starts afresh every frame.
    */
   struct DnsrHostImage depth;
   /**

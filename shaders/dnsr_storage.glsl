@@ -21,16 +21,16 @@ uint dnsr_unorm16(float v) { return uint(floor(clamp(v, 0.0, 1.0) * 65535.0 + 0.
 // The code back; the ends are exact (0 and 1 are compared for equality: dnsr_pure).
 float dnsr_from_unorm16(uint u) { return u == 65535u ? 1.0 : float(u) * (1.0 / 65535.0); }
 
-// A linear depth (view units) in 16 bits (R16_UINT), logarithmic: 2048 codes per octave from 2^-8 to 2^24 (4 mm to
-// 16000 km in metres, 0.04 mm to 160 km in centimetres), so neighbouring codes lie 0.034% apart, a thirtieth of the
-// default disocclusion threshold (1%). Depths below the range take the first code; above it, infinite and NaN ones
-// (a sky at an infinite far plane) the last.
+// A linear depth (view units) in 16 bits (R16_UINT), logarithmic: 1024 codes per octave from 2^-16 to 2^48, so
+// neighbouring codes lie 0.068% apart, a fifteenth of the default disocclusion threshold (1%), at any scene scale
+// (millimetres to light years). Depths below the range take the first code; above it, infinite and NaN ones (a sky
+// at an infinite far plane) the last.
 uint dnsr_pack_linear_depth(float z) {
-    float v = (log2(z) + 8.0) * (65535.0 / 32.0);
+    float v = (log2(z) + 16.0) * (65535.0 / 64.0);
     v = v >= 0.0 ? min(v, 65535.0) : (isnan(v) ? 65535.0 : 0.0);
     return uint(floor(v + 0.5));
 }
-float dnsr_unpack_linear_depth(uint code) { return exp2(float(code) * (32.0 / 65535.0) - 8.0); }
+float dnsr_unpack_linear_depth(uint code) { return exp2(float(code) * (64.0 / 65535.0) - 16.0); }
 
 // Moments (mean, sum of squared deviations, sample count, run) in 8 bytes (R32G32_UINT):
 //   x: mean as unorm16 | sum of squared deviations as float16 << 16

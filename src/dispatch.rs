@@ -98,8 +98,8 @@ pub struct ShadowsDispatch {
     pub hit_mask_convention: HitMaskConvention,
     /// Depth, W x H: D32_SFLOAT, D16_UNORM, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT, D32_SFLOAT_S8_UINT,
     /// R32_SFLOAT, R16_SFLOAT or R16_UNORM. Receivers have 0 < depth < 1. The history is kept where the linear
-    /// (view-space) depth `projection_inverse` gives lies within 2^-8 to 2^24 view units (4 mm to 16000 km in
-    /// metres): dnsr keeps last frame's depth in that range, and a receiver outside it starts afresh every frame.
+    /// (view-space) depth `projection_inverse` gives lies within 2^-16 to 2^48 view units (any scene scale):
+    /// dnsr keeps last frame's depth in that range, and a receiver outside it starts afresh every frame.
     pub depth: HostImage,
     /// Motion vectors, W x H, two channels (R16G16_SFLOAT, R32G32_SFLOAT, R16G16_SNORM ...).
     /// `value * motion_vector_scale` is the uv offset from a pixel to where its surface was last frame:

@@ -594,9 +594,9 @@ pub struct DnsrShadowsDispatch {
     /// D32_SFLOAT_S8_UINT, D16_UNORM_S8_UINT (depth-aspect view), R32_SFLOAT, R16_SFLOAT or R16_UNORM. Receivers
     /// have 0 < depth < 1. Layout GENERAL, SHADER_READ_ONLY_OPTIMAL, READ_ONLY_OPTIMAL,
     /// DEPTH_STENCIL_READ_ONLY_OPTIMAL, DEPTH_READ_ONLY_OPTIMAL or DEPTH_READ_ONLY_STENCIL_ATTACHMENT_OPTIMAL.
-    /// The history is kept where the linear (view-space) depth that projectionInverse gives lies within 2^-8 to
-    /// 2^24 view units (4 mm to 16000 km in metres): dnsr keeps last frame's depth in that range, and a receiver
-    /// outside it starts afresh every frame.
+    /// The history is kept where the linear (view-space) depth that projectionInverse gives lies within 2^-16 to
+    /// 2^48 view units (any scene scale): dnsr keeps last frame's depth in that range, and a receiver outside it
+    /// starts afresh every frame.
     pub depth: DnsrHostImage,
     /// Required. W x H motion vectors, first two channels used: R16G16_SFLOAT, R32G32_SFLOAT, R16G16_SNORM,
     /// R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT. prev_uv = uv + value.xy * motionVectorScale. Sampled layouts

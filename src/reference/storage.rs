@@ -69,17 +69,17 @@ fn from_unorm16(u: u32) -> f64 {
     u as f64 / 65535.0
 }
 
-/// A linear depth's 16-bit logarithmic code (`dnsr_pack_linear_depth`, R16_UINT): 2048 codes per octave from 2^-8
-/// to 2^24; below the range the first code, above it, infinite and NaN the last.
+/// A linear depth's 16-bit logarithmic code (`dnsr_pack_linear_depth`, R16_UINT): 1024 codes per octave from
+/// 2^-16 to 2^48; below the range the first code, above it, infinite and NaN the last.
 pub fn pack_linear_depth(z: f64) -> u32 {
-    let v = (z.log2() + 8.0) * (65535.0 / 32.0);
+    let v = (z.log2() + 16.0) * (65535.0 / 64.0);
     let v = if v >= 0.0 { v.min(65535.0) } else if v.is_nan() { 65535.0 } else { 0.0 };
     (v + 0.5).floor() as u32
 }
 
 /// A depth code's linear depth (`dnsr_unpack_linear_depth`).
 pub fn unpack_linear_depth(code: u32) -> f64 {
-    (code as f64 * (32.0 / 65535.0) - 8.0).exp2()
+    (code as f64 * (64.0 / 65535.0) - 16.0).exp2()
 }
 
 /// A linear depth as the next frame reads it back from the depth copy.

@@ -26,11 +26,13 @@ float dnsr_from_unorm16(uint u) { return u == 65535u ? 1.0 : float(u) * (1.0 / 6
 // (millimetres to light years). Depths below the range take the first code; above it, infinite and NaN ones (a sky
 // at an infinite far plane) the last.
 uint dnsr_pack_linear_depth(float z) {
-    float v = (log2(z) + 16.0) * (65535.0 / 64.0);
+    float v = (log2(z) + float(DNSR_DEPTH_CODE_BELOW_ONE_OCTAVES)) * (65535.0 / float(DNSR_DEPTH_CODE_OCTAVES));
     v = v >= 0.0 ? min(v, 65535.0) : (isnan(v) ? 65535.0 : 0.0);
     return uint(floor(v + 0.5));
 }
-float dnsr_unpack_linear_depth(uint code) { return exp2(float(code) * (64.0 / 65535.0) - 16.0); }
+float dnsr_unpack_linear_depth(uint code) {
+    return exp2(float(code) * (float(DNSR_DEPTH_CODE_OCTAVES) / 65535.0) - float(DNSR_DEPTH_CODE_BELOW_ONE_OCTAVES));
+}
 
 // Moments (mean, sum of squared deviations, sample count, run) in 8 bytes (R32G32_UINT):
 //   x: mean as unorm16 | sum of squared deviations as float16 << 16

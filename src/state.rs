@@ -27,6 +27,11 @@ pub(crate) fn intermediate_format(precision: Precision) -> vk::Format {
 pub(crate) const SIGNAL_MAX_DEVIATION_CODE: u32 = 65000;
 /// A stored deviation above this code is the sky's (variance -1). Generated into GLSL.
 pub(crate) const SIGNAL_SKY_CODE_ABOVE: u32 = 65500;
+/// The depth copy's logarithmic code (R16_UINT): its first code is the linear depth 2^-DEPTH_CODE_BELOW_ONE_OCTAVES,
+/// and its 65536 codes span DEPTH_CODE_OCTAVES octaves (docs/performance.md, "depth copy").
+pub(crate) const DEPTH_CODE_BELOW_ONE_OCTAVES: u32 = 16;
+/// See `DEPTH_CODE_BELOW_ONE_OCTAVES`.
+pub(crate) const DEPTH_CODE_OCTAVES: u32 = 64;
 
 /// The standard deviation a stored signal's code 1.0 stands for: the variance boost multiplies a variance of at
 /// most 0.5 (an unbiased estimate of 0/1 samples) by up to `variance_boost_samples`.

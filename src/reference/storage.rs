@@ -72,14 +72,16 @@ fn from_unorm16(u: u32) -> f64 {
 /// A linear depth's 16-bit logarithmic code (`dnsr_pack_linear_depth`, R16_UINT): 1024 codes per octave from
 /// 2^-16 to 2^48; below the range the first code, above it, infinite and NaN the last.
 pub fn pack_linear_depth(z: f64) -> u32 {
-    let v = (z.log2() + 16.0) * (65535.0 / 64.0);
+    use crate::state::{DEPTH_CODE_BELOW_ONE_OCTAVES as BELOW, DEPTH_CODE_OCTAVES as OCTAVES};
+    let v = (z.log2() + BELOW as f64) * (65535.0 / OCTAVES as f64);
     let v = if v >= 0.0 { v.min(65535.0) } else if v.is_nan() { 65535.0 } else { 0.0 };
     (v + 0.5).floor() as u32
 }
 
 /// A depth code's linear depth (`dnsr_unpack_linear_depth`).
 pub fn unpack_linear_depth(code: u32) -> f64 {
-    (code as f64 * (64.0 / 65535.0) - 16.0).exp2()
+    use crate::state::{DEPTH_CODE_BELOW_ONE_OCTAVES as BELOW, DEPTH_CODE_OCTAVES as OCTAVES};
+    (code as f64 * (OCTAVES as f64 / 65535.0) - BELOW as f64).exp2()
 }
 
 /// A linear depth as the next frame reads it back from the depth copy.

@@ -864,7 +864,7 @@ static const Range ranges[] = {
     RANGE(historyClampSigmas, 0, 16),          RANGE(historyRejectionFalloff, 1e-3f, 1e6f),
     RANGE(historyRejectionMinSigma, 1e-6f, 1), RANGE(varianceBoostSamples, 0, 1024),
     RANGE(fullHistorySamples, 1, 1024),        RANGE(minCurrentWeight, 1e-3f, 1),
-    RANGE(maxHistorySamples, 2, 4096),         RANGE(kernelCrossWeight, 0, 1),
+    RANGE(maxHistorySamples, 2, 128),          RANGE(kernelCrossWeight, 0, 1),
     RANGE(normalPower, 0, 256),                RANGE(outputContrast, 1, 4),
     RANGE(minShadowSigma, 1e-6f, 1),
 };

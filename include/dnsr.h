@@ -374,7 +374,7 @@ typedef struct DnsrSettings {
    */
   float minCurrentWeight;
   /**
-   * Bound on the temporal sample count. Range [2, 4096]. Default 32.
+   * Bound on the temporal sample count. Range [2, 128]. Default 32.
    */
   float maxHistorySamples;
   /**
@@ -395,7 +395,7 @@ typedef struct DnsrSettings {
   float minShadowSigma;
   /**
    * A pixel whose last n >= this-many samples were identical is clamped to within 3/n of them instead of to the
-   * local distribution (hard shadow edges the input resolves stay sharp). Range [0, 4096]; 0 disables (the
+   * local distribution (hard shadow edges the input resolves stay sharp). Range [0, 127]; 0 disables (the
    * FidelityFX behaviour). Default 8 (FidelityFX 0).
    */
   float stableHistorySamples;
@@ -411,7 +411,7 @@ typedef struct DnsrSettings {
    * it through as its run's value (its 1-spp input resolves it: hard shadows, faces turned from the light,
    * creases, thin stripes). Under a moving camera, a receiver beside the sky whose neighbours of last frame
    * held the other value for this many samples or more, and two of whose 8 neighbours share its sample, takes
-   * its sample as it is (a resolved silhouette; this part needs no stable history). Range [0, 4096]; 0
+   * its sample as it is (a resolved silhouette; this part needs no stable history). Range [0, 127]; 0
    * disables; converged pixels need stableHistorySamples > 0. Default 8 (FidelityFX 0).
    */
   float convergedSamples;
@@ -1347,7 +1347,8 @@ typedef struct DnsrReferenceCallbacks {
   float (*readPreviousDepth)(void *user, int32_t x, int32_t y);
   /**
    * Optional (required without DNSR_REFERENCE_RESET). Previous frame's moments: 4 floats (mean, sum of squared
-   * deviations, sample count, run of identical samples: +n lit, -n shadowed).
+   * deviations, sample count, run of identical samples: +n lit, -n shadowed), rounded as dnsr stores them (with
+   * a hit-mask input the sum is not stored: count * mean * (1 - mean) replaces it).
    */
   void (*readPreviousMoments)(void *user, int32_t x, int32_t y, float *moments);
   /**
@@ -1609,7 +1610,8 @@ typedef struct DnsrDiagnosis {
  * The fraction of the pixel's rays that reached the light, in [0, 1] (DnsrShadowsDispatch::visibility): for
  * engines tracing several rays per pixel, sampling area lights, or mixing analytic and traced shadows. Only exact
  * 0 and 1 count as uniform or extend runs of identical samples; the temporal moments are those of the per-frame
- * values, so k rays per pixel give the variance of a mean of k samples.
+ * values, so k rays per pixel give the variance of a mean of k samples. 8 B/px more device memory per light than
+ * dnsr_get_memory_requirements says (the moments keep the samples' sum of squared deviations).
  */
 #define DNSR_SHADOW_INPUT_VISIBILITY 1
 
@@ -1617,7 +1619,7 @@ typedef struct DnsrDiagnosis {
  * Half a ray per pixel: hitMask (in its hitMaskConvention) holds this frame's rays for the pixels with
  * (x + y) % 2 == DnsrShadowsDispatch::checkerboardPhase only (x, y in image pixels); alternate the phase every
  * frame. dnsr keeps each traced pixel's sample, gives every other pixel the mean of its four traced neighbours and
- * denoises that as a visibility input. 4 B/px more device memory per light than dnsr_get_memory_requirements says.
+ * denoises that as a visibility input. 12 B/px more device memory per light than dnsr_get_memory_requirements says.
  */
 #define DNSR_SHADOW_INPUT_CHECKERBOARD 2
 
@@ -1935,7 +1937,8 @@ DnsrResult dnsr_context_get_persistent_memory_usage(DnsrContext context,
 
 /**
  * The part of dnsr_get_memory_requirements' bytes that persists between records (as
- * dnsr_context_get_persistent_memory_usage), before driver padding. Needs no device.
+ * dnsr_context_get_persistent_memory_usage), before driver padding, with a hit-mask input (a visibility or
+ * checkerboard input adds 8 B/px per light). Needs no device.
  */
 DnsrResult dnsr_get_persistent_memory_requirements(uint32_t width,
                                                    uint32_t height,
@@ -1944,7 +1947,8 @@ DnsrResult dnsr_get_persistent_memory_requirements(uint32_t width,
                                                    uint64_t *pBytes);
 
 /**
- * Bytes of device memory a context would allocate for this size, before driver padding. Needs no device.
+ * Bytes of device memory a context with a hit-mask input would allocate for this size, before driver padding (see
+ * DNSR_SHADOW_INPUT_VISIBILITY and DNSR_SHADOW_INPUT_CHECKERBOARD for theirs). Needs no device.
  */
 DnsrResult dnsr_get_memory_requirements(uint32_t width,
                                         uint32_t height,

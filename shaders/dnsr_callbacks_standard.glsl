@@ -100,7 +100,13 @@ layout(set = 0, binding = 5) uniform texture2D dnsr_velocity;
 layout(set = 0, binding = 7) uniform utexture2D dnsr_previous_depth;
 layout(set = 0, binding = 8, r16ui) uniform writeonly uimage2D dnsr_depth_copy;
 layout(set = 0, binding = 9) uniform utexture2D dnsr_previous_moments;
+// One word per pixel (dnsr_pack_moments); a visibility input's moments keep their sum of squared deviations in a
+// second (float32 bits).
+#ifdef DNSR_VISIBILITY_INPUT
 layout(set = 0, binding = 10, rg32ui) uniform writeonly uimage2D dnsr_moments;
+#else
+layout(set = 0, binding = 10, r32ui) uniform writeonly uimage2D dnsr_moments;
+#endif
 layout(set = 0, binding = 11) uniform texture2D dnsr_history;
 layout(set = 0, binding = 12, DNSR_INTERMEDIATE_FORMAT) uniform writeonly image2D dnsr_reprojection;
 layout(set = 0, binding = 13, r32ui) uniform writeonly uimage2D dnsr_tile_meta_out;
@@ -122,7 +128,14 @@ vec2 dnsr_read_velocity(ivec2 p) {
 // Last frame's linear depth at p (its depth copy: dnsr_pack_linear_depth).
 float dnsr_read_previous_depth(ivec2 p) { return dnsr_unpack_linear_depth(texelFetch(dnsr_previous_depth, p + dnsr_get_offset(), 0).r); }
 // (mean, sum of squared deviations, sample count, run of identical samples: +n lit, -n shadowed).
-vec4 dnsr_read_previous_moments(ivec2 p) { return dnsr_unpack_moments(texelFetch(dnsr_previous_moments, p + dnsr_get_offset(), 0).xy); }
+vec4 dnsr_read_previous_moments(ivec2 p) {
+    uvec2 v = texelFetch(dnsr_previous_moments, p + dnsr_get_offset(), 0).xy;
+    vec4 m = dnsr_unpack_moments(v.x);
+#ifdef DNSR_VISIBILITY_INPUT
+    m.y = uintBitsToFloat(v.y);
+#endif
+    return m;
+}
 float dnsr_read_history_texel(ivec2 p) { return texelFetch(dnsr_history, p + dnsr_get_offset(), 0).r; }
 // Bilinear history at a rect-relative uv, clamped to the rectangle's edge: four texels blended with float weights.
 // Not the sampler's filter: its weights have only subTexelPrecisionBits of sub-texel resolution (8 on NVIDIA), and
@@ -140,7 +153,7 @@ float dnsr_read_history(vec2 uv) {
     return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
 }
 void dnsr_write_depth_copy(ivec2 p, float linear_depth) { imageStore(dnsr_depth_copy, p + dnsr_get_offset(), uvec4(dnsr_pack_linear_depth(linear_depth))); }
-void dnsr_write_moments(ivec2 p, vec4 m) { imageStore(dnsr_moments, p + dnsr_get_offset(), uvec4(dnsr_pack_moments(m), 0u, 0u)); }
+void dnsr_write_moments(ivec2 p, vec4 m) { imageStore(dnsr_moments, p + dnsr_get_offset(), uvec4(dnsr_pack_moments(m), floatBitsToUint(m.y), 0u, 0u)); }
 void dnsr_write_reprojection(ivec2 p, vec2 mean_var) { imageStore(dnsr_reprojection, p + dnsr_get_offset(), dnsr_encode_signal(mean_var, dnsr_get_signal_scale())); }
 void dnsr_write_tile_meta(ivec2 tile, uint meta) { imageStore(dnsr_tile_meta_out, tile + dnsr_get_tile_offset(), uvec4(meta)); }
 // Penumbra guidance: the host's distance to the first occluder (read where the mask says the ray hit), and each
@@ -190,7 +203,7 @@ void dnsr_write_filter_output(ivec2 p, vec2 mean_var) { imageStore(dnsr_filter_o
 #ifdef DNSR_FINAL_PASS
 void dnsr_write_output(ivec2 p, float shadow) { imageStore(dnsr_output, p + dnsr_get_offset(), vec4(shadow)); }
 uint dnsr_get_debug_view() { return dnsr_push.pass.w; }
-vec3 dnsr_read_debug_moments(ivec2 p) { return dnsr_unpack_moments(texelFetch(dnsr_debug_moments, p + dnsr_get_offset(), 0).xy).xyz; }
+vec3 dnsr_read_debug_moments(ivec2 p) { return dnsr_unpack_moments(texelFetch(dnsr_debug_moments, p + dnsr_get_offset(), 0).x).xyz; }
 #endif
 
 #ifdef DNSR_LIGHT_SLOTS_VARIANT
@@ -266,7 +279,7 @@ void dnsr_write_light_output(int l, ivec2 p, float shadow) {
 vec3 dnsr_read_light_debug_moments(int l, ivec2 p) {
     ivec2 q = p + dnsr_get_offset();
     return dnsr_unpack_moments(DNSR_BY_SLOT(l, texelFetch(dnsr_debug_moments, q, 0), texelFetch(dnsr_debug_moments_1, q, 0),
-                        texelFetch(dnsr_debug_moments_2, q, 0), texelFetch(dnsr_debug_moments_3, q, 0)).xy).xyz;
+                        texelFetch(dnsr_debug_moments_2, q, 0), texelFetch(dnsr_debug_moments_3, q, 0)).x).xyz;
 }
 #endif
 #endif

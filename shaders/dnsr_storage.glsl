@@ -34,20 +34,39 @@ float dnsr_unpack_linear_depth(uint code) {
     return exp2(float(code) * (float(DNSR_DEPTH_CODE_OCTAVES) / 65535.0) - float(DNSR_DEPTH_CODE_BELOW_ONE_OCTAVES));
 }
 
-// Moments (mean, sum of squared deviations, sample count, run) in 8 bytes (R32G32_UINT):
-//   x: mean as unorm16 | sum of squared deviations as float16 << 16
-//   y: sample count as float16 | 2 * run as a signed 16-bit integer << 16 (runs are whole or half samples)
-// The mean needs unorm16's even steps: a float16 mean near 1 moves in steps of 1/2048, and an update of
-// (x - mean) / 32 would stall 1/256 short of its target. Counts and sums need float16's range (up to
-// Settings::max_history_samples, 4096).
-uvec2 dnsr_pack_moments(vec4 m) {
-    uint hi_y = uint(int(m.w * 2.0)) << 16;
-    return uvec2(dnsr_unorm16(m.x) | (packHalf2x16(vec2(dnsr_round_half(m.y), 0.0)) << 16),
-                 packHalf2x16(vec2(dnsr_round_half(m.z), 0.0)) | hi_y);
+// Moments (mean, sample count, run of identical samples) in one word, the image's first (R32_UINT with a hit
+// mask: 4 bytes per pixel):
+//   bits 0-13: the mean as unorm14;
+//   bits 14-22: the sample count as a 9-bit float (4 exponent bits, 5 mantissa bits, subnormals: whole counts exact
+//     up to 64, steps of 2 up to 128, Settings::max_history_samples' bound; the smallest step 2^-12);
+//   bits 23-31: twice the run as a signed 9-bit integer (runs are whole or half samples, at most
+//     DNSR_MAX_SAMPLE_RUN = 127).
+// The sum of squared deviations is not stored: with samples of 0 or 1 it is count * mean * (1 - mean) (Welford's
+// update and the rejection's scaling keep it so), which unpacking forms. A visibility input's samples are
+// fractions: its moments keep the sum as float32 in a second word (R32G32_UINT), which the caller reads and writes.
+// The mean's even steps matter more than its bits: a float mean near 1 would move in steps too coarse for an
+// update of (x - mean) / 32 (float16: it stalls 1/256 short of its target); unorm14's stall is 1/1000 at 32 samples,
+// and 0 and 1 (dnsr_pure compares them) are exact.
+// The count's code from its float32 bits: the exponent and the top 5 mantissa bits, rounded half up by adding half
+// of the dropped bits' weight (a carry moves into the exponent, the next binade's first code); the binade of 2^-7
+// is code 32 onwards (exponent field 1). Below 2^-7, whole steps of 2^-12.
+uint dnsr_pack_count(float c) {
+    c = c > 0.0 ? min(c, 252.0) : 0.0; // NaN too
+    if (c < 0.0078125) return uint(floor(c * 4096.0 + 0.5));
+    return ((floatBitsToUint(c) + 0x20000u) >> 18u) - 3808u;
 }
-vec4 dnsr_unpack_moments(uvec2 v) {
-    return vec4(dnsr_from_unorm16(v.x & 0xFFFFu), unpackHalf2x16(v.x >> 16).x, unpackHalf2x16(v.y).x,
-                float(int(v.y) >> 16) * 0.5);
+float dnsr_unpack_count(uint code) {
+    return code < 32u ? float(code) * (1.0 / 4096.0) : uintBitsToFloat((code + 3808u) << 18u);
+}
+uint dnsr_pack_moments(vec4 m) {
+    uint mean = uint(floor(clamp(m.x, 0.0, 1.0) * 16383.0 + 0.5));
+    return mean | (dnsr_pack_count(m.z) << 14) | ((uint(int(m.w * 2.0)) & 0x1FFu) << 23);
+}
+vec4 dnsr_unpack_moments(uint v) {
+    uint mean_code = v & 0x3FFFu;
+    float mean = mean_code == 16383u ? 1.0 : float(mean_code) * (1.0 / 16383.0);
+    float count = dnsr_unpack_count((v >> 14) & 0x1FFu);
+    return vec4(mean, count * mean * (1.0 - mean), count, float(int(v) >> 23) * 0.5);
 }
 
 // A unit normal (or vec3(0): no usable normal) in 32 bits: octahedral, two snorm16 codes (floor(c * 32767 + 0.5));

@@ -21,13 +21,15 @@ use crate::timestamps::{ClassifierTimings, PassTimings, Timestamps};
 use crate::validate;
 use ash::vk;
 
-/// Bytes of device memory a context with these parameters and a hit-mask or visibility input allocates, before
-/// driver padding and alignment (which `Context::memory_bytes` includes). Needs no device.
+/// Bytes of device memory a context with these parameters and a hit-mask input allocates, before driver padding and
+/// alignment (which `Context::memory_bytes` includes); other inputs: `memory_requirements_for_input`. Needs no
+/// device.
 pub fn memory_requirements(width: u32, height: u32, precision: Precision, filter_passes: u32, light_count: u32) -> Result<u64> {
     memory_requirements_for_input(width, height, precision, filter_passes, light_count, ShadowInput::HitMask)
 }
 
-/// `memory_requirements` for a context with shadow input `input` (a checkerboard input adds 4 B/px per light).
+/// `memory_requirements` for a context with shadow input `input` (a visibility input adds 8 B/px per light, the
+/// second word of its moments in both halves of the pair; a checkerboard input 12, with its reconstructed visibility).
 pub fn memory_requirements_for_input(
     width: u32,
     height: u32,
@@ -45,12 +47,12 @@ pub fn memory_requirements_for_input(
 }
 
 /// Bytes of the part of `memory_requirements` whose contents must survive from one record of a light to the next
-/// (each light's moments, depth copies and history: `state::Lifetime`); the rest is written and read within one
-/// record. Needs no device.
+/// (each light's moments, depth copies and history: `state::Lifetime`), with a hit-mask input (a visibility or
+/// checkerboard input adds 8 B/px per light); the rest is written and read within one record. Needs no device.
 pub fn persistent_memory_requirements(width: u32, height: u32, precision: Precision, light_count: u32) -> Result<u64> {
     validate::extent("render size", width, height, u32::MAX)?;
     validate::light_count(light_count)?;
-    Ok(crate::state::persistent_texel_bytes([width, height], precision) * light_count as u64)
+    Ok(crate::state::persistent_texel_bytes([width, height], precision, ShadowInput::HitMask) * light_count as u64)
 }
 
 /// Bytes between the constants of consecutive lights of one record: the block rounded up to 256, the largest
@@ -601,7 +603,8 @@ impl Context {
             depth_copy: light.depth[cur].view,
             previous_moments: light.moments[cur ^ 1].view,
             moments: light.moments[cur].view,
-            // Without a guide (one filter pass: the pass never touches it) the bindings take an image of its format.
+            // Without a guide (one filter pass: the pass never touches it) the bindings take another image whose
+            // texels are unsigned integers, as the guide's.
             guide: self.guide.as_ref().map_or(light.moments[cur].view, |g| g.view),
             engine: d.engine_images.map(|e| e.map_or(Binding::default(), |e| image(e.view, e.layout))),
             penumbra_tan_half_angle: penumbra_tan_half_angle(d),
@@ -967,6 +970,11 @@ impl Context {
             depth: l.depth[l.parity ^ 1].image,
             intermediate_format: crate::state::intermediate_format(self.precision),
         }
+    }
+
+    /// The shadow input the context was created for (its moments' format: `state::moments_format`).
+    pub(crate) fn shadow_input(&self) -> ShadowInput {
+        self.shadow_input
     }
 
     /// The moments image written by the last recorded frame of `light` (packed: src/reference/storage.rs; GENERAL).

@@ -70,7 +70,7 @@ declare_settings! {
     /// local 17x17 distribution, and its history is not rejected: the input already resolves it (a hard shadow
     /// edge), and the local distribution, which straddles the edge, would pull it towards the edge's mean.
     /// 0 turns this off (the FidelityFX behaviour).
-    stable_history_samples: f32 = 8.0, [0.0, MAX_SAMPLE_RUN as f32] "[0, 4096]";
+    stable_history_samples: f32 = 8.0, [0.0, MAX_SAMPLE_RUN as f32] "[0, 127]";
     /// After a stable run (`stable_history_samples`), this many samples of the other value in a row, or the first
     /// one where the local 17x17 mean is within 0.5 of it, restart the pixel's history at the local mean: the
     /// shadow moved over the pixel, with or without motion vectors. Whole samples (a fraction is dropped); 0 turns
@@ -85,7 +85,7 @@ declare_settings! {
     /// value held it for this many samples or more, and two of whose 8 neighbours share its sample, takes its
     /// sample as it is (a resolved silhouette, docs/do-no-harm.md). 0 turns this off (the FidelityFX behaviour);
     /// converged pixels need `stable_history_samples` > 0, resolved silhouettes do not.
-    converged_samples: f32 = 8.0, [0.0, MAX_SAMPLE_RUN as f32] "[0, 4096]";
+    converged_samples: f32 = 8.0, [0.0, MAX_SAMPLE_RUN as f32] "[0, 127]";
     /// Penumbra guidance only (a dispatch with hit distances): where the blockers near a tile cast a penumbra
     /// narrower than this many pixels either side of its edge (from their mean hit distance, the light's angular
     /// size and the receiver's depth) and lie at least two pixel footprints away (under a light of angular size 0:
@@ -103,8 +103,9 @@ declare_settings! {
     full_history_samples: f32 = 8.0, [1.0, 1024.0] "[1, 1024]";
     /// Weight of the current frame once the history is fully trusted.
     min_current_weight: f32 = 0.1, [1e-3, 1.0] "[1e-3, 1]";
-    /// Bound on the temporal sample count, so the moments cannot grow without limit.
-    max_history_samples: f32 = 32.0, [2.0, 4096.0] "[2, 4096]";
+    /// Bound on the temporal sample count, so the moments cannot grow without limit. (The moments' 9-bit count
+    /// holds whole counts exactly up to 64 and even ones up to 128.)
+    max_history_samples: f32 = 32.0, [2.0, MAX_HISTORY_SAMPLES] "[2, 128]";
     /// Weight of the cross taps of the 3x3 kernel relative to the center (corners get its square).
     kernel_cross_weight: f32 = 0.5, [0.0, 1.0] "[0, 1]";
     /// Exponent of the normal edge stop max(dot(Nc, Nq), 0)^p.
@@ -173,8 +174,13 @@ impl Settings {
 pub const MAX_FILTER_PASSES: u32 = 4;
 
 /// Longest run of identical samples a pixel's moments record (moments.w: +n lit, -n shadowed); a cleared tile
-/// records the longest run. Bounds the run settings. Generated into GLSL.
-pub(crate) const MAX_SAMPLE_RUN: u32 = 4096;
+/// records the longest run. Bounds the run settings. Generated into GLSL. The moments store twice the run in 9
+/// bits (shaders/dnsr_storage.glsl).
+pub(crate) const MAX_SAMPLE_RUN: u32 = 127;
+
+/// Largest `max_history_samples`: the moments' 9-bit count steps by 2 from 64 and by 4 from 128, where adding a
+/// sample would no longer change it.
+const MAX_HISTORY_SAMPLES: f32 = 128.0;
 
 /// Checks a filter pass count (outside a `Settings`, e.g. for `memory_requirements`).
 pub(crate) fn check_filter_passes(passes: u32) -> Result<()> {

@@ -11,9 +11,12 @@ use ash::vk;
 pub(crate) use table::Lifetime;
 use table::{format_bytes, resource_of, Image, Per, Resource, Scope, RESOURCES};
 
-/// The moments' format (packed: src/reference/storage.rs), for tests that read and write them.
+/// The moments' format with shadow input `input` (packed: src/reference/storage.rs), for tests that read and write
+/// them.
 #[cfg_attr(not(test), allow(dead_code))]
-pub(crate) const MOMENTS_FORMAT: vk::Format = resource_of(Image::Moments).format.fp32;
+pub(crate) fn moments_format(input: ShadowInput) -> vk::Format {
+    resource_of(Image::Moments).format_for(Precision::Fp32, input)
+}
 
 /// The filter's signal (mean, variance) between passes and as history (`table::Image::History`'s format: every
 /// intermediate of the filter has it), for tests that read it.
@@ -83,11 +86,11 @@ pub(crate) fn image_extent(per: Per, extent: [u32; 2]) -> [u32; 2] {
     }
 }
 
-fn specs_of(r: &'static Resource, extent: [u32; 2], precision: Precision) -> impl Iterator<Item = ImageSpec> {
+fn specs_of(r: &'static Resource, extent: [u32; 2], precision: Precision, input: ShadowInput) -> impl Iterator<Item = ImageSpec> {
     (0..r.copies).map(move |copy| ImageSpec {
         image: r.image,
         copy,
-        format: r.format.get(precision),
+        format: r.format_for(precision, input),
         extent: image_extent(r.per, extent),
         lifetime: r.lifetime,
     })
@@ -105,12 +108,15 @@ pub(crate) fn image_specs(
     RESOURCES
         .iter()
         .filter(move |r| r.scope == scope && r.needed.holds(filter_passes, input))
-        .flat_map(move |r| specs_of(r, extent, precision))
+        .flat_map(move |r| specs_of(r, extent, precision, input))
 }
 
-/// The images of `image`'s row (both halves of a pair), needed or not.
+/// The images of `image`'s row (both halves of a pair), needed or not: a row whose format is the same for every
+/// shadow input.
 pub(crate) fn specs_of_image(image: Image, extent: [u32; 2], precision: Precision) -> impl Iterator<Item = ImageSpec> {
-    specs_of(resource_of(image), extent, precision)
+    let r = resource_of(image);
+    debug_assert!(r.fraction_format.is_none(), "{image:?}: its format depends on the input");
+    specs_of(r, extent, precision, ShadowInput::HitMask)
 }
 
 /// Texel bytes of the images of `scope` (of one light for `Scope::Light`), before any driver padding or alignment.
@@ -118,10 +124,10 @@ pub(crate) fn texel_bytes(scope: Scope, extent: [u32; 2], precision: Precision, 
     image_specs(scope, extent, precision, filter_passes, input).map(spec_bytes).sum()
 }
 
-/// Texel bytes of one light's persistent images (`Lifetime::Persistent`); the guide and every other image of a
-/// context are transient.
-pub(crate) fn persistent_texel_bytes(extent: [u32; 2], precision: Precision) -> u64 {
-    image_specs(Scope::Light, extent, precision, 1, ShadowInput::HitMask).filter(|s| s.lifetime == Lifetime::Persistent).map(spec_bytes).sum()
+/// Texel bytes of one light's persistent images (`Lifetime::Persistent`) with shadow input `input`; the guide and
+/// every other image of a context are transient.
+pub(crate) fn persistent_texel_bytes(extent: [u32; 2], precision: Precision, input: ShadowInput) -> u64 {
+    image_specs(Scope::Light, extent, precision, 1, input).filter(|s| s.lifetime == Lifetime::Persistent).map(spec_bytes).sum()
 }
 
 fn spec_bytes(s: ImageSpec) -> u64 {
@@ -130,6 +136,7 @@ fn spec_bytes(s: ImageSpec) -> u64 {
 
 /// Every format of the table with `precision`, once each: the device must sample and store them.
 pub(crate) fn formats(precision: Precision) -> impl Iterator<Item = vk::Format> {
-    let all = RESOURCES.map(|r| r.format.get(precision));
-    all.into_iter().enumerate().filter(move |&(i, f)| !all[..i].contains(&f)).map(|(_, f)| f)
+    let all: Vec<vk::Format> = RESOURCES.iter().flat_map(|r| [Some(r.format.get(precision)), r.fraction_format]).flatten().collect();
+    let unique: Vec<vk::Format> = all.iter().enumerate().filter(|&(i, f)| !all[..i].contains(f)).map(|(_, &f)| f).collect();
+    unique.into_iter()
 }

@@ -301,7 +301,8 @@ pub extern "C" fn dnsr_context_get_persistent_memory_usage(context: DnsrContext,
 }
 
 /// The part of dnsr_get_memory_requirements' bytes that persists between records (as
-/// dnsr_context_get_persistent_memory_usage), before driver padding. Needs no device.
+/// dnsr_context_get_persistent_memory_usage), before driver padding, with a hit-mask input (a visibility or
+/// checkerboard input adds 8 B/px per light). Needs no device.
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_get_persistent_memory_requirements(
     width: u32,
@@ -317,7 +318,8 @@ pub extern "C" fn dnsr_get_persistent_memory_requirements(
     })
 }
 
-/// Bytes of device memory a context would allocate for this size, before driver padding. Needs no device.
+/// Bytes of device memory a context with a hit-mask input would allocate for this size, before driver padding (see
+/// DNSR_SHADOW_INPUT_VISIBILITY and DNSR_SHADOW_INPUT_CHECKERBOARD for theirs). Needs no device.
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_get_memory_requirements(
     width: u32,

@@ -93,7 +93,8 @@ pub struct DnsrReferenceCallbacks {
     /// Optional (required without DNSR_REFERENCE_RESET). Previous frame's raw depth.
     pub read_previous_depth: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32) -> f32>,
     /// Optional (required without DNSR_REFERENCE_RESET). Previous frame's moments: 4 floats (mean, sum of squared
-    /// deviations, sample count, run of identical samples: +n lit, -n shadowed).
+    /// deviations, sample count, run of identical samples: +n lit, -n shadowed), rounded as dnsr stores them (with
+    /// a hit-mask input the sum is not stored: count * mean * (1 - mean) replaces it).
     pub read_previous_moments: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32, moments: *mut f32)>,
     /// Optional (required without DNSR_REFERENCE_RESET). Previous frame's history texel (filter pass 0 mean).
     pub read_history: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32) -> f32>,
@@ -251,6 +252,7 @@ pub extern "C" fn dnsr_reference_run_frame(
             f.penumbra = Some(crate::reference::Penumbra::new(info.light_angular_size as f64, f.projection_inverse, h));
         }
         let user = cb.user_data;
+        let fractions = read_visibility.is_some() || checkerboard;
         let (tw, th) = ((w + 7) / 8, (h + 3) / 4);
         if let Some(read) = read_hit_mask {
             for ty in 0..th {
@@ -286,7 +288,9 @@ pub extern "C" fn dnsr_reference_run_frame(
                         prev_moments(user, x, y, m.as_mut_ptr());
                         f.history[i] = history(user, x, y) as f64;
                     }
-                    f.previous_moments[i] = DVec4::from_array(m.map(|v| v as f64));
+                    // As the GPU reads them back: rounded to their format, the sum formed from the mean and the
+                    // count with 0/1 samples.
+                    f.previous_moments[i] = crate::reference::storage::stored_moments(DVec4::from_array(m.map(|v| v as f64)), fractions);
                 }
             }
         }

@@ -182,12 +182,13 @@ pub const DNSR_SHADOW_INPUT_HIT_MASK: DnsrShadowInput = 0;
 /// The fraction of the pixel's rays that reached the light, in [0, 1] (DnsrShadowsDispatch::visibility): for
 /// engines tracing several rays per pixel, sampling area lights, or mixing analytic and traced shadows. Only exact
 /// 0 and 1 count as uniform or extend runs of identical samples; the temporal moments are those of the per-frame
-/// values, so k rays per pixel give the variance of a mean of k samples.
+/// values, so k rays per pixel give the variance of a mean of k samples. 8 B/px more device memory per light than
+/// dnsr_get_memory_requirements says (the moments keep the samples' sum of squared deviations).
 pub const DNSR_SHADOW_INPUT_VISIBILITY: DnsrShadowInput = 1;
 /// Half a ray per pixel: hitMask (in its hitMaskConvention) holds this frame's rays for the pixels with
 /// (x + y) % 2 == DnsrShadowsDispatch::checkerboardPhase only (x, y in image pixels); alternate the phase every
 /// frame. dnsr keeps each traced pixel's sample, gives every other pixel the mean of its four traced neighbours and
-/// denoises that as a visibility input. 4 B/px more device memory per light than dnsr_get_memory_requirements says.
+/// denoises that as a visibility input. 12 B/px more device memory per light than dnsr_get_memory_requirements says.
 pub const DNSR_SHADOW_INPUT_CHECKERBOARD: DnsrShadowInput = 2;
 /// Forces 32 bits.
 pub const DNSR_SHADOW_INPUT_MAX_ENUM: DnsrShadowInput = 0x7FFF_FFFF;
@@ -375,7 +376,7 @@ pub struct DnsrSettings {
     pub full_history_samples: f32,
     /// Current-frame weight with full history trust. Range [1e-3, 1]. Default 0.1 (FidelityFX 0.05).
     pub min_current_weight: f32,
-    /// Bound on the temporal sample count. Range [2, 4096]. Default 32.
+    /// Bound on the temporal sample count. Range [2, 128]. Default 32.
     pub max_history_samples: f32,
     /// Cross-tap weight of the 3x3 kernel (corners get its square). Range [0, 1]. Default 0.5 (FidelityFX 2/3).
     pub kernel_cross_weight: f32,
@@ -386,7 +387,7 @@ pub struct DnsrSettings {
     /// Floor of the shadow edge-stop sigma. Range [1e-6, 1]. Default 1e-4.
     pub min_shadow_sigma: f32,
     /// A pixel whose last n >= this-many samples were identical is clamped to within 3/n of them instead of to the
-    /// local distribution (hard shadow edges the input resolves stay sharp). Range [0, 4096]; 0 disables (the
+    /// local distribution (hard shadow edges the input resolves stay sharp). Range [0, 127]; 0 disables (the
     /// FidelityFX behaviour). Default 8 (FidelityFX 0).
     pub stable_history_samples: f32,
     /// After a stable run, this many samples of the other value in a row (or the first, where the local mean is
@@ -398,7 +399,7 @@ pub struct DnsrSettings {
     /// it through as its run's value (its 1-spp input resolves it: hard shadows, faces turned from the light,
     /// creases, thin stripes). Under a moving camera, a receiver beside the sky whose neighbours of last frame
     /// held the other value for this many samples or more, and two of whose 8 neighbours share its sample, takes
-    /// its sample as it is (a resolved silhouette; this part needs no stable history). Range [0, 4096]; 0
+    /// its sample as it is (a resolved silhouette; this part needs no stable history). Range [0, 127]; 0
     /// disables; converged pixels need stableHistorySamples > 0. Default 8 (FidelityFX 0).
     pub converged_samples: f32,
     /// With penumbra guidance (DNSR_DISPATCH_USE_HIT_DISTANCE) only: where the blockers near a tile cast a penumbra

@@ -286,7 +286,7 @@ impl Write for Frame {
     }
     fn write_moments(&mut self, p: Coord, m: DVec4) {
         let i = self.px(p);
-        self.moments[i] = super::storage::stored_moments(m);
+        self.moments[i] = super::storage::stored_moments(m, self.visibility.is_some());
     }
     fn write_reprojection(&mut self, p: Coord, mean_var: DVec2) {
         let i = self.px(p);

@@ -51,16 +51,6 @@ pub fn f16_to_f32(h: u16) -> f32 {
     }
 }
 
-/// The float16 code of a value `round_half` returned (exactly representable).
-fn half_bits(v: f64) -> u32 {
-    f32_to_f16(v as f32) as u32
-}
-
-/// A float16 code's value (any code a GPU may store, subnormals included).
-fn from_half_bits(h: u32) -> f64 {
-    f16_to_f32(h as u16) as f64
-}
-
 fn unorm16(v: f64) -> u32 {
     ((v as f32).clamp(0.0, 1.0) as f64 * 65535.0 + 0.5).floor() as u32
 }
@@ -89,20 +79,46 @@ pub fn stored_linear_depth(z: f64) -> f64 {
     unpack_linear_depth(pack_linear_depth(z))
 }
 
-/// Moments (mean, sum of squared deviations, sample count, run) packed as the GPU stores them (R32G32_UINT).
-pub fn pack_moments(m: DVec4) -> [u32; 2] {
-    let run = ((m.w * 2.0) as i32 as u32) << 16;
-    [unorm16(m.x) | (half_bits(round_half(m.y)) << 16), half_bits(round_half(m.z)) | run]
+/// A sample count's 9-bit float code (`dnsr_pack_count`: 4 exponent bits, 5 mantissa bits, subnormals below
+/// 2^-7; whole counts exact up to 64, at most 252), rounded half up from its float32 value.
+pub fn pack_count(c: f64) -> u32 {
+    let c = c as f32;
+    let c = if c > 0.0 { c.min(252.0) } else { 0.0 }; // NaN too
+    if c < 0.007_812_5 {
+        return (c * 4096.0 + 0.5).floor() as u32;
+    }
+    ((c.to_bits() + 0x20000) >> 18) - 3808
 }
 
-/// Packed moments read back.
-pub fn unpack_moments(v: [u32; 2]) -> DVec4 {
-    DVec4::new(from_unorm16(v[0] & 0xFFFF), from_half_bits(v[0] >> 16), from_half_bits(v[1] & 0xFFFF), ((v[1] as i32) >> 16) as f64 * 0.5)
+/// A count code's value (`dnsr_unpack_count`).
+pub fn unpack_count(code: u32) -> f64 {
+    if code < 32 { code as f64 / 4096.0 } else { f32::from_bits((code + 3808) << 18) as f64 }
 }
 
-/// Moments as a later frame reads them back.
-pub fn stored_moments(m: DVec4) -> DVec4 {
-    unpack_moments(pack_moments(m))
+/// Moments (mean, sum of squared deviations, sample count, run) packed as the GPU stores their first word
+/// (`dnsr_pack_moments`): the mean as unorm14, the count (`pack_count`), twice the run as a signed 9-bit integer.
+pub fn pack_moments(m: DVec4) -> u32 {
+    let mean = ((m.x as f32).clamp(0.0, 1.0) as f64 * 16383.0 + 0.5).floor() as u32;
+    mean | (pack_count(m.z) << 14) | ((((m.w * 2.0) as i32) as u32 & 0x1FF) << 23)
+}
+
+/// A packed moments word read back; the sum of squared deviations is count * mean * (1 - mean), as with 0/1
+/// samples (a visibility input's, stored apart, replaces it: `stored_moments`).
+pub fn unpack_moments(v: u32) -> DVec4 {
+    let code = v & 0x3FFF;
+    let mean = if code == 16383 { 1.0 } else { (code as f32 * (1.0 / 16383.0)) as f64 };
+    let count = unpack_count((v >> 14) & 0x1FF);
+    DVec4::new(mean, count * mean * (1.0 - mean), count, ((v as i32) >> 23) as f64 * 0.5)
+}
+
+/// Moments as a later frame reads them back: with `keep_sum` (a visibility input, whose samples are fractions)
+/// the sum of squared deviations as its own float32 word, otherwise formed from the mean and the count.
+pub fn stored_moments(m: DVec4, keep_sum: bool) -> DVec4 {
+    let mut stored = unpack_moments(pack_moments(m));
+    if keep_sum {
+        stored.y = m.y as f32 as f64;
+    }
+    stored
 }
 
 /// The filter's signal (mean, variance) as the fp32 path stores it (R16G16_UNORM: the mean, and the standard
@@ -168,13 +184,26 @@ mod tests {
 
     #[test]
     fn moments_keep_what_the_decisions_compare() {
-        // The ends of the mean, whole and half runs of either sign, whole counts: exact.
-        for m in [DVec4::new(1.0, 0.0, 32.0, 4096.0), DVec4::new(0.0, 0.0, 4096.0, -4096.0), DVec4::new(0.0, 0.0, 0.0, 0.0), DVec4::new(1.0, 0.25, 7.0, -3.5), DVec4::new(0.0, 0.0, 1.0, 2.5)] {
-            assert_eq!(stored_moments(m), m);
+        // The ends of the mean, whole and half runs of either sign up to the longest, whole counts up to 64: exact
+        // (the sum of squared deviations of 0/1 samples follows from them).
+        let longest = crate::settings::MAX_SAMPLE_RUN as f64;
+        for m in [DVec4::new(1.0, 0.0, 32.0, longest), DVec4::new(0.0, 0.0, 64.0, -longest), DVec4::new(0.0, 0.0, 0.0, 0.0), DVec4::new(1.0, 0.0, 7.0, -3.5), DVec4::new(0.0, 0.0, 1.0, 2.5)] {
+            assert_eq!(stored_moments(m, false), m);
         }
-        // Others within one step of their format.
-        let m = stored_moments(DVec4::new(0.3, 0.123_456, 17.3, 5.0));
-        assert!((m.x - 0.3).abs() <= 0.5 / 65535.0 && (m.y - 0.123_456).abs() <= 0.123_456 / 2048.0 && (m.z - 17.3).abs() <= 17.3 / 2048.0);
+        // Others within one step of their format; a visibility input's sum as float32.
+        let m = stored_moments(DVec4::new(0.3, 0.123_456, 17.3, 5.0), true);
+        assert!((m.x - 0.3).abs() <= 0.5 / 16383.0 && m.y == 0.123_456f32 as f64 && (m.z - 17.3).abs() <= 0.5 / 2.0);
+        assert_eq!(stored_moments(DVec4::new(0.3, 0.0, 10.0, 1.0), false).y, 10.0 * m.x * (1.0 - m.x));
+        // The count's codes: monotonic, continuous across the subnormals, steps of 2 from 64, 252 the largest.
+        let mut last = -1.0;
+        for code in 0..512 {
+            let c = unpack_count(code);
+            assert!(c > last && pack_count(c) == code, "count code {code}: {c}");
+            last = c;
+        }
+        assert_eq!((unpack_count(511), pack_count(1e9), pack_count(f64::NAN)), (252.0, 511, 0));
+        assert_eq!((pack_count(65.0), pack_count(67.0)), (pack_count(66.0), pack_count(68.0))); // ties up
+        assert_eq!(unpack_count(pack_count(127.0)), 128.0);
         assert_eq!(round_half(1e-6), 0.0);
         assert_eq!(round_half(1e9), 65504.0);
         assert_eq!(round_half(2049.0), 2048.0); // a tie, to even

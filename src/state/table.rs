@@ -136,6 +136,9 @@ pub struct Resource {
     pub name: &'static str,
     /// Its format per precision.
     pub format: Formats,
+    /// Its format instead with a visibility or checkerboard input, whose samples are fractions (the moments keep
+    /// their sum of squared deviations in a second word); None: `format` whatever the input.
+    pub fraction_format: Option<vk::Format>,
     /// Its words pack several values (shaders/dnsr_storage.glsl, src/reference/storage.rs).
     pub packed: bool,
     /// What a texel covers.
@@ -156,9 +159,17 @@ impl Resource {
         self.name.replace('_', " ")
     }
 
-    /// Bytes of one texel with `precision`.
+    /// Bytes of one texel with `precision` (and a hit-mask input).
     pub fn texel_bytes(&self, precision: Precision) -> u64 {
         format_bytes(self.format.get(precision))
+    }
+
+    /// Its format with `precision` and shadow input `input`.
+    pub fn format_for(&self, precision: Precision, input: ShadowInput) -> vk::Format {
+        match (self.fraction_format, input) {
+            (Some(f), ShadowInput::Visibility | ShadowInput::Checkerboard) => f,
+            _ => self.format.get(precision),
+        }
     }
 }
 
@@ -176,7 +187,7 @@ const fn resource(
     lifetime: Lifetime,
     needed: Needed,
 ) -> Resource {
-    Resource { image, name, format, packed: false, per, scope, copies, lifetime, needed }
+    Resource { image, name, format, fraction_format: None, packed: false, per, scope, copies, lifetime, needed }
 }
 
 const fn packed(r: Resource) -> Resource {
@@ -198,9 +209,12 @@ pub const RESOURCES: [Resource; 11] = [
     resource(Image::Reprojection, "reprojection", SIGNAL, Pixel, Light, 1, Transient, Needed::Always),
     resource(Image::History, "history", SIGNAL, Pixel, Light, 1, Persistent, Needed::Always),
     resource(Image::DepthCopy, "depth_copy", Formats::both(vk::Format::R16_UINT), Pixel, Light, 2, Persistent, Needed::Always),
-    // Per pixel: mean (unorm16), sum of squared deviations and sample count (float16), run of identical samples
-    // (int16), packed into two words.
-    packed(resource(Image::Moments, "moments", Formats::both(vk::Format::R32G32_UINT), Pixel, Light, 2, Persistent, Needed::Always)),
+    // Per pixel: mean (unorm14), sample count (9-bit float), run of identical samples (9-bit integer) packed into
+    // one word; with fractional samples their sum of squared deviations (float32) in a second.
+    Resource {
+        fraction_format: Some(vk::Format::R32G32_UINT),
+        ..packed(resource(Image::Moments, "moments", Formats::both(vk::Format::R32_UINT), Pixel, Light, 2, Persistent, Needed::Always))
+    },
     resource(Image::Tmp, "filter_tmp", SIGNAL, Pixel, Light, 1, Transient, Needed::Passes(MAX_FILTER_PASSES)),
     resource(Image::Reconstructed, "reconstructed_visibility", Formats::both(vk::Format::R32_SFLOAT), Pixel, Light, 1, Transient, Needed::Checkerboard),
     // Linear depth as float32 (-1 for sky), octahedral unit normal as 2 x snorm16: one texel per tap for the passes
@@ -221,8 +235,6 @@ const _: () = {
         i += 1;
     }
 };
-// A context without a guide binds a light's moments in its place (Context::frame_views): same format.
-const _: () = assert!(resource_of(Image::Guide).format.fp32.as_raw() == resource_of(Image::Moments).format.fp32.as_raw());
 
 /// The image filter pass k reads (`FILTER_INPUT[k]`) and writes when it writes an intermediate
 /// (`FILTER_OUTPUT[k]`; `When::WritesIntermediate`): the reprojection is free once pass 0 consumed it, so three

@@ -76,10 +76,26 @@ fn encode_visibility(v: &[f32], format: vk::Format) -> Vec<u8> {
     }
 }
 
-/// A light's moments image (R32G32_UINT, GENERAL) read back as (mean, sum of squared deviations, count, run).
-pub fn download_moments(gpu: &Gpu, image: vk::Image, w: u32, h: u32) -> Vec<glam::DVec4> {
-    let raw = gpu.download(&TestImage::borrowed(image, crate::state::MOMENTS_FORMAT, w, h, vk::ImageLayout::GENERAL));
-    bytemuck::cast_slice::<u8, [u32; 2]>(&raw).iter().map(|&m| crate::reference::storage::unpack_moments(m)).collect()
+/// A light's moments image (GENERAL; its format with `input`) read back as (mean, sum of squared deviations, count,
+/// run).
+pub fn download_moments(gpu: &Gpu, image: vk::Image, w: u32, h: u32, input: crate::ShadowInput) -> Vec<glam::DVec4> {
+    let format = crate::state::moments_format(input);
+    let raw = gpu.download(&TestImage::borrowed(image, format, w, h, vk::ImageLayout::GENERAL));
+    let words: &[u32] = bytemuck::cast_slice(&raw);
+    if format == vk::Format::R32_UINT {
+        return words.iter().map(|&m| crate::reference::storage::unpack_moments(m)).collect();
+    }
+    let sum = |m: &[u32]| f32::from_bits(m[1]) as f64;
+    words.chunks_exact(2).map(|m| crate::reference::storage::unpack_moments(m[0]).with_y(sum(m))).collect()
+}
+
+/// Moments as a moments image of `input`'s format holds them (see `download_moments`).
+pub fn pack_moments(moments: &[glam::DVec4], input: crate::ShadowInput) -> Vec<u32> {
+    let pack = crate::reference::storage::pack_moments;
+    if crate::state::moments_format(input) == vk::Format::R32_UINT {
+        return moments.iter().map(|&m| pack(m)).collect();
+    }
+    moments.iter().flat_map(|&m| [pack(m), (m.y as f32).to_bits()]).collect()
 }
 
 pub use crate::reference::storage::{f16_to_f32, f32_to_f16};

@@ -40,7 +40,7 @@ fn fidelityfx_runner<'g>(g: &'g Gpu, w: u32, h: u32) -> Runner<'g> {
 
 /// Sample count n of every pixel after the last frame.
 fn sample_counts(r: &Runner, w: u32, h: u32) -> Vec<f32> {
-    crate::testing::download_moments(r.gpu, r.ctx.last_moments(0), w, h).iter().map(|m| m.z as f32).collect()
+    crate::testing::download_moments(r.gpu, r.ctx.last_moments(0), w, h, r.ctx.shadow_input()).iter().map(|m| m.z as f32).collect()
 }
 
 #[test]

@@ -28,7 +28,7 @@ fn assert_sane(out: &[f32], f: &FrameInputs, what: &str) {
 fn assert_state_finite(r: &Runner, what: &str) {
     let [w, h] = r.ctx.size();
     let max_n = r.ctx.settings().max_history_samples as f64;
-    for (i, m) in crate::testing::download_moments(r.gpu, r.ctx.internals(0).moments, w, h).iter().enumerate() {
+    for (i, m) in crate::testing::download_moments(r.gpu, r.ctx.internals(0).moments, w, h, r.ctx.shadow_input()).iter().enumerate() {
         assert!(m[0].is_finite() && (0.0..=1.0).contains(&m[0]), "{what}: moments.mean of pixel {i} = {}", m[0]);
         assert!(m[1].is_finite() && m[1] >= 0.0 && m[1] <= max_n, "{what}: moments.sum of pixel {i} = {}", m[1]);
         assert!(m[2].is_finite() && m[2] >= 0.0 && m[2] <= max_n, "{what}: moments.n of pixel {i} = {}", m[2]);

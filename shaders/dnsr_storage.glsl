@@ -50,23 +50,30 @@ float dnsr_unpack_linear_depth(uint code) {
 // The count's code from its float32 bits: the exponent and the top 5 mantissa bits, rounded half up by adding half
 // of the dropped bits' weight (a carry moves into the exponent, the next binade's first code); the binade of 2^-7
 // is code 32 onwards (exponent field 1). Below 2^-7, whole steps of 2^-12.
+// The layout's numbers come from src/state.rs (generated/dnsr_constants.glsl).
+const uint DNSR_COUNT_SHIFT = 23u - DNSR_COUNT_MANTISSA_BITS; // float32 mantissa bits dropped
+const uint DNSR_COUNT_SUBNORMAL_CODES = 1u << DNSR_COUNT_MANTISSA_BITS;
+const uint DNSR_MOMENTS_RUN_SHIFT = DNSR_MOMENTS_MEAN_BITS + DNSR_MOMENTS_COUNT_BITS;
 uint dnsr_pack_count(float c) {
-    c = c > 0.0 ? min(c, 252.0) : 0.0; // NaN too
-    if (c < 0.0078125) return uint(floor(c * 4096.0 + 0.5));
-    return ((floatBitsToUint(c) + 0x20000u) >> 18u) - 3808u;
+    c = c > 0.0 ? min(c, float(DNSR_COUNT_MAX)) : 0.0; // NaN too
+    float subnormal = c * float(DNSR_COUNT_SUBNORMAL_SCALE);
+    if (subnormal < float(DNSR_COUNT_SUBNORMAL_CODES)) return uint(floor(subnormal + 0.5));
+    return ((floatBitsToUint(c) + (1u << (DNSR_COUNT_SHIFT - 1u))) >> DNSR_COUNT_SHIFT) - DNSR_COUNT_CODE_OFFSET;
 }
 float dnsr_unpack_count(uint code) {
-    return code < 32u ? float(code) * (1.0 / 4096.0) : uintBitsToFloat((code + 3808u) << 18u);
+    return code < DNSR_COUNT_SUBNORMAL_CODES ? float(code) / float(DNSR_COUNT_SUBNORMAL_SCALE)
+                                              : uintBitsToFloat((code + DNSR_COUNT_CODE_OFFSET) << DNSR_COUNT_SHIFT);
 }
 uint dnsr_pack_moments(vec4 m) {
-    uint mean = uint(floor(clamp(m.x, 0.0, 1.0) * 16383.0 + 0.5));
-    return mean | (dnsr_pack_count(m.z) << 14) | ((uint(int(m.w * 2.0)) & 0x1FFu) << 23);
+    uint mean = uint(floor(clamp(m.x, 0.0, 1.0) * float(DNSR_MOMENTS_MEAN_MAX) + 0.5));
+    uint run = uint(int(m.w * 2.0)) & ((1u << (32u - DNSR_MOMENTS_RUN_SHIFT)) - 1u);
+    return mean | (dnsr_pack_count(m.z) << DNSR_MOMENTS_MEAN_BITS) | (run << DNSR_MOMENTS_RUN_SHIFT);
 }
 vec4 dnsr_unpack_moments(uint v) {
-    uint mean_code = v & 0x3FFFu;
-    float mean = mean_code == 16383u ? 1.0 : float(mean_code) * (1.0 / 16383.0);
-    float count = dnsr_unpack_count((v >> 14) & 0x1FFu);
-    return vec4(mean, count * mean * (1.0 - mean), count, float(int(v) >> 23) * 0.5);
+    uint mean_code = v & DNSR_MOMENTS_MEAN_MAX;
+    float mean = mean_code == DNSR_MOMENTS_MEAN_MAX ? 1.0 : float(mean_code) * (1.0 / float(DNSR_MOMENTS_MEAN_MAX));
+    float count = dnsr_unpack_count((v >> DNSR_MOMENTS_MEAN_BITS) & ((1u << DNSR_MOMENTS_COUNT_BITS) - 1u));
+    return vec4(mean, count * mean * (1.0 - mean), count, float(int(v) >> int(DNSR_MOMENTS_RUN_SHIFT)) * 0.5);
 }
 
 // A unit normal (or vec3(0): no usable normal) in 32 bits: octahedral, two snorm16 codes (floor(c * 32767 + 0.5));

@@ -176,11 +176,12 @@ pub const MAX_FILTER_PASSES: u32 = 4;
 /// Longest run of identical samples a pixel's moments record (moments.w: +n lit, -n shadowed); a cleared tile
 /// records the longest run. Bounds the run settings. Generated into GLSL. The moments store twice the run in 9
 /// bits (shaders/dnsr_storage.glsl).
-pub(crate) const MAX_SAMPLE_RUN: u32 = 127;
+pub(crate) const MAX_SAMPLE_RUN: u32 = ((1 << (crate::state::MOMENTS_RUN_BITS - 1)) - 1) / 2;
+const _: () = assert!(MAX_SAMPLE_RUN == 127);
 
-/// Largest `max_history_samples`: the moments' 9-bit count steps by 2 from 64 and by 4 from 128, where adding a
-/// sample would no longer change it.
-const MAX_HISTORY_SAMPLES: f32 = 128.0;
+/// Largest `max_history_samples`: the moments' count (`state::COUNT_MANTISSA_BITS`) holds whole counts up to 64,
+/// steps by 2 up to 128 and by 4 from there, where adding a sample would no longer change it.
+const MAX_HISTORY_SAMPLES: f32 = (1u32 << (crate::state::COUNT_MANTISSA_BITS + 2)) as f32;
 
 /// Checks a filter pass count (outside a `Settings`, e.g. for `memory_requirements`).
 pub(crate) fn check_filter_passes(passes: u32) -> Result<()> {

@@ -42,7 +42,7 @@ pub(crate) fn check(spirv: &[u8], offers: DeviceOffers) -> Result<(), String> {
     }
     // The validator has accepted every word count: the walk cannot fail.
     let all = instructions(spirv).map_err(|e| e.to_string())?;
-    unreachable_block(&all)?;
+    control_flow(&all)?;
     for (opcode, operands) in &all {
         let (opcode, operands) = (*opcode, operands.as_slice());
         match opcode {
@@ -65,10 +65,13 @@ pub(crate) fn check(spirv: &[u8], offers: DeviceOffers) -> Result<(), String> {
     Ok(())
 }
 
-/// Refuses a function with a block that no branch and no merge or continue declaration reaches. The current
-/// SPIR-V rules allow some such blocks, but older validators (the layers engines run) and drivers (Mesa's
-/// reader) do not take all of them, and glslc writes none.
-fn unreachable_block(all: &[(u32, Vec<u32>)]) -> Result<(), String> {
+/// Refuses a function whose blocks are not laid out as glslc lays them out, where the current SPIR-V rules and
+/// older validators (the layers engines run) or drivers (Mesa's reader) disagree:
+/// - a block that no branch and no merge or continue declaration reaches;
+/// - a branch to a block laid out at or before the branching one that is not a loop header (a cross edge between
+///   a selection's arms, say: the layer reports "Invalid back or cross-edge in the CFG" and lavapipe refuses the
+///   module, leaking what it had parsed). glslc places every target but a loop's header after the branch.
+fn control_flow(all: &[(u32, Vec<u32>)]) -> Result<(), String> {
     const OP_FUNCTION: u32 = 54;
     const OP_FUNCTION_END: u32 = 56;
     const OP_LABEL: u32 = 248;
@@ -77,35 +80,64 @@ fn unreachable_block(all: &[(u32, Vec<u32>)]) -> Result<(), String> {
     const OP_SWITCH: u32 = 251;
     const OP_LOOP_MERGE: u32 = 246;
     const OP_SELECTION_MERGE: u32 = 247;
-    // Per function: its blocks in order, and for each the blocks it names (branch targets, merge, continue).
-    let mut blocks: Vec<(u32, Vec<u32>)> = Vec::new();
-    let check = |blocks: &[(u32, Vec<u32>)]| -> Result<(), String> {
-        let index: std::collections::HashMap<u32, usize> = blocks.iter().enumerate().map(|(i, (label, _))| (*label, i)).collect();
+    /// One block of a function: its label, the blocks it names (branch targets, merge, continue), those it
+    /// branches to, and whether it heads a loop.
+    #[derive(Default)]
+    struct Block {
+        label: u32,
+        named: Vec<u32>,
+        jumps: Vec<u32>,
+        loop_header: bool,
+    }
+    let check = |blocks: &[Block]| -> Result<(), String> {
+        let index: std::collections::HashMap<u32, usize> = blocks.iter().enumerate().map(|(i, b)| (b.label, i)).collect();
+        for (i, b) in blocks.iter().enumerate() {
+            if let Some(&t) = b.jumps.iter().find(|t| index.get(t).is_some_and(|&j| j <= i && !blocks[j].loop_header)) {
+                return Err(format!("block %{} of a function branches back to %{}, which is not a loop header", b.label, t));
+            }
+        }
         let mut reached = vec![false; blocks.len()];
         let mut stack = vec![0usize];
         while let Some(b) = stack.pop() {
             if !std::mem::replace(&mut reached[b], true) {
-                stack.extend(blocks[b].1.iter().filter_map(|target| index.get(target)));
+                stack.extend(blocks[b].named.iter().filter_map(|target| index.get(target)));
             }
         }
         match reached.iter().position(|r| !r) {
-            Some(b) => Err(format!("block %{} of a function is never reached (not a branch target, merge or continue block)", blocks[b].0)),
+            Some(b) => Err(format!("block %{} of a function is never reached (not a branch target, merge or continue block)", blocks[b].label)),
             None => Ok(()),
         }
     };
+    let mut blocks: Vec<Block> = Vec::new();
     for (opcode, ops) in all {
-        match *opcode {
-            OP_FUNCTION => blocks.clear(),
-            OP_LABEL => blocks.push((ops[0], Vec::new())),
-            OP_BRANCH | OP_LOOP_MERGE | OP_SELECTION_MERGE => {
-                let n = if *opcode == OP_LOOP_MERGE { 2 } else { 1 };
-                blocks.last_mut().into_iter().for_each(|b| b.1.extend(&ops[..n]));
+        if *opcode == OP_FUNCTION {
+            blocks.clear();
+        } else if *opcode == OP_LABEL {
+            blocks.push(Block { label: ops[0], ..Block::default() });
+        } else if *opcode == OP_FUNCTION_END && !blocks.is_empty() {
+            check(&blocks)?;
+        }
+        match (*opcode, blocks.last_mut()) {
+            (OP_LOOP_MERGE, Some(b)) => {
+                b.named.extend(&ops[..2]);
+                b.loop_header = true;
             }
-            OP_BRANCH_CONDITIONAL => blocks.last_mut().into_iter().for_each(|b| b.1.extend(&ops[1..3])),
-            // Selector, then the default and (literal, label) pairs: every word counts as a target, since a literal
-            // that happens to name a block can only make the check more lenient.
-            OP_SWITCH => blocks.last_mut().into_iter().for_each(|b| b.1.extend(&ops[1..])),
-            OP_FUNCTION_END if !blocks.is_empty() => check(&blocks)?,
+            (OP_SELECTION_MERGE, Some(b)) => b.named.push(ops[0]),
+            (OP_BRANCH, Some(b)) => {
+                b.named.push(ops[0]);
+                b.jumps.push(ops[0]);
+            }
+            (OP_BRANCH_CONDITIONAL, Some(b)) => {
+                b.named.extend(&ops[1..3]);
+                b.jumps.extend(&ops[1..3]);
+            }
+            // Selector, then the default and (literal, label) pairs: every word counts as named, since a literal
+            // that happens to name a block can only make the reachability check more lenient; the default alone
+            // is checked as a jump (a literal's width depends on the selector's type).
+            (OP_SWITCH, Some(b)) => {
+                b.named.extend(&ops[1..]);
+                b.jumps.push(ops[1]);
+            }
             _ => {}
         }
     }

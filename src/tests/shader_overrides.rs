@@ -117,6 +117,23 @@ fn mismatched_overrides_are_refused_before_anything_is_created() {
         }
         with_word(at + 7, 3)
     };
+    // A selection's second arm branching into its first (glslc places both arms after the selection; the layer
+    // reports "Invalid back or cross-edge in the CFG" and lavapipe refuses the module).
+    let cross_edge = {
+        let words: Vec<u32> = good.spirv.chunks_exact(4).map(|c| u32::from_le_bytes(c.try_into().unwrap())).collect();
+        let instructions: Vec<usize> =
+            std::iter::successors(Some(5), |&at| Some(at + (words[at] >> 16) as usize).filter(|&next| next < words.len())).collect();
+        let op = |at: usize| words[at] & 0xFFFF;
+        // Each OpBranchConditional's arms, then the OpBranch that ends the second arm's block (if it does).
+        let found = instructions.iter().filter(|&&at| op(at) == 250).find_map(|&at| {
+            let (first, second) = (words[at + 2], words[at + 3]);
+            let label = instructions.iter().position(|&i| op(i) == 248 && words[i + 1] == second)?;
+            let end = instructions[label + 1..].iter().copied().find(|&i| matches!(op(i), 248..=256))?;
+            (op(end) == 249 && words[end + 1] != first).then_some((end + 1, first))
+        });
+        let (word, first) = found.expect("a selection whose second arm ends in a branch");
+        with_word(word, first)
+    };
     let float64 = edited(&|s| {
         s.replace("float dnsr_read_depth(ivec2 p) { return texelFetch(dnsr_depth, p + dnsr_get_offset(), 0).r; }",
             "float dnsr_read_depth(ivec2 p) { return float(double(texelFetch(dnsr_depth, p + dnsr_get_offset(), 0).r) * 1.0lf); }")
@@ -138,6 +155,7 @@ fn mismatched_overrides_are_refused_before_anything_is_created() {
         ("id bound 2^30", vec![with_word(3, 1 << 30)], "id bound"),
         ("image Sampled 3", vec![image_sampled_3], "is not valid SPIR-V for Vulkan 1.1"),
         ("a Float64 capability", vec![float64], "capability 10,"),
+        ("a cross edge", vec![cross_edge], "which is not a loop header"),
         ("constants read as other types", vec![signed_rect], "Constants block differs"),
     ];
     for (what, overrides, expect) in cases {

@@ -1930,7 +1930,7 @@ DnsrResult dnsr_context_get_memory_usage(DnsrContext context, uint64_t *pBytes);
 
 /**
  * The part of dnsr_context_get_memory_usage's bytes whose contents must survive from one record of a light to
- * the next (each light's moments, depth copies and history); the rest is written and read within one record.
+ * the next (each light's moments, depth copy and history); the rest is written and read within one record.
  */
 DnsrResult dnsr_context_get_persistent_memory_usage(DnsrContext context,
                                                     uint64_t *pBytes);

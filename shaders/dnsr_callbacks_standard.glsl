@@ -98,7 +98,6 @@ void dnsr_write_visibility(ivec2 p, float v) { imageStore(dnsr_visibility_out, p
 layout(set = 0, binding = 3) uniform utexture2D dnsr_tile_mask;
 layout(set = 0, binding = 5) uniform texture2D dnsr_velocity;
 layout(set = 0, binding = 7) uniform utexture2D dnsr_previous_depth;
-layout(set = 0, binding = 8, r16ui) uniform writeonly uimage2D dnsr_depth_copy;
 layout(set = 0, binding = 9) uniform utexture2D dnsr_previous_moments;
 // One word per pixel (dnsr_pack_moments); a visibility input's moments keep their sum of squared deviations in a
 // second (float32 bits).
@@ -152,7 +151,6 @@ float dnsr_read_history(vec2 uv) {
     float h11 = dnsr_read_history_texel(clamp(base + ivec2(1, 1), ivec2(0), last));
     return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
 }
-void dnsr_write_depth_copy(ivec2 p, float linear_depth) { imageStore(dnsr_depth_copy, p + dnsr_get_offset(), uvec4(dnsr_pack_linear_depth(linear_depth))); }
 void dnsr_write_moments(ivec2 p, vec4 m) { imageStore(dnsr_moments, p + dnsr_get_offset(), uvec4(dnsr_pack_moments(m), floatBitsToUint(m.y), 0u, 0u)); }
 void dnsr_write_reprojection(ivec2 p, vec2 mean_var) { imageStore(dnsr_reprojection, p + dnsr_get_offset(), dnsr_encode_signal(mean_var, dnsr_get_signal_scale())); }
 void dnsr_write_tile_meta(ivec2 tile, uint meta) { imageStore(dnsr_tile_meta_out, tile + dnsr_get_tile_offset(), uvec4(meta)); }
@@ -180,6 +178,12 @@ layout(set = 0, binding = 20, rg32ui) uniform writeonly uimage2D dnsr_guide_out;
 layout(set = 0, binding = 17, DNSR_OUTPUT_FORMAT) uniform writeonly image2D dnsr_output;
 // This frame's moments, read only by the debug views.
 layout(set = 0, binding = 18) uniform utexture2D dnsr_debug_moments;
+#endif
+#ifndef DNSR_LATER_PASS
+// This frame's linear depth, for the next frame's classification (dnsr_read_previous_depth). Written by the first
+// filter pass, after this frame's classification has read last frame's from the same image: one image, not two.
+layout(set = 0, binding = 8, r16ui) uniform writeonly uimage2D dnsr_depth_copy;
+void dnsr_write_depth_copy(ivec2 p, float linear_depth) { imageStore(dnsr_depth_copy, p + dnsr_get_offset(), uvec4(dnsr_pack_linear_depth(linear_depth))); }
 #endif
 
 int dnsr_get_filter_step() { return int(dnsr_push.pass.x); }

@@ -291,13 +291,18 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     }
 
     if (!dnsr_inside(p)) return;
+    // Next frame's classification compares its reprojected depth with this one: kept as a linear depth, which a
+    // logarithmic 16-bit code holds finely enough at any scale (the device depth needs 32 bits). Written here, not
+    // in classification, which reads last frame's from the same image.
+    float depth = dnsr_read_depth(p);
+    dnsr_write_depth_copy(p, dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), depth));
     ivec2 m = (lid / DNSR_GROUP_SIZE + 1) * DNSR_BLOCK_TILES;
     uint meta = dnsr_meta[m.y + (lid.y % DNSR_GROUP_SIZE.y) / DNSR_TILE_SIZE.y][m.x];
     if (dnsr_block_cleared(m)) {
         // Cleared values are already where this pass would write them (classification wrote the output and the
         // reprojection image): nothing to do.
         if (dnsr_get_skip_cleared()) return;
-        bool receiver = dnsr_is_receiver(dnsr_read_depth(p));
+        bool receiver = dnsr_is_receiver(depth);
         // The guide is needed here only where a later pass taps this block from a tile it filters (of any light
         // of the record, which this light's tiles do not tell: then everywhere).
         if (dnsr_get_write_guide() && (dnsr_get_write_guide_everywhere() || dnsr_block_is_tapped(m))) {

@@ -308,9 +308,6 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
 
     float depth = inside ? dnsr_read_depth(p) : 0.0;
     bool receiver = inside && dnsr_is_receiver(depth);
-    // Next frame compares its reprojected depth with this one: kept as a linear depth, which a logarithmic 16-bit
-    // code holds finely enough at any scale (the device depth needs 32 bits).
-    if (inside) dnsr_write_depth_copy(p, dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), depth));
     s_quad_key[lid.y][lid.x] = receiver ? (inverted ? -depth : depth) : 1e30;
     barrier();
     if (receiver) atomicOr(s_tile_has_receiver[own_tile.y][own_tile.x], 1u);

@@ -47,7 +47,7 @@ pub fn memory_requirements_for_input(
 }
 
 /// Bytes of the part of `memory_requirements` whose contents must survive from one record of a light to the next
-/// (each light's moments, depth copies and history: `state::Lifetime`), with a hit-mask input (a visibility or
+/// (each light's moments, depth copy and history: `state::Lifetime`), with a hit-mask input (a visibility or
 /// checkerboard input adds 8 B/px per light); the rest is written and read within one record. Needs no device.
 pub fn persistent_memory_requirements(width: u32, height: u32, precision: Precision, light_count: u32) -> Result<u64> {
     validate::extent("render size", width, height, u32::MAX)?;
@@ -486,7 +486,7 @@ impl Context {
     }
 
     /// The part of `memory_bytes` whose contents must survive from one record of a light to the next (each light's
-    /// moments, depth copies and history, driver padding included); the rest (tile state, the temporal result, the
+    /// moments, depth copy and history, driver padding included); the rest (tile state, the temporal result, the
     /// filter's intermediates and guide, the constants, the classifier's buffers) is written and read within one
     /// record.
     pub fn persistent_memory_bytes(&self) -> u64 {
@@ -599,8 +599,7 @@ impl Context {
             reprojection: light.reprojection.view,
             history: light.history.view,
             tmp: light.tmp.as_ref().map_or(vk::ImageView::null(), |t| t.view),
-            previous_depth: light.depth[cur ^ 1].view,
-            depth_copy: light.depth[cur].view,
+            depth_copy: light.depth_copy.view,
             previous_moments: light.moments[cur ^ 1].view,
             moments: light.moments[cur].view,
             // Without a guide (one filter pass: the pass never touches it) the bindings take another image whose
@@ -967,7 +966,7 @@ impl Context {
             reprojection: l.reprojection.image,
             history: l.history.image,
             moments: l.moments[l.parity ^ 1].image,
-            depth: l.depth[l.parity ^ 1].image,
+            depth: l.depth_copy.image,
             intermediate_format: crate::state::intermediate_format(self.precision),
         }
     }

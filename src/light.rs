@@ -22,8 +22,9 @@ pub(crate) struct LightState {
     pub tmp: Option<InternalImage>,
     /// The visibility prepare reconstructs from a checkerboard input (None for other inputs).
     pub reconstructed: Option<InternalImage>,
-    /// Ping-pong pairs indexed by `parity` (current) and `parity ^ 1` (previous frame).
-    pub depth: [InternalImage; 2],
+    /// Linear depth: last frame's until the first filter pass writes this frame's.
+    pub depth_copy: InternalImage,
+    /// Ping-pong pair indexed by `parity` (current) and `parity ^ 1` (previous frame).
     pub moments: [InternalImage; 2],
     /// Flips once per recorded frame of this light: advances with recording, not with frameIndex.
     pub parity: usize,
@@ -63,7 +64,7 @@ impl LightState {
             tile_blocker: always(Image::TileBlocker, 0),
             reprojection: always(Image::Reprojection, 0),
             history: always(Image::History, 0),
-            depth: [always(Image::DepthCopy, 0), always(Image::DepthCopy, 1)],
+            depth_copy: always(Image::DepthCopy, 0),
             moments: [always(Image::Moments, 0), always(Image::Moments, 1)],
             tmp: take(Image::Tmp, 0),
             reconstructed: take(Image::Reconstructed, 0),
@@ -82,7 +83,7 @@ impl LightState {
             Image::TileBlocker => Some(&self.tile_blocker),
             Image::Reprojection => Some(&self.reprojection),
             Image::History => Some(&self.history),
-            Image::DepthCopy => return self.depth.get(copy as usize),
+            Image::DepthCopy => Some(&self.depth_copy),
             Image::Moments => return self.moments.get(copy as usize),
             Image::Tmp => self.tmp.as_ref(),
             Image::Reconstructed => self.reconstructed.as_ref(),
@@ -131,9 +132,8 @@ impl LightState {
     }
 
     pub(crate) fn destroy(&mut self, vk: &Vk) {
-        for img in [&mut self.tile_mask, &mut self.tile_dark, &mut self.tile_meta, &mut self.tile_blocker, &mut self.reprojection, &mut self.history]
+        for img in [&mut self.tile_mask, &mut self.tile_dark, &mut self.tile_meta, &mut self.tile_blocker, &mut self.reprojection, &mut self.history, &mut self.depth_copy]
             .into_iter()
-            .chain(self.depth.iter_mut())
             .chain(self.moments.iter_mut())
             .chain(self.tmp.iter_mut())
             .chain(self.reconstructed.iter_mut())

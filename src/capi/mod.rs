@@ -294,7 +294,7 @@ pub extern "C" fn dnsr_context_get_memory_usage(context: DnsrContext, p_bytes: *
 }
 
 /// The part of dnsr_context_get_memory_usage's bytes whose contents must survive from one record of a light to
-/// the next (each light's moments, depth copies and history); the rest is written and read within one record.
+/// the next (each light's moments, depth copy and history); the rest is written and read within one record.
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_context_get_persistent_memory_usage(context: DnsrContext, p_bytes: *mut u64) -> DnsrResult {
     query(context, p_bytes, "pBytes", crate::Context::persistent_memory_bytes)

@@ -99,6 +99,9 @@ pub(crate) fn pass(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView
     // callbacks file), so both are bound.
     t[Resource::Guide as usize] = internal(v.guide);
     t[Resource::GuideOut as usize] = internal(v.guide);
+    if pass == 0 {
+        t[Resource::DepthCopy as usize] = internal(v.depth_copy);
+    }
     if is_final(pass, passes) {
         t[Resource::Output as usize] = internal(v.output);
         t[Resource::DebugMoments as usize] = internal(v.moments);

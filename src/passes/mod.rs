@@ -220,7 +220,7 @@ pub(crate) struct FrameViews {
     pub history: vk::ImageView,
     /// Fourth-pass intermediate; null unless four filter passes are configured.
     pub tmp: vk::ImageView,
-    pub previous_depth: vk::ImageView,
+    /// Linear depth: classification reads last frame's, the first filter pass writes this frame's.
     pub depth_copy: vk::ImageView,
     pub previous_moments: vk::ImageView,
     pub moments: vk::ImageView,

@@ -136,6 +136,11 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
     for y in 0..e[1] {
         for x in 0..e[0] {
             let p = [x, y];
+            // The first pass writes this frame's depth copy (classification has read last frame's).
+            if io.filter_step() == 1 {
+                let depth = io.read_depth(p);
+                io.write_depth_copy(p, super::depth_copy(io, p, depth));
+            }
             let meta = io.read_tile_meta([x / TILE[0], y / TILE[1]]);
             let result = match receiver_depth(io, p) {
                 None => SKY_SIGNAL,

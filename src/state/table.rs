@@ -208,7 +208,8 @@ pub const RESOURCES: [Resource; 11] = [
     resource(Image::TileBlocker, "tile_blocker", Formats::both(vk::Format::R32_SFLOAT), Tile, Light, 1, Transient, Needed::Always),
     resource(Image::Reprojection, "reprojection", SIGNAL, Pixel, Light, 1, Transient, Needed::Always),
     resource(Image::History, "history", SIGNAL, Pixel, Light, 1, Persistent, Needed::Always),
-    resource(Image::DepthCopy, "depth_copy", Formats::both(vk::Format::R16_UINT), Pixel, Light, 2, Persistent, Needed::Always),
+    // One image: classification reads last frame's values before the first filter pass writes this frame's.
+    resource(Image::DepthCopy, "depth_copy", Formats::both(vk::Format::R16_UINT), Pixel, Light, 1, Persistent, Needed::Always),
     // Per pixel: mean (unorm14), sample count (9-bit float), run of identical samples (9-bit integer) packed into
     // one word; with fractional samples their sum of squared deviations (float32) in a second.
     Resource {
@@ -432,16 +433,16 @@ pub const ACCESSES: &[StateAccess] = {
         a(TileClassification, I(TileMask), Read, Tiles, When::Always, Config::Any),
         a(TileClassification, I(TileDark), Read, Tiles, When::Always, Config::VisibilityInput),
         a(TileClassification, I(Reconstructed), Read, All, When::Always, Config::CheckerboardInput),
-        a(TileClassification, Previous(DepthCopy), Read, Active, When::Always, Config::Any),
+        a(TileClassification, I(DepthCopy), Read, Active, When::Always, Config::Any),
         a(TileClassification, Previous(Moments), Read, Pixels::History, When::Always, Config::Any),
         a(TileClassification, I(History), Read, Pixels::History, When::Always, Config::Any),
-        a(TileClassification, I(DepthCopy), Write, All, When::Always, Config::Any),
         a(TileClassification, I(Moments), Write, All, When::Always, Config::Any),
         a(TileClassification, I(Reprojection), Write, All, When::Always, Config::Any),
         a(TileClassification, I(TileMeta), Write, Tiles, When::Always, Config::Any),
         a(TileClassification, I(TileBlocker), Write, Tiles, When::Always, Config::PenumbraGuidance),
         a(Filter, I(TileMeta), Read, Tiles, When::Always, Config::Any),
         a(Filter, I(TileBlocker), Read, Tiles, When::Always, Config::PenumbraGuidance),
+        a(Filter, I(DepthCopy), Write, All, When::FirstPass, Config::Any),
         a(Filter, I(Guide), Write, ActiveGroups, When::FirstOfSeveral, Config::Any),
         a(Filter, I(Guide), Read, ActiveGroups, When::LaterPasses, Config::Any),
         a(Filter, FilterInput, Read, ActiveGroups, When::Always, Config::Any),

@@ -85,13 +85,13 @@ fn reflected_interfaces_match_what_the_host_binds() {
         (
             "tile_classification_r16f",
             &[
-                Constants, TileMask, Depth, Velocity, Normals, PreviousDepth, DepthCopy, PreviousMoments, Moments, History,
+                Constants, TileMask, Depth, Velocity, Normals, PreviousDepth, PreviousMoments, Moments, History,
                 Reprojection, TileMetaOut, Output, HitDistance, TileBlockerOut,
             ],
             0,
             (1 << GUIDED) | (1 << STABLE),
         ),
-        ("filter", &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide, GuideOut], 48, 1 << GUIDED),
+        ("filter", &[Constants, Depth, DepthCopy, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide, GuideOut], 48, 1 << GUIDED),
         (
             "filter_later",
             &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide, GuideOut],
@@ -100,7 +100,7 @@ fn reflected_interfaces_match_what_the_host_binds() {
         ),
         (
             "filter_final_r16f_fp16",
-            &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Output, DebugMoments, Guide, GuideOut],
+            &[Constants, Depth, DepthCopy, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Output, DebugMoments, Guide, GuideOut],
             48,
             1 << GUIDED,
         ),

@@ -11,7 +11,8 @@ use bench::report::{precision_name, preset_name, Report, Summary};
 use bench::run::Warmup;
 use bench::scenes::{build, HostFormats, SceneId, ALL_SCENES};
 use dnsr::testing::gpu::{Gpu, GpuOptions};
-use dnsr::{Precision, Preset};
+use bench::model::Fed;
+use dnsr::{Precision, Preset, ShadowInput};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -23,9 +24,9 @@ const USAGE: &str = "usage: dnsr-bench [options]
   --precisions a[,b...]       fp32, fp16 (default: both; fp16 is skipped when the device lacks it)
   --fp16                      same as --precisions fp16
   --rays K                    the shadow input is per-pixel visibility (ShadowInput::Visibility, R8_UNORM) of K
-                              rays per pixel instead of the hit mask (the byte model still counts the hit mask's)
+                              rays per pixel instead of the hit mask (the byte model follows)
   --checkerboard              the shadow input is a checkerboard (ShadowInput::Checkerboard): half of each
-                              frame's hit mask is read, the phase alternating (the byte model is the hit mask's)
+                              frame's hit mask is read, the phase alternating
   --light-angle RAD           penumbra guidance on: a hit-distance image (1.0 everywhere, R16_SFLOAT) and this
                               light angular size in radians (default: no guidance)
   --lights N[,N...]           lights denoised per frame (default 1): N > 1 records them in one
@@ -110,6 +111,18 @@ struct Options {
     push_descriptors: bool,
     host: HostFormats,
     alias_transient: bool,
+}
+
+impl Options {
+    /// What every configuration is fed, for the byte model.
+    fn fed(&self) -> Fed {
+        let input = match (self.rays, self.checkerboard) {
+            (Some(_), _) => ShadowInput::Visibility,
+            (None, true) => ShadowInput::Checkerboard,
+            (None, false) => ShadowInput::HitMask,
+        };
+        Fed { host: self.host, input }
+    }
 }
 
 fn parse_args() -> Options {
@@ -216,7 +229,7 @@ fn main() {
                         .unwrap_or_else(|e| {
                             fail(format!("{}x{} {} {} {} {lights} light(s): {e}", size.0, size.1, scene.id(), preset_name(preset), precision_name(precision)))
                         });
-                    let s = Summary::new(size, scene, preset, precision, run, gpu_scene.coverage, lights, opts.host);
+                    let s = Summary::new(size, scene, preset, precision, run, gpu_scene.coverage, lights, opts.fed());
                     eprintln!(
                         "dnsr-bench: {}x{} {} {} {} {lights} light(s): total {:.3} ms median, {:.3} ms p95 (warm-up {} frames, {:.0} ms{})",
                         size.0,
@@ -250,6 +263,7 @@ fn main() {
         skipped: &skipped,
         wall_s: started.elapsed().as_secs_f64(),
         host: opts.host,
+        input: opts.fed().input,
     };
     let md = report.markdown();
     std::fs::create_dir_all(&opts.out).unwrap_or_else(|e| fail(format!("cannot create {}: {e}", opts.out.display())));

@@ -7,8 +7,8 @@
 //! checks at context creation, `memory_requirements`, `Context::memory_bytes` (the images it sums) and the
 //! persistent/transient split (`Context::persistent_memory_bytes`, the transient images a host may alias), the
 //! filter's ping-pong between its intermediates (`FILTER_INPUT`, `FILTER_OUTPUT`: src/passes/filter.rs binds them)
-//! and dnsr-bench's byte model (its rows for internal images are `ACCESSES` in the bench's configuration,
-//! `Config::Any`; bytes per texel from `format_bytes`). Barriers are not: the recorder derives them from the
+//! and dnsr-bench's byte model (its rows for internal images are `ACCESSES` of the shadow input the bench feeds,
+//! without guidance or debug view; bytes per texel from `format_bytes` of `Resource::format_for`). Barriers are not: the recorder derives them from the
 //! bindings of each pass (src/context.rs).
 //!
 //! Public (hidden) as `dnsr::state_table` for tooling only (dnsr-bench's byte model): not a stable API.
@@ -381,10 +381,14 @@ impl Target {
         resource_of(self.image(0)).format
     }
 
-    /// Its name in the byte model: "previous moments (R32G32_UINT, packed)", "filter input (R16G16_UNORM /
-    /// R16G16_SFLOAT)".
-    pub fn label(self) -> String {
+    /// Its name in the byte model with shadow input `input`: "previous moments (R32_UINT, packed)", "filter input
+    /// (R16G16_UNORM / R16G16_SFLOAT)".
+    pub fn label_for(self, input: ShadowInput) -> String {
         let r = resource_of(self.image(0));
+        let format = match r.fraction_format {
+            Some(f) if input != ShadowInput::HitMask => Formats::both(f),
+            _ => r.format,
+        };
         let name = match self {
             Target::Image(_) => r.display_name(),
             Target::Previous(_) => format!("previous {}", r.display_name()),
@@ -392,7 +396,7 @@ impl Target {
             Target::FilterOutput => "filter output".into(),
         };
         let packed = r.packed && matches!(self, Target::Image(_) | Target::Previous(_));
-        format!("{name} ({})", r.format.label(packed))
+        format!("{name} ({})", format.label(packed))
     }
 }
 
@@ -419,7 +423,7 @@ const fn a(pass: Pass, target: Target, access: Access, pixels: Pixels, when: Whe
 }
 
 /// Every access of the passes to internal state, in pass order. The byte model (dnsr-bench) counts those of
-/// `Config::Any` with the host images' beside them; its notes (BENCHMARKS.md "Byte model") say what it leaves out.
+/// `Config::Any` and of the shadow input it feeds, with the host images' beside them; its notes (BENCHMARKS.md "Byte model") say what it leaves out.
 pub const ACCESSES: &[StateAccess] = {
     use Access::{Read, Write};
     use Image::*;

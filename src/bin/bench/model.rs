@@ -11,9 +11,17 @@
 
 use super::json::Json;
 use super::scenes::HostFormats;
-use dnsr::state_table::{format_bytes, Config, ACCESSES};
+use dnsr::state_table::{format_bytes, resource_of, Config, ACCESSES};
 use dnsr::state_table::{Access, Pass, Pixels, When};
-use dnsr::Precision;
+use dnsr::{Precision, ShadowInput};
+
+/// What the bench feeds: the G-buffer's formats and the shadow input (whose images, and the moments' format, the
+/// model follows).
+#[derive(Clone, Copy, Debug)]
+pub struct Fed {
+    pub host: HostFormats,
+    pub input: ShadowInput,
+}
 
 pub struct Row {
     pub pass: Pass,
@@ -34,14 +42,24 @@ use Pass::*;
 use Pixels::*;
 use When::*;
 
-/// The rows of the host's images in `host`'s formats (hit mask R32_UINT, output R16_SFLOAT).
-fn host_rows(host: HostFormats) -> Vec<Row> {
+/// The rows of the host's images in the formats fed (shadow input: a hit mask R32_UINT, or per-pixel visibility
+/// R8_UNORM; output R16_SFLOAT).
+fn host_rows(fed: Fed) -> Vec<Row> {
+    let host = fed.host;
     let (depth, velocity, normals) = host.bytes();
     let depth_name = format!("depth (host, {:?})", host.depth());
     let velocity_name = format!("velocity (host, {:?})", host.velocity());
     let normals_name = format!("normals (host, {:?})", host.normals());
-    vec![
-        row(Prepare, "hit mask (host, R32_UINT)", 4.0, 4.0, Read, Tiles, Always),
+    let mut rows = match fed.input {
+        // A checkerboard input reads the traced half of each frame's mask: its words hold both halves.
+        ShadowInput::HitMask | ShadowInput::Checkerboard => vec![row(Prepare, "hit mask (host, R32_UINT)", 4.0, 4.0, Read, Tiles, Always)],
+        // Prepare derives the tile words from every pixel's visibility, classification its moments' window.
+        ShadowInput::Visibility => vec![
+            row(Prepare, "visibility (host, R8_UNORM)", 1.0, 1.0, Read, All, Always),
+            row(TileClassification, "visibility (host, R8_UNORM)", 1.0, 1.0, Read, All, Always),
+        ],
+    };
+    rows.extend([
         row(TileClassification, &depth_name, depth, depth, Read, All, Always),
         row(TileClassification, &velocity_name, velocity, velocity, Read, ActiveGroupReceivers, Always),
         row(TileClassification, &normals_name, normals, normals, Read, Active, Always),
@@ -50,26 +68,34 @@ fn host_rows(host: HostFormats) -> Vec<Row> {
         row(Filter, &depth_name, depth, depth, Read, ClearedGroups, LaterPasses),
         row(Filter, &normals_name, normals, normals, Read, ActiveGroups, FirstPass),
         row(Filter, "output (host, R16_SFLOAT)", 2.0, 2.0, Write, All, FinalPass),
-    ]
+    ]);
+    rows
 }
 
-/// The rows of dnsr's internal images: the state table's accesses in the bench's configuration (a hit-mask input,
-/// no penumbra guidance, no debug view), bytes per texel from their formats.
-fn internal_rows() -> Vec<Row> {
+/// The rows of dnsr's internal images: the state table's accesses with this shadow input (no penumbra guidance, no
+/// debug view), bytes per texel from their formats with that input.
+fn internal_rows(input: ShadowInput) -> Vec<Row> {
+    let applies = |c: Config| match c {
+        Config::Any => true,
+        Config::VisibilityInput => input != ShadowInput::HitMask,
+        Config::CheckerboardInput => input == ShadowInput::Checkerboard,
+        Config::PenumbraGuidance | Config::DebugView => false,
+    };
     ACCESSES
         .iter()
-        .filter(|a| a.config == Config::Any)
+        .filter(|a| applies(a.config))
         .map(|a| {
-            let f = a.target.formats();
-            row(a.pass, &a.target.label(), format_bytes(f.fp32) as f64, format_bytes(f.fp16) as f64, a.access, a.pixels, a.when)
+            let r = resource_of(a.target.image(0));
+            let bytes = |p| format_bytes(r.format_for(p, input)) as f64;
+            row(a.pass, &a.target.label_for(input), bytes(Precision::Fp32), bytes(Precision::Fp16), a.access, a.pixels, a.when)
         })
         .collect()
 }
 
 /// The bytes of one frame's passes with the host G-buffer in `host`'s formats. Per pass: the tile state it reads,
 /// the host images it reads, the rest of its internal images (src/state/table.rs), the host image it writes.
-pub fn model(host: HostFormats) -> Vec<Row> {
-    let (host, internal) = (host_rows(host), internal_rows());
+pub fn model(fed: Fed) -> Vec<Row> {
+    let (host, internal) = (host_rows(fed), internal_rows(fed.input));
     let tile_read = |r: &Row| r.pixels == Tiles && r.access == Read;
     let mut rows = Vec::new();
     for pass in [Prepare, TileClassification, Filter] {
@@ -161,9 +187,9 @@ fn skips_cleared(k: u32, passes: u32) -> bool {
 }
 
 /// (bytes read, bytes written) of one pass in a frame with these pixel counts.
-pub fn pass_bytes(pass: PassId, filter_passes: u32, precision: Precision, counts: &PixelCounts, host: HostFormats) -> (f64, f64) {
+pub fn pass_bytes(pass: PassId, filter_passes: u32, precision: Precision, counts: &PixelCounts, fed: Fed) -> (f64, f64) {
     let (mut read, mut write) = (0.0, 0.0);
-    for r in model(host).iter().filter(|r| pass.applies(r, filter_passes)) {
+    for r in model(fed).iter().filter(|r| pass.applies(r, filter_passes)) {
         let per = if precision == Precision::Fp16 { r.fp16 } else { r.fp32 };
         let pixels = match pass {
             PassId::Filter(k) if r.pixels == All && skips_cleared(k, filter_passes) => ActiveGroups,
@@ -211,9 +237,9 @@ fn pass_doc(p: Pass) -> &'static str {
     }
 }
 
-pub fn model_json(host: HostFormats) -> Json {
+pub fn model_json(fed: Fed) -> Json {
     Json::Arr(
-        model(host)
+        model(fed)
             .iter()
             .map(|r| {
                 Json::obj([
@@ -232,9 +258,9 @@ pub fn model_json(host: HostFormats) -> Json {
 }
 
 /// The table as Markdown.
-pub fn model_markdown(host: HostFormats) -> String {
+pub fn model_markdown(fed: Fed) -> String {
     let mut s = String::from("| pass | resource | B fp32 | B fp16 | access | per | filter passes |\n|---|---|---|---|---|---|---|\n");
-    for r in model(host) {
+    for r in model(fed) {
         s += &format!(
             "| {} | {} | {} | {} | {} | {} | {} |\n",
             pass_doc(r.pass),

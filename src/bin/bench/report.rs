@@ -3,11 +3,11 @@
 use super::copy::CopyResult;
 use super::device::DeviceInfo;
 use super::json::Json;
-use super::model::{model_json, model_markdown, pass_bytes, PassId, PixelCounts};
+use super::model::{model_json, model_markdown, pass_bytes, Fed, PassId, PixelCounts};
 use super::run::{ConfigRun, WarmupDone, SUBMISSION};
 use super::scenes::{HostFormats, SceneId, ALL_SCENES};
 use super::stats::{max, mean, median, min, percentile};
-use dnsr::{Precision, Preset};
+use dnsr::{Precision, Preset, ShadowInput};
 
 pub struct PassSummary {
     pub id: PassId,
@@ -44,6 +44,8 @@ pub struct Summary {
     pub lights: usize,
     /// The G-buffer formats fed.
     pub host: HostFormats,
+    /// The shadow input fed.
+    pub input: ShadowInput,
 }
 
 pub fn preset_name(p: Preset) -> &'static str {
@@ -70,7 +72,7 @@ impl Summary {
         run: ConfigRun,
         coverage: [f64; 4],
         lights: usize,
-        host: HostFormats,
+        fed: Fed,
     ) -> Summary {
         let n = run.filter_passes;
         let ids = [PassId::Prepare, PassId::TileClassification].into_iter().chain((0..n).map(PassId::Filter));
@@ -86,7 +88,7 @@ impl Summary {
                     })
                     .collect();
                 // Every light moves light 0's bytes (its pixel classes stand for all of them).
-                let (read_bytes, write_bytes) = pass_bytes(id, n, precision, &run.counts, host);
+                let (read_bytes, write_bytes) = pass_bytes(id, n, precision, &run.counts, fed);
                 let (read_bytes, write_bytes) = (read_bytes * lights as f64, write_bytes * lights as f64);
                 PassSummary { id, median_ms: median(&ms), p95_ms: percentile(&ms, 95.0), read_bytes, write_bytes }
             })
@@ -117,7 +119,8 @@ impl Summary {
             coverage,
             warmup: run.warmup,
             lights,
-            host,
+            host: fed.host,
+            input: fed.input,
         }
     }
 
@@ -168,6 +171,8 @@ pub struct Report<'a> {
     pub wall_s: f64,
     /// The G-buffer formats fed (every result's).
     pub host: HostFormats,
+    /// The shadow input fed (every result's).
+    pub input: ShadowInput,
 }
 
 impl Report<'_> {
@@ -276,7 +281,7 @@ impl Report<'_> {
                     ("runs_ms", c.runs_ms.clone().into()),
                 ]),
             ),
-            ("byte_model", model_json(self.host)),
+            ("byte_model", model_json(Fed { host: self.host, input: self.input })),
             (
                 "scenes",
                 Json::Arr(
@@ -432,7 +437,7 @@ impl Report<'_> {
             s += &format!("- {}: {}\n", sc.name(), sc.description());
         }
         s += "\n## Byte model\n\nBytes per unit: per pixel of the class named (per tile for tiles), each texel counted once per pass. Filter passes that skip groups of two cleared tiles (pass 1, and a final pass after the first) count \"every pixel\" rows over the pixels of groups with a tile not cleared only.\n\n";
-        s += &model_markdown(self.host);
+        s += &model_markdown(Fed { host: self.host, input: self.input });
         s
     }
 }
@@ -441,7 +446,7 @@ impl Report<'_> {
 fn pass_model_bpp(r: &Summary, passes: u32, precision: Precision) -> f64 {
     let ids = [PassId::Prepare, PassId::TileClassification].into_iter().chain((0..passes).map(PassId::Filter));
     ids.map(|id| {
-        let (rd, wr) = pass_bytes(id, passes, precision, &r.counts, r.host);
+        let (rd, wr) = pass_bytes(id, passes, precision, &r.counts, Fed { host: r.host, input: r.input });
         rd + wr
     })
     .sum::<f64>()

@@ -45,6 +45,9 @@ pub(crate) const MOMENTS_MEAN_BITS: u32 = 14;
 pub(crate) const MOMENTS_COUNT_BITS: u32 = 9;
 /// The run's bits: the rest of the word.
 pub(crate) const MOMENTS_RUN_BITS: u32 = 32 - MOMENTS_MEAN_BITS - MOMENTS_COUNT_BITS;
+/// The run's first bit. (This and `COUNT_SHIFT`, `COUNT_SUBNORMAL_CODES` follow from the generated constants;
+/// shaders/dnsr_storage.glsl derives the same three from them.)
+pub(crate) const MOMENTS_RUN_SHIFT: u32 = MOMENTS_MEAN_BITS + MOMENTS_COUNT_BITS;
 /// The mean's largest code (1.0).
 pub(crate) const MOMENTS_MEAN_MAX: u32 = (1 << MOMENTS_MEAN_BITS) - 1;
 /// The count's mantissa bits; the rest of `MOMENTS_COUNT_BITS` is its exponent.
@@ -52,6 +55,10 @@ pub(crate) const COUNT_MANTISSA_BITS: u32 = 5;
 /// The count's smallest normal value is 2^-COUNT_MIN_NORMAL_BELOW_ONE; below it, subnormal steps of
 /// 1 / COUNT_SUBNORMAL_SCALE.
 pub(crate) const COUNT_MIN_NORMAL_BELOW_ONE: u32 = 7;
+/// The float32 mantissa bits a normal count drops.
+pub(crate) const COUNT_SHIFT: u32 = 23 - COUNT_MANTISSA_BITS;
+/// The subnormal counts' codes: 0 up to this.
+pub(crate) const COUNT_SUBNORMAL_CODES: u32 = 1 << COUNT_MANTISSA_BITS;
 /// See `COUNT_MIN_NORMAL_BELOW_ONE`.
 pub(crate) const COUNT_SUBNORMAL_SCALE: u32 = 1 << (COUNT_MIN_NORMAL_BELOW_ONE + COUNT_MANTISSA_BITS);
 /// A normal count's code is its float32 bits' exponent and top mantissa bits less this (the float32 exponent of

@@ -3,8 +3,8 @@
 //! its f64 value (through float32, as the GPU holds it), so a stored value can differ by one step of its format
 //! where the two land on either side of a rounding boundary.
 
-use crate::state::{COUNT_CODE_OFFSET, COUNT_MANTISSA_BITS, COUNT_MAX, COUNT_SUBNORMAL_SCALE};
-use crate::state::{MOMENTS_COUNT_BITS, MOMENTS_MEAN_BITS, MOMENTS_MEAN_MAX, MOMENTS_RUN_BITS};
+use crate::state::{COUNT_CODE_OFFSET, COUNT_MAX, COUNT_SHIFT, COUNT_SUBNORMAL_CODES, COUNT_SUBNORMAL_SCALE};
+use crate::state::{MOMENTS_COUNT_BITS, MOMENTS_MEAN_BITS, MOMENTS_MEAN_MAX, MOMENTS_RUN_BITS, MOMENTS_RUN_SHIFT};
 use glam::{DVec2, DVec3, DVec4};
 
 /// `v` >= 0 rounded to the nearest float16 value, ties to even, as float32 bits are rounded
@@ -102,17 +102,12 @@ pub fn unpack_count(code: u32) -> f64 {
     }
 }
 
-/// float32 mantissa bits the count drops.
-const COUNT_SHIFT: u32 = 23 - COUNT_MANTISSA_BITS;
-const COUNT_SUBNORMAL_CODES: u32 = 1 << COUNT_MANTISSA_BITS;
-const RUN_SHIFT: u32 = MOMENTS_MEAN_BITS + MOMENTS_COUNT_BITS;
-
 /// Moments (mean, sum of squared deviations, sample count, run) packed as the GPU stores their first word
 /// (`dnsr_pack_moments`): the mean as unorm14, the count (`pack_count`), twice the run as a signed 9-bit integer.
 pub fn pack_moments(m: DVec4) -> u32 {
     let mean = ((m.x as f32).clamp(0.0, 1.0) as f64 * MOMENTS_MEAN_MAX as f64 + 0.5).floor() as u32;
     let run = ((m.w * 2.0) as i32) as u32 & ((1 << MOMENTS_RUN_BITS) - 1);
-    mean | (pack_count(m.z) << MOMENTS_MEAN_BITS) | (run << RUN_SHIFT)
+    mean | (pack_count(m.z) << MOMENTS_MEAN_BITS) | (run << MOMENTS_RUN_SHIFT)
 }
 
 /// A packed moments word read back; the sum of squared deviations is count * mean * (1 - mean), as with 0/1
@@ -121,7 +116,7 @@ pub fn unpack_moments(v: u32) -> DVec4 {
     let code = v & MOMENTS_MEAN_MAX;
     let mean = if code == MOMENTS_MEAN_MAX { 1.0 } else { (code as f32 * (1.0 / MOMENTS_MEAN_MAX as f32)) as f64 };
     let count = unpack_count((v >> MOMENTS_MEAN_BITS) & ((1 << MOMENTS_COUNT_BITS) - 1));
-    DVec4::new(mean, count * mean * (1.0 - mean), count, ((v as i32) >> RUN_SHIFT) as f64 * 0.5)
+    DVec4::new(mean, count * mean * (1.0 - mean), count, ((v as i32) >> MOMENTS_RUN_SHIFT) as f64 * 0.5)
 }
 
 /// Moments as a later frame reads them back: with `keep_sum` (a visibility input, whose samples are fractions)

@@ -164,12 +164,17 @@ impl Resource {
         format_bytes(self.format.get(precision))
     }
 
+    /// Its formats with shadow input `input`.
+    pub fn formats_for(&self, input: ShadowInput) -> Formats {
+        match (self.fraction_format, input) {
+            (Some(f), ShadowInput::Visibility | ShadowInput::Checkerboard) => Formats::both(f),
+            _ => self.format,
+        }
+    }
+
     /// Its format with `precision` and shadow input `input`.
     pub fn format_for(&self, precision: Precision, input: ShadowInput) -> vk::Format {
-        match (self.fraction_format, input) {
-            (Some(f), ShadowInput::Visibility | ShadowInput::Checkerboard) => f,
-            _ => self.format.get(precision),
-        }
+        self.formats_for(input).get(precision)
     }
 }
 
@@ -375,20 +380,10 @@ impl Target {
         }
     }
 
-    /// The formats of what it touches (the filter's input and output: `FILTER_INPUT`'s and `FILTER_OUTPUT`'s,
-    /// one format, which a unit test checks).
-    pub fn formats(self) -> Formats {
-        resource_of(self.image(0)).format
-    }
-
     /// Its name in the byte model with shadow input `input`: "previous moments (R32_UINT, packed)", "filter input
     /// (R16G16_UNORM / R16G16_SFLOAT)".
     pub fn label_for(self, input: ShadowInput) -> String {
         let r = resource_of(self.image(0));
-        let format = match r.fraction_format {
-            Some(f) if input != ShadowInput::HitMask => Formats::both(f),
-            _ => r.format,
-        };
         let name = match self {
             Target::Image(_) => r.display_name(),
             Target::Previous(_) => format!("previous {}", r.display_name()),
@@ -396,7 +391,7 @@ impl Target {
             Target::FilterOutput => "filter output".into(),
         };
         let packed = r.packed && matches!(self, Target::Image(_) | Target::Previous(_));
-        format!("{name} ({})", format.label(packed))
+        format!("{name} ({})", r.formats_for(input).label(packed))
     }
 }
 

@@ -1385,6 +1385,11 @@ typedef struct DnsrReferenceCallbacks {
    * DnsrShadowsDispatch::visibility).
    */
   float (*readVisibility)(void *user, int32_t x, int32_t y);
+  /**
+   * Optional (required without DNSR_REFERENCE_RESET). Previous frame's raw normal texel (rgb), decoded as
+   * `readNormal`'s: classification leaves history texels whose surface turned out of the blend.
+   */
+  void (*readPreviousNormal)(void *user, int32_t x, int32_t y, float *rgb);
 } DnsrReferenceCallbacks;
 
 /**

@@ -124,8 +124,10 @@ uint dnsr_read_tile_dark(ivec2 tile) { return texelFetch(dnsr_tile_dark, tile + 
 vec2 dnsr_read_velocity(ivec2 p) {
     return texelFetch(dnsr_velocity, p + dnsr_get_offset(), 0).xy * dnsr_constants.motion_normals.xy;
 }
-// Last frame's linear depth at p (its depth copy: dnsr_pack_linear_depth).
-float dnsr_read_previous_depth(ivec2 p) { return dnsr_unpack_linear_depth(texelFetch(dnsr_previous_depth, p + dnsr_get_offset(), 0).r); }
+// Last frame's linear depth and unit normal (vec3(0): none) at p, as its depth copy holds them
+// (dnsr_pack_depth_copy).
+float dnsr_read_previous_depth(ivec2 p) { return dnsr_depth_copy_depth(texelFetch(dnsr_previous_depth, p + dnsr_get_offset(), 0).r); }
+vec3 dnsr_read_previous_normal(ivec2 p) { return dnsr_depth_copy_normal(texelFetch(dnsr_previous_depth, p + dnsr_get_offset(), 0).r); }
 // (mean, sum of squared deviations, sample count, run of identical samples: +n lit, -n shadowed).
 vec4 dnsr_read_previous_moments(ivec2 p) {
     uvec2 v = texelFetch(dnsr_previous_moments, p + dnsr_get_offset(), 0).xy;
@@ -180,10 +182,13 @@ layout(set = 0, binding = 17, DNSR_OUTPUT_FORMAT) uniform writeonly image2D dnsr
 layout(set = 0, binding = 18) uniform utexture2D dnsr_debug_moments;
 #endif
 #ifndef DNSR_LATER_PASS
-// This frame's linear depth, for the next frame's classification (dnsr_read_previous_depth). Written by the first
-// filter pass, after this frame's classification has read last frame's from the same image: one image, not two.
-layout(set = 0, binding = 8, r16ui) uniform writeonly uimage2D dnsr_depth_copy;
-void dnsr_write_depth_copy(ivec2 p, float linear_depth) { imageStore(dnsr_depth_copy, p + dnsr_get_offset(), uvec4(dnsr_pack_linear_depth(linear_depth))); }
+// This frame's linear depth and normal, for the next frame's classification (dnsr_read_previous_depth,
+// dnsr_read_previous_normal). Written by the first filter pass, after this frame's classification has read last
+// frame's from the same image: one image, not two.
+layout(set = 0, binding = 8, r32ui) uniform writeonly uimage2D dnsr_depth_copy;
+void dnsr_write_depth_copy(ivec2 p, float linear_depth, vec3 normal) {
+    imageStore(dnsr_depth_copy, p + dnsr_get_offset(), uvec4(dnsr_pack_depth_copy(linear_depth, normal)));
+}
 #endif
 
 int dnsr_get_filter_step() { return int(dnsr_push.pass.x); }

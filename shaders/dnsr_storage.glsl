@@ -76,25 +76,43 @@ vec4 dnsr_unpack_moments(uint v) {
     return vec4(mean, count * mean * (1.0 - mean), count, float(int(v) >> int(DNSR_MOMENTS_RUN_SHIFT)) * 0.5);
 }
 
-// A unit normal (or vec3(0): no usable normal) in 32 bits: octahedral, two snorm16 codes (floor(c * 32767 + 0.5));
-// the code pair (-32768, -32768), which snorm never writes, is the zero normal.
-const uint DNSR_ZERO_NORMAL = 0x80008000u;
-uint dnsr_snorm16(float v) { return uint(int(floor(clamp(v, -1.0, 1.0) * 32767.0 + 0.5))) & 0xFFFFu; }
-uint dnsr_pack_normal(vec3 n) {
+// A unit normal (or vec3(0): no usable normal) in 2 * bits bits: octahedral, two snorm codes of `bits` bits each
+// (floor(c * (2^(bits-1) - 1) + 0.5)); the code pair (-2^(bits-1), -2^(bits-1)), which snorm never writes, is the zero
+// normal. The guide keeps 16 bits a component (0.003 degrees), the depth copy 8 (about 1 degree: it only tells
+// whether a surface turned).
+uint dnsr_zero_normal(uint bits) { uint low = 1u << (bits - 1u); return low | (low << bits); }
+uint dnsr_snorm(float v, uint bits) {
+    float scale = float((1u << (bits - 1u)) - 1u);
+    return uint(int(floor(clamp(v, -1.0, 1.0) * scale + 0.5))) & ((1u << bits) - 1u);
+}
+uint dnsr_pack_octahedral(vec3 n, uint bits) {
     float l1 = abs(n.x) + abs(n.y) + abs(n.z);
-    if (!(l1 > 0.0)) return DNSR_ZERO_NORMAL;
+    if (!(l1 > 0.0)) return dnsr_zero_normal(bits);
     vec2 o = n.xy / l1;
     if (n.z < 0.0) o = (1.0 - abs(o.yx)) * vec2(o.x >= 0.0 ? 1.0 : -1.0, o.y >= 0.0 ? 1.0 : -1.0);
-    return dnsr_snorm16(o.x) | (dnsr_snorm16(o.y) << 16);
+    return dnsr_snorm(o.x, bits) | (dnsr_snorm(o.y, bits) << bits);
 }
-vec3 dnsr_unpack_normal(uint u) {
-    if (u == DNSR_ZERO_NORMAL) return vec3(0.0);
-    vec2 o = vec2(float(int(u << 16) >> 16), float(int(u) >> 16)) * (1.0 / 32767.0);
+vec3 dnsr_unpack_octahedral(uint u, uint bits) {
+    if (u == dnsr_zero_normal(bits)) return vec3(0.0);
+    int drop = int(32u - bits);
+    vec2 o = vec2(float(int(u << uint(drop)) >> drop), float(int(u << uint(drop - int(bits))) >> drop))
+           * (1.0 / float((1u << (bits - 1u)) - 1u));
     vec3 n = vec3(o, 1.0 - abs(o.x) - abs(o.y));
     float t = max(-n.z, 0.0);
     n.xy += vec2(n.x >= 0.0 ? -t : t, n.y >= 0.0 ? -t : t);
     return normalize(n);
 }
+uint dnsr_pack_normal(vec3 n) { return dnsr_pack_octahedral(n, 16u); }
+vec3 dnsr_unpack_normal(uint u) { return dnsr_unpack_octahedral(u, 16u); }
+
+// The depth copy (R32_UINT): the linear depth's 16-bit code (dnsr_pack_linear_depth) and the normal in the high 16
+// bits (DNSR_DEPTH_COPY_NORMAL_BITS a component).
+// Next frame's classification compares its reprojected depth with the first and its own normal with the second.
+uint dnsr_pack_depth_copy(float linear_depth, vec3 normal) {
+    return dnsr_pack_linear_depth(linear_depth) | (dnsr_pack_octahedral(normal, uint(DNSR_DEPTH_COPY_NORMAL_BITS)) << 16);
+}
+float dnsr_depth_copy_depth(uint v) { return dnsr_unpack_linear_depth(v & 0xFFFFu); }
+vec3 dnsr_depth_copy_normal(uint v) { return dnsr_unpack_octahedral(v >> 16, uint(DNSR_DEPTH_COPY_NORMAL_BITS)); }
 
 // The filter's guide in 8 bytes (R32G32_UINT): linear depth (or -1: no receiver) as float32 bits, the packed normal.
 uvec2 dnsr_pack_guide(float linear_depth, vec3 normal) { return uvec2(floatBitsToUint(linear_depth), dnsr_pack_normal(normal)); }

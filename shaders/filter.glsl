@@ -291,28 +291,32 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     }
 
     if (!dnsr_inside(p)) return;
-    // Next frame's classification compares its reprojected depth with this one: kept as a linear depth, which a
-    // logarithmic 16-bit code holds finely enough at any scale (the device depth needs 32 bits). Written here, not
-    // in classification, which reads last frame's from the same image.
+    // Next frame's classification compares its reprojected depth and its normal with these (the depth copy):
+    // kept as a linear depth, which a logarithmic 16-bit code holds finely enough at any scale (the device depth
+    // needs 32 bits), and a normal in 8+8 bits. Written here, not in classification, which reads last frame's from
+    // the same image.
     float depth = dnsr_read_depth(p);
-    dnsr_write_depth_copy(p, dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), depth));
+    float linear_depth = dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), depth);
+    bool receiver = dnsr_is_receiver(depth);
     ivec2 m = (lid / DNSR_GROUP_SIZE + 1) * DNSR_BLOCK_TILES;
     uint meta = dnsr_meta[m.y + (lid.y % DNSR_GROUP_SIZE.y) / DNSR_TILE_SIZE.y][m.x];
     if (dnsr_block_cleared(m)) {
+        vec3 normal = receiver ? dnsr_read_normal(p) : vec3(0.0);
+        dnsr_write_depth_copy(p, linear_depth, normal);
         // Cleared values are already where this pass would write them (classification wrote the output and the
         // reprojection image): nothing to do.
         if (dnsr_get_skip_cleared()) return;
-        bool receiver = dnsr_is_receiver(depth);
         // The guide is needed here only where a later pass taps this block from a tile it filters (of any light
         // of the record, which this light's tiles do not tell: then everywhere).
         if (dnsr_get_write_guide() && (dnsr_get_write_guide_everywhere() || dnsr_block_is_tapped(m))) {
-            dnsr_write_guide(p, dnsr_tap_depth(p), receiver ? dnsr_read_normal(p) : vec3(0.0));
+            dnsr_write_guide(p, dnsr_tap_depth(p), normal);
         }
         dnsr_filter_write(0, p, dnsr_cleared_value(receiver, meta), receiver, meta);
         return;
     }
     int k = dnsr_apron_index(lid, 0, 0);
     vec4 guide = vec4(dnsr_apron_depth[k], dnsr_apron_normal[k]);
+    dnsr_write_depth_copy(p, linear_depth, receiver ? guide.yzw : vec3(0.0));
     if (dnsr_get_write_guide()) dnsr_write_guide(p, guide.x, guide.yzw);
     dnsr_filter_active(0, p, lid, 1, meta, guide);
 }

@@ -30,11 +30,18 @@ pub(crate) fn intermediate_format(precision: Precision) -> vk::Format {
 pub(crate) const SIGNAL_MAX_DEVIATION_CODE: u32 = 65000;
 /// A stored deviation above this code is the sky's (variance -1). Generated into GLSL.
 pub(crate) const SIGNAL_SKY_CODE_ABOVE: u32 = 65500;
-/// The depth copy's logarithmic code (R16_UINT): its first code is the linear depth 2^-DEPTH_CODE_BELOW_ONE_OCTAVES,
+/// The depth copy's logarithmic code (its word's low 16 bits): its first code is the linear depth 2^-DEPTH_CODE_BELOW_ONE_OCTAVES,
 /// and its 65536 codes span DEPTH_CODE_OCTAVES octaves (docs/performance.md, "depth copy").
 pub(crate) const DEPTH_CODE_BELOW_ONE_OCTAVES: u32 = 16;
 /// See `DEPTH_CODE_BELOW_ONE_OCTAVES`.
 pub(crate) const DEPTH_CODE_OCTAVES: u32 = 64;
+/// The depth copy's normal (its word's high 16 bits): octahedral, this many bits a component, about 1 degree, which
+/// is all the test below needs. Generated into GLSL.
+pub(crate) const DEPTH_COPY_NORMAL_BITS: u32 = 8;
+/// A history texel whose surface's normal turned from this pixel's by more than acos(this / 100) (37 degrees) since
+/// last frame holds another surface: it leaves the history footprint (docs/do-no-harm.md, "normal-agreeing
+/// footprint": 37 and 60 degrees measured alike; faces meet at creases near 90). Generated into GLSL.
+pub(crate) const TURNED_NORMAL_COS_PERCENT: u32 = 80;
 
 /// The moments' word (docs/performance.md, "moments in one word"): the mean as unorm of this many bits (bit 0 on),
 /// the count as a float of `MOMENTS_COUNT_BITS` (above the mean), twice the run as a signed integer in the rest.

@@ -215,7 +215,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, reprojectionMatrix) == 136, 
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, viewProjectionInverse) == 200, "offsetof(DnsrReferenceFrameInfo, viewProjectionInverse)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, lightAngularSize) == 264, "offsetof(DnsrReferenceFrameInfo, lightAngularSize)");
 
-DNSR_STATIC_ASSERT(sizeof(DnsrReferenceCallbacks) == 120, "sizeof(DnsrReferenceCallbacks)");
+DNSR_STATIC_ASSERT(sizeof(DnsrReferenceCallbacks) == 128, "sizeof(DnsrReferenceCallbacks)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrReferenceCallbacks) == 8, "alignof(DnsrReferenceCallbacks)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, userData) == 0, "offsetof(DnsrReferenceCallbacks, userData)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readHitMask) == 8, "offsetof(DnsrReferenceCallbacks, readHitMask)");
@@ -232,6 +232,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, writeMoments) == 88, "offset
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, writeHistory) == 96, "offsetof(DnsrReferenceCallbacks, writeHistory)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readHitDistance) == 104, "offsetof(DnsrReferenceCallbacks, readHitDistance)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readVisibility) == 112, "offsetof(DnsrReferenceCallbacks, readVisibility)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readPreviousNormal) == 120, "offsetof(DnsrReferenceCallbacks, readPreviousNormal)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrDiagnosis) == 528, "sizeof(DnsrDiagnosis)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrDiagnosis) == 8, "alignof(DnsrDiagnosis)");

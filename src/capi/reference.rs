@@ -114,6 +114,9 @@ pub struct DnsrReferenceCallbacks {
     /// Optional (required with DNSR_REFERENCE_VISIBILITY_INPUT). A pixel's visibility as stored (see
     /// DnsrShadowsDispatch::visibility).
     pub read_visibility: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32) -> f32>,
+    /// Optional (required without DNSR_REFERENCE_RESET). Previous frame's raw normal texel (rgb), decoded as
+    /// `readNormal`'s: classification leaves history texels whose surface turned out of the blend.
+    pub read_previous_normal: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32, rgb: *mut f32)>,
 }
 
 fn mat(m: &[f32; 16]) -> DMat4 {
@@ -236,6 +239,7 @@ pub extern "C" fn dnsr_reference_run_frame(
                 cb.read_previous_depth.ok_or_else(|| missing("readPreviousDepth"))?,
                 cb.read_previous_moments.ok_or_else(|| missing("readPreviousMoments"))?,
                 cb.read_history.ok_or_else(|| missing("readHistory"))?,
+                cb.read_previous_normal.ok_or_else(|| missing("readPreviousNormal"))?,
             ))
         };
 
@@ -281,10 +285,12 @@ pub extern "C" fn dnsr_reference_run_frame(
                 if let Some(read) = read_hit_distance {
                     f.hit_distance[i] = unsafe { read(user, x, y) } as f64;
                 }
-                if let Some((prev_depth, prev_moments, history)) = previous {
-                    let mut m = [0f32; 4];
+                if let Some((prev_depth, prev_moments, history, prev_normal)) = previous {
+                    let (mut m, mut rgb) = ([0f32; 4], [0f32; 4]);
                     unsafe {
-                        f.previous_depth[i] = crate::reference::depth_copy(&f, [x, y], prev_depth(user, x, y) as f64);
+                        prev_normal(user, x, y, rgb.as_mut_ptr());
+                        let normal = decode_normal(DVec3::new(rgb[0] as f64, rgb[1] as f64, rgb[2] as f64), mul, add);
+                        f.previous_depth[i] = crate::reference::depth_copy(&f, [x, y], prev_depth(user, x, y) as f64, normal);
                         prev_moments(user, x, y, m.as_mut_ptr());
                         f.history[i] = history(user, x, y) as f64;
                     }

@@ -139,7 +139,8 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
             // The first pass writes this frame's depth copy (classification has read last frame's).
             if io.filter_step() == 1 {
                 let depth = io.read_depth(p);
-                io.write_depth_copy(p, super::depth_copy(io, p, depth));
+                let normal = io.read_normal(p);
+                io.write_depth_copy(p, super::depth_copy(io, p, depth, normal));
             }
             let meta = io.read_tile_meta([x / TILE[0], y / TILE[1]]);
             let result = match receiver_depth(io, p) {

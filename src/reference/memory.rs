@@ -44,8 +44,8 @@ pub struct Frame {
     pub velocity: Vec<DVec2>,
     /// Decoded normals per pixel (unit or zero).
     pub normals: Vec<DVec3>,
-    /// Previous frame's depth copy: linear depths as stored (`storage::stored_linear_depth`).
-    pub previous_depth: Vec<f64>,
+    /// Previous frame's depth copy: words as stored (`storage::pack_depth_copy`).
+    pub previous_depth: Vec<u32>,
     /// Previous frame's moments.
     pub previous_moments: Vec<DVec4>,
     /// Previous frame's history (filter pass 0 mean).
@@ -58,8 +58,8 @@ pub struct Frame {
     pub tile_meta: Vec<u32>,
     /// Output: each tile's blocker distance (penumbra guidance).
     pub tile_blocker: Vec<f64>,
-    /// Output: depth copy (linear depths as stored).
-    pub depth_copy: Vec<f64>,
+    /// Output: depth copy (words as stored).
+    pub depth_copy: Vec<u32>,
     /// Output: moments.
     pub moments: Vec<DVec4>,
     /// Output: temporal result (mean, variance).
@@ -109,15 +109,15 @@ impl Frame {
             depth: filled(n, 1.0)?,
             velocity: filled(n, DVec2::ZERO)?,
             normals: filled(n, DVec3::ZERO)?,
-            // A new depth copy is cleared to 0: the first code.
-            previous_depth: filled(n, super::storage::unpack_linear_depth(0))?,
+            // A new depth copy is cleared to 0: the first depth code, the normal +z.
+            previous_depth: filled(n, 0)?,
             previous_moments: filled(n, DVec4::ZERO)?,
             history: filled(n, 0.0)?,
             tile_mask: filled(tiles, 0)?,
             tile_dark: filled(tiles, 0)?,
             tile_meta: filled(tiles, 0)?,
             tile_blocker: filled(tiles, -1.0)?,
-            depth_copy: filled(n, super::storage::unpack_linear_depth(0))?,
+            depth_copy: filled(n, 0)?,
             moments: filled(n, DVec4::ZERO)?,
             reprojection_out: filled(n, DVec2::ZERO)?,
             filter_out,
@@ -226,7 +226,10 @@ impl Read for Frame {
         self.normals[self.px(p)]
     }
     fn read_previous_depth(&self, p: Coord) -> f64 {
-        self.previous_depth[self.px(p)]
+        super::storage::unpack_depth_copy(self.previous_depth[self.px(p)]).0
+    }
+    fn read_previous_normal(&self, p: Coord) -> DVec3 {
+        super::storage::unpack_depth_copy(self.previous_depth[self.px(p)]).1
     }
     fn read_previous_moments(&self, p: Coord) -> DVec4 {
         self.previous_moments[self.px(p)]
@@ -280,9 +283,9 @@ impl Write for Frame {
         let i = self.tile(tile);
         self.tile_dark[i] = dark_bits;
     }
-    fn write_depth_copy(&mut self, p: Coord, linear_depth: f64) {
+    fn write_depth_copy(&mut self, p: Coord, word: u32) {
         let i = self.px(p);
-        self.depth_copy[i] = linear_depth;
+        self.depth_copy[i] = word;
     }
     fn write_moments(&mut self, p: Coord, m: DVec4) {
         let i = self.px(p);

@@ -73,6 +73,8 @@ pub trait Read: Get {
     fn read_normal(&self, p: Coord) -> DVec3;
     /// Previous frame's linear depth, as its depth copy holds it (`depth_copy`).
     fn read_previous_depth(&self, p: Coord) -> f64;
+    /// Previous frame's normal (unit, or zero: no receiver), as its depth copy holds it (`depth_copy`).
+    fn read_previous_normal(&self, p: Coord) -> DVec3;
     /// Previous frame's moments (mean, Welford sum, sample count).
     fn read_previous_moments(&self, p: Coord) -> DVec4;
     /// Bilinear history at a rect-relative uv (clamp to edge).
@@ -101,8 +103,8 @@ pub trait Write {
     fn write_tile_dark(&mut self, tile: Coord, dark_bits: u32);
     /// A pixel's visibility reconstructed from a checkerboard input (what `read_visibility` returns after it).
     fn write_visibility(&mut self, p: Coord, v: f64);
-    /// This frame's depth copy: a linear depth (`depth_copy`).
-    fn write_depth_copy(&mut self, p: Coord, linear_depth: f64);
+    /// This frame's depth copy word (`depth_copy`).
+    fn write_depth_copy(&mut self, p: Coord, word: u32);
     /// This frame's moments.
     fn write_moments(&mut self, p: Coord, m: DVec4);
     /// Temporal result (mean, variance).
@@ -162,10 +164,11 @@ pub fn linear_depth<G: Get + ?Sized>(io: &G, ndc: DVec2, depth: f64) -> f64 {
     (v.z / v.w).abs()
 }
 
-/// The depth copy of pixel p whose depth is `depth`: its linear depth (what the next frame compares), as the
-/// 16-bit code holds it.
-pub fn depth_copy<G: Get + ?Sized>(io: &G, p: Coord, depth: f64) -> f64 {
-    storage::stored_linear_depth(linear_depth(io, uv_to_ndc(pixel_uv(io, p)), depth))
+/// The depth copy of pixel p whose depth and normal are these: its linear depth and (on a receiver) its normal,
+/// what the next frame compares, packed as the GPU stores them (`storage::pack_depth_copy`).
+pub fn depth_copy<G: Get + ?Sized>(io: &G, p: Coord, depth: f64, normal: DVec3) -> u32 {
+    let normal = if is_receiver(depth) { normal } else { DVec3::ZERO };
+    storage::pack_depth_copy(linear_depth(io, uv_to_ndc(pixel_uv(io, p)), depth), normal)
 }
 
 /// What turns a blocker distance into a penumbra radius in pixels (the dispatch's penumbra guidance).

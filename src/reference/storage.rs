@@ -61,7 +61,7 @@ fn from_unorm16(u: u32) -> f64 {
     u as f64 / 65535.0
 }
 
-/// A linear depth's 16-bit logarithmic code (`dnsr_pack_linear_depth`, R16_UINT): 1024 codes per octave from
+/// A linear depth's 16-bit logarithmic code (`dnsr_pack_linear_depth`, the depth copy's low bits): 1024 codes per octave from
 /// 2^-16 to 2^48; below the range the first code, above it, infinite and NaN the last.
 pub fn pack_linear_depth(z: f64) -> u32 {
     use crate::state::{DEPTH_CODE_BELOW_ONE_OCTAVES as BELOW, DEPTH_CODE_OCTAVES as OCTAVES};
@@ -147,38 +147,65 @@ pub fn decode_signal(codes: [u32; 2], scale: f64) -> DVec2 {
     DVec2::new(from_unorm16(codes[0]), if codes[1] > crate::state::SIGNAL_SKY_CODE_ABOVE { -1.0 } else { d * d })
 }
 
-/// The packed code of the zero normal (no usable normal).
-const ZERO_NORMAL: u32 = 0x8000_8000;
-
-fn snorm16(v: f64) -> u32 {
-    (((v as f32).clamp(-1.0, 1.0) as f64 * 32767.0 + 0.5).floor() as i32 as u32) & 0xFFFF
+/// The code of the zero normal (no usable normal) with `bits` a component: both codes at their minimum, which snorm
+/// never writes (`dnsr_zero_normal`).
+fn zero_normal(bits: u32) -> u32 {
+    let low = 1 << (bits - 1);
+    low | (low << bits)
 }
 
-/// A unit normal (or zero) as the filter's guide stores it: octahedral, two snorm16 codes.
-pub fn pack_normal(n: DVec3) -> u32 {
+fn snorm(v: f64, bits: u32) -> u32 {
+    let scale = ((1 << (bits - 1)) - 1) as f64;
+    (((v as f32).clamp(-1.0, 1.0) as f64 * scale + 0.5).floor() as i32 as u32) & ((1 << bits) - 1)
+}
+
+/// A unit normal (or zero) in 2 * `bits` bits: octahedral, two snorm codes (`dnsr_pack_octahedral`).
+pub fn pack_octahedral(n: DVec3, bits: u32) -> u32 {
     let l1 = n.x.abs() + n.y.abs() + n.z.abs();
     if !(l1 > 0.0) {
-        return ZERO_NORMAL;
+        return zero_normal(bits);
     }
     let (mut ox, mut oy) = (n.x / l1, n.y / l1);
     if n.z < 0.0 {
         let sign = |v: f64| if v >= 0.0 { 1.0 } else { -1.0 };
         (ox, oy) = ((1.0 - oy.abs()) * sign(ox), (1.0 - ox.abs()) * sign(oy));
     }
-    snorm16(ox) | (snorm16(oy) << 16)
+    snorm(ox, bits) | (snorm(oy, bits) << bits)
 }
 
 /// A packed normal read back (unit length, or zero).
-pub fn unpack_normal(u: u32) -> DVec3 {
-    if u == ZERO_NORMAL {
+pub fn unpack_octahedral(u: u32, bits: u32) -> DVec3 {
+    if u == zero_normal(bits) {
         return DVec3::ZERO;
     }
-    let (ox, oy) = (((u << 16) as i32 >> 16) as f64 / 32767.0, ((u as i32) >> 16) as f64 / 32767.0);
+    let (drop, scale) = (32 - bits, ((1 << (bits - 1)) - 1) as f64);
+    let (ox, oy) = (((u << drop) as i32 >> drop) as f64 / scale, ((u << (drop - bits)) as i32 >> drop) as f64 / scale);
     let mut n = DVec3::new(ox, oy, 1.0 - ox.abs() - oy.abs());
     let t = (-n.z).max(0.0);
     n.x += if n.x >= 0.0 { -t } else { t };
     n.y += if n.y >= 0.0 { -t } else { t };
     n.normalize()
+}
+
+/// A unit normal (or zero) as the filter's guide stores it: octahedral, two snorm16 codes.
+pub fn pack_normal(n: DVec3) -> u32 {
+    pack_octahedral(n, 16)
+}
+
+/// A guide's packed normal read back (unit length, or zero).
+pub fn unpack_normal(u: u32) -> DVec3 {
+    unpack_octahedral(u, 16)
+}
+
+/// A pixel's depth copy word (`dnsr_pack_depth_copy`, R32_UINT): its linear depth's code, its normal in the high
+/// bits (`state::DEPTH_COPY_NORMAL_BITS` a component).
+pub fn pack_depth_copy(linear_depth: f64, normal: DVec3) -> u32 {
+    pack_linear_depth(linear_depth) | (pack_octahedral(normal, crate::state::DEPTH_COPY_NORMAL_BITS) << 16)
+}
+
+/// A depth copy word read back: (linear depth, normal).
+pub fn unpack_depth_copy(v: u32) -> (f64, DVec3) {
+    (unpack_linear_depth(v & 0xFFFF), unpack_octahedral(v >> 16, crate::state::DEPTH_COPY_NORMAL_BITS))
 }
 
 /// A normal as the filter passes after the first read it from the guide.
@@ -218,20 +245,33 @@ mod tests {
         assert_eq!(round_half(2051.0), 2052.0);
     }
 
-    #[test]
-    fn normals_round_trip_within_their_code() {
-        assert_eq!(guide_normal(DVec3::ZERO), DVec3::ZERO);
-        let mut worst: f64 = 0.0;
-        for i in 0..2000 {
+    /// 2000 unit vectors spread over the sphere, each with a number in [0, 1).
+    fn sphere() -> impl Iterator<Item = (DVec3, f64)> {
+        (0..2000).map(|i| {
             let (a, b) = (i as f64 * 0.618_033_988_7 % 1.0, i as f64 * 0.754_877_666 % 1.0);
             let z = 2.0 * a - 1.0;
             let r = (1.0 - z * z).sqrt();
-            let n = DVec3::new(r * (6.283_185 * b).cos(), r * (6.283_185 * b).sin(), z);
-            worst = worst.max(guide_normal(n).angle_between(n));
-        }
+            (DVec3::new(r * (6.283_185 * b).cos(), r * (6.283_185 * b).sin(), z), a)
+        })
+    }
+
+    #[test]
+    fn normals_round_trip_within_their_code() {
+        assert_eq!(guide_normal(DVec3::ZERO), DVec3::ZERO);
+        let worst = sphere().map(|(n, _)| guide_normal(n).angle_between(n)).fold(0.0, f64::max);
         assert!(worst < 1e-4, "octahedral snorm16 normal off by {worst} rad");
         for n in [DVec3::X, DVec3::NEG_Y, DVec3::Z, DVec3::NEG_Z] {
             assert!(guide_normal(n).distance(n) < 1e-9, "{n}");
         }
+        // The depth copy's 8-bit normal: within about a degree, which the turned test (37 degrees) needs; zero
+        // stays zero; the depth keeps its code.
+        let mut worst: f64 = 0.0;
+        for (n, a) in sphere() {
+            let (depth, stored) = unpack_depth_copy(pack_depth_copy(1.0 + a, n));
+            assert_eq!(depth, stored_linear_depth(1.0 + a));
+            worst = worst.max(stored.angle_between(n));
+        }
+        assert!(worst < 0.02, "octahedral 8-bit normal off by {worst} rad");
+        assert_eq!(unpack_depth_copy(pack_depth_copy(2.0, DVec3::ZERO)).1, DVec3::ZERO);
     }
 }

@@ -4,7 +4,7 @@
 use super::{inside, SKY_SIGNAL, is_receiver, linear_depth, pixel_uv, tile_bit, uv_to_ndc, Coord, Read, Write, TILE};
 use crate::passes::{RUN_CLAMP_SAMPLES, TILE_CLEARED, TILE_LIT};
 use crate::settings::MAX_SAMPLE_RUN;
-use glam::{DVec2, DVec4};
+use glam::{DVec2, DVec3, DVec4};
 
 /// Radius of the local-moment window (17x17).
 pub const MOMENT_RADIUS: i32 = crate::passes::MOMENT_RADIUS as i32;
@@ -178,6 +178,12 @@ fn run_value(run: f64) -> f64 {
     if run > 0.0 { 1.0 } else { 0.0 }
 }
 
+/// Normals `a` and `b` (last frame's, this frame's) both known and further apart than
+/// `state::TURNED_NORMAL_COS_PERCENT` allows (`dnsr_normal_turned`).
+fn normal_turned(a: DVec3, b: DVec3) -> bool {
+    a.dot(a) > 0.0 && b.dot(b) > 0.0 && a.dot(b) < crate::state::TURNED_NORMAL_COS_PERCENT as f64 / 100.0
+}
+
 /// A run whose value is exact sample `x`'s (any length).
 fn sign_agreeing(run: f64, x: f64) -> bool {
     is_exact(x) && if x >= 0.5 { run > 0.0 } else { run < 0.0 }
@@ -231,7 +237,8 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     let prev_uv = prev_ndc.truncate() * 0.5 + 0.5;
     let world = io.view_projection_inverse() * DVec4::new(ndc.x, ndc.y, depth, 1.0);
     let view_dir = (io.eye() - world.truncate() / world.w).normalize();
-    let n_dot_v = io.read_normal(p).dot(view_dir).clamp(0.0, 1.0);
+    let normal = io.read_normal(p);
+    let n_dot_v = normal.dot(view_dir).clamp(0.0, 1.0);
     let threshold = thr_facing + (thr_grazing - thr_facing) * (1.0 - n_dot_v).powf(angle_exp);
     let in01 = |v: DVec2| v.x >= 0.0 && v.y >= 0.0 && v.x < 1.0 && v.y < 1.0;
     let on_screen = finite(prev_uv) && finite(history_uv) && prev_clip.w > 0.0 && in01(prev_uv) && in01(history_uv);
@@ -253,6 +260,14 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     if !disoccluded {
         let hp = clamp_px(history_uv);
         m = io.read_previous_moments(hp);
+        // Where the nearest texel's normal turned, its moments are another surface's: start again, or (below)
+        // continue the heaviest texel of the footprint that kept this surface's normal
+        // (shaders/tile_classification.glsl says why). With the run features only: Balanced keeps the FidelityFX
+        // behaviour.
+        let turned = s.uses_runs() && normal_turned(io.read_previous_normal(hp), normal);
+        if turned {
+            m = DVec4::ZERO;
+        }
         // An untraced stable pixel takes its run's value as this frame's sample (and keeps its run, below), unless
         // its neighbours' mean lies more than 0.5 from that value.
         let contradicted = (x - if m.w > 0.0 { 1.0 } else { 0.0 }).abs() > 0.5;
@@ -272,6 +287,8 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
             // Every receiver texel resolved: of the other value (one of them is) pure and converged, of this
             // sample's value pure or converged.
             let (mut all_resolved, mut any_other, mut all_pure) = (true, false, true);
+            // The heaviest receiver texel whose normal did not turn: its moments, where the nearest texel turned.
+            let (mut kept, mut kept_weight) = (DVec4::ZERO, 0.0);
             for k in 0..4 {
                 let weight = (if k & 1 != 0 { f.x } else { 1.0 - f.x }) * (if k & 2 != 0 { f.y } else { 1.0 - f.y });
                 let q = [
@@ -284,9 +301,13 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
                 let mq = io.read_previous_moments(q);
                 all += weight;
                 // Texels without a receiver (sky: no samples) leave the blend too: their lit sky signal would
-                // brighten a shadowed receiver along every silhouette against the background.
-                if !(mq.z > 0.0) {
+                // brighten a shadowed receiver along every silhouette against the background. So do texels whose
+                // normal turned: they hold another surface.
+                if !(mq.z > 0.0) || normal_turned(io.read_previous_normal(q), normal) {
                     continue;
+                }
+                if weight > kept_weight {
+                    (kept, kept_weight) = (mq, weight);
                 }
                 let texel = io.read_history_texel(q);
                 receivers += DVec2::new(weight * texel, weight);
@@ -308,6 +329,9 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
             // A hard edge or a thin feature under a moving camera, where the nearest texel's samples all held the
             // other value and every receiver texel's samples held one value: continue the agreeing texel whose
             // samples all agree, moments and history (shaders/tile_classification.glsl says why the whole footprint).
+            if turned {
+                m = kept;
+            }
             let adopt = pure.z > 0.0 && !sign_agreeing(m.w, x) && pure_moments(m) && all_pure;
             // Elsewhere, where the nearest texel lies across the edge from this surface point, the pixel continues
             // a stable run of stable_after samples, no longer (shaders/tile_classification.glsl says why).

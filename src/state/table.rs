@@ -213,8 +213,9 @@ pub const RESOURCES: [Resource; 11] = [
     resource(Image::TileBlocker, "tile_blocker", Formats::both(vk::Format::R32_SFLOAT), Tile, Light, 1, Transient, Needed::Always),
     resource(Image::Reprojection, "reprojection", SIGNAL, Pixel, Light, 1, Transient, Needed::Always),
     resource(Image::History, "history", SIGNAL, Pixel, Light, 1, Persistent, Needed::Always),
-    // One image: classification reads last frame's values before the first filter pass writes this frame's.
-    resource(Image::DepthCopy, "depth_copy", Formats::both(vk::Format::R16_UINT), Pixel, Light, 1, Persistent, Needed::Always),
+    // Linear depth (16-bit code) and normal (8+8 bits) in one word. One image: classification reads last frame's
+    // values before the first filter pass writes this frame's.
+    resource(Image::DepthCopy, "depth_copy", Formats::both(vk::Format::R32_UINT), Pixel, Light, 1, Persistent, Needed::Always),
     // Per pixel: mean (unorm14), sample count (9-bit float), run of identical samples (9-bit integer) packed into
     // one word; with fractional samples their sum of squared deviations (float32) in a second.
     Resource {

@@ -319,6 +319,7 @@ mod reference_table {
             write_history: None,
             read_hit_distance: Some(read_hit_distance),
             read_visibility: Some(read_visibility),
+            read_previous_normal: None,
         };
         assert_eq!(dnsr_reference_run_frame(&frame, &callbacks), DnsrResult::DNSR_SUCCESS);
         let worst = gpu_out.iter().zip(&user.output).map(|(a, b)| (a - b).abs()).fold(0.0f32, f32::max);
@@ -410,6 +411,7 @@ mod host_memory {
             write_history: None,
             read_hit_distance: None,
             read_visibility: None,
+            read_previous_normal: None,
         };
         let mut count = 0u32;
         [

@@ -261,7 +261,7 @@ fn generated_layout_header() -> String {
         check!(DnsrReferenceCallbacks {
             user_data, read_hit_mask, read_depth, read_normal, read_velocity, read_previous_depth,
             read_previous_moments, read_history, write_output, write_tile_meta, write_reprojection, write_moments,
-            write_history, read_hit_distance, read_visibility,
+            write_history, read_hit_distance, read_visibility, read_previous_normal,
         });
         check!(DnsrDiagnosis { kind, value, message });
     }

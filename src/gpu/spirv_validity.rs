@@ -43,6 +43,7 @@ pub(crate) fn check(spirv: &[u8], offers: DeviceOffers) -> Result<(), String> {
     // The validator has accepted every word count: the walk cannot fail.
     let all = instructions(spirv).map_err(|e| e.to_string())?;
     control_flow(&all)?;
+    array_sizes(&all)?;
     for (opcode, operands) in &all {
         let (opcode, operands) = (*opcode, operands.as_slice());
         match opcode {
@@ -137,6 +138,40 @@ fn control_flow(all: &[(u32, Vec<u32>)]) -> Result<(), String> {
             (OP_SWITCH, Some(b)) => {
                 b.named.extend(&ops[1..]);
                 b.jumps.push(ops[1]);
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// Most elements an array type of an override may hold, nested arrays multiplied: dnsr's own largest is a few
+/// thousand (shared memory). Drivers allocate what a length asks for: lavapipe took 24 GB for a 9-element array
+/// whose length constant a fuzzed override had turned into 635 million, and the process was killed.
+const MAX_ARRAY_ELEMENTS: u64 = 1 << 20;
+
+/// Refuses an array type (OpTypeArray) whose length, times its element arrays' lengths, exceeds
+/// `MAX_ARRAY_ELEMENTS`. The validator has checked that each length is an integer constant defined before it.
+fn array_sizes(all: &[(u32, Vec<u32>)]) -> Result<(), String> {
+    const OP_CONSTANT: u32 = 43;
+    const OP_SPEC_CONSTANT: u32 = 50;
+    const OP_TYPE_ARRAY: u32 = 28;
+    let mut constants = std::collections::HashMap::new();
+    let mut elements = std::collections::HashMap::new();
+    for (opcode, ops) in all {
+        match (*opcode, ops.as_slice()) {
+            // Result type, result id, value (low word first; a 64-bit constant has two).
+            (OP_CONSTANT | OP_SPEC_CONSTANT, [_, id, value @ ..]) => {
+                let wide = value.iter().rev().fold(0u64, |acc, &w| acc.saturating_mul(1 << 32).saturating_add(w as u64));
+                constants.insert(*id, wide);
+            }
+            (OP_TYPE_ARRAY, [id, element, length, ..]) => {
+                let inner = elements.get(element).copied().unwrap_or(1u64);
+                let total = constants.get(length).copied().unwrap_or(u64::MAX).saturating_mul(inner);
+                if total > MAX_ARRAY_ELEMENTS {
+                    return Err(format!("declares an array type %{id} of {total} elements; dnsr allows {MAX_ARRAY_ELEMENTS}"));
+                }
+                elements.insert(*id, total);
             }
             _ => {}
         }

@@ -134,6 +134,16 @@ fn mismatched_overrides_are_refused_before_anything_is_created() {
         let (word, first) = found.expect("a selection whose second arm ends in a branch");
         with_word(word, first)
     };
+    // An array's length constant turned huge (override_fuzz, seed 1, case 696: lavapipe allocated 24 GB for it).
+    let huge_array = {
+        let words: Vec<u32> = good.spirv.chunks_exact(4).map(|c| u32::from_le_bytes(c.try_into().unwrap())).collect();
+        let instructions: Vec<usize> =
+            std::iter::successors(Some(5), |&at| Some(at + (words[at] >> 16) as usize).filter(|&next| next < words.len())).collect();
+        let op = |at: usize| words[at] & 0xFFFF;
+        let array = instructions.iter().copied().find(|&at| op(at) == 28).expect("an array type");
+        let length = instructions.iter().copied().find(|&at| op(at) == 43 && words[at + 2] == words[array + 3]).expect("its length");
+        with_word(length + 3, 1 << 30)
+    };
     let float64 = edited(&|s| {
         s.replace("float dnsr_read_depth(ivec2 p) { return texelFetch(dnsr_depth, p + dnsr_get_offset(), 0).r; }",
             "float dnsr_read_depth(ivec2 p) { return float(double(texelFetch(dnsr_depth, p + dnsr_get_offset(), 0).r) * 1.0lf); }")
@@ -156,6 +166,7 @@ fn mismatched_overrides_are_refused_before_anything_is_created() {
         ("image Sampled 3", vec![image_sampled_3], "is not valid SPIR-V for Vulkan 1.1"),
         ("a Float64 capability", vec![float64], "capability 10,"),
         ("a cross edge", vec![cross_edge], "which is not a loop header"),
+        ("an array of 2^30 elements", vec![huge_array], "elements; dnsr allows"),
         ("constants read as other types", vec![signed_rect], "Constants block differs"),
     ];
     for (what, overrides, expect) in cases {

@@ -174,17 +174,17 @@ layout(set = 0, binding = 14) uniform utexture2D dnsr_tile_meta;
 // A sampler so that the later passes can gather the variances of 2x2 texels in one fetch.
 layout(set = 0, binding = 15) uniform sampler2D dnsr_filter_input;
 layout(set = 0, binding = 16, DNSR_INTERMEDIATE_FORMAT) uniform writeonly image2D dnsr_filter_output;
+// The depth copy of this frame (binding 8, which the first pass writes), sampled by the later passes as their guide.
 layout(set = 0, binding = 19) uniform utexture2D dnsr_guide;
-layout(set = 0, binding = 20, rg32ui) uniform writeonly uimage2D dnsr_guide_out;
 #ifdef DNSR_FINAL_PASS
 layout(set = 0, binding = 17, DNSR_OUTPUT_FORMAT) uniform writeonly image2D dnsr_output;
 // This frame's moments, read only by the debug views.
 layout(set = 0, binding = 18) uniform utexture2D dnsr_debug_moments;
 #endif
 #ifndef DNSR_LATER_PASS
-// This frame's linear depth and normal, for the next frame's classification (dnsr_read_previous_depth,
-// dnsr_read_previous_normal). Written by the first filter pass, after this frame's classification has read last
-// frame's from the same image: one image, not two.
+// This frame's linear depth (-1: no receiver) and normal, for the later filter passes (dnsr_read_guide) and the
+// next frame's classification (dnsr_read_previous_depth, dnsr_read_previous_normal). Written by the first filter
+// pass, after this frame's classification has read last frame's from the same image: one image, not two.
 layout(set = 0, binding = 8, r32ui) uniform writeonly uimage2D dnsr_depth_copy;
 void dnsr_write_depth_copy(ivec2 p, float linear_depth, vec3 normal) {
     imageStore(dnsr_depth_copy, p + dnsr_get_offset(), uvec4(dnsr_pack_depth_copy(linear_depth, normal)));
@@ -194,11 +194,12 @@ void dnsr_write_depth_copy(ivec2 p, float linear_depth, vec3 normal) {
 int dnsr_get_filter_step() { return int(dnsr_push.pass.x); }
 bool dnsr_get_write_internal() { return (dnsr_push.pass.y & DNSR_PASS_WRITE_INTERNAL) != 0u; }
 bool dnsr_get_skip_cleared() { return (dnsr_push.pass.y & DNSR_PASS_SKIP_CLEARED) != 0u; }
-bool dnsr_get_write_guide() { return (dnsr_push.pass.y & DNSR_PASS_WRITE_GUIDE) != 0u; }
-bool dnsr_get_write_guide_everywhere() { return (dnsr_push.pass.y & DNSR_PASS_WRITE_GUIDE_EVERYWHERE) != 0u; }
-// The filter's own per-pixel geometry, written by the first pass for the later ones: (linear depth or -1, normal).
-vec4 dnsr_read_guide(ivec2 p) { return dnsr_unpack_guide(texelFetch(dnsr_guide, p + dnsr_get_offset(), 0).xy); }
-void dnsr_write_guide(ivec2 p, float linear_depth, vec3 normal) { imageStore(dnsr_guide_out, p + dnsr_get_offset(), uvec4(dnsr_pack_guide(linear_depth, normal), 0u, 0u)); }
+// The later passes' per-pixel geometry, (linear depth or -1, normal): this frame's depth copy, which the first pass
+// wrote.
+vec4 dnsr_read_guide(ivec2 p) {
+    uint v = texelFetch(dnsr_guide, p + dnsr_get_offset(), 0).r;
+    return vec4(dnsr_depth_copy_depth(v), dnsr_depth_copy_normal(v));
+}
 uint dnsr_read_tile_meta(ivec2 tile) { return texelFetch(dnsr_tile_meta, tile + dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT), 0).r; }
 layout(set = 0, binding = 23) uniform texture2D dnsr_tile_blocker;
 float dnsr_read_tile_blocker(ivec2 tile) { return texelFetch(dnsr_tile_blocker, tile + dnsr_get_offset() / ivec2(DNSR_TILE_WIDTH, DNSR_TILE_HEIGHT), 0).r; }

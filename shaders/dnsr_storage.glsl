@@ -21,17 +21,20 @@ uint dnsr_unorm16(float v) { return uint(floor(clamp(v, 0.0, 1.0) * 65535.0 + 0.
 // The code back; the ends are exact (0 and 1 are compared for equality: dnsr_pure).
 float dnsr_from_unorm16(uint u) { return u == 65535u ? 1.0 : float(u) * (1.0 / 65535.0); }
 
-// A linear depth (view units) in 16 bits (R16_UINT), logarithmic: 1024 codes per octave from 2^-16 to 2^48, so
-// neighbouring codes lie 0.068% apart, a fifteenth of the default disocclusion threshold (1%), at any scene scale
-// (millimetres to light years). Depths below the range take the first code; above it, infinite and NaN ones (a sky
-// at an infinite far plane) the last.
+// A linear depth (view units) in DNSR_DEPTH_CODE_BITS (16) bits, logarithmic: 1024 codes per octave from 2^-16 to
+// 2^48, so neighbouring codes lie 0.068% apart, a fifteenth of the default disocclusion threshold (1%), at any scene
+// scale (millimetres to light years). Code 0 is no receiver (a negative depth: the sky's -1), and reads back as -1.
+// Receivers' depths below the range take the first code above it; above it, infinite and NaN ones the last.
+const uint DNSR_DEPTH_CODE_MAX = (1u << DNSR_DEPTH_CODE_BITS) - 1u;
 uint dnsr_pack_linear_depth(float z) {
-    float v = (log2(z) + float(DNSR_DEPTH_CODE_BELOW_ONE_OCTAVES)) * (65535.0 / float(DNSR_DEPTH_CODE_OCTAVES));
-    v = v >= 0.0 ? min(v, 65535.0) : (isnan(v) ? 65535.0 : 0.0);
+    if (z < 0.0) return 0u;
+    float v = (log2(z) + float(DNSR_DEPTH_CODE_BELOW_ONE_OCTAVES)) * (float(DNSR_DEPTH_CODE_MAX) / float(DNSR_DEPTH_CODE_OCTAVES));
+    v = v >= 1.0 ? min(v, float(DNSR_DEPTH_CODE_MAX)) : (isnan(v) ? float(DNSR_DEPTH_CODE_MAX) : 1.0);
     return uint(floor(v + 0.5));
 }
 float dnsr_unpack_linear_depth(uint code) {
-    return exp2(float(code) * (float(DNSR_DEPTH_CODE_OCTAVES) / 65535.0) - float(DNSR_DEPTH_CODE_BELOW_ONE_OCTAVES));
+    if (code == 0u) return -1.0;
+    return exp2(float(code) * (float(DNSR_DEPTH_CODE_OCTAVES) / float(DNSR_DEPTH_CODE_MAX)) - float(DNSR_DEPTH_CODE_BELOW_ONE_OCTAVES));
 }
 
 // Moments (mean, sample count, run of identical samples) in one word, the image's first (R32_UINT with a hit
@@ -78,8 +81,7 @@ vec4 dnsr_unpack_moments(uint v) {
 
 // A unit normal (or vec3(0): no usable normal) in 2 * bits bits: octahedral, two snorm codes of `bits` bits each
 // (floor(c * (2^(bits-1) - 1) + 0.5)); the code pair (-2^(bits-1), -2^(bits-1)), which snorm never writes, is the zero
-// normal. The guide keeps 16 bits a component (0.003 degrees), the depth copy 8 (about 1 degree: it only tells
-// whether a surface turned).
+// normal. The depth copy keeps DNSR_DEPTH_COPY_NORMAL_BITS (8) a component: within a degree of the normal.
 uint dnsr_zero_normal(uint bits) { uint low = 1u << (bits - 1u); return low | (low << bits); }
 uint dnsr_snorm(float v, uint bits) {
     float scale = float((1u << (bits - 1u)) - 1u);
@@ -102,21 +104,16 @@ vec3 dnsr_unpack_octahedral(uint u, uint bits) {
     n.xy += vec2(n.x >= 0.0 ? -t : t, n.y >= 0.0 ? -t : t);
     return normalize(n);
 }
-uint dnsr_pack_normal(vec3 n) { return dnsr_pack_octahedral(n, 16u); }
-vec3 dnsr_unpack_normal(uint u) { return dnsr_unpack_octahedral(u, 16u); }
 
-// The depth copy (R32_UINT): the linear depth's 16-bit code (dnsr_pack_linear_depth) and the normal in the high 16
-// bits (DNSR_DEPTH_COPY_NORMAL_BITS a component).
-// Next frame's classification compares its reprojected depth with the first and its own normal with the second.
+// The depth copy (R32_UINT): the linear depth's code (dnsr_pack_linear_depth; -1, no receiver, is code 0) in the low
+// DNSR_DEPTH_CODE_BITS bits and the normal in the rest (DNSR_DEPTH_COPY_NORMAL_BITS a component). Next frame's
+// classification compares its reprojected depth with the first and its own normal with the second; this frame's
+// later filter passes take both as their guide.
 uint dnsr_pack_depth_copy(float linear_depth, vec3 normal) {
-    return dnsr_pack_linear_depth(linear_depth) | (dnsr_pack_octahedral(normal, uint(DNSR_DEPTH_COPY_NORMAL_BITS)) << 16);
+    return dnsr_pack_linear_depth(linear_depth) | (dnsr_pack_octahedral(normal, uint(DNSR_DEPTH_COPY_NORMAL_BITS)) << DNSR_DEPTH_CODE_BITS);
 }
-float dnsr_depth_copy_depth(uint v) { return dnsr_unpack_linear_depth(v & 0xFFFFu); }
-vec3 dnsr_depth_copy_normal(uint v) { return dnsr_unpack_octahedral(v >> 16, uint(DNSR_DEPTH_COPY_NORMAL_BITS)); }
-
-// The filter's guide in 8 bytes (R32G32_UINT): linear depth (or -1: no receiver) as float32 bits, the packed normal.
-uvec2 dnsr_pack_guide(float linear_depth, vec3 normal) { return uvec2(floatBitsToUint(linear_depth), dnsr_pack_normal(normal)); }
-vec4 dnsr_unpack_guide(uvec2 g) { return vec4(uintBitsToFloat(g.x), dnsr_unpack_normal(g.y)); }
+float dnsr_depth_copy_depth(uint v) { return dnsr_unpack_linear_depth(v & DNSR_DEPTH_CODE_MAX); }
+vec3 dnsr_depth_copy_normal(uint v) { return dnsr_unpack_octahedral(v >> DNSR_DEPTH_CODE_BITS, uint(DNSR_DEPTH_COPY_NORMAL_BITS)); }
 
 // The filter's signal (mean, variance) between its passes and as the next frame's history. The fp32 path stores
 // it in R16G16_UNORM: the mean, and the standard deviation over `scale` (dnsr_get_signal_scale: it covers the

@@ -1,7 +1,7 @@
 // filter: one pass of the edge-avoiding a-trous filter (3x3 taps at +-step), in two variants. The first pass
-// (step 1) reads its group and a one-pixel apron into shared memory once and writes the guide (linear depth and
-// normal per pixel); the later passes (DNSR_LATER_PASS) fetch every tap, guide and signal, straight from the
-// images through the texture cache. Why two variants, on an H100 at 4K (BENCHMARKS.md change log): one shader
+// (step 1) reads its group and a one-pixel apron into shared memory once and writes the depth copy (linear depth and
+// normal per pixel in one word), which is the later passes' guide; the later passes (DNSR_LATER_PASS) fetch every
+// tap, guide and signal, straight from the images through the texture cache. Why two variants, on an H100 at 4K (BENCHMARKS.md change log): one shader
 // holding both paths slowed the later passes from 0.383 / 0.371 to 0.454 / 0.477 ms although they never touch
 // the apron, and an apron for their variance blur alone slowed them too (their taps cannot wait for a barrier).
 // An apron sized for the widest step was 3-5x slower still.
@@ -101,7 +101,7 @@ vec2 dnsr_cleared_value(bool receiver, uint meta) {
 #ifndef DNSR_LATER_PASS
 // The first pass (step 1) reads its group's pixels and a one-pixel apron into shared memory once: every pixel's
 // 3x3 neighbourhood, its taps and its variance-blur footprint, instead of nine fetches per pixel. It writes the
-// guide the later passes read. One light only (l is 0): a first pass for several lights (their signals in shared
+// depth copy, the later passes' guide. One light only (l is 0): a first pass for several lights (their signals in shared
 // memory side by side) was slower on an H100 than one dispatch per light (BENCHMARKS.md).
 const ivec2 DNSR_APRON_SIZE = DNSR_WIDE_GROUP_SIZE + 2;
 const int DNSR_APRON_COUNT = DNSR_APRON_SIZE.x * DNSR_APRON_SIZE.y;
@@ -134,25 +134,15 @@ void dnsr_tap(int l, ivec2 p, ivec2 lid, int i, int j, int step, out vec2 signal
     guide = vec4(dnsr_apron_depth[k], dnsr_apron_normal[k]);
 }
 
-// Tile metadata of the group's tiles and of one block beyond it on every side: a later pass reaches at most one
-// block (its step is at most DNSR_GROUP_SIZE), so these say which cleared blocks a later pass taps.
+// Tile metadata of the group's tiles.
 const ivec2 DNSR_BLOCK_TILES = DNSR_GROUP_SIZE / DNSR_TILE_SIZE;
-const ivec2 DNSR_META_TILES = (DNSR_WIDE_GROUP_SIZE / DNSR_GROUP_SIZE + 2) * DNSR_BLOCK_TILES;
+const ivec2 DNSR_META_TILES = (DNSR_WIDE_GROUP_SIZE / DNSR_GROUP_SIZE) * DNSR_BLOCK_TILES;
 shared uint dnsr_meta[DNSR_META_TILES.y][DNSR_META_TILES.x];
 
 bool dnsr_block_cleared(ivec2 m) { return (dnsr_meta[m.y][m.x] & dnsr_meta[m.y + 1][m.x] & DNSR_TILE_CLEARED) != 0u; }
-
-// Whether a tile that is not cleared lies within one block of the block whose top tile is dnsr_meta[m.y][m.x].
-bool dnsr_block_is_tapped(ivec2 m) {
-    uint all_cleared = DNSR_TILE_CLEARED;
-    for (int r = -DNSR_BLOCK_TILES.y; r < 2 * DNSR_BLOCK_TILES.y; ++r) {
-        for (int c = -DNSR_BLOCK_TILES.x; c < 2 * DNSR_BLOCK_TILES.x; ++c) all_cleared &= dnsr_meta[m.y + r][m.x + c];
-    }
-    return all_cleared == 0u;
-}
 #else
-// The later passes (step 2 and up) fetch every tap from the images through the texture cache: a tap is the guide
-// the first pass wrote and the signal. (An apron for their variance blur slowed them: their taps cannot wait for
+// The later passes (step 2 and up) fetch every tap from the images through the texture cache: a tap is the depth
+// copy the first pass wrote (its guide) and the signal. (An apron for their variance blur slowed them: their taps cannot wait for
 // a barrier.)
 vec2 dnsr_center_signal(int l, ivec2 p, ivec2 lid) { return dnsr_pass_filter_input(l, p); }
 // Variances of the 3x3 neighbourhood, row by row (the sky's -1 outside the rectangle): four gathers of 2x2
@@ -267,7 +257,7 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     int invocation = lid.y * DNSR_WIDE_GROUP_SIZE.x + lid.x;
 
     ivec2 tiles = (dnsr_get_extent() + DNSR_TILE_SIZE - 1) / DNSR_TILE_SIZE;
-    ivec2 base_tile = origin / DNSR_TILE_SIZE - DNSR_BLOCK_TILES;
+    ivec2 base_tile = origin / DNSR_TILE_SIZE;
     for (int i = invocation; i < DNSR_META_TILES.x * DNSR_META_TILES.y; i += DNSR_WIDE_GROUP_INVOCATIONS) {
         ivec2 m = ivec2(i % DNSR_META_TILES.x, i / DNSR_META_TILES.x);
         ivec2 t = base_tile + m;
@@ -282,7 +272,7 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     bool any_active = false;
     for (int by = 0; by < DNSR_WIDE_GROUP_SIZE.y / DNSR_GROUP_SIZE.y; ++by) {
         for (int bx = 0; bx < DNSR_WIDE_GROUP_SIZE.x / DNSR_GROUP_SIZE.x; ++bx) {
-            any_active = any_active || !dnsr_block_cleared((ivec2(bx, by) + 1) * DNSR_BLOCK_TILES);
+            any_active = any_active || !dnsr_block_cleared(ivec2(bx, by) * DNSR_BLOCK_TILES);
         }
     }
     if (any_active) {
@@ -298,26 +288,20 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     float depth = dnsr_read_depth(p);
     float linear_depth = dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), depth);
     bool receiver = dnsr_is_receiver(depth);
-    ivec2 m = (lid / DNSR_GROUP_SIZE + 1) * DNSR_BLOCK_TILES;
+    ivec2 m = (lid / DNSR_GROUP_SIZE) * DNSR_BLOCK_TILES;
     uint meta = dnsr_meta[m.y + (lid.y % DNSR_GROUP_SIZE.y) / DNSR_TILE_SIZE.y][m.x];
     if (dnsr_block_cleared(m)) {
-        vec3 normal = receiver ? dnsr_read_normal(p) : vec3(0.0);
-        dnsr_write_depth_copy(p, linear_depth, normal);
+        // Everywhere, cleared blocks included: the later passes tap them, and the next frame reads them.
+        dnsr_write_depth_copy(p, receiver ? linear_depth : -1.0, receiver ? dnsr_read_normal(p) : vec3(0.0));
         // Cleared values are already where this pass would write them (classification wrote the output and the
         // reprojection image): nothing to do.
         if (dnsr_get_skip_cleared()) return;
-        // The guide is needed here only where a later pass taps this block from a tile it filters (of any light
-        // of the record, which this light's tiles do not tell: then everywhere).
-        if (dnsr_get_write_guide() && (dnsr_get_write_guide_everywhere() || dnsr_block_is_tapped(m))) {
-            dnsr_write_guide(p, dnsr_tap_depth(p), normal);
-        }
         dnsr_filter_write(0, p, dnsr_cleared_value(receiver, meta), receiver, meta);
         return;
     }
     int k = dnsr_apron_index(lid, 0, 0);
     vec4 guide = vec4(dnsr_apron_depth[k], dnsr_apron_normal[k]);
-    dnsr_write_depth_copy(p, linear_depth, receiver ? guide.yzw : vec3(0.0));
-    if (dnsr_get_write_guide()) dnsr_write_guide(p, guide.x, guide.yzw);
+    dnsr_write_depth_copy(p, guide.x, guide.yzw);
     dnsr_filter_active(0, p, lid, 1, meta, guide);
 }
 #else

@@ -8,7 +8,7 @@
 
 use crate::glsl::gpu_block;
 use crate::passes::classify::{ClassifyConstants, CLASSIFY_BOUND_INTERVAL, CLASSIFY_CASCADES_INVERTED, CLASSIFY_REJECT_LIT};
-use crate::passes::filter::{FilterPush, PASS_SKIP_CLEARED, PASS_WRITE_GUIDE, PASS_WRITE_GUIDE_EVERYWHERE, PASS_WRITE_INTERNAL};
+use crate::passes::filter::{FilterPush, PASS_SKIP_CLEARED, PASS_WRITE_INTERNAL};
 use crate::settings::Settings;
 use std::fmt::Write as _;
 
@@ -90,8 +90,6 @@ pub(crate) const GLSL_FLAGS: &[(&str, u32)] = &[
     ("DNSR_FLAG_CHECKERBOARD", FLAG_CHECKERBOARD),
     ("DNSR_PASS_WRITE_INTERNAL", PASS_WRITE_INTERNAL),
     ("DNSR_PASS_SKIP_CLEARED", PASS_SKIP_CLEARED),
-    ("DNSR_PASS_WRITE_GUIDE", PASS_WRITE_GUIDE),
-    ("DNSR_PASS_WRITE_GUIDE_EVERYWHERE", PASS_WRITE_GUIDE_EVERYWHERE),
     ("DNSR_TILE_CLEARED", crate::passes::TILE_CLEARED),
     ("DNSR_TILE_LIT", crate::passes::TILE_LIT),
     ("DNSR_DEBUG_VIEW_NONE", crate::dispatch::DebugView::None as u32),
@@ -121,6 +119,7 @@ pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
     ("DNSR_UNCONVERGED_VARIANCE_INV_FP16", crate::passes::UNCONVERGED_VARIANCE_INV_FP16),
     ("DNSR_SIGNAL_MAX_DEVIATION_CODE", crate::state::SIGNAL_MAX_DEVIATION_CODE),
     ("DNSR_SIGNAL_SKY_CODE_ABOVE", crate::state::SIGNAL_SKY_CODE_ABOVE),
+    ("DNSR_DEPTH_CODE_BITS", crate::state::DEPTH_CODE_BITS),
     ("DNSR_DEPTH_CODE_BELOW_ONE_OCTAVES", crate::state::DEPTH_CODE_BELOW_ONE_OCTAVES),
     ("DNSR_DEPTH_CODE_OCTAVES", crate::state::DEPTH_CODE_OCTAVES),
     ("DNSR_DEPTH_COPY_NORMAL_BITS", crate::state::DEPTH_COPY_NORMAL_BITS),

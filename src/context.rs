@@ -129,13 +129,9 @@ pub struct Context {
     constants_memory: Memory,
     lights: Vec<LightState>,
     light_count: u32,
-    /// The filter's guide, shared by the lights (see state::guide_needed); None with one filter pass.
-    guide: Option<crate::gpu::image::InternalImage>,
     /// The host aliases the transient images (`ContextCreateInfo::alias_transient_memory`): they are allocated as
     /// `ResourceKind::TransientImage`, and every record moves them out of UNDEFINED.
     alias_transient: bool,
-    /// False until a recorded frame has moved the guide out of its initial layout and cleared it.
-    guide_initialized: bool,
     timestamps: Option<Timestamps>,
     frames_recorded: u64,
     /// `record_classify` calls recorded (numbers the classifier's timestamps).
@@ -277,9 +273,7 @@ impl Context {
             constants_memory: Memory::default(),
             lights: Vec::new(),
             light_count: info.light_count,
-            guide: None,
             alias_transient: info.alias_transient_memory,
-            guide_initialized: false,
             timestamps: None,
             frames_recorded: 0,
             classify_dispatches: 0,
@@ -399,17 +393,6 @@ impl Context {
             let light = LightState::new(&self.vk, index, self.size, self.precision, passes, input, self.alias_transient)?;
             self.lights.push(light);
         }
-        self.allocate_guide(self.settings.filter_passes)
-    }
-
-    /// Allocates the shared guide if `filter_passes` need it and there is none; its first frame initialises it.
-    fn allocate_guide(&mut self, filter_passes: u32) -> Result<()> {
-        if crate::state::guide_needed(filter_passes) && self.guide.is_none() {
-            let spec = crate::state::specs_of_image(crate::state::table::Image::Guide, self.size, self.precision).next().expect("one guide");
-            let (name, persistent) = (format!("dnsr.{}", spec.name()), spec.lifetime == crate::state::Lifetime::Persistent);
-            self.guide = Some(crate::gpu::image::InternalImage::new(&self.vk, spec.format, spec.extent, &name, persistent, self.alias_transient)?);
-            self.guide_initialized = false;
-        }
         Ok(())
     }
 
@@ -417,9 +400,6 @@ impl Context {
         let vk = &self.vk;
         self.lights.iter_mut().for_each(|l| l.destroy(vk));
         self.lights.clear();
-        if let Some(mut g) = self.guide.take() {
-            g.destroy(vk);
-        }
     }
 
     /// Reallocates internal state for a new render size; histories restart. The GPU must have finished every
@@ -460,7 +440,6 @@ impl Context {
     /// intermediate image per light; in that case the GPU must have finished earlier frames.
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
         settings.validate()?;
-        self.allocate_guide(settings.filter_passes)?;
         for (index, light) in self.lights.iter_mut().enumerate() {
             if light.allocate_optional(&self.vk, index as u32, self.size, self.precision, settings.filter_passes, self.alias_transient)? {
                 light.initialized = false;
@@ -480,14 +459,13 @@ impl Context {
 
     /// Bytes of device memory dnsr allocated (internal images and the constants buffer).
     pub fn memory_bytes(&self) -> u64 {
-        let guide = self.guide.as_ref().map_or(0, |g| g.bytes);
         let classifier = self.classifier.as_ref().map_or(0, |c| c.bytes());
-        self.lights.iter().map(LightState::bytes).sum::<u64>() + guide + constants_bytes(self.light_count) + classifier
+        self.lights.iter().map(LightState::bytes).sum::<u64>() + constants_bytes(self.light_count) + classifier
     }
 
     /// The part of `memory_bytes` whose contents must survive from one record of a light to the next (each light's
     /// moments, depth copy and history, driver padding included); the rest (tile state, the temporal result, the
-    /// filter's intermediates and guide, the constants, the classifier's buffers) is written and read within one
+    /// filter's intermediates, the constants, the classifier's buffers) is written and read within one
     /// record.
     pub fn persistent_memory_bytes(&self) -> u64 {
         self.lights.iter().flat_map(LightState::persistent_images).map(|i| i.bytes).sum()
@@ -571,7 +549,7 @@ impl Context {
     }
 
     /// The bindings of light `d.light_index`, whose constants are in slot `slot` of the constants buffer.
-    fn frame_views(&self, d: &ShadowsDispatch, slot: usize, lights: usize, cur: usize) -> FrameViews {
+    fn frame_views(&self, d: &ShadowsDispatch, slot: usize, cur: usize) -> FrameViews {
         let light = &self.lights[d.light_index as usize];
         let host = |h: &crate::dispatch::HostImage| image(h.view, h.layout);
         FrameViews {
@@ -602,12 +580,8 @@ impl Context {
             depth_copy: light.depth_copy.view,
             previous_moments: light.moments[cur ^ 1].view,
             moments: light.moments[cur].view,
-            // Without a guide (one filter pass: the pass never touches it) the bindings take another image whose
-            // texels are unsigned integers, as the guide's.
-            guide: self.guide.as_ref().map_or(light.moments[cur].view, |g| g.view),
             engine: d.engine_images.map(|e| e.map_or(Binding::default(), |e| image(e.view, e.layout))),
             penumbra_tan_half_angle: penumbra_tan_half_angle(d),
-            guide_writes: crate::passes::GuideWrites::of(slot, lights),
         }
     }
 
@@ -645,7 +619,7 @@ impl Context {
     /// stay at their defaults) into `cmd`: each light reads its own hit mask (or visibility) and writes its own
     /// output, with its own history. The lights' dispatches of each pass are recorded together, with one barrier
     /// between passes for all of them, and the filter passes after the first filter up to `LIGHT_SLOTS` (four)
-    /// lights per dispatch, fetching the guide and computing the geometric weights once per tap for all of them
+    /// lights per dispatch, fetching the guide (the first light's depth copy) and computing the geometric weights once per tap for all of them
     /// (a context with shader overrides runs a dispatch per light). The result for every light is the result of a
     /// `record_shadows` call for it alone. Expectations on the host as for `record_shadows`; on error
     /// (`Error::Light` names the light) nothing is recorded and no state changes.
@@ -687,7 +661,7 @@ impl Context {
         // Each light's views; its passes are built from them one at a time (a frame of passes is several KB, and
         // a record must not need eight of them on the host's stack).
         let views: [Option<FrameViews>; MAX_LIGHTS_PER_RECORD] =
-            std::array::from_fn(|i| ds.get(i).map(|d| self.frame_views(d, i, ds.len(), self.lights[d.light_index as usize].parity)));
+            std::array::from_fn(|i| ds.get(i).map(|d| self.frame_views(d, i, self.lights[d.light_index as usize].parity)));
         let views = &views[..ds.len()];
         let (filter_passes, debug_view) = (self.settings.filter_passes, shared.debug_view);
         let light_views = |light: usize| views[light].as_ref().expect("one per dispatch");
@@ -744,10 +718,9 @@ impl Context {
         };
 
         // Internal images this frame uses for the first time: moved out of UNDEFINED and cleared.
-        let new_guide = self.guide.as_ref().filter(|_| !self.guide_initialized);
         let new_images = || {
             let lights = ds.iter().map(|d| &self.lights[d.light_index as usize]).filter(|l| !l.initialized);
-            lights.flat_map(LightState::images).chain(new_guide)
+            lights.flat_map(LightState::images)
         };
         // Layout transitions into GENERAL: the outputs not in it yet here, with the first barrier; the internal
         // images a frame uses for the first time in barriers of their own, in chunks, on those frames alone (an
@@ -781,7 +754,7 @@ impl Context {
         // tests/transient.rs). Before the first-use clears below, which then keep their effect.
         if self.alias_transient {
             let lights = ds.iter().flat_map(|d| self.lights[d.light_index as usize].transient_images());
-            transition_from_undefined(dev, cmd, lights.chain(self.guide.iter()), [src_stages, dst_stages], [src_access, dst_access]);
+            transition_from_undefined(dev, cmd, lights, [src_stages, dst_stages], [src_access, dst_access]);
         }
         if new_images().next().is_some() {
             transition_from_undefined(dev, cmd, new_images(), [src_stages, dst_stages], [src_access, dst_access]);
@@ -799,9 +772,7 @@ impl Context {
 
         // The frame's passes in order, each for every light; a barrier wherever a dispatch touches what an earlier
         // one wrote, or writes what an earlier one read, since the last barrier. The lights' dispatches of one pass
-        // touch only their own images and run together, except the first filter passes: all bind the shared guide
-        // as a storage image (the first light writes it, the others' variant declares it), so they run one after
-        // the other.
+        // touch only their own images and run together.
         let binder = binder_ref(&self.binder);
         let mut hazards = Hazards::default();
         stamp(0);
@@ -853,7 +824,6 @@ impl Context {
             barrier::memory(dev, cmd, vk::PipelineStageFlags::COMPUTE_SHADER, vk::AccessFlags::SHADER_WRITE, dst, dst_access, &back[..count]);
         }
 
-        self.guide_initialized = self.guide.is_some();
         for d in ds {
             let light = &mut self.lights[d.light_index as usize];
             light.parity ^= 1;
@@ -983,22 +953,18 @@ impl Context {
     }
 
     /// The image of the state table's row `image` (half `copy` of a pair) of `light`, or the context's own for
-    /// `light` None, if it has one: a test compares them with the table.
+    /// `light` None (it holds none today: `Scope::Context`), if it has one: a test compares them with the table.
     pub(crate) fn state_image(&self, light: Option<usize>, image: crate::state::table::Image, copy: u32) -> Option<&crate::gpu::image::InternalImage> {
-        match light {
-            Some(l) => self.lights[l].image(image, copy),
-            None => self.guide.as_ref().filter(|_| image == crate::state::table::Image::Guide && copy == 0),
-        }
+        light.and_then(|l| self.lights[l].image(image, copy))
     }
 
-    /// Every transient image (`state::Lifetime::Transient`: each light's and the guide) with its format, and the
+    /// Every transient image (`state::Lifetime::Transient`, each light's) with its format, and the
     /// count of persistent ones: a test fills the transient ones with garbage between records.
     pub(crate) fn transient_images(&self) -> (Vec<(vk::Image, vk::Format)>, usize) {
         let mut images: Vec<(vk::Image, vk::Format)> = Vec::new();
         for l in &self.lights {
             images.extend(l.transient_images().map(|i| (i.image, i.format)));
         }
-        images.extend(self.guide.iter().map(|g| (g.image, g.format)));
         (images, self.lights.iter().map(|l| l.persistent_images().count()).sum())
     }
 

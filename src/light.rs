@@ -87,7 +87,6 @@ impl LightState {
             Image::Moments => return self.moments.get(copy as usize),
             Image::Tmp => self.tmp.as_ref(),
             Image::Reconstructed => self.reconstructed.as_ref(),
-            Image::Guide => None,
         };
         single.filter(|_| copy == 0)
     }

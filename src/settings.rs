@@ -169,8 +169,7 @@ impl Settings {
     }
 }
 
-/// Largest number of filter passes. The last one's step (8 px) may not exceed a block: the first pass writes the
-/// guide of cleared blocks only within one block of a tile it filters.
+/// Largest number of filter passes. The last one's step (8 px) stays within a block (`GROUP`).
 pub const MAX_FILTER_PASSES: u32 = 4;
 
 /// Longest run of identical samples a pixel's moments record (moments.w: +n lit, -n shadowed); a cleared tile

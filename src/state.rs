@@ -30,13 +30,19 @@ pub(crate) fn intermediate_format(precision: Precision) -> vk::Format {
 pub(crate) const SIGNAL_MAX_DEVIATION_CODE: u32 = 65000;
 /// A stored deviation above this code is the sky's (variance -1). Generated into GLSL.
 pub(crate) const SIGNAL_SKY_CODE_ABOVE: u32 = 65500;
-/// The depth copy's logarithmic code (its word's low 16 bits): its first code is the linear depth 2^-DEPTH_CODE_BELOW_ONE_OCTAVES,
-/// and its 65536 codes span DEPTH_CODE_OCTAVES octaves (docs/performance.md, "depth copy").
+/// The depth copy's logarithmic depth code: its word's low this many bits; the normal takes the rest
+/// (`DEPTH_COPY_NORMAL_BITS` a component). Generated into GLSL.
+pub(crate) const DEPTH_CODE_BITS: u32 = 16;
+const _: () = assert!(DEPTH_CODE_BITS + 2 * DEPTH_COPY_NORMAL_BITS == 32);
+/// The depth code's largest value.
+pub(crate) const DEPTH_CODE_MAX: u32 = (1 << DEPTH_CODE_BITS) - 1;
+/// The depth copy's logarithmic code: code 0 is no receiver; code c > 0 is the linear depth
+/// 2^(c * DEPTH_CODE_OCTAVES / DEPTH_CODE_MAX - DEPTH_CODE_BELOW_ONE_OCTAVES) (docs/performance.md, "depth copy").
 pub(crate) const DEPTH_CODE_BELOW_ONE_OCTAVES: u32 = 16;
 /// See `DEPTH_CODE_BELOW_ONE_OCTAVES`.
 pub(crate) const DEPTH_CODE_OCTAVES: u32 = 64;
-/// The depth copy's normal (its word's high 16 bits): octahedral, this many bits a component, about 1 degree, which
-/// is all the test below needs. Generated into GLSL.
+/// The depth copy's normal (its word's high bits): octahedral, this many bits a component, within about 1 degree:
+/// enough to tell a turned surface (below) and for the later filter passes' normal edge stop. Generated into GLSL.
 pub(crate) const DEPTH_COPY_NORMAL_BITS: u32 = 8;
 /// A history texel whose surface's normal turned from this pixel's by more than acos(this / 100) (37 degrees) since
 /// last frame holds another surface: it leaves the history footprint (docs/do-no-harm.md, "normal-agreeing
@@ -82,12 +88,6 @@ const _: () = assert!(COUNT_MAX == 252 && COUNT_CODE_OFFSET == 3808 && COUNT_SUB
 /// most 0.5 (an unbiased estimate of 0/1 samples) by up to `variance_boost_samples`.
 pub(crate) fn signal_scale(variance_boost_samples: f32) -> f32 {
     (0.5 * variance_boost_samples.max(1.0)).sqrt()
-}
-
-/// The filter's guide is the same for every light (the G-buffer's linear depth and normal), so a context holds one,
-/// written by each light's first filter pass where its later passes read it: two or more passes need it.
-pub(crate) fn guide_needed(filter_passes: u32) -> bool {
-    resource_of(Image::Guide).needed.holds(filter_passes, ShadowInput::HitMask)
 }
 
 /// Every persistent image is a light's and always allocated (`persistent_texel_bytes` relies on it).
@@ -166,8 +166,8 @@ pub(crate) fn texel_bytes(scope: Scope, extent: [u32; 2], precision: Precision, 
     image_specs(scope, extent, precision, filter_passes, input).map(spec_bytes).sum()
 }
 
-/// Texel bytes of one light's persistent images (`Lifetime::Persistent`) with shadow input `input`; the guide and
-/// every other image of a context are transient.
+/// Texel bytes of one light's persistent images (`Lifetime::Persistent`) with shadow input `input`; an image of a
+/// context would be transient.
 pub(crate) fn persistent_texel_bytes(extent: [u32; 2], precision: Precision, input: ShadowInput) -> u64 {
     image_specs(Scope::Light, extent, precision, 1, input).filter(|s| s.lifetime == Lifetime::Persistent).map(spec_bytes).sum()
 }

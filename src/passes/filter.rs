@@ -1,7 +1,7 @@
 //! filter: edge-avoiding a-trous passes with steps 1, 2, 4, 8. Shader: shaders/filter.comp (core in
-//! shaders/filter.glsl) in two variants: the first pass (step 1 from a shared-memory apron; writes the guide of
-//! linear depth and normals) and the later passes (DNSR_LATER_PASS; read the guide per tap). Pass 0 writes the
-//! history of the next frame; the final pass writes the host output.
+//! shaders/filter.glsl) in two variants: the first pass (step 1 from a shared-memory apron; writes the depth copy
+//! of linear depth and normals) and the later passes (DNSR_LATER_PASS; read the depth copy per tap as their guide).
+//! Pass 0 writes the history of the next frame; the final pass writes the host output.
 //!
 //! Intermediates (the state table's `FILTER_INPUT` and `FILTER_OUTPUT`, src/state/table.rs): pass 0 reprojection
 //! -> history, pass 1 history -> reprojection, pass 2 reprojection -> tmp, pass 3 tmp -> (output only). The
@@ -11,7 +11,6 @@
 
 use super::bindings::Resource;
 use super::{internal, FrameViews, Grid, Pass, Role, LIGHT_SLOTS, SPEC_PENUMBRA_GUIDED, WIDE_GROUP};
-use super::GuideWrites;
 use super::variants::variant_name;
 use crate::create_info::Precision;
 use crate::dispatch::DebugView;
@@ -38,15 +37,9 @@ pub(crate) const PASS_WRITE_INTERNAL: u32 = 1 << 0;
 /// Filter pass flag: groups whose two tiles are cleared write nothing (what the pass would write there is
 /// already in place).
 pub(crate) const PASS_SKIP_CLEARED: u32 = 1 << 1;
-/// Filter pass flag: write the guide (linear depth and normal) that the later passes read per tap.
-pub(crate) const PASS_WRITE_GUIDE: u32 = 1 << 2;
-/// Filter pass flag (with PASS_WRITE_GUIDE): write the guide in every block, not only where this light's later
-/// passes tap it. The first light of a record of several writes it for all of them, and the others' first passes
-/// write none (the guide is the same for every light: 16 B per pixel each of them no longer writes).
-pub(crate) const PASS_WRITE_GUIDE_EVERYWHERE: u32 = 1 << 3;
 
-/// The variant of the first pass (`later` false: step 1, shared-memory apron, writes the guide) or of a later pass
-/// (reads the guide), intermediate or final (writing `final_output`).
+/// The variant of the first pass (`later` false: step 1, shared-memory apron, writes the depth copy) or of a later
+/// pass (reads the depth copy as its guide), intermediate or final (writing `final_output`).
 pub(crate) fn shader(precision: Precision, final_output: Option<vk::Format>, later: bool) -> Option<&'static str> {
     let stem = match (later, final_output.is_some()) {
         (false, false) => "filter",
@@ -95,10 +88,9 @@ pub(crate) fn pass(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView
     t[Resource::TileBlocker as usize] = internal(v.tile_blocker);
     t[Resource::FilterInput as usize] = internal(input(v, pass));
     t[Resource::FilterOutput as usize] = internal(output(v, pass));
-    // The first pass writes the guide, the later ones read it; both variants declare both bindings (they share the
-    // callbacks file), so both are bound.
-    t[Resource::Guide as usize] = internal(v.guide);
-    t[Resource::GuideOut as usize] = internal(v.guide);
+    // The first pass writes the depth copy, the later ones read it as their guide. Both variants declare the guide
+    // (they share the callbacks file), so the first pass binds it too.
+    t[Resource::Guide as usize] = internal(v.depth_copy);
     if pass == 0 {
         t[Resource::DepthCopy as usize] = internal(v.depth_copy);
     }
@@ -116,7 +108,8 @@ pub(crate) fn pass(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView
 }
 
 /// Later filter pass `pass` (1..) of `lights` (1..=LIGHT_SLOTS) at once, light k in slot k:
-/// slot 0's bindings are light 0's single-light ones (which also give the shared guide, G-buffer and constants),
+/// slot 0's bindings are light 0's single-light ones (which also give the guide, light 0's depth copy: the same
+/// G-buffer's for every light of a record, and the G-buffer and constants),
 /// and slots beyond the lights repeat slot 0's images, which the shader never touches there.
 pub(crate) fn lights_pass(lights: &[&FrameViews], pass: u32, passes: u32, debug_view: DebugView) -> Pass {
     debug_assert!(pass > 0 && (1..=LIGHT_SLOTS).contains(&lights.len()));
@@ -147,14 +140,6 @@ pub(crate) fn lights_pass(lights: &[&FrameViews], pass: u32, passes: u32, debug_
     p
 }
 
-fn guide_flags(writes: GuideWrites) -> u32 {
-    match writes {
-        GuideWrites::Tapped => PASS_WRITE_GUIDE,
-        GuideWrites::Everywhere => PASS_WRITE_GUIDE | PASS_WRITE_GUIDE_EVERYWHERE,
-        GuideWrites::Nowhere => 0,
-    }
-}
-
 fn push_constants(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView) -> FilterPush {
     let last = is_final(pass, passes);
     let write_internal = pass == 0 || !last;
@@ -163,8 +148,7 @@ fn push_constants(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView)
     let internal_in_place = !write_internal || output(v, pass) == v.reprojection;
     let output_in_place = !last || debug_view == DebugView::None;
     let flags = (if write_internal { PASS_WRITE_INTERNAL } else { 0 })
-        | (if internal_in_place && output_in_place { PASS_SKIP_CLEARED } else { 0 })
-        | (if pass == 0 && passes > 1 { guide_flags(v.guide_writes) } else { 0 });
+        | (if internal_in_place && output_in_place { PASS_SKIP_CLEARED } else { 0 });
     let view = if last { debug_view as u32 } else { 0 };
     FilterPush { pass: [1 << pass, flags, pass, view], ..Default::default() }
 }

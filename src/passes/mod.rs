@@ -35,8 +35,7 @@ pub(crate) const MOMENT_RADIUS: u32 = 8;
 // decides two tiles per group, its window is one tile column either side and two tile rows above and below),
 // and the moment radius is one tile width.
 const _: () = assert!(GROUP[0] == TILE[0] && GROUP[1] == 2 * TILE[1] && MOMENT_RADIUS == TILE[0] && TILE[0] * TILE[1] == 32);
-// The filter works on whole blocks, and its widest step reaches no further than the neighbouring block (the first
-// pass writes the guide of the cleared blocks within that reach).
+// The filter works on whole blocks.
 const _: () = assert!(WIDE_GROUP[0] % GROUP[0] == 0 && WIDE_GROUP[1] % GROUP[1] == 0);
 // Classification holds one row of its moment window, the group's width and the radius either side, in 32 bits.
 const _: () = assert!(WIDE_GROUP[0] + 2 * MOMENT_RADIUS <= 32);
@@ -220,39 +219,15 @@ pub(crate) struct FrameViews {
     pub history: vk::ImageView,
     /// Fourth-pass intermediate; null unless four filter passes are configured.
     pub tmp: vk::ImageView,
-    /// Linear depth: classification reads last frame's, the first filter pass writes this frame's.
+    /// Linear depth and normal: classification reads last frame's, the first filter pass writes this frame's, the
+    /// later filter passes read it as their guide.
     pub depth_copy: vk::ImageView,
     pub previous_moments: vk::ImageView,
     pub moments: vk::ImageView,
-    pub guide: vk::ImageView,
     /// The engine's own images (slot i: binding ENGINE_BINDING_BASE + i), for its shader variants.
     pub engine: [Binding; crate::dispatch::MAX_ENGINE_IMAGES],
     /// tan(light angular diameter / 2) of penumbra guidance (0 without): the one per-light filter constant.
     pub penumbra_tan_half_angle: f32,
-    /// Where this light's first filter pass writes the shared guide (when later passes read it).
-    pub guide_writes: GuideWrites,
-}
-
-/// Where a light's first filter pass writes the guide, which every light of a context shares.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum GuideWrites {
-    /// Where this light's later passes tap it: a record of one light.
-    Tapped,
-    /// Everywhere: the first light of a record of several, for all of them.
-    Everywhere,
-    /// Nowhere: the other lights of a record of several (the first wrote it).
-    Nowhere,
-}
-
-impl GuideWrites {
-    /// The guide writes of the light at `position` of a record of `lights` lights.
-    pub(crate) fn of(position: usize, lights: usize) -> GuideWrites {
-        match (lights, position) {
-            (1, _) => GuideWrites::Tapped,
-            (_, 0) => GuideWrites::Everywhere,
-            _ => GuideWrites::Nowhere,
-        }
-    }
 }
 
 impl FrameViews {

@@ -5,7 +5,7 @@ use crate::settings::MAX_FILTER_PASSES;
 
 /// Which pipeline a pass runs, and so which descriptor set of a ring slot it uses. Filter passes 0..=2 can be
 /// intermediate passes; the last filter pass runs a final pipeline, which writes the host's output. Pass 0 runs
-/// the first pass's variant (step 1 from shared memory, writes the guide), the others the later passes' variant.
+/// the first pass's variant (step 1 from shared memory, writes the depth copy), the others the later passes' variant.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Role {
     Prepare,

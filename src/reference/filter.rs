@@ -1,9 +1,8 @@
 //! filter (shaders/filter.glsl): one pass of the edge-avoiding a-trous filter, 3x3 taps at +-step.
 
-use super::storage::guide_normal;
 use super::{inside, SKY_SIGNAL, is_receiver, linear_depth, pixel_uv, uv_to_ndc, Coord, Read, Write, PENUMBRA_SIGMA_SCALE, TILE};
 use crate::passes::{TILE_CLEARED, TILE_LIT};
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 
 /// Linear depth of a receiver, or None for sky and pixels outside the rectangle.
 fn receiver_depth<Io: Read + ?Sized>(io: &Io, p: Coord) -> Option<f64> {
@@ -12,6 +11,17 @@ fn receiver_depth<Io: Read + ?Sized>(io: &Io, p: Coord) -> Option<f64> {
     }
     let d = io.read_depth(p);
     is_receiver(d).then(|| linear_depth(io, uv_to_ndc(pixel_uv(io, p)), d))
+}
+
+/// A receiver's (linear depth, normal) as the pass of step `step` reads them, or None for sky and pixels outside the
+/// rectangle: the first pass from the G-buffer, the later ones from this frame's depth copy as stored (their guide).
+fn guide<Io: Read + ?Sized>(io: &Io, p: Coord, step: i32) -> Option<(f64, DVec3)> {
+    let z = receiver_depth(io, p)?;
+    let n = io.read_normal(p);
+    if step == 1 {
+        return Some((z, n));
+    }
+    Some(super::storage::unpack_depth_copy(super::depth_copy(io, p, io.read_depth(p), n)))
 }
 
 /// With converged pixels on, a converged pixel's signal: variance exactly 0 (shaders/dnsr_common.glsl).
@@ -84,8 +94,8 @@ pub fn hard_penumbra<Io: Read + ?Sized>(io: &Io, tile: Coord, zc: f64) -> bool {
     io.penumbra().is_some_and(|pen| pen.is_hard(io.read_tile_blocker(tile), zc, io.settings().hard_penumbra_pixels as f64))
 }
 
-/// The filtered (mean, variance) of one receiver pixel of a mixed tile.
-pub fn filter_pixel<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64) -> DVec2 {
+/// The filtered (mean, variance) of one receiver pixel of a mixed tile, whose guide (`guide`) is (zc, nc).
+pub fn filter_pixel<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64, nc: DVec3) -> DVec2 {
     let s = io.settings();
     let kernel = [1.0, s.kernel_cross_weight as f64];
     let step = io.filter_step();
@@ -100,9 +110,6 @@ pub fn filter_pixel<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64) -> DVec2 {
     if s.converged_samples > 0.0 && converged_signal(c) && converged_neighbourhood(io, p) {
         return DVec2::new(if c.x >= 0.5 { 1.0 } else { 0.0 }, 0.0);
     }
-    // The passes after the first read normals from the guide (src/reference/storage.rs).
-    let normal = |q: Coord| if step > 1 { guide_normal(io.read_normal(q)) } else { io.read_normal(q) };
-    let nc = normal(p);
     let inv_sigma = 1.0 / blurred_variance(io, p).max(0.0).sqrt().max(s.min_shadow_sigma as f64);
     let inv_depth_sigma = 1.0 / io.depth_similarity_sigma();
     let falloff = penumbra_falloff(io, p, zc);
@@ -113,14 +120,14 @@ pub fn filter_pixel<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64) -> DVec2 {
                 continue;
             }
             let q = [p[0] + i * step, p[1] + j * step];
-            let Some(zq) = receiver_depth(io, q) else { continue };
+            let Some((zq, nq)) = guide(io, q, step) else { continue };
             let n = io.read_filter_input(q);
             let w = kernel[i.unsigned_abs() as usize]
                 * kernel[j.unsigned_abs() as usize]
                 * (-(c.x - n.x).abs() * inv_sigma).exp()
                 * (-(zc - zq).abs() * inv_depth_sigma).exp()
                 * (-((i * i + j * j) * step * step) as f64 * falloff).exp()
-                * nc.dot(normal(q)).max(0.0).powf(s.normal_power as f64);
+                * nc.dot(nq).max(0.0).powf(s.normal_power as f64);
             weight_sum += w;
             mean_sum += w * n.x;
             var_sum += w * w * n.y;
@@ -143,10 +150,10 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
                 io.write_depth_copy(p, super::depth_copy(io, p, depth, normal));
             }
             let meta = io.read_tile_meta([x / TILE[0], y / TILE[1]]);
-            let result = match receiver_depth(io, p) {
+            let result = match guide(io, p, io.filter_step()) {
                 None => SKY_SIGNAL,
                 Some(_) if meta & TILE_CLEARED != 0 => DVec2::new(if meta & TILE_LIT != 0 { 1.0 } else { 0.0 }, 0.0),
-                Some(zc) => filter_pixel(io, p, zc),
+                Some((zc, nc)) => filter_pixel(io, p, zc, nc),
             };
             if io.write_internal() {
                 io.write_filter_output(p, result);

@@ -164,10 +164,13 @@ pub fn linear_depth<G: Get + ?Sized>(io: &G, ndc: DVec2, depth: f64) -> f64 {
     (v.z / v.w).abs()
 }
 
-/// The depth copy of pixel p whose depth and normal are these: its linear depth and (on a receiver) its normal,
-/// what the next frame compares, packed as the GPU stores them (`storage::pack_depth_copy`).
+/// The depth copy of pixel p whose depth and normal are these: on a receiver its linear depth and normal (-1 and
+/// zero elsewhere), what the later filter passes and the next frame compare, packed as the GPU stores them
+/// (`storage::pack_depth_copy`).
 pub fn depth_copy<G: Get + ?Sized>(io: &G, p: Coord, depth: f64, normal: DVec3) -> u32 {
-    let normal = if is_receiver(depth) { normal } else { DVec3::ZERO };
+    if !is_receiver(depth) {
+        return storage::pack_depth_copy(-1.0, DVec3::ZERO);
+    }
     storage::pack_depth_copy(linear_depth(io, uv_to_ndc(pixel_uv(io, p)), depth), normal)
 }
 

@@ -32,7 +32,8 @@ pub enum Image {
     Reprojection,
     /// Filter pass 0's output, which the next frame's classification reads.
     History,
-    /// The depth copy of each frame, read by the next one (ping-pong pair).
+    /// Each frame's linear depth and normal: the later filter passes' guide, and the next frame's previous depth and
+    /// normal.
     DepthCopy,
     /// The temporal moments of each frame, read by the next one (ping-pong pair).
     Moments,
@@ -40,8 +41,6 @@ pub enum Image {
     Tmp,
     /// The visibility prepare reconstructs from a checkerboard input.
     Reconstructed,
-    /// The filter's geometry per pixel (two or more filter passes), one per context.
-    Guide,
 }
 
 /// The formats of an image: the fp32 path's and the fp16 path's (`Precision`).
@@ -88,7 +87,8 @@ pub enum Per {
 pub enum Scope {
     /// Every light has its own (src/light.rs).
     Light,
-    /// The context holds one for all its lights (src/context.rs).
+    /// The context holds one for all its lights (src/context.rs). No row has it today: the filter's guide was one
+    /// until the later passes read each light's depth copy instead.
     Context,
 }
 
@@ -98,8 +98,8 @@ pub enum Lifetime {
     /// Read by a later frame: the moments, the depth copy (both halves of each ping-pong pair: the next frame reads
     /// the half this one wrote) and the history.
     Persistent,
-    /// Written and read within one record (tile state, the temporal result, the filter's intermediates, the guide,
-    /// the reconstructed visibility): its contents between records do not matter.
+    /// Written and read within one record (tile state, the temporal result, the filter's intermediates, the
+    /// reconstructed visibility): its contents between records do not matter.
     Transient,
 }
 
@@ -201,10 +201,10 @@ const fn packed(r: Resource) -> Resource {
 
 use Lifetime::{Persistent, Transient};
 use Per::{Pixel, Tile};
-use Scope::{Context, Light};
+use Scope::Light;
 
 /// Every internal image, in `Image` order (which is the order a light creates them in).
-pub const RESOURCES: [Resource; 11] = [
+pub const RESOURCES: [Resource; 10] = [
     resource(Image::TileMask, "tile_mask", Formats::both(vk::Format::R32_UINT), Tile, Light, 1, Transient, Needed::Always),
     // 4 bytes per tile, so allocated whatever the input.
     resource(Image::TileDark, "tile_dark", Formats::both(vk::Format::R32_UINT), Tile, Light, 1, Transient, Needed::Always),
@@ -214,7 +214,7 @@ pub const RESOURCES: [Resource; 11] = [
     resource(Image::Reprojection, "reprojection", SIGNAL, Pixel, Light, 1, Transient, Needed::Always),
     resource(Image::History, "history", SIGNAL, Pixel, Light, 1, Persistent, Needed::Always),
     // Linear depth (16-bit code) and normal (8+8 bits) in one word. One image: classification reads last frame's
-    // values before the first filter pass writes this frame's.
+    // values before the first filter pass writes this frame's, which the later passes read as their guide.
     resource(Image::DepthCopy, "depth_copy", Formats::both(vk::Format::R32_UINT), Pixel, Light, 1, Persistent, Needed::Always),
     // Per pixel: mean (unorm14), sample count (9-bit float), run of identical samples (9-bit integer) packed into
     // one word; with fractional samples their sum of squared deviations (float32) in a second.
@@ -224,9 +224,6 @@ pub const RESOURCES: [Resource; 11] = [
     },
     resource(Image::Tmp, "filter_tmp", SIGNAL, Pixel, Light, 1, Transient, Needed::Passes(MAX_FILTER_PASSES)),
     resource(Image::Reconstructed, "reconstructed_visibility", Formats::both(vk::Format::R32_SFLOAT), Pixel, Light, 1, Transient, Needed::Checkerboard),
-    // Linear depth as float32 (-1 for sky), octahedral unit normal as 2 x snorm16: one texel per tap for the passes
-    // after the first instead of a depth and a normal fetch, each decoded again. The same for every light.
-    packed(resource(Image::Guide, "guide", Formats::both(vk::Format::R32G32_UINT), Pixel, Context, 1, Transient, Needed::Passes(2))),
 ];
 
 /// The row of `image`.
@@ -321,9 +318,7 @@ pub enum When {
     FinalPass,
     /// Pass 0 (step 1 from shared memory).
     FirstPass,
-    /// Pass 0 when later passes follow (it writes the guide they read).
-    FirstOfSeveral,
-    /// Every pass after the first (taps read the guide).
+    /// Every pass after the first (taps read the depth copy as their guide).
     LaterPasses,
 }
 
@@ -335,7 +330,6 @@ impl When {
             When::WritesIntermediate => pass == 0 || pass + 1 < passes,
             When::FinalPass => pass + 1 == passes,
             When::FirstPass => pass == 0,
-            When::FirstOfSeveral => pass == 0 && passes > 1,
             When::LaterPasses => pass > 0,
         }
     }
@@ -443,8 +437,7 @@ pub const ACCESSES: &[StateAccess] = {
         a(Filter, I(TileMeta), Read, Tiles, When::Always, Config::Any),
         a(Filter, I(TileBlocker), Read, Tiles, When::Always, Config::PenumbraGuidance),
         a(Filter, I(DepthCopy), Write, All, When::FirstPass, Config::Any),
-        a(Filter, I(Guide), Write, ActiveGroups, When::FirstOfSeveral, Config::Any),
-        a(Filter, I(Guide), Read, ActiveGroups, When::LaterPasses, Config::Any),
+        a(Filter, I(DepthCopy), Read, ActiveGroups, When::LaterPasses, Config::Any),
         a(Filter, FilterInput, Read, ActiveGroups, When::Always, Config::Any),
         a(Filter, FilterOutput, Write, All, When::WritesIntermediate, Config::Any),
         // The moments debug views.

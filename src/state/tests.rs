@@ -6,7 +6,7 @@ use super::{formats, image_specs, persistent_texel_bytes, texel_bytes};
 use crate::create_info::{Precision, ShadowInput};
 use crate::dispatch::DebugView;
 use crate::passes::bindings::{image, Binding, Resource as Bound};
-use crate::passes::{frame, FrameViews, GuideWrites};
+use crate::passes::{frame, FrameViews};
 use crate::settings::MAX_FILTER_PASSES;
 use ash::vk;
 use ash::vk::Handle;
@@ -39,14 +39,13 @@ fn memory_follows_the_table() {
                     // Per light: tile mask, dark mask, metadata and blocker (4 B per tile each); reprojection and
                     // history (4 B), the depth copy (4 B), two moments (4 B, 8 B with fractional samples); the
                     // fourth pass's intermediate (4 B); a checkerboard input's reconstructed visibility (4 B). Per
-                    // context: the guide (8 B, two or more passes).
+                    // context: nothing (the later filter passes' guide is each light's depth copy).
                     let tmp = if passes == 4 { 4 } else { 0 };
                     let reconstructed = if input == ShadowInput::Checkerboard { 4 } else { 0 };
                     let moments = if input == ShadowInput::HitMask { 4 } else { 8 };
                     let light = 4 * 4 * tiles + px * (4 + 4 + 4 + 2 * moments + tmp + reconstructed);
                     assert_eq!(texel_bytes(Scope::Light, [w, h], precision, passes, input), light, "{precision:?} {passes} {input:?}");
-                    let guide = if passes > 1 { 8 * px } else { 0 };
-                    assert_eq!(texel_bytes(Scope::Context, [w, h], precision, passes, input), guide, "{precision:?} {passes} {input:?}");
+                    assert_eq!(texel_bytes(Scope::Context, [w, h], precision, passes, input), 0, "{precision:?} {passes} {input:?}");
                 }
             }
             assert_eq!(persistent_texel_bytes([w, h], precision, ShadowInput::HitMask), 16 * px);
@@ -123,10 +122,8 @@ fn views() -> FrameViews {
         depth_copy: view(Image::DepthCopy, 0),
         previous_moments: view(Image::Moments, 1),
         moments: view(Image::Moments, 0),
-        guide: view(Image::Guide, 0),
         engine: [Binding::default(); crate::dispatch::MAX_ENGINE_IMAGES],
         penumbra_tan_half_angle: 0.0,
-        guide_writes: GuideWrites::Tapped,
     }
 }
 

@@ -91,23 +91,23 @@ fn reflected_interfaces_match_what_the_host_binds() {
             0,
             (1 << GUIDED) | (1 << STABLE),
         ),
-        ("filter", &[Constants, Depth, DepthCopy, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide, GuideOut], 48, 1 << GUIDED),
+        ("filter", &[Constants, Depth, DepthCopy, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide], 48, 1 << GUIDED),
         (
             "filter_later",
-            &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide, GuideOut],
+            &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide],
             48,
             1 << GUIDED,
         ),
         (
             "filter_final_r16f_fp16",
-            &[Constants, Depth, DepthCopy, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Output, DebugMoments, Guide, GuideOut],
+            &[Constants, Depth, DepthCopy, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Output, DebugMoments, Guide],
             48,
             1 << GUIDED,
         ),
         (
             "filter_later_lights_final_r16f",
             &[
-                Constants, Depth, Normals, Guide, GuideOut, TileMeta, TileBlocker, FilterInput, FilterOutput, Output, DebugMoments,
+                Constants, Depth, Normals, Guide, TileMeta, TileBlocker, FilterInput, FilterOutput, Output, DebugMoments,
                 TileMeta1, TileBlocker1, FilterInput1, FilterOutput1, Output1, DebugMoments1, TileMeta2, TileBlocker2, FilterInput2,
                 FilterOutput2, Output2, DebugMoments2, TileMeta3, TileBlocker3, FilterInput3, FilterOutput3, Output3, DebugMoments3,
             ],

@@ -224,7 +224,6 @@ fn when_doc(w: When) -> &'static str {
         WritesIntermediate => "pass 0 and every pass but the last",
         FinalPass => "last pass",
         FirstPass => "pass 0",
-        FirstOfSeveral => "pass 0 of two or more",
         LaterPasses => "every pass after the first",
     }
 }

@@ -21,20 +21,20 @@ uint dnsr_unorm16(float v) { return uint(floor(clamp(v, 0.0, 1.0) * 65535.0 + 0.
 // The code back; the ends are exact (0 and 1 are compared for equality: dnsr_pure).
 float dnsr_from_unorm16(uint u) { return u == 65535u ? 1.0 : float(u) * (1.0 / 65535.0); }
 
-// A linear depth (view units) in DNSR_DEPTH_CODE_BITS (16) bits, logarithmic: 1024 codes per octave from 2^-16 to
-// 2^48, so neighbouring codes lie 0.068% apart, a fifteenth of the default disocclusion threshold (1%), at any scene
-// scale (millimetres to light years). Code 0 is no receiver (a negative depth: the sky's -1), and reads back as -1.
-// Receivers' depths below the range take the first code above it; above it, infinite and NaN ones the last.
+// A linear depth (view units) in DNSR_DEPTH_CODE_BITS (16) bits: a float without sign bit, 6 exponent bits and
+// DNSR_DEPTH_CODE_MANTISSA_BITS (10) mantissa bits, from 2^-16 to 2^48 (float32's bits shifted and offset, rounded to
+// nearest). Neighbouring codes lie 0.049-0.098% apart, at most a tenth of the default disocclusion threshold (1%),
+// at any scene scale (millimetres to light years), and the code reads back with two integer operations. Code 0 is
+// no receiver (a negative depth: the sky's -1), and reads back as -1. Receivers' depths below the range take
+// code 1; above it, infinite and NaN ones the last.
 const uint DNSR_DEPTH_CODE_MAX = (1u << DNSR_DEPTH_CODE_BITS) - 1u;
 uint dnsr_pack_linear_depth(float z) {
     if (z < 0.0) return 0u;
-    float v = (log2(z) + float(DNSR_DEPTH_CODE_BELOW_ONE_OCTAVES)) * (float(DNSR_DEPTH_CODE_MAX) / float(DNSR_DEPTH_CODE_OCTAVES));
-    v = v >= 1.0 ? min(v, float(DNSR_DEPTH_CODE_MAX)) : (isnan(v) ? float(DNSR_DEPTH_CODE_MAX) : 1.0);
-    return uint(floor(v + 0.5));
+    uint b = (floatBitsToUint(abs(z)) + (1u << (DNSR_DEPTH_CODE_SHIFT - 1))) >> DNSR_DEPTH_CODE_SHIFT;
+    return b <= DNSR_DEPTH_CODE_OFFSET ? 1u : min(b - DNSR_DEPTH_CODE_OFFSET, DNSR_DEPTH_CODE_MAX);
 }
 float dnsr_unpack_linear_depth(uint code) {
-    if (code == 0u) return -1.0;
-    return exp2(float(code) * (float(DNSR_DEPTH_CODE_OCTAVES) / float(DNSR_DEPTH_CODE_MAX)) - float(DNSR_DEPTH_CODE_BELOW_ONE_OCTAVES));
+    return code == 0u ? -1.0 : uintBitsToFloat((code + DNSR_DEPTH_CODE_OFFSET) << DNSR_DEPTH_CODE_SHIFT);
 }
 
 // Moments (mean, sample count, run of identical samples) in one word, the image's first (R32_UINT with a hit

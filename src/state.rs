@@ -36,11 +36,20 @@ pub(crate) const DEPTH_CODE_BITS: u32 = 16;
 const _: () = assert!(DEPTH_CODE_BITS + 2 * DEPTH_COPY_NORMAL_BITS == 32);
 /// The depth code's largest value.
 pub(crate) const DEPTH_CODE_MAX: u32 = (1 << DEPTH_CODE_BITS) - 1;
-/// The depth copy's logarithmic code: code 0 is no receiver; code c > 0 is the linear depth
-/// 2^(c * DEPTH_CODE_OCTAVES / DEPTH_CODE_MAX - DEPTH_CODE_BELOW_ONE_OCTAVES) (docs/performance.md, "depth copy").
+/// The depth copy's depth code: code 0 is no receiver; code c > 0 is a float without sign bit, 6 exponent and
+/// `DEPTH_CODE_MANTISSA_BITS` mantissa bits, whose smallest exponent is 2^-DEPTH_CODE_BELOW_ONE_OCTAVES: the linear
+/// depth of float32 bits (c + DEPTH_CODE_OFFSET) << DEPTH_CODE_SHIFT. Its 64 octaves (2^-16 to 2^48) hold 1024
+/// codes each (docs/performance.md, "depth copy"). Generated into GLSL.
+pub(crate) const DEPTH_CODE_MANTISSA_BITS: u32 = 10;
+/// See `DEPTH_CODE_MANTISSA_BITS`.
 pub(crate) const DEPTH_CODE_BELOW_ONE_OCTAVES: u32 = 16;
-/// See `DEPTH_CODE_BELOW_ONE_OCTAVES`.
-pub(crate) const DEPTH_CODE_OCTAVES: u32 = 64;
+/// Octaves the depth code spans: 2 to the power of its exponent bits.
+pub(crate) const DEPTH_CODE_OCTAVES: u32 = 1 << (DEPTH_CODE_BITS - DEPTH_CODE_MANTISSA_BITS);
+/// The float32 bits a depth code drops. Generated into GLSL.
+pub(crate) const DEPTH_CODE_SHIFT: u32 = 23 - DEPTH_CODE_MANTISSA_BITS;
+/// Float32 bits >> DEPTH_CODE_SHIFT of the depth code 0's value, 2^-DEPTH_CODE_BELOW_ONE_OCTAVES. Generated into GLSL.
+pub(crate) const DEPTH_CODE_OFFSET: u32 = (127 - DEPTH_CODE_BELOW_ONE_OCTAVES) << DEPTH_CODE_MANTISSA_BITS;
+const _: () = assert!(DEPTH_CODE_OCTAVES == 64 && DEPTH_CODE_OFFSET == 113_664);
 /// The depth copy's normal (its word's high bits): octahedral, this many bits a component, within about 1 degree:
 /// enough to tell a turned surface (below) and for the later filter passes' normal edge stop. Generated into GLSL.
 pub(crate) const DEPTH_COPY_NORMAL_BITS: u32 = 8;

@@ -61,26 +61,22 @@ fn from_unorm16(u: u32) -> f64 {
     u as f64 / 65535.0
 }
 
-/// A linear depth's 16-bit logarithmic code (`dnsr_pack_linear_depth`, the depth copy's low bits): 1024 codes per
-/// octave from 2^-16 to 2^48. Code 0 is no receiver (a negative depth: the sky's -1); a receiver below the range
-/// takes code 1, above it, infinite and NaN the last.
+/// A linear depth's 16-bit code (`dnsr_pack_linear_depth`, the depth copy's low bits): a float of 6 exponent and 10
+/// mantissa bits from 2^-16 to 2^48, rounded to nearest from the depth as float32. Code 0 is no receiver (a negative
+/// depth: the sky's -1); a receiver below the range takes code 1, above it, infinite and NaN the last.
 pub fn pack_linear_depth(z: f64) -> u32 {
-    use crate::state::{DEPTH_CODE_BELOW_ONE_OCTAVES as BELOW, DEPTH_CODE_MAX as MAX, DEPTH_CODE_OCTAVES as OCTAVES};
+    use crate::state::{DEPTH_CODE_MAX, DEPTH_CODE_OFFSET, DEPTH_CODE_SHIFT};
     if z < 0.0 {
         return 0;
     }
-    let v = (z.log2() + BELOW as f64) * (MAX as f64 / OCTAVES as f64);
-    let v = if v >= 1.0 { v.min(MAX as f64) } else if v.is_nan() { MAX as f64 } else { 1.0 };
-    (v + 0.5).floor() as u32
+    let b = ((z as f32).abs().to_bits() + (1 << (DEPTH_CODE_SHIFT - 1))) >> DEPTH_CODE_SHIFT;
+    if b <= DEPTH_CODE_OFFSET { 1 } else { (b - DEPTH_CODE_OFFSET).min(DEPTH_CODE_MAX) }
 }
 
 /// A depth code's linear depth (`dnsr_unpack_linear_depth`): -1 for code 0, no receiver.
 pub fn unpack_linear_depth(code: u32) -> f64 {
-    use crate::state::{DEPTH_CODE_BELOW_ONE_OCTAVES as BELOW, DEPTH_CODE_MAX as MAX, DEPTH_CODE_OCTAVES as OCTAVES};
-    if code == 0 {
-        return -1.0;
-    }
-    (code as f64 * (OCTAVES as f64 / MAX as f64) - BELOW as f64).exp2()
+    use crate::state::{DEPTH_CODE_OFFSET, DEPTH_CODE_SHIFT};
+    if code == 0 { -1.0 } else { f32::from_bits((code + DEPTH_CODE_OFFSET) << DEPTH_CODE_SHIFT) as f64 }
 }
 
 /// A linear depth as the next frame reads it back from the depth copy.

@@ -281,10 +281,10 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     }
 
     if (!dnsr_inside(p)) return;
-    // Next frame's classification compares its reprojected depth and its normal with these (the depth copy):
-    // kept as a linear depth, which a logarithmic 16-bit code holds finely enough at any scale (the device depth
-    // needs 32 bits), and a normal in 8+8 bits. Written here, not in classification, which reads last frame's from
-    // the same image.
+    // The later passes weigh their taps by these, and next frame's classification compares its reprojected depth
+    // and its normal with them (the depth copy): kept as a linear depth, which a 16-bit float code holds finely
+    // enough at any scale (the device depth needs 32 bits), and a normal in 8+8 bits. Written here, not in
+    // classification, which reads last frame's from the same image.
     float depth = dnsr_read_depth(p);
     float linear_depth = dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), depth);
     bool receiver = dnsr_is_receiver(depth);

@@ -19,6 +19,8 @@ pub(crate) struct ReflectedBinding {
     pub binding: u32,
     pub resource: Resource,
     pub descriptor_type: vk::DescriptorType,
+    /// The image format a storage image declares (SPIR-V's ImageFormat; 0 otherwise).
+    pub format: u32,
 }
 
 /// The binding interface of a SPIR-V module: its descriptor bindings (set 0) and push-constant size.
@@ -103,6 +105,17 @@ pub(crate) fn check_override(name: &str, spirv: &[u8], offers: DeviceOffers) -> 
         if b.binding != expected.binding {
             return Err(fail(format!("{:?} is binding {}; dnsr binds it at {}", b.resource, b.binding, expected.binding)));
         }
+        // dnsr creates its images in the formats its own variants declare (the state table's): a storage image
+        // declared otherwise would be written in another format's bits.
+        if b.format != expected.format {
+            return Err(fail(format!(
+                "declares {:?} (binding {}) as {}; dnsr's variant declares {} (copy the internal callbacks unchanged)",
+                b.resource,
+                b.binding,
+                image_format_name(b.format),
+                image_format_name(expected.format)
+            )));
+        }
     }
     if let Some(b) = theirs.bindings.iter().find(|b| is_classify_variant(name) && b.resource.engine_slot().is_some()) {
         return Err(fail(format!("declares an engine image at binding {}; the classifier's dispatch has no engine images", b.binding)));
@@ -130,6 +143,25 @@ pub(crate) fn check_override(name: &str, spirv: &[u8], offers: DeviceOffers) -> 
         )));
     }
     Ok(())
+}
+
+/// A storage image format's GLSL layout qualifier, for messages (SPIR-V's ImageFormat enumerants).
+fn image_format_name(format: u32) -> String {
+    const NAMES: [(u32, &str); 12] = [
+        (0, "no format (Unknown)"),
+        (1, "rgba32f"),
+        (2, "rgba16f"),
+        (3, "r32f"),
+        (4, "rgba8"),
+        (7, "rg16f"),
+        (9, "r16f"),
+        (12, "rg16"),
+        (15, "r8"),
+        (33, "r32ui"),
+        (35, "rg32ui"),
+        (38, "r16ui"),
+    ];
+    NAMES.iter().find(|(f, _)| *f == format).map_or_else(|| format!("SPIR-V image format {format}"), |(_, n)| n.to_string())
 }
 
 /// Reflects a module and checks every binding against the interface dnsr knows.
@@ -175,7 +207,8 @@ pub(crate) fn reflect(spirv: &[u8]) -> Result<Interface> {
         if bindings.iter().any(|x: &ReflectedBinding| x.resource == resource || x.binding == b.binding) {
             return Err(Error::ShaderInterface(format!("binding '{name}' or number {} declared twice", b.binding)));
         }
-        bindings.push(ReflectedBinding { binding: b.binding, resource, descriptor_type: expected });
+        let format = if expected == vk::DescriptorType::STORAGE_IMAGE { b.image_format } else { 0 };
+        bindings.push(ReflectedBinding { binding: b.binding, resource, descriptor_type: expected, format });
     }
     if bindings.len() > MAX_BINDINGS {
         return Err(Error::ShaderInterface(format!("{} bindings; at most {}", bindings.len(), MAX_BINDINGS)));

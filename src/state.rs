@@ -30,7 +30,7 @@ pub(crate) fn intermediate_format(precision: Precision) -> vk::Format {
 pub(crate) const SIGNAL_MAX_DEVIATION_CODE: u32 = 65000;
 /// A stored deviation above this code is the sky's (variance -1). Generated into GLSL.
 pub(crate) const SIGNAL_SKY_CODE_ABOVE: u32 = 65500;
-/// The depth copy's logarithmic depth code: its word's low this many bits; the normal takes the rest
+/// The depth copy's depth code: its word's low this many bits; the normal takes the rest
 /// (`DEPTH_COPY_NORMAL_BITS` a component). Generated into GLSL.
 pub(crate) const DEPTH_CODE_BITS: u32 = 16;
 const _: () = assert!(DEPTH_CODE_BITS + 2 * DEPTH_COPY_NORMAL_BITS == 32);

@@ -24,6 +24,8 @@ pub(crate) struct RawBinding {
     pub binding: u32,
     pub count: u32,
     pub descriptor_type: Option<vk::DescriptorType>,
+    /// An image's declared format, as SPIR-V's ImageFormat enumerant (0, Unknown, for sampled images).
+    pub image_format: u32,
     /// Size of a uniform block in bytes (0 otherwise).
     pub block_bytes: u32,
     /// A uniform block's members, depth first (empty otherwise).
@@ -158,6 +160,7 @@ fn read(module: &ffi::SpvReflectShaderModule) -> Result<(Vec<RawBinding>, u32, V
             binding: b.binding,
             count: b.count,
             descriptor_type,
+            image_format: b.image.image_format as u32,
             block_bytes,
             block_layout,
         });

@@ -144,6 +144,8 @@ fn mismatched_overrides_are_refused_before_anything_is_created() {
         let length = instructions.iter().copied().find(|&at| op(at) == 43 && words[at + 2] == words[array + 3]).expect("its length");
         with_word(length + 3, 1 << 30)
     };
+    // The depth copy written as r16ui (what a callbacks file copied before it became R32_UINT declares).
+    let narrow_depth_copy = edited(&|s| s.replace("binding = 8, r32ui) uniform writeonly uimage2D dnsr_depth_copy", "binding = 8, r16ui) uniform writeonly uimage2D dnsr_depth_copy"));
     let float64 = edited(&|s| {
         s.replace("float dnsr_read_depth(ivec2 p) { return texelFetch(dnsr_depth, p + dnsr_get_offset(), 0).r; }",
             "float dnsr_read_depth(ivec2 p) { return float(double(texelFetch(dnsr_depth, p + dnsr_get_offset(), 0).r) * 1.0lf); }")
@@ -160,6 +162,7 @@ fn mismatched_overrides_are_refused_before_anything_is_created() {
         ("workgroup size", vec![local_size], "workgroup size"),
         ("normals as a combined sampler", vec![sampler_normals], "dnsr_normals"),
         ("normals at another binding", vec![moved_normals], "Normals is binding 30; dnsr binds it at"),
+        ("the depth copy as r16ui", vec![narrow_depth_copy], "declares DepthCopy (binding 8) as r16ui; dnsr's variant declares r32ui"),
         ("an engine binding", vec![extra], "unknown binding 'engine_depth'"),
         ("header's reserved word", vec![with_word(4, 1)], "header word 4"),
         ("id bound 2^30", vec![with_word(3, 1 << 30)], "id bound"),

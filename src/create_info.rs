@@ -110,7 +110,7 @@ pub struct ContextCreateInfo {
     /// Initial settings.
     pub settings: Settings,
     /// The host aliases dnsr's transient memory: the images whose contents do not outlive one record (tile state,
-    /// the temporal result, the filter's intermediates and guide, the reconstructed visibility; the difference
+    /// the temporal result, the filter's intermediates, the reconstructed visibility; the difference
     /// between `Context::memory_bytes` and `Context::persistent_memory_bytes`) are allocated through
     /// `hooks.gpu_memory` (required then) as `ResourceKind::TransientImage`, and every record moves them out of
     /// `VK_IMAGE_LAYOUT_UNDEFINED`, so their contents may be lost between records. The host may then bind that

@@ -155,7 +155,7 @@ pub const DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS: DnsrContextCreateFlags = 1 << 2
 /// buffers (16 B per 8x4 tile, about 0.5 B/px, plus 1 KiB).
 pub const DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER: DnsrContextCreateFlags = 1 << 3;
 /// The host aliases dnsr's transient memory (needs pGpuMemoryCallbacks). The images whose contents do not outlive
-/// one record (tile state, the temporal result, the filter's intermediates and guide, the reconstructed visibility:
+/// one record (tile state, the temporal result, the filter's intermediates, the reconstructed visibility:
 /// dnsr_context_get_memory_usage less dnsr_context_get_persistent_memory_usage, the constants buffer aside) are
 /// allocated with DNSR_RESOURCE_KIND_TRANSIENT_IMAGE, and every record moves them out of VK_IMAGE_LAYOUT_UNDEFINED.
 /// The host may bind that memory to its own resources too, provided its use of them has finished before a record

@@ -1,10 +1,10 @@
 // filter: one pass of the edge-avoiding a-trous filter (3x3 taps at +-step), in two variants. The first pass
-// (step 1) reads its group and a one-pixel apron into shared memory once and writes the depth copy (linear depth and
-// normal per pixel in one word), which is the later passes' guide; the later passes (DNSR_LATER_PASS) fetch every
-// tap, guide and signal, straight from the images through the texture cache. Why two variants, on an H100 at 4K (BENCHMARKS.md change log): one shader
-// holding both paths slowed the later passes from 0.383 / 0.371 to 0.454 / 0.477 ms although they never touch
-// the apron, and an apron for their variance blur alone slowed them too (their taps cannot wait for a barrier).
-// An apron sized for the widest step was 3-5x slower still.
+// (step 1) reads its group and a one-pixel apron into shared memory once and writes the depth copy (linear depth
+// and normal per pixel in one word), which is the later passes' guide; the later passes (DNSR_LATER_PASS) fetch
+// every tap, guide and signal, straight from the images through the texture cache. Why two variants, on an H100 at
+// 4K (BENCHMARKS.md change log): one shader holding both paths slowed the later passes from 0.383 / 0.371 to
+// 0.454 / 0.477 ms although they never touch the apron, and an apron for their variance blur alone slowed them too
+// (their taps cannot wait for a barrier). An apron sized for the widest step was 3-5x slower still.
 //
 // The later passes' light-slot variant (DNSR_LIGHT_SLOTS_VARIANT, which a record of several lights runs) filters up
 // to DNSR_LIGHT_SLOTS lights per dispatch: per tap the guide fetch and the depth, normal and kernel factors once,
@@ -101,8 +101,8 @@ vec2 dnsr_cleared_value(bool receiver, uint meta) {
 #ifndef DNSR_LATER_PASS
 // The first pass (step 1) reads its group's pixels and a one-pixel apron into shared memory once: every pixel's
 // 3x3 neighbourhood, its taps and its variance-blur footprint, instead of nine fetches per pixel. It writes the
-// depth copy, the later passes' guide. One light only (l is 0): a first pass for several lights (their signals in shared
-// memory side by side) was slower on an H100 than one dispatch per light (BENCHMARKS.md).
+// depth copy, the later passes' guide. One light only (l is 0): a first pass for several lights (their signals in
+// shared memory side by side) was slower on an H100 than one dispatch per light (BENCHMARKS.md).
 const ivec2 DNSR_APRON_SIZE = DNSR_WIDE_GROUP_SIZE + 2;
 const int DNSR_APRON_COUNT = DNSR_APRON_SIZE.x * DNSR_APRON_SIZE.y;
 shared vec2 dnsr_apron_signal[DNSR_APRON_COUNT];
@@ -142,8 +142,8 @@ shared uint dnsr_meta[DNSR_META_TILES.y][DNSR_META_TILES.x];
 bool dnsr_block_cleared(ivec2 m) { return (dnsr_meta[m.y][m.x] & dnsr_meta[m.y + 1][m.x] & DNSR_TILE_CLEARED) != 0u; }
 #else
 // The later passes (step 2 and up) fetch every tap from the images through the texture cache: a tap is the depth
-// copy the first pass wrote (its guide) and the signal. (An apron for their variance blur slowed them: their taps cannot wait for
-// a barrier.)
+// copy the first pass wrote (its guide) and the signal. (An apron for their variance blur slowed them: their taps
+// cannot wait for a barrier.)
 vec2 dnsr_center_signal(int l, ivec2 p, ivec2 lid) { return dnsr_pass_filter_input(l, p); }
 // Variances of the 3x3 neighbourhood, row by row (the sky's -1 outside the rectangle): four gathers of 2x2
 // texels instead of eight fetches.

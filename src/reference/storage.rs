@@ -265,7 +265,10 @@ mod tests {
         assert!(worst < 0.02, "octahedral 8-bit normal off by {worst} rad");
         assert_eq!(unpack_depth_copy(pack_depth_copy(2.0, DVec3::ZERO)).1, DVec3::ZERO);
         // No receiver is code 0, and reads back as -1; receivers never take it, however near.
-        assert_eq!((pack_depth_copy(-1.0, DVec3::ZERO), unpack_depth_copy(0).0), (pack_octahedral(DVec3::ZERO, 8) << 16, -1.0));
-        assert_eq!([pack_linear_depth(0.0), pack_linear_depth(1e-30), pack_linear_depth(f64::NAN), pack_linear_depth(f64::INFINITY)], [1, 1, 65535, 65535]);
+        use crate::state::{DEPTH_CODE_BITS, DEPTH_CODE_MAX, DEPTH_COPY_NORMAL_BITS};
+        let no_receiver = pack_octahedral(DVec3::ZERO, DEPTH_COPY_NORMAL_BITS) << DEPTH_CODE_BITS;
+        assert_eq!((pack_depth_copy(-1.0, DVec3::ZERO), unpack_depth_copy(0).0), (no_receiver, -1.0));
+        let ends = [0.0, 1e-30, f64::NAN, f64::INFINITY].map(pack_linear_depth);
+        assert_eq!(ends, [1, 1, DEPTH_CODE_MAX, DEPTH_CODE_MAX]);
     }
 }

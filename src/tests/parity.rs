@@ -358,10 +358,10 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     }
     assert_stored_moments_match(&moments, &cpu.moments, &format!("{precision:?} {w}x{h} seed {seed}"));
     // The depth copy in its codes' steps: one at most for the depth and for each of the normal's two components
-    // (float32 log2 and division on the GPU against f64 here).
+    // (the GPU's float32 linear depth and octahedral division against f64 here).
     for (i, (&gpu, &cpu)) in depth_copy.iter().zip(&cpu.depth_copy).enumerate() {
-        let bits = crate::state::DEPTH_COPY_NORMAL_BITS;
-        let fields = [(0, 16), (16, bits), (16 + bits, bits)];
+        let (depth, bits) = (crate::state::DEPTH_CODE_BITS, crate::state::DEPTH_COPY_NORMAL_BITS);
+        let fields = [(0, depth), (depth, bits), (depth + bits, bits)];
         let steps = fields.map(|(at, width)| {
             let field = |v: u32| ((v >> at) & ((1 << width) - 1)) as i64;
             // The normal's codes are signed: compare them as such (-1 and 0 are one step apart).

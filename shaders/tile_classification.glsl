@@ -254,6 +254,23 @@ bool dnsr_converged(float run, float x, float converged_after) {
     return converged_after > 0.0 && abs(run) >= converged_after && abs(x - (run > 0.0 ? 1.0 : 0.0)) < 0.5;
 }
 
+// Last frame resolved the 4x4 texels around history position t (the bilinear footprint and one texel beyond it
+// each way): every receiver texel there held one value in all its samples, converged_after or more of the other
+// value than x (any number of x's own). No penumbra lies there, so a change of sample that its neighbours share is
+// an edge or a thin feature that the moving camera put on this pixel (or that last frame's pixel centres missed),
+// not noise.
+bool dnsr_resolved_area(vec2 t, float x, float converged_after) {
+    ivec2 base = ivec2(floor(t)) - 1;
+    bool resolved = true;
+    for (int k = 0; k < 16; ++k) {
+        ivec2 q = clamp(base + ivec2(k & 3, k >> 2), ivec2(0), dnsr_get_extent() - 1);
+        vec4 mq = dnsr_read_previous_moments(q);
+        bool settled = dnsr_pure(mq) && (dnsr_sign_agreeing(mq.w, x) || abs(mq.w) >= converged_after);
+        resolved = resolved && (!(mq.z > 0.0) || settled);
+    }
+    return resolved;
+}
+
 // Whether two or more of the 8 pixels around p inside the rectangle hold exactly sample x this frame (sky pixels
 // count by their mask bit: the test reads this frame's samples alone, from the window in shared memory).
 bool dnsr_two_neighbours_share(ivec2 p, ivec2 lid, float x) {
@@ -494,6 +511,8 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             vec2 t = history_uv * vec2(dnsr_get_extent()) - 0.5;
             vec2 f = t - floor(t);
             float all_weight = 0.0;
+            // Texels weighed at 1/16 or more: one where the camera stood still.
+            int texels = 0;
             vec2 receivers = vec2(0.0);
             // The texel of the longest pure run that agrees with x (every sample of its moments identical): its
             // moments and history. (Keeping only its position and reading them again after the loop ran faster on
@@ -514,6 +533,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
                 if (weight < 1.0 / 16.0) continue;
                 vec4 mq = dnsr_read_previous_moments(q);
                 all_weight += weight;
+                ++texels;
                 // A turned texel holds another surface: it leaves the blend as the sky does.
                 if (!(mq.z > 0.0) || dnsr_normal_turned(dnsr_read_previous_normal(q), normal)) continue;
                 if (weight > kept_weight) {
@@ -558,15 +578,23 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             // sample's value in all their samples or their last converged_after, and two neighbours share this
             // sample (a stray sample of a penumbra seldom has them). This sample is the answer: the history and
             // the filter would only blend it with the other side (the scene family's sky scenes under a panning
-            // camera: seed 1092 RMSE 0.148 -> 0.059). Not away from the sky: there the same test also takes the
-            // umbra side of a penumbra for a hard edge (the family's penumbrae under a moving camera lost 5-30%).
+            // camera: seed 1092 RMSE 0.148 -> 0.059). Away from the sky the footprint's test alone also takes the
+            // umbra side of a penumbra for a hard edge (the family's penumbrae under a moving camera lost 5-30%):
+            // there the whole 4x4 area around it must be resolved, and the camera must have moved (a footprint of
+            // more than one texel). Then a hard edge or a 1-px shadow line under a sizeless light that the camera
+            // moved onto this pixel is this sample too (seed 1051, a wire's shadow under an orbiting camera: RMSE
+            // 0.029 -> 0.022; 17 scenes better, one worse by 2%). Under a still camera the same area test took
+            // penumbra tails, where the flip rule leaves pure runs, for edges (a still 3-degree light lost 3%).
 #ifdef DNSR_VISIBILITY_INPUT
             bool resolvable = dnsr_is_exact(x) && !untraced;
 #else
             bool resolvable = true;
 #endif
-            resolved = converged_after > 0.0 && resolvable && any_other && all_resolved && receivers.y < all_weight
+            resolved = converged_after > 0.0 && resolvable && any_other && all_resolved
                     && dnsr_two_neighbours_share(p, lid, x);
+            if (resolved && !(receivers.y < all_weight)) {
+                resolved = texels > 1 && dnsr_resolved_area(t, x, converged_after);
+            }
             // Continue the agreeing texel whose samples all agree, or start from this sample.
             if (resolved) {
                 m = pure;

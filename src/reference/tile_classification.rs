@@ -203,6 +203,18 @@ fn two_neighbours_share<Io: Read + ?Sized>(io: &Io, p: Coord, x: f64) -> bool {
     (-1..=1).flat_map(|j| (-1..=1).map(move |i| (i, j))).filter(|&(i, j)| shares(i, j)).count() >= 2
 }
 
+/// Last frame resolved the 4x4 texels around history position `t` (the footprint and one texel beyond it each way):
+/// every receiver texel there pure, and of at least `converged_after` samples where its run holds the other value
+/// than `x` (`dnsr_resolved_area`: shaders/tile_classification.glsl says why).
+fn resolved_area<Io: Read + ?Sized>(io: &Io, t: DVec2, x: f64, converged_after: f64) -> bool {
+    let e = io.extent();
+    (0..16).all(|k| {
+        let q = [(t.x.floor() as i32 - 1 + (k & 3)).clamp(0, e[0] - 1), (t.y.floor() as i32 - 1 + (k >> 2)).clamp(0, e[1] - 1)];
+        let mq = io.read_previous_moments(q);
+        !(mq.z > 0.0) || (pure_moments(mq) && (sign_agreeing(mq.w, x) || mq.w.abs() >= converged_after))
+    })
+}
+
 /// A previous run that is stable (`stable_after` > 0 samples or more) and of the same value as sample `x`, which
 /// is exact.
 fn stable_agreeing(run: f64, x: f64, stable_after: f64) -> bool {
@@ -282,6 +294,8 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
             let t = DVec2::new(history_uv.x * e[0] as f64 - 0.5, history_uv.y * e[1] as f64 - 0.5);
             let f = t - t.floor();
             let (mut agree, mut all, mut receivers) = (DVec2::ZERO, 0.0, DVec2::ZERO);
+            // Texels weighed at 1/16 or more: one where the camera stood still.
+            let mut texels = 0;
             // The texel of the longest pure run that agrees with x: its moments and history.
             let (mut pure, mut pure_history) = (DVec4::ZERO, 0.0);
             // Every receiver texel resolved: of the other value (one of them is) pure and converged, of this
@@ -300,6 +314,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
                 }
                 let mq = io.read_previous_moments(q);
                 all += weight;
+                texels += 1;
                 // Texels without a receiver (sky: no samples) leave the blend too: their lit sky signal would
                 // brighten a shadowed receiver along every silhouette against the background. So do texels whose
                 // normal turned: they hold another surface.
@@ -341,15 +356,15 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
             if adopt {
                 m = pure;
             }
-            // A silhouette under a moving camera between resolved surfaces: this sample stands alone
-            // (shaders/tile_classification.glsl says why, and why only beside the sky).
+            // A silhouette, edge or thin feature under a moving camera between resolved surfaces: this sample stands
+            // alone (shaders/tile_classification.glsl says why, and why the whole area away from the sky).
             resolved = converged_after > 0.0
                 && is_exact(x)
                 && !untraced
                 && any_other
                 && all_resolved
-                && receivers.y < all
-                && two_neighbours_share(io, p, x);
+                && two_neighbours_share(io, p, x)
+                && (receivers.y < all || (texels > 1 && resolved_area(io, t, x, converged_after)));
             // Continue the agreeing texel whose samples all agree, or start from this sample.
             if resolved {
                 m = pure;

@@ -259,6 +259,7 @@ bool dnsr_converged(float run, float x, float converged_after) {
 // value than x (any number of x's own). No penumbra lies there, so a change of sample that its neighbours share is
 // an edge or a thin feature that the moving camera put on this pixel (or that last frame's pixel centres missed),
 // not noise.
+// All 16 texels are read, no early exit: runtime exits in this pass have made lavapipe leak memory every frame.
 bool dnsr_resolved_area(vec2 t, float x, float converged_after) {
     ivec2 base = ivec2(floor(t)) - 1;
     bool resolved = true;

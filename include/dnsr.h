@@ -1452,6 +1452,12 @@ typedef struct DnsrDiagnosis {
 #define DNSR_REFERENCE_CHECKERBOARD_PHASE_1 (1 << 6)
 
 /**
+ * The light has no size (DNSR_DISPATCH_HARD_LIGHT): every receiver's output is its own sample. With
+ * DNSR_REFERENCE_USE_HIT_DISTANCE, `lightAngularSize` must be 0.
+ */
+#define DNSR_REFERENCE_HARD_LIGHT (1 << 7)
+
+/**
  * Forces 32 bits.
  */
 #define DNSR_REFERENCE_MAX_ENUM 2147483647
@@ -1689,6 +1695,13 @@ typedef struct DnsrDiagnosis {
 #define DNSR_DISPATCH_USE_HIT_DISTANCE (1 << 2)
 
 /**
+ * The light has no size (a point light, or a directional light of angular size 0): every receiver's output is its
+ * own ray's result, with or without hit distances (ShadowsDispatch::hard_light in the Rust API). With
+ * DNSR_DISPATCH_USE_HIT_DISTANCE, `lightAngularSize` must be 0.
+ */
+#define DNSR_DISPATCH_HARD_LIGHT (1 << 3)
+
+/**
  * Forces 32 bits.
  */
 #define DNSR_DISPATCH_MAX_ENUM 2147483647
@@ -1768,6 +1781,11 @@ typedef struct DnsrDiagnosis {
  * Penumbra guidance for this light: `hitDistance` and `lightAngularSize` are read.
  */
 #define DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE (1 << 1)
+
+/**
+ * This light has no size, as DNSR_DISPATCH_HARD_LIGHT.
+ */
+#define DNSR_LIGHT_DISPATCH_HARD_LIGHT (1 << 2)
 
 /**
  * Forces 32 bits.

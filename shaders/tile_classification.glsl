@@ -684,15 +684,17 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         shadow = x;
         variance = 0.0;
     }
-    // Under a penumbra narrower than Settings::hard_penumbra_pixels this sample resolves the pixel: it is the
-    // output (variance 0: converged), and the filter passes it through (dnsr_pass_hard). The moments go on as
-    // before, for the frame the blockers move away. Not on an untraced pixel of a checkerboard input: its value is
-    // its neighbours' mean, not a ray of its own.
+    // Under a light of no size (ShadowsDispatch::hard_light), or a penumbra narrower than
+    // Settings::hard_penumbra_pixels, this sample resolves the pixel: it is the output (variance 0: converged), and
+    // the filter passes it through (dnsr_pass_hard). The moments go on as before, for the frame the blockers move
+    // away or the light gains a size. Not on an untraced pixel of a checkerboard input: its value is its
+    // neighbours' mean, not a ray of its own.
     bool own_sample = true;
 #ifdef DNSR_VISIBILITY_INPUT
     own_sample = !untraced;
 #endif
-    if (own_sample && (dnsr_hard_penumbra(blocker, dnsr_get_penumbra_settings(), dnsr_linear_depth(ndc, depth))
+    if (own_sample && (dnsr_get_is_hard_light()
+                       || dnsr_hard_penumbra(blocker, dnsr_get_penumbra_settings(), dnsr_linear_depth(ndc, depth))
                        || dnsr_no_blocker(blocker))) {
         shadow = x;
         variance = 0.0;

@@ -1,6 +1,6 @@
 //! The denoiser context: pipelines, internal state per light, and recording into the host's command buffer.
 
-use crate::constants::{FrameConstants, FLAG_CHECKERBOARD, FLAG_DEPTH_INVERTED, FLAG_LIT_BIT_MASK, FLAG_RESET};
+use crate::constants::{FrameConstants, FLAG_CHECKERBOARD, FLAG_DEPTH_INVERTED, FLAG_HARD_LIGHT, FLAG_LIT_BIT_MASK, FLAG_RESET};
 use crate::create_info::{ContextCreateInfo, EnabledFeatures, Precision, ShadowInput};
 use crate::dispatch::{HitMaskConvention, LightDispatch, Rect, ShadowsDispatch, MAX_LIGHTS_PER_RECORD};
 use crate::error::{vk_check, Error, Result};
@@ -582,6 +582,7 @@ impl Context {
             moments: light.moments[cur].view,
             engine: d.engine_images.map(|e| e.map_or(Binding::default(), |e| image(e.view, e.layout))),
             penumbra_tan_half_angle: penumbra_tan_half_angle(d),
+            hard_light: d.hard_light,
         }
     }
 
@@ -852,7 +853,8 @@ impl Context {
                 (if reset { FLAG_RESET } else { 0 })
                     | (if self.depth_inverted { FLAG_DEPTH_INVERTED } else { 0 })
                     | (if d.hit_mask_convention == HitMaskConvention::LitBits { FLAG_LIT_BIT_MASK } else { 0 })
-                    | (if self.shadow_input == ShadowInput::Checkerboard { FLAG_CHECKERBOARD } else { 0 }),
+                    | (if self.shadow_input == ShadowInput::Checkerboard { FLAG_CHECKERBOARD } else { 0 })
+                    | (if d.hard_light { FLAG_HARD_LIGHT } else { 0 }),
                 d.checkerboard_phase,
                 0,
                 0,

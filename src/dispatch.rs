@@ -123,6 +123,14 @@ pub struct ShadowsDispatch {
     /// Angular diameter of the light seen from the receivers, in radians (the sun: about 0.0093), in [0, pi).
     /// Used only with `hit_distance`; 0 means a point light (every penumbra hard, no spatial filtering).
     pub light_angular_size: f32,
+    /// The light has no size (a point light, or a directional light of angular size 0): every shadow it casts is
+    /// hard, so each pixel's ray already is that pixel's exact visibility, and no filter can make it better. With
+    /// it, every receiver's output is its own sample (for a checkerboard input: on the pixels traced this frame),
+    /// with or without `hit_distance`: a shadow line a pixel wide stays a pixel wide under any camera motion. It is
+    /// what penumbra guidance does for a light of angular size 0, for hosts without hit distances (with
+    /// `hit_distance`, `light_angular_size` must be 0). The history goes on as without it, so a light that gains a
+    /// size continues from it. Not available through the FidelityFX layer, whose dispatch has no light size.
+    pub hard_light: bool,
     /// Multiplier from stored motion vectors to uv offsets.
     pub motion_vector_scale: Vec2,
     /// Normal decode multiplier (2.0 for UNORM-packed normals).
@@ -187,6 +195,7 @@ impl Default for ShadowsDispatch {
             output: HostImage::default(),
             hit_distance: None,
             light_angular_size: 0.0,
+            hard_light: false,
             motion_vector_scale: Vec2::ONE,
             normals_unpack_mul: 1.0,
             normals_unpack_add: 0.0,
@@ -225,6 +234,8 @@ pub struct LightDispatch {
     pub hit_distance: Option<HostImage>,
     /// This light's angular diameter in radians, as `ShadowsDispatch::light_angular_size`.
     pub light_angular_size: f32,
+    /// This light has no size, as `ShadowsDispatch::hard_light`.
+    pub hard_light: bool,
     /// Discard this light's history alone before this frame (the other lights of the call keep theirs).
     pub reset: bool,
 }
@@ -239,6 +250,7 @@ impl LightDispatch {
             output: self.output,
             hit_distance: self.hit_distance,
             light_angular_size: self.light_angular_size,
+            hard_light: self.hard_light,
             reset: self.reset,
             ..*shared
         }

@@ -236,6 +236,9 @@ pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, rules: &DispatchRules) -> R
     if let Some(hit_distance) = &d.hit_distance {
         host_image(vk, ImageRole::HitDistance, hit_distance, decoded(HIT_DISTANCE_FORMATS), SAMPLED_LAYOUTS, size, sampled)?;
         light_angular_size(d.light_angular_size)?;
+        if d.hard_light {
+            hard_light_size(d.light_angular_size)?;
+        }
     }
 
     camera(&Camera::of(d))?;
@@ -399,6 +402,7 @@ pub(crate) fn light_list(shared: &ShadowsDispatch, lights: &[crate::dispatch::Li
         ("light_index", shared.light_index != 0, shared.light_index.to_string()),
         ("hit_distance", shared.hit_distance.is_some(), "given".into()),
         ("light_angular_size", shared.light_angular_size != 0.0, shared.light_angular_size.to_string()),
+        ("hard_light", shared.hard_light, "true".into()),
         ("reset", shared.reset, "true".into()),
     ];
     if let Some((field, _, value)) = scalars.into_iter().find(|s| s.1) {
@@ -452,6 +456,18 @@ pub(crate) fn light_angular_size(angle: f32) -> Result<()> {
             field: "light_angular_size",
             value: angle.to_string(),
             allowed: "it must be in [0, pi): the light's angular diameter in radians (the sun: about 0.0093)",
+        });
+    }
+    Ok(())
+}
+
+/// Checks the angular size that penumbra guidance gives a light the host calls hard (`hard_light`): 0.
+pub(crate) fn hard_light_size(angle: f32) -> Result<()> {
+    if angle != 0.0 {
+        return Err(Error::InvalidValue {
+            field: "light_angular_size",
+            value: angle.to_string(),
+            allowed: "0 with hard_light: a light of no size has angular size 0",
         });
     }
     Ok(())

@@ -34,6 +34,7 @@ struct LightState {
     float angle = radians(3.0f);  // angular radius
     bool moving = false;
     bool hitDistance = true;  // penumbra guidance for dnsr
+    bool hardLight = true;    // tell dnsr when the light has no size (angle 0)
 
     Vec3 direction(uint32_t light) const
     {

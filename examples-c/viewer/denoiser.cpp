@@ -154,7 +154,8 @@ void Denoiser::recordDenoise(const DenoiserFrame &frame, const std::vector<Denoi
         l.sType = DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH;
         l.lightIndex = i;
         l.flags = (frame.cameraCut ? DNSR_LIGHT_DISPATCH_RESET : 0) |
-                  (lights[i].hitDistance ? DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE : 0);
+                  (lights[i].hitDistance ? DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE : 0) |
+                  (lights[i].hardLight ? DNSR_LIGHT_DISPATCH_HARD_LIGHT : 0);
         l.hitMask = hostImage(lights[i].hitMask);
         l.visibility = hostImage(lights[i].visibility);
         l.output = hostImage(lights[i].output);
@@ -171,7 +172,8 @@ void Denoiser::recordDenoise(const DenoiserFrame &frame, const std::vector<Denoi
         const DnsrLightDispatch &l = perLight[0];
         d.lightIndex = l.lightIndex;
         d.flags = (l.flags & DNSR_LIGHT_DISPATCH_RESET ? DNSR_DISPATCH_RESET : 0) |
-                  (l.flags & DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE ? DNSR_DISPATCH_USE_HIT_DISTANCE : 0);
+                  (l.flags & DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE ? DNSR_DISPATCH_USE_HIT_DISTANCE : 0) |
+                  (l.flags & DNSR_LIGHT_DISPATCH_HARD_LIGHT ? DNSR_DISPATCH_HARD_LIGHT : 0);
         d.hitMask = l.hitMask, d.visibility = l.visibility, d.output = l.output;
         d.hitDistance = l.hitDistance, d.lightAngularSize = l.lightAngularSize;
         DnsrResult r = dnsr_shadows_record(context_, &d);

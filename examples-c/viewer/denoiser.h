@@ -61,6 +61,7 @@ struct DenoiserLight {
     const GpuImage *visibility = nullptr;   // DNSR_SHADOW_INPUT_VISIBILITY
     const GpuImage *hitDistance = nullptr;  // penumbra guidance; null: off
     float lightAngularSize = 0.0f;          // with hitDistance: the light's angular diameter, radians
+    bool hardLight = false;                 // the light has no size: its rays are exact (DNSR_DISPATCH_HARD_LIGHT)
     const GpuImage *output = nullptr;
 };
 

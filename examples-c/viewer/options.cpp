@@ -36,6 +36,8 @@ const char *kUsage =
     "                          and so does the noisy view. Takes --rays 1 and --gbuffer default\n"
     "  --hit-distance on|off   penumbra guidance: give dnsr each shadow ray's distance to its nearest occluder and\n"
     "                          the light's angular diameter (DNSR_DISPATCH_USE_HIT_DISTANCE; default on; key H)\n"
+    "  --hard-light on|off     tell dnsr when the light has no size (--light-angle 0): DNSR_DISPATCH_HARD_LIGHT, its\n"
+    "                          rays are exact and are the output (default on; off: dnsr filters them as any light)\n"
     "  --reference-samples N   shadow rays per pixel of the reference, 1..65536 (default 256)\n"
     "  --save-reference FILE   headless: also write the last frame's reference (and depth) to FILE (--lights 1)\n"
     "  --load-reference FILE   headless: measure against FILE's reference instead of rendering one (same scene,\n"
@@ -175,6 +177,10 @@ Options parseOptions(int argc, char **argv)
             std::string v = value();
             if (v != "on" && v != "off") throw UsageError("--hit-distance wants on or off, got '" + v + "'");
             o.hitDistance = v == "on";
+        } else if (a == "--hard-light") {
+            std::string v = value();
+            if (v != "on" && v != "off") throw UsageError("--hard-light wants on or off, got '" + v + "'");
+            o.hardLight = v == "on";
         } else if (a == "--hybrid") {
             o.hybrid = true;
         } else if (a == "--cascades") {

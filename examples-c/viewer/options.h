@@ -25,6 +25,7 @@ struct Options {
     uint32_t lights = 1;  // more than 1: the others derived from the first, all denoised by one dnsr_lights_record
     float lightAngleDeg = 3.0f;
     bool hitDistance = true;  // penumbra guidance (DNSR_DISPATCH_USE_HIT_DISTANCE)
+    bool hardLight = true;    // tell dnsr when the light has no size (DNSR_DISPATCH_HARD_LIGHT)
     bool lightMotion = false;
     uint32_t referenceSamples = 256;
     std::string saveReference, loadReference;  // headless: the reference, written to / read from a file

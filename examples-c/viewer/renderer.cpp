@@ -545,6 +545,7 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
         if (settings_.rays > 1) l.visibility = &lights_[i].visibility;
         else l.hitMask = &lights_[i].hitMask;
         if (guidance) l.hitDistance = &lights_[i].hitDistance, l.lightAngularSize = in.lightAngularSize;
+        l.hardLight = in.hardLight;
         l.output = &lights_[i].denoised;
     }
     // Views 5..8 map in order onto DNSR_DEBUG_VIEW_TILE_CLASSIFICATION .. DNSR_DEBUG_VIEW_DISOCCLUSION.

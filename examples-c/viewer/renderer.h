@@ -92,6 +92,8 @@ struct FrameInput {
     // (radians, as seen from the receivers) imply.
     bool hitDistance = false;
     float lightAngularSize = 0.0f;
+    // The light has no size and dnsr is told so (DNSR_DISPATCH_HARD_LIGHT): its rays are the output.
+    bool hardLight = false;
     bool cameraCut = false;          // discard dnsr's history (first frame, view reset)
     // Hybrid mode (needs RendererSettings::hybrid.enabled): rays only where dnsr's classifier cannot decide from
     // the cascades. With penumbra guidance, only the traced pixels have a hit distance (the others 0: unknown).

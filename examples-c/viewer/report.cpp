@@ -58,6 +58,7 @@ void writeReport(const std::string &path, const Session &session, const Measurem
     FrameInput last = makeFrame(session.scene, session.orbit, session.light, opt.width, opt.height);
     r["hit_distance"] = session.light.hitDistance;
     r["light_angular_size_rad"] = rounded(last.lightAngularSize, 6);
+    r["hard_light"] = last.hardLight;
     const char *presets[] = {"fast", "balanced", "quality"};
     r["preset"] = presets[opt.preset];
     r["gbuffer"] = opt.packedGbuffer ? "packed" : "default";

@@ -21,6 +21,7 @@ Session::Session(const Options &options, const Scene &s, VulkanContext &context)
     light.angle = radians(opt.lightAngleDeg);
     light.moving = opt.lightMotion;
     light.hitDistance = opt.hitDistance;
+    light.hardLight = opt.hardLight;
     // Light from the side of the starting view (100 degrees around from the camera), so that the shadows fall where
     // the camera sees them whatever the scene.
     light.azimuth = orbit.yaw + radians(opt.lightAzimuthDeg);

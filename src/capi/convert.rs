@@ -234,7 +234,7 @@ pub(crate) fn dispatch_from_c(c: &DnsrShadowsDispatch) -> Result<(vk::CommandBuf
     const WHAT: &str = "pDispatch";
     check_type(c.s_type, DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH, "DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH", WHAT)?;
     check_no_next(c.p_next, WHAT)?;
-    let unknown = c.flags & !(DNSR_DISPATCH_RESET | DNSR_DISPATCH_USE_RENDER_RECT | DNSR_DISPATCH_USE_HIT_DISTANCE);
+    let unknown = c.flags & !(DNSR_DISPATCH_RESET | DNSR_DISPATCH_USE_RENDER_RECT | DNSR_DISPATCH_USE_HIT_DISTANCE | DNSR_DISPATCH_HARD_LIGHT);
     if unknown != 0 {
         return Err(CallError::InvalidArgument(format!("pDispatch->flags has unknown bits {unknown:#x}")));
     }
@@ -260,6 +260,7 @@ pub(crate) fn dispatch_from_c(c: &DnsrShadowsDispatch) -> Result<(vk::CommandBuf
         output: image(&c.output),
         hit_distance: (c.flags & DNSR_DISPATCH_USE_HIT_DISTANCE != 0).then(|| image(&c.hit_distance)),
         light_angular_size: c.light_angular_size,
+        hard_light: c.flags & DNSR_DISPATCH_HARD_LIGHT != 0,
         motion_vector_scale: Vec2::from_array(c.motion_vector_scale),
         normals_unpack_mul: c.normals_unpack_mul,
         normals_unpack_add: c.normals_unpack_add,
@@ -354,7 +355,7 @@ pub(crate) fn lights_from_c(
         let what = format!("pLights[{i}]");
         check_type(c.s_type, DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH, "DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH", &what)?;
         check_no_next(c.p_next, &what)?;
-        let unknown = c.flags & !(DNSR_LIGHT_DISPATCH_RESET | DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE);
+        let unknown = c.flags & !(DNSR_LIGHT_DISPATCH_RESET | DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE | DNSR_LIGHT_DISPATCH_HARD_LIGHT);
         if unknown != 0 {
             return Err(CallError::InvalidArgument(format!("{what}.flags has unknown bits {unknown:#x}")));
         }
@@ -365,6 +366,7 @@ pub(crate) fn lights_from_c(
             output: image(&c.output),
             hit_distance: (c.flags & DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE != 0).then(|| image(&c.hit_distance)),
             light_angular_size: c.light_angular_size,
+            hard_light: c.flags & DNSR_LIGHT_DISPATCH_HARD_LIGHT != 0,
             reset: c.flags & DNSR_LIGHT_DISPATCH_RESET != 0,
         };
     }

@@ -26,6 +26,9 @@ pub const DNSR_REFERENCE_VISIBILITY_INPUT: DnsrReferenceFlags = 1 << 4;
 pub const DNSR_REFERENCE_CHECKERBOARD_INPUT: DnsrReferenceFlags = 1 << 5;
 /// With DNSR_REFERENCE_CHECKERBOARD_INPUT: this frame traced the pixels with (x + y) % 2 == 1.
 pub const DNSR_REFERENCE_CHECKERBOARD_PHASE_1: DnsrReferenceFlags = 1 << 6;
+/// The light has no size (DNSR_DISPATCH_HARD_LIGHT): every receiver's output is its own sample. With
+/// DNSR_REFERENCE_USE_HIT_DISTANCE, `lightAngularSize` must be 0.
+pub const DNSR_REFERENCE_HARD_LIGHT: DnsrReferenceFlags = 1 << 7;
 /// Forces 32 bits.
 pub const DNSR_REFERENCE_MAX_ENUM: DnsrReferenceFlags = 0x7FFF_FFFF;
 /// Every DNSR_REFERENCE_* bit.
@@ -35,7 +38,8 @@ const KNOWN_FLAGS: DnsrReferenceFlags = DNSR_REFERENCE_RESET
     | DNSR_REFERENCE_USE_HIT_DISTANCE
     | DNSR_REFERENCE_VISIBILITY_INPUT
     | DNSR_REFERENCE_CHECKERBOARD_INPUT
-    | DNSR_REFERENCE_CHECKERBOARD_PHASE_1;
+    | DNSR_REFERENCE_CHECKERBOARD_PHASE_1
+    | DNSR_REFERENCE_HARD_LIGHT;
 
 /// The constants of one reference frame (the same values as a DnsrShadowsDispatch; the render rectangle is
 /// the whole `width` x `height`).
@@ -151,6 +155,9 @@ fn checked<'a>(
     })?;
     if info.flags & DNSR_REFERENCE_USE_HIT_DISTANCE != 0 {
         crate::validate::light_angular_size(info.light_angular_size)?;
+        if info.flags & DNSR_REFERENCE_HARD_LIGHT != 0 {
+            crate::validate::hard_light_size(info.light_angular_size)?;
+        }
     }
     Ok((info, cb))
 }
@@ -252,6 +259,7 @@ pub extern "C" fn dnsr_reference_run_frame(
         f.view_projection_inverse = mat(&info.view_projection_inverse);
         f.eye = DVec3::from_array(info.eye.map(|v| v as f64));
         f.depth_similarity_sigma = info.depth_similarity_sigma as f64;
+        f.hard_light = info.flags & DNSR_REFERENCE_HARD_LIGHT != 0;
         if guided {
             f.penumbra = Some(crate::reference::Penumbra::new(info.light_angular_size as f64, f.projection_inverse, h));
         }

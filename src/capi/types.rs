@@ -232,6 +232,10 @@ pub const DNSR_DISPATCH_RESET: DnsrDispatchFlags = 1 << 0;
 pub const DNSR_DISPATCH_USE_RENDER_RECT: DnsrDispatchFlags = 1 << 1;
 /// Penumbra guidance: `hitDistance` and `lightAngularSize` are read.
 pub const DNSR_DISPATCH_USE_HIT_DISTANCE: DnsrDispatchFlags = 1 << 2;
+/// The light has no size (a point light, or a directional light of angular size 0): every receiver's output is its
+/// own ray's result, with or without hit distances (ShadowsDispatch::hard_light in the Rust API). With
+/// DNSR_DISPATCH_USE_HIT_DISTANCE, `lightAngularSize` must be 0.
+pub const DNSR_DISPATCH_HARD_LIGHT: DnsrDispatchFlags = 1 << 3;
 /// Forces 32 bits.
 pub const DNSR_DISPATCH_MAX_ENUM: DnsrDispatchFlags = 0x7FFF_FFFF;
 
@@ -675,6 +679,8 @@ pub type DnsrLightDispatchFlags = u32;
 pub const DNSR_LIGHT_DISPATCH_RESET: DnsrLightDispatchFlags = 1 << 0;
 /// Penumbra guidance for this light: `hitDistance` and `lightAngularSize` are read.
 pub const DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE: DnsrLightDispatchFlags = 1 << 1;
+/// This light has no size, as DNSR_DISPATCH_HARD_LIGHT.
+pub const DNSR_LIGHT_DISPATCH_HARD_LIGHT: DnsrLightDispatchFlags = 1 << 2;
 /// Forces 32 bits.
 pub const DNSR_LIGHT_DISPATCH_MAX_ENUM: DnsrLightDispatchFlags = 0x7FFF_FFFF;
 

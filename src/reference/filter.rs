@@ -88,10 +88,12 @@ pub fn penumbra_falloff<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64) -> f64 {
     0.5 / (sigma * sigma).max(1e-20)
 }
 
-/// Penumbra guidance, `Settings::hard_penumbra_pixels`: whether tile `tile`'s blockers cast a penumbra that one ray
-/// resolves on a receiver at linear depth `zc`.
+/// Whether one ray resolves a receiver of tile `tile` at linear depth `zc`: the light has no size
+/// (`ShadowsDispatch::hard_light`), or (penumbra guidance, `Settings::hard_penumbra_pixels`) the tile's blockers
+/// cast a penumbra narrow enough.
 pub fn hard_penumbra<Io: Read + ?Sized>(io: &Io, tile: Coord, zc: f64) -> bool {
-    io.penumbra().is_some_and(|pen| pen.is_hard(io.read_tile_blocker(tile), zc, io.settings().hard_penumbra_pixels as f64))
+    io.hard_light()
+        || io.penumbra().is_some_and(|pen| pen.is_hard(io.read_tile_blocker(tile), zc, io.settings().hard_penumbra_pixels as f64))
 }
 
 /// The filtered (mean, variance) of one receiver pixel of a mixed tile, whose guide (`guide`) is (zc, nc).

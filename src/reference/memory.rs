@@ -29,6 +29,8 @@ pub struct Frame {
     pub depth_inverted: bool,
     /// Penumbra guidance (None: no hit-distance input).
     pub penumbra: Option<Penumbra>,
+    /// The light has no size (`ShadowsDispatch::hard_light`).
+    pub hard_light: bool,
     /// Host hit distance per pixel (read only with penumbra guidance).
     pub hit_distance: Vec<f64>,
     /// Host hit mask (FidelityFX convention), one word per tile.
@@ -102,6 +104,7 @@ impl Frame {
             reset: false,
             depth_inverted: false,
             penumbra: None,
+            hard_light: false,
             hit_distance: filled(n, 0.0)?,
             hit_mask: filled(tiles, 0)?,
             visibility: None,
@@ -197,6 +200,9 @@ impl Get for Frame {
     }
     fn penumbra(&self) -> Option<Penumbra> {
         self.penumbra
+    }
+    fn hard_light(&self) -> bool {
+        self.hard_light
     }
     fn checkerboard_phase(&self) -> Option<u32> {
         self.checkerboard_phase

@@ -46,6 +46,8 @@ pub trait Get {
     fn is_final_pass(&self) -> bool;
     /// Penumbra guidance of this frame (None without a hit-distance input).
     fn penumbra(&self) -> Option<Penumbra>;
+    /// The light has no size (`ShadowsDispatch::hard_light`): every receiver's own sample is its output.
+    fn hard_light(&self) -> bool;
     /// The shadow input is per-pixel visibility (`read_visibility`) instead of the hit mask; a checkerboard input
     /// is one too, from prepare on (prepare writes the visibility classification reads).
     fn visibility_input(&self) -> bool;

@@ -451,8 +451,8 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     if resolved {
         return (m, DVec2::new(x, 0.0));
     }
-    // Under a hard penumbra (Settings::hard_penumbra_pixels) this sample is the output; the moments go on. Not on an
-    // untraced pixel of a checkerboard input (its value is its neighbours' mean).
+    // Under a light of no size or a hard penumbra (Settings::hard_penumbra_pixels) this sample is the output; the
+    // moments go on. Not on an untraced pixel of a checkerboard input (its value is its neighbours' mean).
     if !untraced && super::filter::hard_penumbra(io, [p[0] / TILE[0], p[1] / TILE[1]], linear_depth(io, ndc, depth)) {
         return (m, DVec2::new(x, 0.0));
     }

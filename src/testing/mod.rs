@@ -58,6 +58,8 @@ pub struct Runner<'g> {
     pub visibility: TestImage,
     /// Penumbra guidance for `dispatch`: the light's angular size, or None for none.
     pub guidance: Option<f32>,
+    /// `ShadowsDispatch::hard_light` of `dispatch`.
+    pub hard_light: bool,
     /// `ShadowsDispatch::checkerboard_phase` of `dispatch` (a checkerboard input).
     pub checkerboard_phase: u32,
     visibility_input: bool,
@@ -109,7 +111,7 @@ impl<'g> Runner<'g> {
         let staging = gpu.staging(staging_bytes(info.width, info.height));
         let cmd = gpu.command_buffer();
         let visibility_input = info.shadow_input == crate::ShadowInput::Visibility;
-        Ok(Runner { gpu, ctx, mask, depth, velocity, normals, output, hit_distance, visibility, visibility_input, guidance: None, checkerboard_phase: 0, staging, cmd })
+        Ok(Runner { gpu, ctx, mask, depth, velocity, normals, output, hit_distance, visibility, visibility_input, guidance: None, hard_light: false, checkerboard_phase: 0, staging, cmd })
     }
 
     /// A dispatch for `f` over this runner's images (no reset; penumbra guidance as `guidance` says).
@@ -125,6 +127,7 @@ impl<'g> Runner<'g> {
             output: self.output.host(),
             hit_distance: self.guidance.map(|_| self.hit_distance.host()),
             light_angular_size: self.guidance.unwrap_or(0.0),
+            hard_light: self.hard_light,
             checkerboard_phase: self.checkerboard_phase,
             eye: f.eye,
             projection_inverse: f.projection_inverse,

@@ -286,6 +286,11 @@ fn bad_dispatches_record_nothing() {
             |e| matches!(e, Error::InvalidValue { field: "light_angular_size", .. }),
         ),
         (
+            "a hard light of non-zero angular size",
+            |d| (d.hard_light, d.light_angular_size) = (true, 0.01),
+            |e| matches!(e, Error::InvalidValue { field: "light_angular_size", allowed, .. } if allowed.contains("hard_light")),
+        ),
+        (
             "light angular size of pi",
             |d| d.light_angular_size = std::f32::consts::PI,
             |e| matches!(e, Error::InvalidValue { field: "light_angular_size", .. }),

@@ -50,7 +50,9 @@ fn c_dispatch(d: &crate::ShadowsDispatch, cmd: vk::CommandBuffer) -> DnsrShadows
         p_next: std::ptr::null(),
         command_buffer: cmd,
         light_index: d.light_index,
-        flags: (if d.reset { DNSR_DISPATCH_RESET } else { 0 }) | (if d.hit_distance.is_some() { DNSR_DISPATCH_USE_HIT_DISTANCE } else { 0 }),
+        flags: (if d.reset { DNSR_DISPATCH_RESET } else { 0 })
+            | (if d.hit_distance.is_some() { DNSR_DISPATCH_USE_HIT_DISTANCE } else { 0 })
+            | (if d.hard_light { DNSR_DISPATCH_HARD_LIGHT } else { 0 }),
         hit_mask_convention: DNSR_HIT_MASK_OCCLUDED_BITS,
         hit_mask: host(&d.hit_mask),
         depth: host(&d.depth),
@@ -245,29 +247,31 @@ mod reference_table {
     }
 
     /// An engine's first frame (reset) through the C reference table equals dnsr's GPU output on the same data,
-    /// without and with penumbra guidance, and with a visibility or a checkerboard input.
+    /// without and with penumbra guidance, with a visibility or a checkerboard input, and for a light of no size.
     #[test]
     fn the_c_reference_table_reproduces_the_gpu_frame() {
         let g = gpu();
-        let one_ray = reference_frame(&g, None, ShadowInput::HitMask);
-        let four_rays = reference_frame(&g, None, ShadowInput::Visibility);
+        let one_ray = reference_frame(&g, None, ShadowInput::HitMask, false);
+        let four_rays = reference_frame(&g, None, ShadowInput::Visibility, false);
         assert!(one_ray.iter().zip(&four_rays).any(|(a, b)| (a - b).abs() > 1e-3), "the visibility input changed nothing");
-        let half_ray = reference_frame(&g, None, ShadowInput::Checkerboard);
+        let half_ray = reference_frame(&g, None, ShadowInput::Checkerboard, false);
         assert!(one_ray.iter().zip(&half_ray).any(|(a, b)| (a - b).abs() > 1e-3), "the checkerboard input changed nothing");
         let mut unguided = Vec::new();
         for guidance in [None, Some(0.3f32)] {
-            let out = reference_frame(&g, guidance, ShadowInput::HitMask);
+            let out = reference_frame(&g, guidance, ShadowInput::HitMask, false);
             if guidance.is_some() {
                 let changed = out.iter().zip(&unguided).map(|(a, b): (&f32, &f32)| (a - b).abs()).fold(0.0, f32::max);
                 assert!(changed > 1e-3, "guidance changed nothing: the guided path is not exercised");
             }
             unguided = out;
         }
+        let hard = reference_frame(&g, None, ShadowInput::HitMask, true);
+        assert!(hard.iter().zip(&one_ray).any(|(a, b)| (a - b).abs() > 1e-3), "DNSR_REFERENCE_HARD_LIGHT changed nothing");
         g.assert_clean();
     }
 
     /// Runs the frame on the GPU and through the C reference; checks they agree and returns the GPU output.
-    fn reference_frame(g: &crate::testing::gpu::Gpu, guidance: Option<f32>, input: ShadowInput) -> Vec<f32> {
+    fn reference_frame(g: &crate::testing::gpu::Gpu, guidance: Option<f32>, input: ShadowInput, hard_light: bool) -> Vec<f32> {
         let (w, h) = (37, 23);
         let visibility = input == ShadowInput::Visibility;
         let mut info = g.create_info(w, h);
@@ -275,6 +279,7 @@ mod reference_table {
         info.shadow_input = input;
         let mut r = Runner::new(g, &info).unwrap();
         r.guidance = guidance;
+        r.hard_light = hard_light;
         // A checkerboard frame of phase 1.
         r.checkerboard_phase = (input == ShadowInput::Checkerboard) as u32;
         let mut f = static_frame(w, h, &smooth, 7);
@@ -292,6 +297,7 @@ mod reference_table {
             flags: DNSR_REFERENCE_RESET
                 | if guidance.is_some() { DNSR_REFERENCE_USE_HIT_DISTANCE } else { 0 }
                 | if visibility { DNSR_REFERENCE_VISIBILITY_INPUT } else { 0 }
+                | if hard_light { DNSR_REFERENCE_HARD_LIGHT } else { 0 }
                 | if input == ShadowInput::Checkerboard { DNSR_REFERENCE_CHECKERBOARD_INPUT | DNSR_REFERENCE_CHECKERBOARD_PHASE_1 } else { 0 },
             p_settings: std::ptr::null(),
             motion_vector_scale: d.motion_vector_scale.to_array(),

@@ -515,3 +515,41 @@ fn penumbra_guidance_keeps_contact_shadows_sharp_and_wide_penumbrae_smooth() {
     assert!(guided < 1.25 * plain, "wide penumbra: guidance should not add noise ({plain} -> {guided})");
     g.assert_clean();
 }
+
+/// A light of no size (`ShadowsDispatch::hard_light`, no hit distances): every receiver's output is its own ray's
+/// result, frame after frame of a camera moving a fraction of a pixel, under every preset: a shadow line about a
+/// pixel wide and a hard edge stay as the rays draw them. Without the flag the same rays come out changed (what
+/// the flag is for, and a check that this test sees the flag at all).
+#[test]
+fn a_hard_light_outputs_its_rays_under_a_moving_camera() {
+    use crate::Preset;
+    let g = gpu();
+    let (w, h) = (64u32, 48u32);
+    let tw = w.div_ceil(8);
+    // About 0.2 world units a pixel: a line a pixel wide, a slanted edge, and sky beyond |x| = 5.
+    let field = |x: f64, z: f64| if (0.3..0.5).contains(&x) || z > 1.0 + 0.3 * x { 0.0 } else { 1.0 };
+    let cam = |k: u64| Camera::above(0.13 * k as f64, 0.07 * k as f64, 10.0);
+    for preset in [Preset::Fast, Preset::Balanced, Preset::Quality] {
+        for hard_light in [true, false] {
+            let mut r = runner_with(&g, w, h, Precision::Fp32, crate::Settings::preset(preset));
+            r.hard_light = hard_light;
+            let mut changed = 0;
+            for frame in 0..8u64 {
+                let f = render(w, h, &cam(frame), &cam(frame.saturating_sub(1)), 5.0, &field, frame + 1);
+                let out = r.frame(&f, frame == 0);
+                for (i, &o) in out.iter().enumerate().filter(|&(i, _)| f.receiver[i]) {
+                    let (x, y) = (i as u32 % w, i as u32 / w);
+                    let occluded = (f.mask[((y / 4) * tw + x / 8) as usize] >> ((y % 4) * 8 + x % 8)) & 1;
+                    let ray = (1 - occluded) as f32;
+                    if hard_light {
+                        assert_eq!(o, ray, "{preset:?} frame {frame}: pixel ({x}, {y}) is not its ray's result");
+                    }
+                    changed += (o != ray) as usize;
+                }
+            }
+            eprintln!("{preset:?} hard_light {hard_light}: {changed} receiver outputs differ from their rays over 8 frames");
+            assert!(hard_light || changed > 0, "{preset:?}: without hard_light the rays pass through unchanged");
+        }
+    }
+    g.assert_clean();
+}

@@ -19,6 +19,9 @@ const RESET_FRAME: u32 = 3;
 /// Penumbra guidance for lights 2 and 4 (angular size in radians, light 4's twice light 2's); the others have none.
 const GUIDED_ANGLE: f32 = 0.05;
 
+/// The light of no size (`ShadowsDispatch::hard_light`, without hit distances): in the second group of slots.
+const HARD_LIGHT: usize = 5;
+
 fn guided(light: usize) -> bool {
     light == 2 || light == 4
 }
@@ -62,6 +65,7 @@ fn light(index: usize, mask: &TestImage, output: &TestImage, hit_distance: &Test
         output: output.host(),
         hit_distance: guided(index).then(|| hit_distance.host()),
         light_angular_size: if guided(index) { GUIDED_ANGLE * (index / 2) as f32 } else { 0.0 },
+        hard_light: index == HARD_LIGHT,
         reset: index == 1 && frame == RESET_FRAME,
         ..Default::default()
     }
@@ -197,6 +201,9 @@ fn a_bad_light_refuses_the_whole_record() {
             matches!(e, Error::InvalidValue { field: "output", .. })
         }),
         ("reset in the shared dispatch", ShadowsDispatch { reset: true, ..d }, base.to_vec(), |e| matches!(e, Error::InvalidValue { field: "reset", .. })),
+        ("hard_light in the shared dispatch", ShadowsDispatch { hard_light: true, ..d }, base.to_vec(), |e| {
+            matches!(e, Error::InvalidValue { field: "hard_light", .. })
+        }),
         // The camera is the shared dispatch's: its error names no light.
         ("a NaN in the shared camera", ShadowsDispatch { view_projection_inverse: glam::Mat4::NAN, ..d }, base.to_vec(), |e| {
             matches!(e, Error::NonFinite("view_projection_inverse"))

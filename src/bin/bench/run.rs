@@ -112,6 +112,7 @@ fn light(scene: &GpuScene, index: usize, k: usize, output: &TestImage, guidance:
         hit_distance: guidance.map(|g| g.hit_distance.host()),
         light_angular_size: guidance.map_or(0.0, |g| g.light_angular_size),
         reset: index == 0,
+        ..Default::default()
     }
 }
 

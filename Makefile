@@ -60,7 +60,7 @@ FAMILY_SCENES ?= 100
 viewer-accuracy: viewer
 	examples-c/viewer/accuracy.py build/viewer/dnsr_viewer docs/viewer-accuracy.md
 	python3 examples-c/viewer/family.py build/viewer/dnsr_viewer build/family --count $(FAMILY_SCENES) \
-		--presets fast,balanced,quality,quality+guided --md docs/viewer-family.md
+		--presets fast,balanced,quality,quality+untold,quality+guided --md docs/viewer-family.md
 
 # Hybrid shadows against full tracing on the viewer's committed scenes (examples-c/viewer/hybrid.py): rays traced,
 # rays saved, GPU ms and RMSE against a 1024-ray reference, into out/hybrid/hybrid.md. docs/hybrid-shadows.md has the

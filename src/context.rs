@@ -588,14 +588,17 @@ impl Context {
 
     /// Every engine image the enabled passes' (engine-compiled) variants declare is given, in a layout its
     /// descriptor type allows. Nothing to check (and no work on the recording path) without such variants.
-    fn check_engine_images(&self, d: &ShadowsDispatch, views: &FrameViews, run_prepare: bool) -> Result<()> {
+    /// `hard_light`: some light of the record has no size (its frame is a single filter pass).
+    fn check_engine_images(&self, d: &ShadowsDispatch, views: &FrameViews, run_prepare: bool, hard_light: bool) -> Result<()> {
         // Building a frame of passes is most of a record's CPU time: only where an override declares engine images.
         if !self.engine_images_declared {
             return Ok(());
         }
-        let passes = crate::passes::frame(views, self.settings.filter_passes, run_prepare, d.debug_view);
+        let frame = |filter_passes| crate::passes::frame(views, filter_passes, run_prepare, d.debug_view);
+        let single = hard_light.then(|| frame(1));
+        let passes = frame(self.settings.filter_passes);
         let pipelines = self.pipelines.as_ref().expect("created");
-        for pass in passes.iter().filter(|p| p.enabled) {
+        for pass in passes.iter().chain(single.iter().flat_map(|f| f.iter())).filter(|p| p.enabled) {
             for b in &pipelines.for_role(pass.role).interface.bindings {
                 if let Some(slot) = b.resource.engine_slot() {
                     let storage = b.descriptor_type == vk::DescriptorType::STORAGE_IMAGE;
@@ -667,22 +670,37 @@ impl Context {
         let (filter_passes, debug_view) = (self.settings.filter_passes, shared.debug_view);
         let light_views = |light: usize| views[light].as_ref().expect("one per dispatch");
         // The engine images are the shared dispatch's, and every light runs the same passes.
-        self.check_engine_images(shared, light_views(0), run_prepare)?;
+        self.check_engine_images(shared, light_views(0), run_prepare, ds.iter().any(|d| d.hard_light))?;
+        // A light of no size outputs its rays, which its first filter pass writes: that pass is its last
+        // (`Role::FilterOnly`), and the later filter passes (index 3 on) run for the other lights alone.
+        let passes_of = |light: usize| if ds[light].hard_light { 1 } else { filter_passes };
+        let every: [usize; MAX_LIGHTS_PER_RECORD] = std::array::from_fn(|i| i);
+        let mut filtered = [0; MAX_LIGHTS_PER_RECORD];
+        let mut filtered_count = 0;
+        for light in (0..ds.len()).filter(|&l| passes_of(l) > 1) {
+            filtered[filtered_count] = light;
+            filtered_count += 1;
+        }
+        let members_of = |index: usize| if index >= 3 { &filtered[..filtered_count] } else { &every[..ds.len()] };
         // The later filter passes of several lights run LIGHT_SLOTS lights per dispatch where the context has the
         // light-slot variants; every other pass runs a dispatch per light.
         let pipelines = self.pipelines.as_ref().expect("created");
-        // (index 3 on: the filter passes after the first.)
         let grouped = |index: usize| index >= 3 && pipelines.filter_lights.is_some();
-        let group = |index: usize, k: usize| if grouped(index) { crate::passes::light_group(ds.len(), k) } else { k..k + 1 };
-        let dispatch_count = |index: usize| if grouped(index) { crate::passes::light_group_count(ds.len()) } else { ds.len() };
+        // Dispatch k of pass `index`: its lights, as positions in `members_of(index)`.
+        let group = |index: usize, k: usize| if grouped(index) { crate::passes::light_group(members_of(index).len(), k) } else { k..k + 1 };
+        let dispatch_count = |index: usize| match members_of(index).len() {
+            0 => 0,
+            n if grouped(index) => crate::passes::light_group_count(n),
+            n => n,
+        };
         // The light whose descriptor ring slot holds dispatch k's sets: its first.
-        let first_light = |index: usize, k: usize| group(index, k).start;
+        let first_light = |index: usize, k: usize| members_of(index)[group(index, k).start];
         let build = |index: usize, k: usize| -> Pass {
-            let lights = group(index, k);
-            if lights.len() == 1 {
-                return crate::passes::pass(light_views(lights.start), index, filter_passes, run_prepare, debug_view);
+            let lights = &members_of(index)[group(index, k)];
+            if let [light] = *lights {
+                return crate::passes::pass(light_views(light), index, passes_of(light), run_prepare, debug_view);
             }
-            let members: [&FrameViews; LIGHT_SLOTS] = std::array::from_fn(|s| light_views((lights.start + s).min(lights.end - 1)));
+            let members: [&FrameViews; LIGHT_SLOTS] = std::array::from_fn(|s| light_views(lights[s.min(lights.len() - 1)]));
             filter::lights_pass(&members[..lights.len()], index as u32 - 2, filter_passes, debug_view)
         };
         let pass_count = crate::passes::pass_count(filter_passes);

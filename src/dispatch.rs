@@ -129,7 +129,8 @@ pub struct ShadowsDispatch {
     /// with or without `hit_distance`: a shadow line a pixel wide stays a pixel wide under any camera motion. It is
     /// what penumbra guidance does for a light of angular size 0, for hosts without hit distances (with
     /// `hit_distance`, `light_angular_size` must be 0). The history goes on as without it, so a light that gains a
-    /// size continues from it. Not available through the FidelityFX layer, whose dispatch has no light size.
+    /// size continues from it. Only the first filter pass runs for such a light (it writes the output), whatever
+    /// `Settings::filter_passes` says. Not available through the FidelityFX layer, whose dispatch has no light size.
     pub hard_light: bool,
     /// Multiplier from stored motion vectors to uv offsets.
     pub motion_vector_scale: Vec2,

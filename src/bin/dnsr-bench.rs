@@ -48,6 +48,8 @@ const USAGE: &str = "usage: dnsr-bench [options]
   --alias-transient           the contexts let the host alias their transient memory (ContextCreateInfo::
                               alias_transient_memory, with a host allocator): every record moves the transient
                               images out of UNDEFINED
+  --hard-light                every light has no size (ShadowsDispatch::hard_light): the output is each pixel's
+                              ray, and one filter pass runs (not with a non-zero --light-angle)
 
 The device is the first whose name contains $DNSR_DEVICE (any device when unset). The commit recorded is
 $DNSR_COMMIT, else `git rev-parse HEAD` of the working directory.";
@@ -111,6 +113,7 @@ struct Options {
     push_descriptors: bool,
     host: HostFormats,
     alias_transient: bool,
+    hard_light: bool,
 }
 
 impl Options {
@@ -145,6 +148,7 @@ fn parse_args() -> Options {
         push_descriptors: true,
         host: HostFormats::Engine,
         alias_transient: false,
+        hard_light: false,
     };
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
@@ -165,6 +169,7 @@ fn parse_args() -> Options {
             "--no-push-descriptors" => o.push_descriptors = false,
             "--float-gbuffer" => o.host = HostFormats::Float,
             "--alias-transient" => o.alias_transient = true,
+            "--hard-light" => o.hard_light = true,
             "--lights" => {
                 let max = dnsr::MAX_LIGHTS_PER_RECORD;
                 o.lights = list(args.next(), "--lights", |s| s.parse().ok().filter(|n| (1..=max).contains(n)));
@@ -180,6 +185,9 @@ fn parse_args() -> Options {
             }
             other => usage(&format!("unknown argument {other:?}")),
         }
+    }
+    if o.hard_light && o.light_angle.is_some_and(|a| a != 0.0) {
+        usage("--hard-light is a light of no size: it does not go with a non-zero --light-angle");
     }
     if o.checkerboard && o.rays.is_some() {
         usage("--checkerboard reads the hit mask: it does not go with --rays");
@@ -221,6 +229,7 @@ fn main() {
             let mut gpu_scene = build(&gpu, scene, size.0, size.1, opts.rays, opts.host);
             gpu_scene.checkerboard = opts.checkerboard;
             gpu_scene.alias_transient = opts.alias_transient;
+            gpu_scene.hard_light = opts.hard_light;
             eprintln!("dnsr-bench: {}x{} {}: {} frames generated in {:.1} s", size.0, size.1, scene.id(), gpu_scene.frames.len(), t.elapsed().as_secs_f64());
             for &precision in &precisions {
                 for (&preset, &lights) in opts.presets.iter().flat_map(|p| opts.lights.iter().map(move |l| (p, l))) {

@@ -39,7 +39,7 @@ fn record(
         *l = light(scene, index, k, out, guidance);
     }
     let shared = ShadowsDispatch { hit_mask: Default::default(), visibility: Default::default(), output: Default::default(),
-        hit_distance: None, light_angular_size: 0.0, reset: false, ..*d };
+        hit_distance: None, light_angular_size: 0.0, hard_light: false, reset: false, ..*d };
     let t0 = Instant::now();
     let r = if outputs.len() == 1 { ctx.record_shadows(cmd, d) } else { ctx.record_lights(cmd, &shared, &lights[..outputs.len()]) };
     (r, t0.elapsed())
@@ -112,6 +112,7 @@ fn light(scene: &GpuScene, index: usize, k: usize, output: &TestImage, guidance:
         hit_distance: guidance.map(|g| g.hit_distance.host()),
         light_angular_size: guidance.map_or(0.0, |g| g.light_angular_size),
         reset: index == 0,
+        hard_light: scene.hard_light,
         ..Default::default()
     }
 }
@@ -142,6 +143,7 @@ fn dispatch(scene: &GpuScene, index: usize, output: &TestImage, guidance: Option
         },
         reset: index == 0,
         checkerboard_phase: if scene.checkerboard { index as u32 % 2 } else { 0 },
+        hard_light: scene.hard_light,
         ..Default::default()
     }
 }
@@ -198,12 +200,14 @@ pub fn run(
         gpu.destroy_image(img);
     }
     let memory_bytes = ctx.memory_bytes();
+    // A light of no size runs one filter pass (the later ones record no dispatch).
+    let filter_passes = if scene.hard_light { 1 } else { Settings::preset(preset).filter_passes };
     let persistent_bytes = ctx.persistent_memory_bytes();
     drop(ctx);
     outputs.iter().for_each(|o| gpu.destroy_image(o));
     let (timings, record_us, counts, warmup) = result?;
     let record_us_untimed = untimed.transpose()?.unwrap_or_default();
-    Ok(ConfigRun { timings, record_us, record_us_untimed, counts, memory_bytes, persistent_bytes, filter_passes: Settings::preset(preset).filter_passes, warmup })
+    Ok(ConfigRun { timings, record_us, record_us_untimed, counts, memory_bytes, persistent_bytes, filter_passes, warmup })
 }
 
 /// How long to warm up before the timed frames.

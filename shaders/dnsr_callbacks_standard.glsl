@@ -248,7 +248,6 @@ DNSR_LIGHT_SLOT(3, 52) DNSR_LIGHT_SLOT_FINAL(3, 52)
 
 int dnsr_get_light_count() { return int(dnsr_push.lights.x); }
 bool dnsr_get_light_guided(int l) { return ((dnsr_push.lights.y >> uint(l)) & 1u) != 0u; }
-bool dnsr_get_light_hard(int l) { return ((dnsr_push.lights.z >> uint(l)) & 1u) != 0u; }
 vec4 dnsr_get_light_penumbra_settings(int l) {
     return vec4(dnsr_push.light_tan_half_angle[l], dnsr_constants.penumbra.yzw);
 }

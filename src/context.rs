@@ -582,7 +582,6 @@ impl Context {
             moments: light.moments[cur].view,
             engine: d.engine_images.map(|e| e.map_or(Binding::default(), |e| image(e.view, e.layout))),
             penumbra_tan_half_angle: penumbra_tan_half_angle(d),
-            hard_light: d.hard_light,
         }
     }
 

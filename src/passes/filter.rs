@@ -24,8 +24,8 @@ gpu_block! {
         /// x: tap step in pixels; y: DNSR_PASS_* bits; z: pass index; w: DNSR_DEBUG_VIEW_* (final pass).
         pass: [u32; 4],
         /// The light-slot variants (several lights per dispatch; zero otherwise): x: lights in this dispatch
-        /// (1..=DNSR_LIGHT_SLOTS); y: bit s set when slot s has penumbra guidance; z: bit s set when slot s's light
-        /// has no size (`ShadowsDispatch::hard_light`); w: unused.
+        /// (1..=DNSR_LIGHT_SLOTS); y: bit s set when slot s has penumbra guidance; zw: unused. (A light of no size
+        /// runs no later pass.)
         lights: [u32; 4],
         /// The light-slot variants: slot s's tan(light angular diameter / 2) (penumbra.x of its constants; the
         /// other penumbra constants depend on the camera only and are read from slot 0's).
@@ -117,7 +117,7 @@ pub(crate) fn lights_pass(lights: &[&FrameViews], pass: u32, passes: u32, debug_
     let mut p = self::pass(lights[0], pass, passes, debug_view);
     const PER_LIGHT: [Resource; 6] =
         [Resource::TileMeta, Resource::TileBlocker, Resource::FilterInput, Resource::FilterOutput, Resource::Output, Resource::DebugMoments];
-    let (mut guided, mut hard, mut tan) = (0, 0, [0.0; 4]);
+    let (mut guided, mut tan) = (0, [0.0; 4]);
     for slot in 0..LIGHT_SLOTS {
         let v = lights.get(slot).unwrap_or(&lights[0]);
         let single = self::pass(v, pass, passes, debug_view).bindings;
@@ -131,12 +131,11 @@ pub(crate) fn lights_pass(lights: &[&FrameViews], pass: u32, passes: u32, debug_
                 guided |= 1 << slot;
                 tan[slot] = v.penumbra_tan_half_angle;
             }
-            hard |= (v.hard_light as u32) << slot;
         }
     }
     p.role = if is_final(pass, passes) { Role::FilterLightsFinal } else { Role::FilterLights(pass) };
     if let Some(push) = p.push.as_mut() {
-        push.lights = [lights.len() as u32, guided, hard, 0];
+        push.lights = [lights.len() as u32, guided, 0, 0];
         push.light_tan_half_angle = tan;
     }
     p

@@ -228,8 +228,6 @@ pub(crate) struct FrameViews {
     pub engine: [Binding; crate::dispatch::MAX_ENGINE_IMAGES],
     /// tan(light angular diameter / 2) of penumbra guidance (0 without): the one per-light filter constant.
     pub penumbra_tan_half_angle: f32,
-    /// The light has no size (`ShadowsDispatch::hard_light`): the other per-light filter constant.
-    pub hard_light: bool,
 }
 
 impl FrameViews {

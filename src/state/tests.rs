@@ -124,7 +124,6 @@ fn views() -> FrameViews {
         moments: view(Image::Moments, 0),
         engine: [Binding::default(); crate::dispatch::MAX_ENGINE_IMAGES],
         penumbra_tan_half_angle: 0.0,
-        hard_light: false,
     }
 }
 

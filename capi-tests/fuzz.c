@@ -209,6 +209,10 @@ static const VkFormat normal_formats[] = {
     VK_FORMAT_R32G32B32A32_SFLOAT,
 };
 static const VkFormat output_formats[] = {VK_FORMAT_R8_UNORM, VK_FORMAT_R16_SFLOAT, VK_FORMAT_R32_SFLOAT};
+/* Every output format a context takes (the header's DnsrContextCreateInfo::outputFormat); the pool's outputs above
+ * are the single-channel ones. */
+static const VkFormat accepted_output_formats[] = {VK_FORMAT_R8_UNORM, VK_FORMAT_R16_SFLOAT, VK_FORMAT_R32_SFLOAT,
+                                                   VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R16G16B16A16_SFLOAT};
 
 static bool in_list(VkFormat f, const VkFormat *list, uint32_t n)
 {
@@ -589,7 +593,8 @@ static bool dispatch_legal(const DnsrShadowsDispatch *d, const FuzzContext *c)
     if (d->sType != DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH || d->pNext != NULL || d->commandBuffer == VK_NULL_HANDLE)
         return false;
     if (d->lightIndex >= c->lights) return false;
-    if (d->flags & ~(DnsrDispatchFlags)(DNSR_DISPATCH_RESET | DNSR_DISPATCH_USE_RENDER_RECT)) return false;
+    if (d->flags & ~(DnsrDispatchFlags)(DNSR_DISPATCH_RESET | DNSR_DISPATCH_USE_RENDER_RECT | DNSR_DISPATCH_HARD_LIGHT))
+        return false;
     if (d->hitMaskConvention > DNSR_HIT_MASK_LIT_BITS || d->debugView > DNSR_DEBUG_VIEW_DISOCCLUSION) return false;
     for (int r = 0; r < ROLES; r++) {
         const DnsrHostImage *img = role_slot((DnsrShadowsDispatch *)d, (enum Role)r);
@@ -624,7 +629,13 @@ static void mutate_dispatch(DnsrShadowsDispatch *d, const FuzzContext *c, Call *
     case 1: d->pNext = &not_a_dispatch; note(call, true, "pNext"); break;
     case 2: d->commandBuffer = VK_NULL_HANDLE; note(call, true, "commandBuffer=NULL"); break;
     case 3: d->lightIndex = c->lights + rnd(chance(50) ? 4 : 0x7fffffffu); note(call, true, "lightIndex=%u", d->lightIndex); break;
-    case 4: d->flags |= (1u << (2 + rnd(30))); note(call, true, "flags=0x%x", d->flags); break;
+    case 4: {
+        /* An unknown bit, or USE_HIT_DISTANCE without a hit-distance image (never DNSR_DISPATCH_HARD_LIGHT: legal). */
+        uint32_t bit = 2 + rnd(29);
+        d->flags |= 1u << (bit >= 3 ? bit + 1 : bit);
+        note(call, true, "flags=0x%x", d->flags);
+        break;
+    }
     case 5: d->hitMaskConvention = 2 + rnd(chance(50) ? 8 : 0x7ffffff0u); note(call, true, "hitMaskConvention=%u", d->hitMaskConvention); break;
     case 6: d->debugView = 5 + rnd(chance(50) ? 8 : 0x7ffffff0u); note(call, true, "debugView=%u", d->debugView); break;
     case 7: img->view = VK_NULL_HANDLE; note(call, true, "%s.view=NULL", role_name[role]); break;
@@ -746,7 +757,7 @@ static DnsrShadowsDispatch legal_dispatch(const FuzzContext *c, VkCommandBuffer 
     d.sType = DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH;
     d.commandBuffer = cmd;
     d.lightIndex = rnd(c->lights);
-    d.flags = chance(20) ? DNSR_DISPATCH_RESET : 0;
+    d.flags = (chance(20) ? DNSR_DISPATCH_RESET : 0) | (chance(20) ? DNSR_DISPATCH_HARD_LIGHT : 0);
     d.hitMaskConvention = chance(50) ? DNSR_HIT_MASK_OCCLUDED_BITS : DNSR_HIT_MASK_LIT_BITS;
     for (int r = 0; r < ROLES; r++) {
         const PoolImage *p = pool_pick((enum Role)r, size, c->outputFormat);
@@ -980,7 +991,7 @@ static bool create_legal(const DnsrContextCreateInfo *i)
     if (i->enabledFeatures & ~host.features) return false;
     if (i->precision > DNSR_PRECISION_FP16) return false;
     if (i->precision == DNSR_PRECISION_FP16 && !(i->enabledFeatures & DNSR_FEATURE_FLOAT16)) return false;
-    if (!in_list(i->outputFormat, output_formats, COUNT(output_formats))) return false;
+    if (!in_list(i->outputFormat, accepted_output_formats, COUNT(accepted_output_formats))) return false;
     if (i->pSettings && !settings_legal(i->pSettings)) return false;
     if (i->pLogCallback && !i->pLogCallback->log) return false;
     uint64_t need = memory_need(i->width, i->height, i->precision, i->pSettings ? i->pSettings->filterPasses : 3,
@@ -1059,7 +1070,7 @@ static void create_call(uint32_t iteration, bool must_succeed)
             case 16: info.precision = 2 + rnd(0x7ffffff0u); note(&call, true, "precision=%u", info.precision); break;
             case 17: if (!(info.enabledFeatures & DNSR_FEATURE_FLOAT16)) { info.precision = DNSR_PRECISION_FP16; note(&call, true, "FP16 without FLOAT16"); } break;
             case 18: info.outputFormat = lie_format(OUTPUT, VK_FORMAT_UNDEFINED);
-                if (!in_list(info.outputFormat, output_formats, COUNT(output_formats))) note(&call, true, "outputFormat=%d", (int)info.outputFormat);
+                if (!in_list(info.outputFormat, accepted_output_formats, COUNT(accepted_output_formats))) note(&call, true, "outputFormat=%d", (int)info.outputFormat);
                 else note(&call, false, "outputFormat=%d", (int)info.outputFormat);
                 break;
             case 19: case 20: settings = fuzz_settings(&call); info.pSettings = &settings; break;
@@ -1115,6 +1126,8 @@ static void create_call(uint32_t iteration, bool must_succeed)
 #else
     c->fif = DEFAULT_FIF;
 #endif
+    /* The pool holds single-channel outputs only: a context writing RGBA (created and checked above) records nothing. */
+    if (!in_list(c->outputFormat, output_formats, COUNT(output_formats))) destroy_context(c);
 }
 
 static void other_call(uint32_t iteration)

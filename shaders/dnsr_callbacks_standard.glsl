@@ -33,8 +33,6 @@ float dnsr_get_depth_similarity_sigma() { return dnsr_constants.eye_depth_sigma.
 bool dnsr_get_is_reset() { return (dnsr_constants.flags.x & DNSR_FLAG_RESET) != 0u; }
 bool dnsr_get_is_depth_inverted() { return (dnsr_constants.flags.x & DNSR_FLAG_DEPTH_INVERTED) != 0u; }
 bool dnsr_get_is_lit_bit_mask() { return (dnsr_constants.flags.x & DNSR_FLAG_LIT_BIT_MASK) != 0u; }
-// The light has no size (ShadowsDispatch::hard_light): every receiver's own sample is exact.
-bool dnsr_get_is_hard_light() { return (dnsr_constants.flags.x & DNSR_FLAG_HARD_LIGHT) != 0u; }
 // Checkerboard input: this frame's rays were traced for the pixels with (x + y) % 2 == phase.
 bool dnsr_get_is_checkerboard() { return (dnsr_constants.flags.x & DNSR_FLAG_CHECKERBOARD) != 0u; }
 int dnsr_get_checkerboard_phase() { return int(dnsr_constants.flags.y); }

@@ -22,6 +22,10 @@ layout(constant_id = DNSR_SPEC_ID_PENUMBRA_GUIDED) const bool DNSR_SPEC_PENUMBRA
 // The run features: Settings::stable_history_samples > 0 (dnsr_get_run_settings().x) or converged_samples > 0 (.z).
 layout(constant_id = DNSR_SPEC_ID_STABLE_HISTORY) const bool DNSR_SPEC_STABLE_HISTORY = false;
 #endif
+#if defined(DNSR_PASS_TILE_CLASSIFICATION) || (defined(DNSR_PASS_FILTER) && !defined(DNSR_LATER_PASS))
+// The light has no size (ShadowsDispatch::hard_light): every receiver's own sample is its output.
+layout(constant_id = DNSR_SPEC_ID_HARD_LIGHT) const bool DNSR_SPEC_HARD_LIGHT = false;
+#endif
 
 uint dnsr_tile_bit(ivec2 p) { return uint((p.y % DNSR_TILE_HEIGHT) * DNSR_TILE_WIDTH + (p.x % DNSR_TILE_WIDTH)); }
 

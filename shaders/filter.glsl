@@ -60,13 +60,12 @@ vec4 dnsr_pass_gather_variance(int l, ivec2 corner) { return dnsr_gather_filter_
 float dnsr_pass_penumbra_falloff(int l, ivec2 p, float zc) { return dnsr_penumbra_falloff(p, zc); }
 bool dnsr_pass_hard(int l, ivec2 p, float zc) {
     float blocker = dnsr_read_tile_blocker(p / DNSR_TILE_SIZE);
-    // A light of no size (ShadowsDispatch::hard_light) runs the first filter pass alone: the later passes leave the
-    // runtime test out, which cost them 2-4% at 4K on an H100 (the guided rule folds away without guidance).
-    // (One expression, no early return: early returns in these tests have made lavapipe leak JIT memory.)
+    // A light of no size (ShadowsDispatch::hard_light) runs the first filter pass alone: the later passes do not
+    // declare DNSR_SPEC_HARD_LIGHT (a runtime test there cost them 2-4% at 4K on an H100).
 #ifdef DNSR_LATER_PASS
     return dnsr_hard_penumbra(blocker, dnsr_get_penumbra_settings(), zc) || dnsr_no_blocker(blocker);
 #else
-    return dnsr_get_is_hard_light() || dnsr_hard_penumbra(blocker, dnsr_get_penumbra_settings(), zc) || dnsr_no_blocker(blocker);
+    return DNSR_SPEC_HARD_LIGHT || dnsr_hard_penumbra(blocker, dnsr_get_penumbra_settings(), zc) || dnsr_no_blocker(blocker);
 #endif
 }
 void dnsr_pass_write_filter_output(int l, ivec2 p, vec2 mean_var) { dnsr_write_filter_output(p, mean_var); }

@@ -693,7 +693,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
 #ifdef DNSR_VISIBILITY_INPUT
     own_sample = !untraced;
 #endif
-    if (own_sample && (dnsr_get_is_hard_light()
+    if (own_sample && (DNSR_SPEC_HARD_LIGHT
                        || dnsr_hard_penumbra(blocker, dnsr_get_penumbra_settings(), dnsr_linear_depth(ndc, depth))
                        || dnsr_no_blocker(blocker))) {
         shadow = x;

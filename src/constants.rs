@@ -80,8 +80,6 @@ pub(crate) const FLAG_DEPTH_INVERTED: u32 = 1 << 1;
 pub(crate) const FLAG_LIT_BIT_MASK: u32 = 1 << 2;
 /// Frame flag: a checkerboard input (flags.y holds the phase): classification knows which pixels were traced.
 pub(crate) const FLAG_CHECKERBOARD: u32 = 1 << 3;
-/// Frame flag: the light has no size (`ShadowsDispatch::hard_light`): every receiver's own sample is its output.
-pub(crate) const FLAG_HARD_LIGHT: u32 = 1 << 4;
 
 /// Binding names shared by shaders and host. The host finds each binding's number through reflection.
 #[cfg_attr(not(test), allow(dead_code))]
@@ -90,7 +88,6 @@ pub(crate) const GLSL_FLAGS: &[(&str, u32)] = &[
     ("DNSR_FLAG_DEPTH_INVERTED", FLAG_DEPTH_INVERTED),
     ("DNSR_FLAG_LIT_BIT_MASK", FLAG_LIT_BIT_MASK),
     ("DNSR_FLAG_CHECKERBOARD", FLAG_CHECKERBOARD),
-    ("DNSR_FLAG_HARD_LIGHT", FLAG_HARD_LIGHT),
     ("DNSR_PASS_WRITE_INTERNAL", PASS_WRITE_INTERNAL),
     ("DNSR_PASS_SKIP_CLEARED", PASS_SKIP_CLEARED),
     ("DNSR_TILE_CLEARED", crate::passes::TILE_CLEARED),
@@ -138,6 +135,7 @@ pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
     ("DNSR_HARD_PENUMBRA_MIN_BLOCKER_PIXELS", crate::passes::HARD_PENUMBRA_MIN_BLOCKER_PIXELS),
     ("DNSR_SPEC_ID_PENUMBRA_GUIDED", crate::passes::SPEC_PENUMBRA_GUIDED),
     ("DNSR_SPEC_ID_STABLE_HISTORY", crate::passes::SPEC_STABLE_HISTORY),
+    ("DNSR_SPEC_ID_HARD_LIGHT", crate::passes::SPEC_HARD_LIGHT),
     ("DNSR_LIGHT_SLOTS", crate::passes::LIGHT_SLOTS as u32),
     ("DNSR_MAX_CASCADES", crate::passes::classify::MAX_CASCADES as u32),
     ("DNSR_MAX_CLASSIFY_TAPS", crate::passes::classify::MAX_TAPS as u32),

@@ -1,6 +1,6 @@
 //! The denoiser context: pipelines, internal state per light, and recording into the host's command buffer.
 
-use crate::constants::{FrameConstants, FLAG_CHECKERBOARD, FLAG_DEPTH_INVERTED, FLAG_HARD_LIGHT, FLAG_LIT_BIT_MASK, FLAG_RESET};
+use crate::constants::{FrameConstants, FLAG_CHECKERBOARD, FLAG_DEPTH_INVERTED, FLAG_LIT_BIT_MASK, FLAG_RESET};
 use crate::create_info::{ContextCreateInfo, EnabledFeatures, Precision, ShadowInput};
 use crate::dispatch::{HitMaskConvention, LightDispatch, Rect, ShadowsDispatch, MAX_LIGHTS_PER_RECORD};
 use crate::error::{vk_check, Error, Result};
@@ -14,7 +14,7 @@ use crate::light::LightState;
 use crate::passes::bindings::{image, Binding};
 use crate::passes::variants::{is_light_slot_variant, variant};
 use crate::passes::{filter, prepare, tile_classification};
-use crate::passes::{roles, FrameViews, Pass, Role, LIGHT_SLOTS, SPEC_PENUMBRA_GUIDED, SPEC_STABLE_HISTORY};
+use crate::passes::{roles, FrameViews, Pass, Role, LIGHT_SLOTS, SPEC_HARD_LIGHT, SPEC_PENUMBRA_GUIDED, SPEC_STABLE_HISTORY};
 use crate::pipeline::PassPipeline;
 use crate::settings::{check_filter_passes, Settings};
 use crate::timestamps::{ClassifierTimings, PassTimings, Timestamps};
@@ -569,7 +569,8 @@ impl Context {
             hit_distance: d.hit_distance.as_ref().map_or(image(light.history.view, vk::ImageLayout::GENERAL), host),
             tile_blocker: light.tile_blocker.view,
             spec: (if d.hit_distance.is_some() { 1 << SPEC_PENUMBRA_GUIDED } else { 0 })
-                | (if self.settings.uses_runs() { 1 << SPEC_STABLE_HISTORY } else { 0 }),
+                | (if self.settings.uses_runs() { 1 << SPEC_STABLE_HISTORY } else { 0 })
+                | (if d.hard_light { 1 << SPEC_HARD_LIGHT } else { 0 }),
             output: d.output.view,
             tile_mask: if self.reads_mask_directly(d) { host(&d.hit_mask) } else { image(light.tile_mask.view, vk::ImageLayout::GENERAL) },
             tile_dark: light.tile_dark.view,
@@ -870,8 +871,7 @@ impl Context {
                 (if reset { FLAG_RESET } else { 0 })
                     | (if self.depth_inverted { FLAG_DEPTH_INVERTED } else { 0 })
                     | (if d.hit_mask_convention == HitMaskConvention::LitBits { FLAG_LIT_BIT_MASK } else { 0 })
-                    | (if self.shadow_input == ShadowInput::Checkerboard { FLAG_CHECKERBOARD } else { 0 })
-                    | (if d.hard_light { FLAG_HARD_LIGHT } else { 0 }),
+                    | (if self.shadow_input == ShadowInput::Checkerboard { FLAG_CHECKERBOARD } else { 0 }),
                 d.checkerboard_phase,
                 0,
                 0,

@@ -77,8 +77,12 @@ pub(crate) fn light_group(n: usize, k: usize) -> std::ops::Range<usize> {
 pub(crate) const SPEC_PENUMBRA_GUIDED: u32 = 0;
 /// `DNSR_SPEC_STABLE_HISTORY`: the run features are on (`Settings::uses_runs`: stable history or converged pixels).
 pub(crate) const SPEC_STABLE_HISTORY: u32 = 1;
+/// `DNSR_SPEC_HARD_LIGHT`: the light has no size (`ShadowsDispatch::hard_light`); classification and the first
+/// filter pass only. A runtime test of a flag in either, in every form tried, made lavapipe (Mesa 22.3) leak JIT
+/// memory on every dispatch of those passes (the minimal example's LeakSanitizer run), lights of no size or not.
+pub(crate) const SPEC_HARD_LIGHT: u32 = 2;
 /// Specialization constant ids the passes set: 0..SPEC_COUNT.
-pub(crate) const SPEC_COUNT: usize = 2;
+pub(crate) const SPEC_COUNT: usize = 3;
 
 /// Which specialization constants are on for one dispatch of a pass (bit i: constant id i).
 pub(crate) type Specialization = u32;

@@ -79,7 +79,7 @@ fn bless_bench_copy_spirv_matches_glslc() {
 fn reflected_interfaces_match_what_the_host_binds() {
     use Resource::*;
     // (variant, bindings, push-constant bytes, specialization constants declared)
-    use crate::passes::{SPEC_PENUMBRA_GUIDED as GUIDED, SPEC_STABLE_HISTORY as STABLE};
+    use crate::passes::{SPEC_HARD_LIGHT as HARD, SPEC_PENUMBRA_GUIDED as GUIDED, SPEC_STABLE_HISTORY as STABLE};
     let expect: &[(&str, &[Resource], u32, u32)] = &[
         ("prepare", &[Constants, HitMask, TileMaskOut], 0, 0),
         (
@@ -89,9 +89,14 @@ fn reflected_interfaces_match_what_the_host_binds() {
                 Reprojection, TileMetaOut, Output, HitDistance, TileBlockerOut,
             ],
             0,
-            (1 << GUIDED) | (1 << STABLE),
+            (1 << GUIDED) | (1 << STABLE) | (1 << HARD),
         ),
-        ("filter", &[Constants, Depth, DepthCopy, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide], 48, 1 << GUIDED),
+        (
+            "filter",
+            &[Constants, Depth, DepthCopy, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide],
+            48,
+            (1 << GUIDED) | (1 << HARD),
+        ),
         (
             "filter_later",
             &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide],
@@ -102,7 +107,7 @@ fn reflected_interfaces_match_what_the_host_binds() {
             "filter_final_r16f_fp16",
             &[Constants, Depth, DepthCopy, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Output, DebugMoments, Guide],
             48,
-            1 << GUIDED,
+            (1 << GUIDED) | (1 << HARD),
         ),
         (
             "filter_later_lights_final_r16f",

@@ -1696,8 +1696,8 @@ typedef struct DnsrDiagnosis {
 
 /**
  * The light has no size (a point light, or a directional light of angular size 0): every receiver's output is its
- * own ray's result, with or without hit distances, and only the first filter pass runs for it (ShadowsDispatch::
- * hard_light in the Rust API). With DNSR_DISPATCH_USE_HIT_DISTANCE, `lightAngularSize` must be 0.
+ * own ray's result, with or without hit distances, and only the first filter pass runs for it
+ * (ShadowsDispatch::hard_light in the Rust API). With DNSR_DISPATCH_USE_HIT_DISTANCE, `lightAngularSize` must be 0.
  */
 #define DNSR_DISPATCH_HARD_LIGHT (1 << 3)
 

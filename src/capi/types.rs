@@ -233,8 +233,8 @@ pub const DNSR_DISPATCH_USE_RENDER_RECT: DnsrDispatchFlags = 1 << 1;
 /// Penumbra guidance: `hitDistance` and `lightAngularSize` are read.
 pub const DNSR_DISPATCH_USE_HIT_DISTANCE: DnsrDispatchFlags = 1 << 2;
 /// The light has no size (a point light, or a directional light of angular size 0): every receiver's output is its
-/// own ray's result, with or without hit distances, and only the first filter pass runs for it (ShadowsDispatch::
-/// hard_light in the Rust API). With DNSR_DISPATCH_USE_HIT_DISTANCE, `lightAngularSize` must be 0.
+/// own ray's result, with or without hit distances, and only the first filter pass runs for it
+/// (ShadowsDispatch::hard_light in the Rust API). With DNSR_DISPATCH_USE_HIT_DISTANCE, `lightAngularSize` must be 0.
 pub const DNSR_DISPATCH_HARD_LIGHT: DnsrDispatchFlags = 1 << 3;
 /// Forces 32 bits.
 pub const DNSR_DISPATCH_MAX_ENUM: DnsrDispatchFlags = 0x7FFF_FFFF;

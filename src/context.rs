@@ -595,7 +595,7 @@ impl Context {
             return Ok(());
         }
         let frame = |filter_passes| crate::passes::frame(views, filter_passes, run_prepare, d.debug_view);
-        let single = hard_light.then(|| frame(1));
+        let single = hard_light.then(|| frame(crate::passes::light_filter_passes(self.settings.filter_passes, true)));
         let passes = frame(self.settings.filter_passes);
         let pipelines = self.pipelines.as_ref().expect("created");
         for pass in passes.iter().chain(single.iter().flat_map(|f| f.iter())).filter(|p| p.enabled) {
@@ -673,7 +673,7 @@ impl Context {
         self.check_engine_images(shared, light_views(0), run_prepare, ds.iter().any(|d| d.hard_light))?;
         // A light of no size outputs its rays, which its first filter pass writes: that pass is its last
         // (`Role::FilterOnly`), and the later filter passes (index 3 on) run for the other lights alone.
-        let passes_of = |light: usize| if ds[light].hard_light { 1 } else { filter_passes };
+        let passes_of = |light: usize| crate::passes::light_filter_passes(filter_passes, ds[light].hard_light);
         let every: [usize; MAX_LIGHTS_PER_RECORD] = std::array::from_fn(|i| i);
         let mut filtered = [0; MAX_LIGHTS_PER_RECORD];
         let mut filtered_count = 0;

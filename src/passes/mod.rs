@@ -139,6 +139,12 @@ impl FramePasses {
 
 }
 
+/// The filter passes a light runs: the configured ones, or for a light of no size (`ShadowsDispatch::hard_light`)
+/// only the first, which writes its output (every pixel passes through the others). The CPU reference runs the same.
+pub(crate) fn light_filter_passes(configured: u32, hard_light: bool) -> u32 {
+    if hard_light { 1 } else { configured }
+}
+
 /// How many passes a frame of `filter_passes` filter passes records.
 pub(crate) fn pass_count(filter_passes: u32) -> usize {
     2 + filter_passes as usize

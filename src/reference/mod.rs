@@ -266,8 +266,7 @@ pub fn run_frame<Io: Read + Write>(io: &mut Io, run_prepare: bool) {
         prepare::run(io);
     }
     tile_classification::run(io);
-    // A light of no size needs one filter pass: every receiver's output is its sample, which the first pass writes.
-    let passes = if io.hard_light() { 1 } else { io.settings().filter_passes };
+    let passes = crate::passes::light_filter_passes(io.settings().filter_passes, io.hard_light());
     for pass in 0..passes {
         io.begin_filter_pass(pass, passes);
         filter::run(io);

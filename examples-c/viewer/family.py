@@ -6,7 +6,7 @@ distributions over the scenes: the output's RMSE against the 1-spp input's, how 
 and the error on the pixel classes of metrics.h (exact pixels, silhouettes, creases, thin features).
 
 usage: family.py VIEWER OUT_DIR [--first SEED] [--count N] [--size WxH] [--frames N] [--presets a,b] [--md FILE]
-                 [--check PRESET]
+                 [--check PRESET] [--camera KIND] [--references DIR] [--jobs N]
 
 A preset is a dnsr preset name, run without penumbra guidance, or NAME+guided: with it (hit distances given), or
 NAME+untold: without guidance and without telling dnsr that a light of no size has none (--hard-light off: what a
@@ -16,6 +16,11 @@ dnsr (DNSR_DISPATCH_HARD_LIGHT) when the scene's light has angular size 0.
 OUT_DIR receives the scenes and family.json (every scene's numbers). --md writes the Markdown report. --check
 PRESET asserts the "do no harm" targets that dnsr meets on the family for that preset (see CHECKS) and exits 1,
 naming each scene and target missed, when one fails: `make test` runs it on a fixed subset of seeds.
+
+Each scene's reference is rendered once and kept in --references (default OUT_DIR/references), named by seed, size,
+frames and camera, so a second run (another library, another preset) renders none. --jobs N runs N scenes at once.
+To compare two builds of the library, run the family once with each (the viewer loads the libdnsr.so.0.1 that
+LD_LIBRARY_PATH names first), sharing --references, and compare the two family.json files with family_compare.py.
 """
 import argparse
 import json
@@ -23,6 +28,7 @@ import statistics
 import subprocess
 import sys
 import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 HERE = Path(__file__).parent
@@ -175,6 +181,8 @@ def main():
     ap.add_argument("--check")
     ap.add_argument("--camera", choices=["still", "orbit", "fast", "pan"],
                     help="view every scene with this camera instead of its own")
+    ap.add_argument("--references", help="where each scene's reference is kept (default OUT_DIR/references)")
+    ap.add_argument("--jobs", type=int, default=1, help="scenes run at once")
     a = ap.parse_args()
     presets = a.presets.split(",")
     out = Path(a.out)
@@ -188,12 +196,22 @@ def main():
             args = s["viewer_args"]
             cut = min(i for i, x in enumerate(args) if x == "--orbit-speed")
             s["viewer_args"], s["camera"] = args[:cut] + make_family.CAMERAS[a.camera], a.camera
-    reference, tmp = str(out / "reference.bin"), str(out / "run")
-    for s in scenes:
-        s["results"] = {p: run(a.viewer, s, p, a.size, a.frames, tmp, reference, i == 0) for i, p in enumerate(presets)}
-        print(f"seed {s['seed']}: " + ", ".join(f"{p} {s['results'][p]['noisy']:.4f} -> {s['results'][p]['denoised']:.4f}"
-                                               for p in presets), flush=True)
-    device = json.loads((Path(tmp) / "report.json").read_text())["device"]
+    references = Path(a.references) if a.references else out / "references"
+    references.mkdir(parents=True, exist_ok=True)
+
+    def measure(s):
+        # The reference depends on the scene and the frame it is taken at: size, frame count and camera path.
+        reference = references / f"{s['seed']}_{a.size}_{a.frames}_{s['camera']}.bin"
+        save = not reference.exists()
+        tmp = str(out / f"run_{s['seed']}")
+        s["results"] = {p: run(a.viewer, s, p, a.size, a.frames, tmp, str(reference), save and i == 0)
+                        for i, p in enumerate(presets)}
+        return s, json.loads((Path(tmp) / "report.json").read_text())["device"]
+
+    with ThreadPoolExecutor(max(a.jobs, 1)) as pool:
+        for s, device in pool.map(measure, scenes):
+            print(f"seed {s['seed']}: " + ", ".join(f"{p} {s['results'][p]['noisy']:.4f} -> "
+                                                   f"{s['results'][p]['denoised']:.4f}" for p in presets), flush=True)
     (out / "family.json").write_text(json.dumps(scenes, indent=1) + "\n")
     if a.md:
         Path(a.md).write_text(report(scenes, presets, a.size, a.frames, device))

@@ -17,12 +17,15 @@ OUT_DIR receives the scenes and family.json (every scene's numbers). --md writes
 PRESET asserts the "do no harm" targets that dnsr meets on the family for that preset (see CHECKS) and exits 1,
 naming each scene and target missed, when one fails: `make test` runs it on a fixed subset of seeds.
 
-Each scene's reference is rendered once and kept in --references (default OUT_DIR/references), named by seed, size,
-frames and camera, so a second run (another library, another preset) renders none. --jobs N runs N scenes at once.
+Each scene's reference is rendered once and kept in --references (default OUT_DIR/references), named by seed and a
+hash of what it depends on (the scene file, the viewer's arguments, size, frames, REFERENCE_RAYS and the viewer
+binary; not the library, which the reference does not use), so a second run (another library, another preset)
+renders none, and a changed scene generator or viewer renders it again. --jobs N runs N scenes at once.
 To compare two builds of the library, run the family once with each (the viewer loads the libdnsr.so.0.1 that
 LD_LIBRARY_PATH names first), sharing --references, and compare the two family.json files with family_compare.py.
 """
 import argparse
+import hashlib
 import json
 import statistics
 import subprocess
@@ -198,10 +201,14 @@ def main():
             s["viewer_args"], s["camera"] = args[:cut] + make_family.CAMERAS[a.camera], a.camera
     references = Path(a.references) if a.references else out / "references"
     references.mkdir(parents=True, exist_ok=True)
+    viewer_hash = hashlib.sha1(Path(a.viewer).read_bytes()).hexdigest()
 
     def measure(s):
-        # The reference depends on the scene and the frame it is taken at: size, frame count and camera path.
-        reference = references / f"{s['seed']}_{a.size}_{a.frames}_{s['camera']}.bin"
+        # Everything the reference depends on: the scene, its light and camera path, the frame it is taken at, the
+        # ray count and the tracer (the viewer).
+        key = hashlib.sha1(Path(s["scene"]).read_bytes())
+        key.update(json.dumps([s["viewer_args"], a.size, a.frames, REFERENCE_RAYS, viewer_hash]).encode())
+        reference = references / f"{s['seed']}_{key.hexdigest()[:16]}.bin"
         save = not reference.exists()
         tmp = str(out / f"run_{s['seed']}")
         s["results"] = {p: run(a.viewer, s, p, a.size, a.frames, tmp, str(reference), save and i == 0)

@@ -24,13 +24,22 @@ def load(path):
 
 def compare(before, after, preset, show):
     seeds = sorted(set(before) & set(after))
+    if not seeds:
+        sys.exit("the two runs share no seed")
+    if len(seeds) < max(len(before), len(after)):
+        print(f"comparing the {len(seeds)} seeds both runs measured ({len(before)} and {len(after)} in each)")
     pairs = [(seed, before[seed]["results"][preset], after[seed]["results"][preset]) for seed in seeds]
     moved = [seed for seed, b, a in pairs if abs(b["noisy"] - a["noisy"]) > 1e-6]
     if moved:
         sys.exit(f"{preset}: the input differs on seeds {moved}: not the same scenes or references")
     n = len(pairs)
-    mean = lambda k: sum(r[k]["denoised"] for r in pairs) / n  # noqa: E731
-    worse_than_input = lambda k: sum(r[k]["denoised"] > r[k]["noisy"] + REFERENCE_RESOLUTION for r in pairs)  # noqa: E731
+
+    def mean(k):
+        return sum(r[k]["denoised"] for r in pairs) / n
+
+    def worse_than_input(k):
+        return sum(r[k]["denoised"] > r[k]["noisy"] + REFERENCE_RESOLUTION for r in pairs)
+
     delta = sorted(((a["denoised"] - b["denoised"], seed, b, a) for seed, b, a in pairs), key=lambda t: t[0])
     better = [t for t in delta if t[0] < -REFERENCE_RESOLUTION]
     worse = [t for t in delta if t[0] > REFERENCE_RESOLUTION]
@@ -49,8 +58,8 @@ def main():
     ap.add_argument("--show", type=int, default=5)
     a = ap.parse_args()
     before, after = load(a.before), load(a.after)
-    first = lambda runs: next(iter(runs.values()))["results"]  # noqa: E731
-    presets = [a.preset] if a.preset else [p for p in first(before) if p in first(after)]
+    measured = [next(iter(runs.values()))["results"] for runs in (before, after)]
+    presets = [a.preset] if a.preset else [p for p in measured[0] if p in measured[1]]
     if not presets:
         sys.exit("no preset measured by both runs")
     for preset in presets:

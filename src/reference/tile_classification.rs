@@ -75,6 +75,46 @@ pub fn local_moments<Io: Read + ?Sized>(io: &Io, p: Coord) -> DVec2 {
     DVec2::new(mean, (square - mean * mean).max(0.0))
 }
 
+/// Normals a and b (unit, or zero for sky and unknown normals) of one surface: within
+/// acos(`state::TURNED_NORMAL_COS_PERCENT` / 100) of each other (`dnsr_same_surface`).
+fn same_surface(a: DVec3, b: DVec3) -> bool {
+    a.dot(b) >= crate::state::TURNED_NORMAL_COS_PERCENT as f64 / 100.0
+}
+
+/// A pixel's normal in the surface window: zero for sky and outside the rectangle.
+fn window_normal<Io: Read + ?Sized>(io: &Io, q: Coord) -> DVec3 {
+    if inside(io, q) && is_receiver(io.read_depth(q)) { io.read_normal(q) } else { DVec3::ZERO }
+}
+
+/// Spatial mean and variance of the binary mask over p's own surface (with the run features): the rows whose
+/// centre pixel (p.x, p.y + j) lies on p's surface, each over the taps on its centre's surface. Separable as the
+/// GPU computes it (shaders/tile_classification.glsl, `dnsr_surface_moments`, says why). `window` (the whole
+/// window's moments) where p's own normal is unknown.
+pub fn surface_moments<Io: Read + ?Sized>(io: &Io, p: Coord, window: DVec2) -> DVec2 {
+    let own = window_normal(io, p);
+    let (mut lit, mut weight) = (0.0, 0.0);
+    for j in -MOMENT_RADIUS..=MOMENT_RADIUS {
+        let centre = window_normal(io, [p[0], p[1] + j]);
+        if !same_surface(own, centre) {
+            continue;
+        }
+        for i in -MOMENT_RADIUS..=MOMENT_RADIUS {
+            let q = [p[0] + i, p[1] + j];
+            if same_surface(centre, window_normal(io, q)) {
+                let w = moment_weight(io, i) * moment_weight(io, j);
+                lit += w * sample(io, q);
+                weight += w;
+            }
+        }
+    }
+    if weight > 0.0 {
+        let mean = lit / weight;
+        DVec2::new(mean, (mean - mean * mean).max(0.0))
+    } else {
+        window
+    }
+}
+
 /// 0: mixed; 1: every valid pixel within +-8 px of the tile is exactly lit; 2: every one is exactly shadowed.
 pub fn uniform_state<Io: Read + ?Sized>(io: &Io, tile: Coord) -> u32 {
     let (mut all_lit, mut all_shadow) = (true, true);
@@ -236,7 +276,12 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
         (s.full_history_samples as f64, s.min_current_weight as f64, s.max_history_samples as f64);
     let e = io.extent();
 
-    let local = local_moments(io, p);
+    let mut local = local_moments(io, p);
+    // The flip rule keeps the whole window's mean; the rest (with the run features and a hit mask) the surface's.
+    let window_mean = local.x;
+    if s.uses_runs() && !io.visibility_input() {
+        local = surface_moments(io, p, local);
+    }
     let mut x = sample(io, p);
     // Checkerboard input: a pixel not traced this frame holds its neighbours' mean, not a sample of its own.
     let untraced = !io.is_traced(p);
@@ -413,7 +458,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     // distribution already leans to it: the shadow moved over this pixel. Restart from the new samples, the
     // history from the local mean.
     let breaking = flip_after > 0.0 && m.w.abs().fract() == 0.5;
-    let flipped = breaking && exact && !untraced && (m.w.abs() == flip_after + 0.5 || (x - local.x).abs() < 0.5);
+    let flipped = breaking && exact && !untraced && (m.w.abs() == flip_after + 0.5 || (x - window_mean).abs() < 0.5);
     if flipped {
         let n = m.w.abs().floor();
         m = DVec4::new(x, 0.0, n, if x >= 0.5 { n } else { -n });

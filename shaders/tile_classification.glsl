@@ -24,16 +24,25 @@ const int DNSR_WINDOW_COLUMNS = DNSR_WINDOW_TILES.x * DNSR_TILE_WIDTH;
 shared float s_visibility[DNSR_WINDOW_ROWS][DNSR_WINDOW_COLUMNS];
 shared uint s_dark[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
 #endif
-// Horizontal pass of the separable Gaussian for the group's columns over its window rows:
-// x = weighted lit count, y = weight of the taps inside the render rectangle; with the run features z and w the
-// same over the row's surface window (dnsr_surface_moments). With a visibility input:
-// x = weighted sum of visibilities, y = of their squares (the weight is the column's g_inside_weight).
-#ifdef DNSR_VISIBILITY_INPUT
-shared vec2 s_hsum[DNSR_WINDOW_ROWS][DNSR_WIDE_GROUP_WIDTH];
-#else
-shared vec4 s_hsum[DNSR_WINDOW_ROWS][DNSR_WIDE_GROUP_WIDTH];
-// With the run features: each window pixel's normal, vec3(0) for sky and outside the rectangle.
-shared vec3 s_normal[DNSR_WINDOW_ROWS][DNSR_WINDOW_COLUMNS];
+// Horizontal pass of the separable Gaussian for the group's columns over its window rows, as float bits:
+// x = weighted lit count, y = weight of the taps inside the render rectangle, or with the surface window the
+// weighted lit count over the row's surface (the weight is then the column's g_inside_weight). With a visibility
+// input: x = weighted sum of visibilities, y = of their squares (the weight is the column's g_inside_weight).
+// Bits, so that the surface window's normal codes can borrow it first (two window pixels per entry).
+shared uvec2 s_hsum[DNSR_WINDOW_ROWS][DNSR_WIDE_GROUP_WIDTH];
+vec2 dnsr_hsum(int row, int column) { return uintBitsToFloat(s_hsum[row][column]); }
+#ifndef DNSR_VISIBILITY_INPUT
+// The surface window (dnsr_surface_moments): with the run features and without penumbra guidance (with it the
+// scene family measured 12 scenes better and 14 worse: the blockers' distance already bounds the penumbra).
+const bool DNSR_SURFACE_WINDOW = DNSR_SPEC_STABLE_HISTORY && !DNSR_SPEC_PENUMBRA_GUIDED;
+// Bit k of window row r: window pixels (k, r) and (k + 1, r) do not lie on one surface (dnsr_same_surface).
+// Little shared memory on purpose: classification's time on an H100 rose 12% with 10 KB per group and 36% with
+// 12.4 KB (7.6 KB before; up to 9.2 KB cost nothing), every preset alike.
+shared uint s_row_breaks[DNSR_WINDOW_ROWS];
+// Bit k of group column c: window pixels (c + radius, k) and (c + radius, k + 1) do not.
+shared uint s_column_breaks[DNSR_WIDE_GROUP_WIDTH];
+// Sums of the moment weights from distance 0 to k.
+shared float s_weight_prefix[DNSR_MOMENT_RADIUS + 1];
 #endif
 // Closeness key (smaller = closer to the camera) and velocity of each pixel, for the 2x2 quad vote.
 shared float s_quad_key[DNSR_WIDE_GROUP_HEIGHT][DNSR_WIDE_GROUP_WIDTH];
@@ -52,8 +61,8 @@ const int DNSR_HIT_PARTS = DNSR_WIDE_GROUP_INVOCATIONS / DNSR_WINDOW_TILE_COUNT;
 const int DNSR_HIT_PIXELS = DNSR_TILE_WIDTH * DNSR_TILE_HEIGHT / DNSR_HIT_PARTS;
 shared vec2 s_hit[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
 
-void dnsr_store_hit_part(int i, vec2 part) { s_hsum[i / DNSR_WIDE_GROUP_WIDTH][i % DNSR_WIDE_GROUP_WIDTH].xy = part; }
-vec2 dnsr_load_hit_part(int i) { return s_hsum[i / DNSR_WIDE_GROUP_WIDTH][i % DNSR_WIDE_GROUP_WIDTH].xy; }
+void dnsr_store_hit_part(int i, vec2 part) { s_hsum[i / DNSR_WIDE_GROUP_WIDTH][i % DNSR_WIDE_GROUP_WIDTH] = floatBitsToUint(part); }
+vec2 dnsr_load_hit_part(int i) { return dnsr_hsum(i / DNSR_WIDE_GROUP_WIDTH, i % DNSR_WIDE_GROUP_WIDTH); }
 
 ivec2 dnsr_tile_count() { return (dnsr_get_extent() + DNSR_TILE_SIZE - 1) / DNSR_TILE_SIZE; }
 
@@ -99,9 +108,10 @@ void dnsr_init_moment_weights() {
 
 float dnsr_moment_weight(int i) { return g_moment_weight[abs(i)]; }
 
-#ifdef DNSR_VISIBILITY_INPUT
 // Weight of the taps of the invocation's column inside the render rectangle, per window row.
 float g_inside_weight;
+
+#ifdef DNSR_VISIBILITY_INPUT
 
 // Spatial mean and variance of the visibilities around p (normalised over taps inside the rectangle): the
 // weighted mean of their squares, not mean - mean^2 as for a binary mask.
@@ -110,7 +120,7 @@ vec2 dnsr_local_moments(ivec2 p, ivec2 lid) {
     float rows = 0.0;
     for (int j = -DNSR_MOMENT_RADIUS; j <= DNSR_MOMENT_RADIUS; ++j) {
         float w = dnsr_moment_weight(j);
-        sum += w * s_hsum[lid.y + DNSR_MOMENT_RADIUS + j][lid.x];
+        sum += w * dnsr_hsum(lid.y + DNSR_MOMENT_RADIUS + j, lid.x);
         int y = p.y + j;
         rows += y >= 0 && y < dnsr_get_extent().y ? w : 0.0;
     }
@@ -119,9 +129,43 @@ vec2 dnsr_local_moments(ivec2 p, ivec2 lid) {
     return vec2(mean, max(sum.y / weight - mean * mean, 0.0));
 }
 #else
-// Normals a and b (unit, or vec3(0) for sky and unknown) of one surface: within
-// acos(DNSR_TURNED_NORMAL_COS_PERCENT / 100) of each other.
-bool dnsr_same_surface(vec3 a, vec3 b) { return dot(a, b) >= float(DNSR_TURNED_NORMAL_COS_PERCENT) / 100.0; }
+// A unit normal (or vec3(0): sky, unknown) as three signed 10-bit integers of scale DNSR_SURFACE_NORMAL_SCALE in
+// one word. floor(v + 0.5), not round(): GLSL leaves round()'s halves to the implementation.
+uint dnsr_normal_code(vec3 n) {
+    uvec3 c = uvec3(ivec3(floor(n * float(DNSR_SURFACE_NORMAL_SCALE) + 0.5))) & 1023u;
+    return c.x | (c.y << 10) | (c.z << 20);
+}
+
+ivec3 dnsr_normal_code_components(uint code) {
+    int c = int(code);
+    return ivec3(bitfieldExtract(c, 0, 10), bitfieldExtract(c, 10, 10), bitfieldExtract(c, 20, 10));
+}
+
+// Two normal codes of one surface: within acos(DNSR_TURNED_NORMAL_COS_PERCENT / 100) of each other, as an exact
+// integer test (sky and unknown normals, code 0, never are).
+bool dnsr_same_surface(uint a, uint b) {
+    ivec3 u = dnsr_normal_code_components(a), v = dnsr_normal_code_components(b);
+    return u.x * v.x + u.y * v.y + u.z * v.z >= DNSR_SURFACE_DOT_MIN;
+}
+
+// The normal code of window pixel w, while s_hsum holds them.
+uint dnsr_window_code(ivec2 w) {
+    uvec2 pair = s_hsum[w.y][w.x >> 1];
+    return (w.x & 1) == 0 ? pair.x : pair.y;
+}
+
+// The bits first..last around bit `at` that no break separates from it (bit k of `breaks`: k and k + 1 apart).
+ivec2 dnsr_unbroken_run(uint breaks, int at) {
+    uint below = (1u << uint(at)) - 1u;
+    int first = (breaks & below) == 0u ? 0 : findMSB(breaks & below) + 1;
+    int last = (breaks & ~below) == 0u ? 31 : findLSB(breaks & ~below);
+    return ivec2(first, last);
+}
+
+uint dnsr_run_bits(ivec2 run) {
+    uint to_last = run.y >= 31 ? 0xFFFFFFFFu : (1u << uint(run.y + 1)) - 1u;
+    return to_last & ~((1u << uint(run.x)) - 1u);
+}
 
 // Mean and variance of a binary mask from its weighted lit count and weight.
 vec2 dnsr_binary_moments(float lit, float weight) {
@@ -133,27 +177,36 @@ vec2 dnsr_binary_moments(float lit, float weight) {
 vec2 dnsr_local_moments(ivec2 lid) {
     vec2 sum = vec2(0.0);
     for (int j = -DNSR_MOMENT_RADIUS; j <= DNSR_MOMENT_RADIUS; ++j) {
-        sum += dnsr_moment_weight(j) * s_hsum[lid.y + DNSR_MOMENT_RADIUS + j][lid.x].xy;
+        sum += dnsr_moment_weight(j) * dnsr_hsum(lid.y + DNSR_MOMENT_RADIUS + j, lid.x);
     }
     return dnsr_binary_moments(sum.x, sum.y);
 }
 
-// The same over p's own surface (with the run features): the rows whose centre pixel (p.x, p.y + j) lies on
-// p's surface, each summed over the taps on its centre's surface (dnsr_same_surface; sky never is). Across a
-// crease, a fin or a silhouette the window otherwise mixes in the other face's samples: the clamp then holds
-// an edge pixel's history towards the other face's value, and a pixel whose input was exact turns soft (the
-// scene family, unguided Quality: mean RMSE 0.02292 -> 0.02234, 29 scenes better and 7 worse; a plain 17x17
-// test of every tap against p measured 0.02248, so the separable form keeps the gain). The whole window's
-// moments where p's own normal is unknown.
-vec2 dnsr_surface_moments(ivec2 lid, vec2 window) {
-    vec3 own = s_normal[lid.y + DNSR_MOMENT_RADIUS][lid.x + DNSR_MOMENT_RADIUS];
-    vec2 sum = vec2(0.0);
+// With the surface window: xy the whole window's mean and variance (its weight: the column's g_inside_weight times
+// the rows inside the rectangle), zw the same over p's own surface: the taps that a chain of neighbours on one
+// surface (dnsr_same_surface, adjacent pixels) joins to p, separably: up and down p's column, then along each row
+// from its pixel in p's column. Across a crease, a fin or a silhouette the window otherwise mixes in the other
+// face's samples: the clamp then holds an edge pixel's history towards the other face's value, and pixels whose
+// input was exact turn soft.
+vec4 dnsr_window_and_surface_moments(ivec2 p, ivec2 lid) {
+    int own = lid.x + DNSR_MOMENT_RADIUS;
+    ivec2 rows = dnsr_unbroken_run(s_column_breaks[lid.x], lid.y + DNSR_MOMENT_RADIUS);
+    vec2 window = vec2(0.0);
+    vec2 surface = vec2(0.0);
     for (int j = -DNSR_MOMENT_RADIUS; j <= DNSR_MOMENT_RADIUS; ++j) {
         int row = lid.y + DNSR_MOMENT_RADIUS + j;
-        float w = dnsr_same_surface(own, s_normal[row][lid.x + DNSR_MOMENT_RADIUS]) ? dnsr_moment_weight(j) : 0.0;
-        sum += w * s_hsum[row][lid.x].zw;
+        float w = dnsr_moment_weight(j);
+        vec2 h = dnsr_hsum(row, lid.x);
+        int y = p.y + j;
+        window += vec2(w * h.x, y >= 0 && y < dnsr_get_extent().y ? w : 0.0);
+        if (row >= rows.x && row <= rows.y) {
+            ivec2 run = dnsr_unbroken_run(s_row_breaks[row], own);
+            float taps = s_weight_prefix[min(own - run.x, DNSR_MOMENT_RADIUS)]
+                       + s_weight_prefix[min(run.y - own, DNSR_MOMENT_RADIUS)] - dnsr_moment_weight(0);
+            surface += w * vec2(h.y, taps);
+        }
     }
-    return sum.y > 0.0 ? dnsr_binary_moments(sum.x, sum.y) : window;
+    return vec4(dnsr_binary_moments(window.x, window.y * g_inside_weight), dnsr_binary_moments(surface.x, surface.y));
 }
 #endif
 
@@ -386,15 +439,42 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     // Read by the quad vote after the next barrier.
     s_quad_velocity[lid.y][lid.x] = receiver ? dnsr_read_velocity(p) : vec2(0.0);
 #ifndef DNSR_VISIBILITY_INPUT
-    // The surface window's normals, after the clearing decision: a group whose tiles are all cleared never reads
-    // them (an all-lit frame would pay four normal and depth reads per pixel).
-    if (DNSR_SPEC_STABLE_HISTORY) {
-        for (int i = thread; i < DNSR_WINDOW_ROWS * DNSR_WINDOW_COLUMNS; i += DNSR_WIDE_GROUP_INVOCATIONS) {
-            ivec2 w = ivec2(i % DNSR_WINDOW_COLUMNS, i / DNSR_WINDOW_COLUMNS);
-            ivec2 q = g_window_base * DNSR_TILE_SIZE + w;
-            bool known = dnsr_inside(q) && dnsr_is_receiver(dnsr_read_depth(q));
-            s_normal[w.y][w.x] = known ? dnsr_read_normal(q) : vec3(0.0);
+    // The surface window's breaks, after the clearing decision: a group whose tiles are all cleared never reads
+    // the window's normals (an all-lit frame would pay four normal and depth reads per pixel). The normal codes
+    // borrow s_hsum, as two words per entry.
+    if (DNSR_SURFACE_WINDOW) {
+        for (int i = thread; i < DNSR_WINDOW_ROWS * DNSR_WINDOW_COLUMNS / 2; i += DNSR_WIDE_GROUP_INVOCATIONS) {
+            ivec2 w = ivec2(i % (DNSR_WINDOW_COLUMNS / 2) * 2, i / (DNSR_WINDOW_COLUMNS / 2));
+            uvec2 codes = uvec2(0u);
+            for (int k = 0; k < 2; ++k) {
+                ivec2 q = g_window_base * DNSR_TILE_SIZE + w + ivec2(k, 0);
+                bool known = dnsr_inside(q) && dnsr_is_receiver(dnsr_read_depth(q));
+                codes[k] = known ? dnsr_normal_code(dnsr_read_normal(q)) : 0u;
+            }
+            s_hsum[w.y][w.x >> 1] = codes;
         }
+        if (thread < DNSR_WINDOW_ROWS) s_row_breaks[thread] = 0u;
+        if (thread < DNSR_WIDE_GROUP_WIDTH) s_column_breaks[thread] = 0u;
+        if (thread <= DNSR_MOMENT_RADIUS) {
+            float prefix = 0.0;
+            for (int i = 0; i <= thread; ++i) prefix += exp(-dnsr_get_temporal_settings().w * float(i * i) / 81.0);
+            s_weight_prefix[thread] = prefix;
+        }
+        barrier();
+        const int pairs = DNSR_WINDOW_COLUMNS - 1;
+        for (int i = thread; i < DNSR_WINDOW_ROWS * pairs; i += DNSR_WIDE_GROUP_INVOCATIONS) {
+            ivec2 w = ivec2(i % pairs, i / pairs);
+            if (!dnsr_same_surface(dnsr_window_code(w), dnsr_window_code(w + ivec2(1, 0)))) {
+                atomicOr(s_row_breaks[w.y], 1u << uint(w.x));
+            }
+        }
+        for (int i = thread; i < DNSR_WIDE_GROUP_WIDTH * pairs; i += DNSR_WIDE_GROUP_INVOCATIONS) {
+            ivec2 w = ivec2(i / pairs + DNSR_MOMENT_RADIUS, i % pairs);
+            if (!dnsr_same_surface(dnsr_window_code(w), dnsr_window_code(w + ivec2(0, 1)))) {
+                atomicOr(s_column_breaks[w.x - DNSR_MOMENT_RADIUS], 1u << uint(w.y));
+            }
+        }
+        // The codes are read before the horizontal pass overwrites them.
         barrier();
     }
 #endif
@@ -423,16 +503,10 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     for (int i = -DNSR_MOMENT_RADIUS; i <= DNSR_MOMENT_RADIUS; ++i) {
         inside_weight += dnsr_moment_weight(i) * float((columns_inside >> uint(int(own) + i)) & 1u);
     }
-#ifdef DNSR_VISIBILITY_INPUT
     g_inside_weight = inside_weight;
-#endif
     for (int row = lid.y; row < DNSR_WINDOW_ROWS; row += DNSR_WIDE_GROUP_HEIGHT) {
         int y = origin.y - DNSR_MOMENT_RADIUS + row;
-#ifdef DNSR_VISIBILITY_INPUT
         vec2 sum = vec2(0.0);
-#else
-        vec4 sum = vec4(0.0);
-#endif
         if (y >= 0 && y < dnsr_get_extent().y) {
 #ifdef DNSR_VISIBILITY_INPUT
             // Columns outside the rectangle hold 0: they add nothing, and inside_weight leaves them out.
@@ -452,19 +526,20 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
                 float pair = float(((lit >> (own - uint(i))) & 1u) + ((lit >> (own + uint(i))) & 1u));
                 lit_sum += dnsr_moment_weight(i) * pair;
             }
-            // The row's surface window: the taps on the surface of the row's centre pixel.
-            vec2 surface = vec2(0.0);
-            if (DNSR_SPEC_STABLE_HISTORY) {
-                vec3 centre = s_normal[row][own];
-                for (int i = -DNSR_MOMENT_RADIUS; i <= DNSR_MOMENT_RADIUS; ++i) {
-                    float w = dnsr_same_surface(centre, s_normal[row][int(own) + i]) ? dnsr_moment_weight(i) : 0.0;
-                    surface += w * vec2(float((lit >> uint(int(own) + i)) & 1u), 1.0);
+            sum = vec2(lit_sum, inside_weight);
+            // The row's surface: the lit taps that no break separates from the row's pixel in this column.
+            if (DNSR_SURFACE_WINDOW) {
+                uint on = lit & dnsr_run_bits(dnsr_unbroken_run(s_row_breaks[row], int(own)));
+                float surface_sum = dnsr_moment_weight(0) * float((on >> own) & 1u);
+                for (int i = 1; i <= DNSR_MOMENT_RADIUS; ++i) {
+                    float pair = float(((on >> (own - uint(i))) & 1u) + ((on >> (own + uint(i))) & 1u));
+                    surface_sum += dnsr_moment_weight(i) * pair;
                 }
+                sum.y = surface_sum;
             }
-            sum = vec4(lit_sum, inside_weight, surface);
 #endif
         }
-        s_hsum[row][lid.x] = sum;
+        s_hsum[row][lid.x] = floatBitsToUint(sum);
     }
     barrier();
     if (!inside) return;
@@ -498,11 +573,19 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     // Checkerboard input: a pixel not traced this frame holds its neighbours' mean, not a sample of its own.
     bool untraced = dnsr_get_is_checkerboard() && !dnsr_is_traced(p);
 #else
-    vec2 local = dnsr_local_moments(lid);
+    vec2 local;
     // The flip rule keeps the whole window's mean: without the sky's lit samples, bright penumbra pixels beside a
     // silhouette broke their runs towards shadow (docs/do-no-harm.md, "Sky left out of the local moments").
-    float window_mean = local.x;
-    if (DNSR_SPEC_STABLE_HISTORY) local = dnsr_surface_moments(lid, local);
+    float window_mean;
+    if (DNSR_SURFACE_WINDOW) {
+        vec4 moments = dnsr_window_and_surface_moments(p, lid);
+        window_mean = moments.x;
+        // The whole window where p's own normal is unknown (its surface is then p alone).
+        local = dot(dnsr_read_normal(p), dnsr_read_normal(p)) > 0.0 ? moments.zw : moments.xy;
+    } else {
+        local = dnsr_local_moments(lid);
+        window_mean = local.x;
+    }
     float x = dnsr_window_lit(p, g_window_base);
 #endif
 

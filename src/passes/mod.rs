@@ -30,6 +30,16 @@ pub(crate) const WIDE_GROUP: [u32; 2] = [16, 16];
 /// Radius of the local-moment window (17x17) of tile classification and its uniform-tile test. Generated into
 /// GLSL; the CPU reference uses the same constant.
 pub(crate) const MOMENT_RADIUS: u32 = 8;
+/// Classification's surface window (with the run features) keeps each window pixel's unit normal in shared memory
+/// as three signed integers of this scale, 10 bits each in one word: a quarter of the float normals' bytes, whose
+/// shared memory cost classification half its occupancy on an H100 (3.3x its time at 4K, every preset). Generated
+/// into GLSL; the CPU reference quantizes the same way.
+pub(crate) const SURFACE_NORMAL_SCALE: u32 = 511;
+/// Two codes lie on one surface when their integer dot product reaches this: the turned-normal cosine
+/// (`state::TURNED_NORMAL_COS_PERCENT` / 100) of the scale squared, rounded up. An exact integer test, so the GPU
+/// and the reference decide alike wherever they quantized alike.
+pub(crate) const SURFACE_DOT_MIN: u32 =
+    (crate::state::TURNED_NORMAL_COS_PERCENT * SURFACE_NORMAL_SCALE * SURFACE_NORMAL_SCALE).div_ceil(100);
 
 // What the shaders' layouts assume of these sizes: a group is one tile wide and two tiles tall (classification
 // decides two tiles per group, its window is one tile column either side and two tile rows above and below),

@@ -4,7 +4,7 @@
 use super::{inside, SKY_SIGNAL, is_receiver, linear_depth, pixel_uv, tile_bit, uv_to_ndc, Coord, Read, Write, TILE};
 use crate::passes::{RUN_CLAMP_SAMPLES, TILE_CLEARED, TILE_LIT};
 use crate::settings::MAX_SAMPLE_RUN;
-use glam::{DVec2, DVec3, DVec4};
+use glam::{DVec2, DVec3, DVec4, IVec3};
 
 /// Radius of the local-moment window (17x17).
 pub const MOMENT_RADIUS: i32 = crate::passes::MOMENT_RADIUS as i32;
@@ -75,44 +75,52 @@ pub fn local_moments<Io: Read + ?Sized>(io: &Io, p: Coord) -> DVec2 {
     DVec2::new(mean, (square - mean * mean).max(0.0))
 }
 
-/// Normals a and b (unit, or zero for sky and unknown normals) of one surface: within
-/// acos(`state::TURNED_NORMAL_COS_PERCENT` / 100) of each other (`dnsr_same_surface`).
-fn same_surface(a: DVec3, b: DVec3) -> bool {
-    a.dot(b) >= crate::state::TURNED_NORMAL_COS_PERCENT as f64 / 100.0
+/// Normal codes a and b (`window_normal`) of one surface: within acos(`state::TURNED_NORMAL_COS_PERCENT` / 100)
+/// of each other, as the GPU's exact integer test (`dnsr_same_surface`).
+fn same_surface(a: IVec3, b: IVec3) -> bool {
+    a.dot(b) >= crate::passes::SURFACE_DOT_MIN as i32
 }
 
-/// A pixel's normal in the surface window: zero for sky and outside the rectangle.
-fn window_normal<Io: Read + ?Sized>(io: &Io, q: Coord) -> DVec3 {
-    if inside(io, q) && is_receiver(io.read_depth(q)) { io.read_normal(q) } else { DVec3::ZERO }
+/// A pixel's normal in the surface window, quantized as classification keeps it in shared memory (three integers
+/// of scale `passes::SURFACE_NORMAL_SCALE`): zero for sky and outside the rectangle.
+fn window_normal<Io: Read + ?Sized>(io: &Io, q: Coord) -> IVec3 {
+    if !inside(io, q) || !is_receiver(io.read_depth(q)) {
+        return IVec3::ZERO;
+    }
+    (io.read_normal(q) * crate::passes::SURFACE_NORMAL_SCALE as f64 + 0.5).floor().as_ivec3()
 }
 
-/// Spatial mean and variance of the binary mask over p's own surface (with the run features): the rows whose
-/// centre pixel (p.x, p.y + j) lies on p's surface, each over the taps on its centre's surface. Separable as the
-/// GPU computes it (shaders/tile_classification.glsl, `dnsr_surface_moments`, says why). `window` (the whole
-/// window's moments) where p's own normal is unknown.
+/// Adjacent pixels a and b on one surface: both known and their codes `same_surface`.
+fn joined<Io: Read + ?Sized>(io: &Io, a: Coord, b: Coord) -> bool {
+    same_surface(window_normal(io, a), window_normal(io, b))
+}
+
+/// How far a chain of adjacent pixels on one surface reaches from p in direction d, at most `MOMENT_RADIUS`.
+fn reach<Io: Read + ?Sized>(io: &Io, p: Coord, d: Coord) -> i32 {
+    let at = |k: i32| [p[0] + k * d[0], p[1] + k * d[1]];
+    (0..MOMENT_RADIUS).take_while(|&k| joined(io, at(k), at(k + 1))).count() as i32
+}
+
+/// Spatial mean and variance of the binary mask over p's own surface (`DNSR_SURFACE_WINDOW`): the taps that a
+/// chain of adjacent pixels on one surface joins to p, separably as the GPU computes it: up and down p's column,
+/// then along each row from its pixel in p's column (shaders/tile_classification.glsl,
+/// `dnsr_window_and_surface_moments`, says why). `window` (the whole window's moments) where p's own normal is
+/// unknown.
 pub fn surface_moments<Io: Read + ?Sized>(io: &Io, p: Coord, window: DVec2) -> DVec2 {
-    let own = window_normal(io, p);
+    if window_normal(io, p) == IVec3::ZERO {
+        return window;
+    }
     let (mut lit, mut weight) = (0.0, 0.0);
-    for j in -MOMENT_RADIUS..=MOMENT_RADIUS {
-        let centre = window_normal(io, [p[0], p[1] + j]);
-        if !same_surface(own, centre) {
-            continue;
-        }
-        for i in -MOMENT_RADIUS..=MOMENT_RADIUS {
-            let q = [p[0] + i, p[1] + j];
-            if same_surface(centre, window_normal(io, q)) {
-                let w = moment_weight(io, i) * moment_weight(io, j);
-                lit += w * sample(io, q);
-                weight += w;
-            }
+    for j in -reach(io, p, [0, -1])..=reach(io, p, [0, 1]) {
+        let centre = [p[0], p[1] + j];
+        for i in -reach(io, centre, [-1, 0])..=reach(io, centre, [1, 0]) {
+            let w = moment_weight(io, i) * moment_weight(io, j);
+            lit += w * sample(io, [p[0] + i, p[1] + j]);
+            weight += w;
         }
     }
-    if weight > 0.0 {
-        let mean = lit / weight;
-        DVec2::new(mean, (mean - mean * mean).max(0.0))
-    } else {
-        window
-    }
+    let mean = lit / weight;
+    DVec2::new(mean, (mean - mean * mean).max(0.0))
 }
 
 /// 0: mixed; 1: every valid pixel within +-8 px of the tile is exactly lit; 2: every one is exactly shadowed.
@@ -277,9 +285,10 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     let e = io.extent();
 
     let mut local = local_moments(io, p);
-    // The flip rule keeps the whole window's mean; the rest (with the run features and a hit mask) the surface's.
+    // The flip rule keeps the whole window's mean; the rest the surface's, with the run features, a hit mask and no
+    // penumbra guidance (`DNSR_SURFACE_WINDOW`).
     let window_mean = local.x;
-    if s.uses_runs() && !io.visibility_input() {
+    if s.uses_runs() && !io.visibility_input() && io.penumbra().is_none() {
         local = surface_moments(io, p, local);
     }
     let mut x = sample(io, p);

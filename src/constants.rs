@@ -115,6 +115,7 @@ pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
     ("DNSR_MOMENT_RADIUS", crate::passes::MOMENT_RADIUS),
     ("DNSR_SURFACE_NORMAL_SCALE", crate::passes::SURFACE_NORMAL_SCALE),
     ("DNSR_SURFACE_DOT_MIN", crate::passes::SURFACE_DOT_MIN),
+    ("DNSR_SURFACE_SUM_SCALE", crate::passes::SURFACE_SUM_SCALE),
     ("DNSR_MAX_SAMPLE_RUN", crate::settings::MAX_SAMPLE_RUN),
     ("DNSR_RUN_CLAMP_SAMPLES", crate::passes::RUN_CLAMP_SAMPLES),
     ("DNSR_UNCONVERGED_VARIANCE_INV", crate::passes::UNCONVERGED_VARIANCE_INV),

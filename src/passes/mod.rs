@@ -40,6 +40,11 @@ pub(crate) const SURFACE_NORMAL_SCALE: u32 = 511;
 /// and the reference decide alike wherever they quantized alike.
 pub(crate) const SURFACE_DOT_MIN: u32 =
     (crate::state::TURNED_NORMAL_COS_PERCENT * SURFACE_NORMAL_SCALE * SURFACE_NORMAL_SCALE).div_ceil(100);
+/// Classification's surface window keeps each window row's weighted lit count and weight over the row's surface
+/// as 16-bit fixed-point numbers of this scale (a row's weight is at most the window's 17: under 32). Generated
+/// into GLSL; the CPU reference rounds the same way.
+pub(crate) const SURFACE_SUM_SCALE: u32 = 2048;
+const _: () = assert!((2 * MOMENT_RADIUS + 1) * SURFACE_SUM_SCALE < 1 << 16);
 
 // What the shaders' layouts assume of these sizes: a group is one tile wide and two tiles tall (classification
 // decides two tiles per group, its window is one tile column either side and two tile rows above and below),

@@ -110,14 +110,21 @@ pub fn surface_moments<Io: Read + ?Sized>(io: &Io, p: Coord, window: DVec2) -> D
     if window_normal(io, p) == IVec3::ZERO {
         return window;
     }
+    // Each row's sums are kept as 16-bit fixed-point numbers (`passes::SURFACE_SUM_SCALE`).
+    let fixed = |v: f64| {
+        let scale = crate::passes::SURFACE_SUM_SCALE as f64;
+        (v * scale + 0.5).floor() / scale
+    };
     let (mut lit, mut weight) = (0.0, 0.0);
     for j in -reach(io, p, [0, -1])..=reach(io, p, [0, 1]) {
         let centre = [p[0], p[1] + j];
+        let (mut row_lit, mut row_weight) = (0.0, 0.0);
         for i in -reach(io, centre, [-1, 0])..=reach(io, centre, [1, 0]) {
-            let w = moment_weight(io, i) * moment_weight(io, j);
-            lit += w * sample(io, [p[0] + i, p[1] + j]);
-            weight += w;
+            row_lit += moment_weight(io, i) * sample(io, [p[0] + i, p[1] + j]);
+            row_weight += moment_weight(io, i);
         }
+        lit += moment_weight(io, j) * fixed(row_lit);
+        weight += moment_weight(io, j) * fixed(row_weight);
     }
     let mean = lit / weight;
     DVec2::new(mean, (mean - mean * mean).max(0.0))

@@ -33,7 +33,7 @@ shared uint s_dark[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
 shared uvec2 s_hsum[DNSR_WINDOW_ROWS][DNSR_WIDE_GROUP_WIDTH];
 vec2 dnsr_hsum(int row, int column) { return uintBitsToFloat(s_hsum[row][column]); }
 #ifndef DNSR_VISIBILITY_INPUT
-// The surface window (dnsr_surface_moments): with the run features and without penumbra guidance (with it the
+// The surface window (dnsr_window_and_surface_moments): with the run features and without penumbra guidance (with it the
 // scene family measured 12 scenes better and 14 worse: the blockers' distance already bounds the penumbra).
 const bool DNSR_SURFACE_WINDOW = DNSR_SPEC_STABLE_HISTORY && !DNSR_SPEC_PENUMBRA_GUIDED;
 // Bit k of window row r: window pixels (k, r) and (k + 1, r) do not lie on one surface (dnsr_same_surface).
@@ -473,8 +473,9 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             uint breaks = 0u;
             for (int k = 0; k < 8 && first + k < DNSR_WINDOW_COLUMNS - 1; ++k) {
                 uint next = dnsr_window_code(w + (k + 1) * step);
-                // Equal codes (a plane) need no products.
-                breaks |= code == next || dnsr_same_surface(code, next) ? 0u : 1u << uint(first + k);
+                // Equal codes (a plane) need no products; two sky pixels are no surface.
+                bool joined = code == next ? code != 0u : dnsr_same_surface(code, next);
+                breaks |= joined ? 0u : 1u << uint(first + k);
                 code = next;
             }
             if (in_row) atomicOr(s_row_breaks[line], breaks);

@@ -134,8 +134,9 @@ pub enum Preset {
     /// contrast, cross tap weight 0.5, history of pixels with 8 identical samples in a row clamped to their run and
     /// restarted after 3 samples of the other value (1 where the neighbourhood agrees; see docs/accuracy.md for
     /// why each), pixels with 8 identical samples in a row converged (passed through the filter among converged
-    /// neighbours; docs/do-no-harm.md), and, with penumbra guidance, pixels under a penumbra narrower than a
-    /// quarter of a pixel either side output as sampled.
+    /// neighbours; docs/do-no-harm.md), without penumbra guidance the local statistics taken over the pixel's
+    /// own surface (creases, fins and the sky left out: docs/do-no-harm.md), and, with penumbra guidance, pixels
+    /// under a penumbra narrower than a quarter of a pixel either side output as sampled.
     Quality,
 }
 

@@ -31,9 +31,10 @@ pub(crate) const WIDE_GROUP: [u32; 2] = [16, 16];
 /// GLSL; the CPU reference uses the same constant.
 pub(crate) const MOMENT_RADIUS: u32 = 8;
 /// Classification's surface window (with the run features) keeps each window pixel's unit normal in shared memory
-/// as three signed integers of this scale, 10 bits each in one word: a quarter of the float normals' bytes, whose
-/// shared memory cost classification half its occupancy on an H100 (3.3x its time at 4K, every preset). Generated
-/// into GLSL; the CPU reference quantizes the same way.
+/// as three signed integers of this scale, 10 bits each in one word: a quarter of the float normals' bytes (a first
+/// version with float normals and per-tap sums in shared memory made classification 3.3x slower on an H100 at 4K,
+/// every preset: shared memory bounds its occupancy). Generated into GLSL; the CPU reference quantizes the same
+/// way.
 pub(crate) const SURFACE_NORMAL_SCALE: u32 = 511;
 /// Two codes lie on one surface when their integer dot product reaches this: the turned-normal cosine
 /// (`state::TURNED_NORMAL_COS_PERCENT` / 100) of the scale squared, rounded up. An exact integer test, so the GPU

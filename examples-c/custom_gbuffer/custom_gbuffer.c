@@ -14,7 +14,7 @@
  * same normals and depths through different float arithmetic (about 1e-7 apart), and where one of dnsr's decisions
  * lies that close to its threshold the two take different sides. On lavapipe over 6 frames they agreed within
  * 1.4e-5 before classification's local window followed the pixel's own surface and within 9.8e-4 since, in one
- * cluster of pixels; not through the window's normal codes (the same with codes of 6 bits instead of 10), but
+ * cluster of pixels; not through the window's normal codes (the same with codes of scale 63 instead of 511), but
  * where the window's fixed-point row sums put values (with a scale of 1024 instead of 2048: within 1.5e-5).
  * Both contexts record GPU timestamps: it prints what
  * the engine's callbacks cost against the default ones (median over the frames after the first quarter).

@@ -447,14 +447,24 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     // the window's normals (an all-lit frame would pay four normal and depth reads per pixel). The normal codes
     // borrow s_hsum, as two words per entry.
     if (DNSR_SURFACE_WINDOW) {
-        for (int i = thread; i < DNSR_WINDOW_ROWS * DNSR_WINDOW_COLUMNS / 2; i += DNSR_WIDE_GROUP_INVOCATIONS) {
+        // Every depth and normal fetched first, at clamped coordinates: no fetch waits for another's result (the
+        // normal for the depth's receiver test, the next pixel for the last), so the group waits for one round trip.
+        const int pairs = DNSR_WINDOW_ROWS * DNSR_WINDOW_COLUMNS / 2 / DNSR_WIDE_GROUP_INVOCATIONS;
+        float depths[2 * pairs];
+        vec3 normals[2 * pairs];
+        for (int j = 0; j < 2 * pairs; ++j) {
+            int i = thread + (j >> 1) * DNSR_WIDE_GROUP_INVOCATIONS;
+            ivec2 q = g_window_base * DNSR_TILE_SIZE + ivec2(i % (DNSR_WINDOW_COLUMNS / 2) * 2 + (j & 1), i / (DNSR_WINDOW_COLUMNS / 2));
+            ivec2 fetched = clamp(q, ivec2(0), dnsr_get_extent() - 1);
+            depths[j] = dnsr_read_depth(fetched);
+            normals[j] = dnsr_read_normal(fetched);
+            depths[j] = fetched == q ? depths[j] : 0.0;
+        }
+        for (int j = 0; j < pairs; ++j) {
+            int i = thread + j * DNSR_WIDE_GROUP_INVOCATIONS;
             ivec2 w = ivec2(i % (DNSR_WINDOW_COLUMNS / 2) * 2, i / (DNSR_WINDOW_COLUMNS / 2));
             uvec2 codes = uvec2(0u);
-            for (int k = 0; k < 2; ++k) {
-                ivec2 q = g_window_base * DNSR_TILE_SIZE + w + ivec2(k, 0);
-                bool known = dnsr_inside(q) && dnsr_is_receiver(dnsr_read_depth(q));
-                codes[k] = known ? dnsr_normal_code(dnsr_read_normal(q)) : 0u;
-            }
+            for (int k = 0; k < 2; ++k) codes[k] = dnsr_is_receiver(depths[2 * j + k]) ? dnsr_normal_code(normals[2 * j + k]) : 0u;
             s_hsum[w.y][w.x >> 1] = codes;
         }
         if (thread < DNSR_WINDOW_ROWS) s_row_breaks[thread] = 0u;

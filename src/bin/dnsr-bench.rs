@@ -124,7 +124,7 @@ impl Options {
             (None, true) => ShadowInput::Checkerboard,
             (None, false) => ShadowInput::HitMask,
         };
-        Fed { host: self.host, input }
+        Fed { host: self.host, input, surface_window: false }
     }
 }
 

@@ -21,6 +21,19 @@ use dnsr::{Precision, ShadowInput};
 pub struct Fed {
     pub host: HostFormats,
     pub input: ShadowInput,
+    /// Classification's surface window runs (a hit mask and a preset with the run features, Fast and Quality; the
+    /// bench feeds no hit distances): classification reads the normals of every pixel of a group with a tile not
+    /// cleared (its window's apron from the caches), not only those of its active pixels.
+    pub surface_window: bool,
+}
+
+impl Fed {
+    /// The same inputs denoised with `preset`.
+    pub fn with_preset(self, preset: dnsr::Preset) -> Fed {
+        let s = dnsr::Settings::preset(preset);
+        let runs = s.stable_history_samples > 0.0 || s.converged_samples > 0.0;
+        Fed { surface_window: runs && self.input == ShadowInput::HitMask, ..self }
+    }
 }
 
 pub struct Row {
@@ -62,7 +75,7 @@ fn host_rows(fed: Fed) -> Vec<Row> {
     rows.extend([
         row(TileClassification, &depth_name, depth, depth, Read, All, Always),
         row(TileClassification, &velocity_name, velocity, velocity, Read, ActiveGroupReceivers, Always),
-        row(TileClassification, &normals_name, normals, normals, Read, Active, Always),
+        row(TileClassification, &normals_name, normals, normals, Read, if fed.surface_window { ActiveGroups } else { Active }, Always),
         row(TileClassification, "output (host, R16_SFLOAT)", 2.0, 2.0, Write, ClearedGroups, Always),
         row(Filter, &depth_name, depth, depth, Read, All, FirstPass),
         row(Filter, &depth_name, depth, depth, Read, ClearedGroups, LaterPasses),

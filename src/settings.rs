@@ -164,8 +164,10 @@ impl Settings {
 
 impl Settings {
     /// Whether a feature built on runs of identical samples is on (stable history or converged pixels): the
-    /// classification pipelines specialized with DNSR_SPEC_STABLE_HISTORY run them.
-    pub(crate) fn uses_runs(&self) -> bool {
+    /// classification pipelines specialized with DNSR_SPEC_STABLE_HISTORY run them (and, with a hit mask and without
+    /// penumbra guidance, the surface window). Public (hidden) for dnsr-bench's byte model only.
+    #[doc(hidden)]
+    pub fn uses_runs(&self) -> bool {
         self.stable_history_samples > 0.0 || self.converged_samples > 0.0
     }
 }

@@ -59,6 +59,9 @@ const _: () = assert!(WIDE_GROUP[0] + 2 * MOMENT_RADIUS <= 32);
 // the moment-sum rows (one slot per invocation).
 const WINDOW_TILE_COUNT: u32 = (WIDE_GROUP[0] / TILE[0] + 2) * (WIDE_GROUP[1] / TILE[1] + 4);
 const _: () = assert!((WIDE_GROUP[0] * WIDE_GROUP[1]) % WINDOW_TILE_COUNT == 0 && 32 % (WIDE_GROUP[0] * WIDE_GROUP[1] / WINDOW_TILE_COUNT) == 0);
+// The surface window: each invocation fetches the same number of window pixel pairs (its fetch loop has no bound
+// test).
+const _: () = assert!(WINDOW_TILE_COUNT * TILE[0] * TILE[1] / 2 % (WIDE_GROUP[0] * WIDE_GROUP[1]) == 0);
 const _: () = assert!(1 << (MAX_FILTER_PASSES - 1) <= GROUP[0] && 1 << (MAX_FILTER_PASSES - 1) <= GROUP[1]);
 
 /// Lights one dispatch of the filter's light-slot variants filters (a record of more lights runs several).

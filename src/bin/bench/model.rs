@@ -30,9 +30,7 @@ pub struct Fed {
 impl Fed {
     /// The same inputs denoised with `preset`.
     pub fn with_preset(self, preset: dnsr::Preset) -> Fed {
-        let s = dnsr::Settings::preset(preset);
-        let runs = s.stable_history_samples > 0.0 || s.converged_samples > 0.0;
-        Fed { surface_window: runs && self.input == ShadowInput::HitMask, ..self }
+        Fed { surface_window: dnsr::Settings::preset(preset).uses_runs() && self.input == ShadowInput::HitMask, ..self }
     }
 }
 

@@ -281,7 +281,7 @@ impl Report<'_> {
                     ("runs_ms", c.runs_ms.clone().into()),
                 ]),
             ),
-            ("byte_model", model_json(Fed { host: self.host, input: self.input, surface_window: false })),
+            ("byte_model", model_json(Fed { host: self.host, input: self.input, surface_window: false }.with_preset(Preset::Balanced))),
             (
                 "scenes",
                 Json::Arr(
@@ -415,7 +415,7 @@ impl Report<'_> {
             seen.push((r.size, r.scene));
             let pct = |x: f64| format!("{:.1}%", 100.0 * x);
             let all = r.counts.all.max(1.0);
-            let balanced = pass_model_bpp(r, dnsr::Settings::preset(Preset::Balanced).filter_passes, Precision::Fp32);
+            let balanced = balanced_model_bpp(r, dnsr::Settings::preset(Preset::Balanced).filter_passes, Precision::Fp32);
             s += &format!(
                 "| {}x{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.1} |\n",
                 r.size.0,
@@ -437,17 +437,17 @@ impl Report<'_> {
             s += &format!("- {}: {}\n", sc.name(), sc.description());
         }
         s += "\n## Byte model\n\nBytes per unit: per pixel of the class named (per tile for tiles), each texel counted once per pass. Filter passes that skip groups of two cleared tiles (pass 1, and a final pass after the first) count \"every pixel\" rows over the pixels of groups with a tile not cleared only.\n\n";
-        s += &model_markdown(Fed { host: self.host, input: self.input, surface_window: false });
+        s += &model_markdown(Fed { host: self.host, input: self.input, surface_window: false }.with_preset(Preset::Balanced));
         s += "\nThe table is Balanced's. Fast and Quality (with a hit mask, without hit distances) run classification's surface window: its normals row covers the pixels of groups with a tile not cleared (the window's apron comes from the caches); their rows of the tables above count it so.\n";
         s
     }
 }
 
-/// Model bytes per pixel of a frame with `r`'s pixel classes.
-fn pass_model_bpp(r: &Summary, passes: u32, precision: Precision) -> f64 {
+/// Balanced's model bytes per pixel of a frame with `r`'s pixel classes and `passes` filter passes.
+fn balanced_model_bpp(r: &Summary, passes: u32, precision: Precision) -> f64 {
     let ids = [PassId::Prepare, PassId::TileClassification].into_iter().chain((0..passes).map(PassId::Filter));
     ids.map(|id| {
-        let (rd, wr) = pass_bytes(id, passes, precision, &r.counts, Fed { host: r.host, input: r.input, surface_window: false });
+        let (rd, wr) = pass_bytes(id, passes, precision, &r.counts, Fed { host: r.host, input: r.input, surface_window: false }.with_preset(Preset::Balanced));
         rd + wr
     })
     .sum::<f64>()

@@ -21,6 +21,8 @@ layout(constant_id = DNSR_SPEC_ID_PENUMBRA_GUIDED) const bool DNSR_SPEC_PENUMBRA
 #ifdef DNSR_PASS_TILE_CLASSIFICATION
 // The run features: Settings::stable_history_samples > 0 (dnsr_get_run_settings().x) or converged_samples > 0 (.z).
 layout(constant_id = DNSR_SPEC_ID_STABLE_HISTORY) const bool DNSR_SPEC_STABLE_HISTORY = false;
+// A shadow moving over a still surface is told (Settings::moving_shadow_sigmas > 0, with the run features).
+layout(constant_id = DNSR_SPEC_ID_MOVING_SHADOWS) const bool DNSR_SPEC_MOVING_SHADOWS = false;
 #endif
 #if defined(DNSR_PASS_TILE_CLASSIFICATION) || (defined(DNSR_PASS_FILTER) && !defined(DNSR_LATER_PASS))
 // The light has no size (ShadowsDispatch::hard_light): every receiver's own sample is its output.

@@ -54,6 +54,13 @@ shared uint s_uniform[DNSR_GROUP_TILES.y][DNSR_GROUP_TILES.x];
 // First tile of the group's window (same for every invocation of the group).
 ivec2 g_window_base;
 
+// A shadow that moved over a still surface (DNSR_SPEC_MOVING_SHADOWS): per window tile, this frame's samples (in
+// 1/1024 of a sample) on the pixels whose last frame's moments are not empty, and those moments' summed terms
+// (dnsr_moment_terms); per tile of the group, whether the shadow moved there (dnsr_shadow_moved).
+shared uint s_moving_samples[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
+shared uint s_moving_terms[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
+shared uint s_moved[DNSR_GROUP_TILES.y][DNSR_GROUP_TILES.x];
+
 // Penumbra guidance: every window tile's (sum, count) of usable hit distances over its shadowed pixels, summed
 // from DNSR_HIT_PARTS partial sums of DNSR_HIT_PIXELS pixels each. The partial sums borrow s_hsum before the
 // moment sums fill it.
@@ -384,6 +391,65 @@ bool dnsr_two_neighbours_share(ivec2 p, ivec2 lid, float x) {
     return sharing >= 2;
 }
 
+// What a pixel's stored moments (their first word: dnsr_pack_moments) add to its window tile's sums: its mean (the
+// unorm14 code over 16: 1024 is one sample) in the low half, its Bernoulli variance mean * (1 - mean) (code *
+// (max - code) over 2^16) in the high half; at most 1024 each, so a tile's 32 pixels fit 16 bits. Integers: the
+// sums do not depend on the order of the atomics, and the CPU reference sums the same terms.
+uint dnsr_moment_terms(uint word) {
+    uint code = word & DNSR_MOMENTS_MEAN_MAX;
+    return ((code + 8u) >> 4) | (((code * (DNSR_MOMENTS_MEAN_MAX - code)) >> 16) << 16);
+}
+
+// Four window pixels per invocation, consecutive in one row of one window tile: their previous moments' terms and
+// this frame's samples on them, added to their window tile's sums (dnsr_shadow_moved). Only pixels whose moments
+// are not empty (a receiver's) count: the sky's mask bits mean nothing.
+const int DNSR_MOVING_PIXELS = DNSR_WINDOW_ROWS * DNSR_WINDOW_COLUMNS / DNSR_WIDE_GROUP_INVOCATIONS;
+void dnsr_sum_previous_moments(int thread) {
+    ivec2 w = ivec2(thread % (DNSR_WINDOW_COLUMNS / DNSR_MOVING_PIXELS) * DNSR_MOVING_PIXELS,
+                    thread / (DNSR_WINDOW_COLUMNS / DNSR_MOVING_PIXELS));
+    uint words[DNSR_MOVING_PIXELS];
+    for (int k = 0; k < DNSR_MOVING_PIXELS; ++k) {
+        ivec2 q = g_window_base * DNSR_TILE_SIZE + w + ivec2(k, 0);
+        words[k] = dnsr_inside(q) ? dnsr_read_previous_moments_word(q) : 0u;
+    }
+    ivec2 t = w / DNSR_TILE_SIZE;
+    uint samples = 0u, terms = 0u;
+    for (int k = 0; k < DNSR_MOVING_PIXELS; ++k) {
+        if (words[k] == 0u) continue;
+        terms += dnsr_moment_terms(words[k]);
+#ifdef DNSR_VISIBILITY_INPUT
+        samples += uint(floor(s_visibility[w.y][w.x + k] * 1024.0 + 0.5));
+#else
+        samples += ((s_words[t.y][t.x] >> uint((w.y % DNSR_TILE_HEIGHT) * DNSR_TILE_WIDTH + (w.x + k) % DNSR_TILE_WIDTH)) & 1u) * 1024u;
+#endif
+    }
+    atomicAdd(s_moving_samples[t.y][t.x], samples);
+    atomicAdd(s_moving_terms[t.y][t.x], terms);
+}
+
+// Whether the shadow moved over the tile's neighbourhood (one tile either side, two above and below: the window
+// tiles around it) since last frame: this frame's samples differ from last frame's accumulated means there by more
+// than Settings::moving_shadow_sigmas of their Bernoulli spread, plus two samples. The accumulated means, not last
+// frame's samples: they hold the few frames the history holds, so the spread is this frame's alone (`make
+// accuracy`'s moving family: against last frame's samples, at the same false alarms, the test found a third as much
+// of the error; docs/do-no-harm.md). No early return on the settings: with one, lavapipe (Mesa 22.3) leaked memory
+// on every dispatch.
+bool dnsr_shadow_moved(ivec2 own_tile) {
+    uint samples = 0u, means = 0u, variances = 0u;
+    for (int dy = 0; dy <= 4; ++dy) {
+        for (int dx = 0; dx <= 2; ++dx) {
+            ivec2 w = own_tile + ivec2(dx, dy);
+            samples += s_moving_samples[w.y][w.x];
+            means += s_moving_terms[w.y][w.x] & 0xFFFFu;
+            variances += s_moving_terms[w.y][w.x] >> 16;
+        }
+    }
+    float change = abs(float(samples) - float(means)) / 1024.0;
+    float variance = float(variances) * (65536.0 / float(DNSR_MOMENTS_MEAN_MAX * DNSR_MOMENTS_MEAN_MAX));
+    float sigmas = dnsr_get_moving_settings().x;
+    return sigmas > 0.0 && !dnsr_get_is_reset() && change > sigmas * sqrt(variance) + 2.0;
+}
+
 // A pixel of a cleared tile: its value is known exactly; keep the state of the next frame consistent with it.
 void dnsr_write_cleared(ivec2 p, bool receiver, uint state, bool tile_writer) {
     float value = state == 1u ? 1.0 : 0.0;
@@ -408,6 +474,10 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         ivec2 w = ivec2(thread % DNSR_WINDOW_TILES.x, thread / DNSR_WINDOW_TILES.x);
         ivec2 tile = g_window_base + w;
         s_words[w.y][w.x] = dnsr_tile_valid_bits(tile) != 0u ? dnsr_read_tile_mask(tile) : 0u;
+        if (DNSR_SPEC_MOVING_SHADOWS) {
+            s_moving_samples[w.y][w.x] = 0u;
+            s_moving_terms[w.y][w.x] = 0u;
+        }
 #ifdef DNSR_VISIBILITY_INPUT
         s_dark[w.y][w.x] = dnsr_tile_valid_bits(tile) != 0u ? dnsr_read_tile_dark(tile) : 0u;
 #endif
@@ -444,6 +514,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
 
     // Read by the quad vote after the next barrier.
     s_quad_velocity[lid.y][lid.x] = receiver ? dnsr_read_velocity(p) : vec2(0.0);
+    if (DNSR_SPEC_MOVING_SHADOWS) dnsr_sum_previous_moments(thread);
 #ifndef DNSR_VISIBILITY_INPUT
     // The surface window's breaks, after the clearing decision: a group whose tiles are all cleared never reads
     // the window's normals (an all-lit frame would pay four normal and depth reads per pixel). The normal codes
@@ -472,6 +543,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         if (thread < DNSR_WINDOW_ROWS) s_row_breaks[thread] = 0u;
         if (thread < DNSR_WIDE_GROUP_WIDTH) s_column_breaks[thread] = 0u;
         barrier();
+        if (DNSR_SPEC_MOVING_SHADOWS && tile_writer) s_moved[own_tile.y][own_tile.x] = dnsr_shadow_moved(own_tile) ? 1u : 0u;
         // Eight neighbour pairs per invocation, one byte of a window row's or a group column's breaks: four
         // invocations share a word's atomic (one per pair, 31 of them, cost 0.055 ms more at 4K on an H100).
         const int chunks = DNSR_WINDOW_COLUMNS / 8;
@@ -506,6 +578,18 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         barrier();
     }
 #endif
+
+    // The verdict needs every window tile's sums: after the surface window's first barrier where it runs, else
+    // after a barrier of its own.
+#ifdef DNSR_VISIBILITY_INPUT
+    const bool own_barrier = DNSR_SPEC_MOVING_SHADOWS;
+#else
+    const bool own_barrier = DNSR_SPEC_MOVING_SHADOWS && !DNSR_SURFACE_WINDOW;
+#endif
+    if (own_barrier) {
+        barrier();
+        if (tile_writer) s_moved[own_tile.y][own_tile.x] = dnsr_shadow_moved(own_tile) ? 1u : 0u;
+    }
 
     bool guided = DNSR_SPEC_PENUMBRA_GUIDED;
     if (guided) {
@@ -635,7 +719,11 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     }
     vec2 uv = dnsr_pixel_uv(p);
     vec2 ndc = dnsr_uv_to_ndc(uv);
-    vec2 history_uv = uv + s_quad_velocity[best.y][best.x];
+    vec2 velocity = s_quad_velocity[best.y][best.x];
+    vec2 history_uv = uv + velocity;
+    // A pixel that moves under 0.01 px (the moving shadow's clamp below).
+    vec2 motion = velocity * vec2(dnsr_get_extent());
+    bool still = dot(motion, motion) < 1e-4;
 
     // Disocclusion: where the camera motion puts this surface last frame, was the same depth there?
     vec4 prev_clip = dnsr_get_reprojection_matrix() * vec4(ndc, depth, 1.0);
@@ -835,8 +923,13 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         variance = n > 1.0 ? 0.0 : 1.0;
     }
 
-    // History clamped to the local distribution; a history far outside it loses its sample count.
+    // History clamped to the local distribution; a history far outside it loses its sample count. Tighter where
+    // the shadow moved over this still pixel (dnsr_shadow_moved): its history holds where the shadow was. (Not on a
+    // moving camera's pixels: they reach other surface points, where a still shadow's samples differ from the
+    // texels' means too.)
     float sigma = sqrt(local.y);
+    float clamp_sigmas = DNSR_SPEC_MOVING_SHADOWS && still && s_moved[own_tile.y][own_tile.x] != 0u ? dnsr_get_moving_settings().y
+                                                                                                  : disocc.w;
     float history = disoccluded ? local.x
                   : (run_history.y > 0.0 ? run_history.x / run_history.y : dnsr_read_history(history_uv));
     if (!dnsr_finite(history)) history = local.x;
@@ -845,8 +938,8 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     float run_width = float(DNSR_RUN_CLAMP_SAMPLES) / abs(m.w);
     float clamped = flipped ? local.x
                   : (stable || resolved ? clamp(history, x - run_width, x + run_width)
-                            : clamp(history, local.x - disocc.w * sigma, local.x + disocc.w * sigma));
-    float d = stable || flipped || resolved ? 0.0 : (history - local.x) / max(disocc.w * sigma, reject.y);
+                            : clamp(history, local.x - clamp_sigmas * sigma, local.x + clamp_sigmas * sigma));
+    float d = stable || flipped || resolved ? 0.0 : (history - local.x) / max(clamp_sigmas * sigma, reject.y);
     dnsr_scale_moments(m, exp(-d * d / reject.x));
 
     // Not on a stable pixel: its samples resolve it, and the local variance (which straddles the edge) would let

@@ -45,6 +45,10 @@ gpu_block! {
         /// stable run that restart its history (0: never); z: identical samples in a row that make a pixel
         /// converged (0: never); w: penumbra guidance's hard penumbra half-width in pixels (0: off).
         runs: [f32; 4],
+        /// A shadow that moved over a still surface (the run features' pipelines): x: the neighbourhood's change, in
+        /// standard deviations, that counts as moved (0: never); y: the history clamp's width there, in sigmas; zw:
+        /// unused.
+        moving: [f32; 4],
         /// Penumbra guidance (the pipelines specialized with DNSR_SPEC_PENUMBRA_GUIDED): x: tan(light angular diameter / 2); yz: a pixel's
         /// world-space size at linear view depth z is y + z * z; w: the kernel's sigma in penumbra half-widths.
         penumbra: [f32; 4],
@@ -69,6 +73,7 @@ impl FrameConstants {
         self.runs = [s.stable_history_samples, s.history_flip_samples, s.converged_samples, s.hard_penumbra_pixels];
         self.temporal = [s.full_history_samples, s.min_current_weight, s.max_history_samples, s.spatial_falloff];
         self.filtering = [s.kernel_cross_weight, s.normal_power, s.output_contrast, s.min_shadow_sigma];
+        self.moving = [s.moving_shadow_sigmas, s.moving_history_clamp_sigmas, 0.0, 0.0];
     }
 }
 
@@ -138,6 +143,7 @@ pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
     ("DNSR_HARD_PENUMBRA_MIN_BLOCKER_PIXELS", crate::passes::HARD_PENUMBRA_MIN_BLOCKER_PIXELS),
     ("DNSR_SPEC_ID_PENUMBRA_GUIDED", crate::passes::SPEC_PENUMBRA_GUIDED),
     ("DNSR_SPEC_ID_STABLE_HISTORY", crate::passes::SPEC_STABLE_HISTORY),
+    ("DNSR_SPEC_ID_MOVING_SHADOWS", crate::passes::SPEC_MOVING_SHADOWS),
     ("DNSR_SPEC_ID_HARD_LIGHT", crate::passes::SPEC_HARD_LIGHT),
     ("DNSR_LIGHT_SLOTS", crate::passes::LIGHT_SLOTS as u32),
     ("DNSR_MAX_CASCADES", crate::passes::classify::MAX_CASCADES as u32),

@@ -14,7 +14,7 @@ use crate::light::LightState;
 use crate::passes::bindings::{image, Binding};
 use crate::passes::variants::{is_light_slot_variant, variant};
 use crate::passes::{filter, prepare, tile_classification};
-use crate::passes::{roles, FrameViews, Pass, Role, LIGHT_SLOTS, SPEC_HARD_LIGHT, SPEC_PENUMBRA_GUIDED, SPEC_STABLE_HISTORY};
+use crate::passes::{roles, FrameViews, Pass, Role, LIGHT_SLOTS, SPEC_HARD_LIGHT, SPEC_MOVING_SHADOWS, SPEC_PENUMBRA_GUIDED, SPEC_STABLE_HISTORY};
 use crate::pipeline::PassPipeline;
 use crate::settings::{check_filter_passes, Settings};
 use crate::timestamps::{ClassifierTimings, PassTimings, Timestamps};
@@ -570,6 +570,7 @@ impl Context {
             tile_blocker: light.tile_blocker.view,
             spec: (if d.hit_distance.is_some() { 1 << SPEC_PENUMBRA_GUIDED } else { 0 })
                 | (if self.settings.uses_runs() { 1 << SPEC_STABLE_HISTORY } else { 0 })
+                | (if self.settings.tells_moving_shadows() { 1 << SPEC_MOVING_SHADOWS } else { 0 })
                 | (if d.hard_light { 1 << SPEC_HARD_LIGHT } else { 0 }),
             output: d.output.view,
             tile_mask: if self.reads_mask_directly(d) { host(&d.hit_mask) } else { image(light.tile_mask.view, vk::ImageLayout::GENERAL) },

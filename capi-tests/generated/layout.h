@@ -38,7 +38,7 @@ DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrDebugNameCallback) == 8, "alignof(DnsrDebugN
 DNSR_STATIC_ASSERT(offsetof(DnsrDebugNameCallback, userData) == 0, "offsetof(DnsrDebugNameCallback, userData)");
 DNSR_STATIC_ASSERT(offsetof(DnsrDebugNameCallback, setName) == 8, "offsetof(DnsrDebugNameCallback, setName)");
 
-DNSR_STATIC_ASSERT(sizeof(DnsrSettings) == 96, "sizeof(DnsrSettings)");
+DNSR_STATIC_ASSERT(sizeof(DnsrSettings) == 104, "sizeof(DnsrSettings)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrSettings) == 8, "alignof(DnsrSettings)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, sType) == 0, "offsetof(DnsrSettings, sType)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, pNext) == 8, "offsetof(DnsrSettings, pNext)");
@@ -62,6 +62,8 @@ DNSR_STATIC_ASSERT(offsetof(DnsrSettings, stableHistorySamples) == 80, "offsetof
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, historyFlipSamples) == 84, "offsetof(DnsrSettings, historyFlipSamples)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, convergedSamples) == 88, "offsetof(DnsrSettings, convergedSamples)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, hardPenumbraPixels) == 92, "offsetof(DnsrSettings, hardPenumbraPixels)");
+DNSR_STATIC_ASSERT(offsetof(DnsrSettings, movingShadowSigmas) == 96, "offsetof(DnsrSettings, movingShadowSigmas)");
+DNSR_STATIC_ASSERT(offsetof(DnsrSettings, movingHistoryClampSigmas) == 100, "offsetof(DnsrSettings, movingHistoryClampSigmas)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrContextCreateInfo) == 160, "sizeof(DnsrContextCreateInfo)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrContextCreateInfo) == 8, "alignof(DnsrContextCreateInfo)");

@@ -16,6 +16,7 @@ struct DnsrFrameConstants {
     vec4 temporal;
     vec4 filtering;
     vec4 runs;
+    vec4 moving;
     vec4 penumbra;
 };
 
@@ -87,6 +88,7 @@ struct DnsrClassifyConstants {
 #define DNSR_HARD_PENUMBRA_MIN_BLOCKER_PIXELS 2
 #define DNSR_SPEC_ID_PENUMBRA_GUIDED 0
 #define DNSR_SPEC_ID_STABLE_HISTORY 1
+#define DNSR_SPEC_ID_MOVING_SHADOWS 3
 #define DNSR_SPEC_ID_HARD_LIGHT 2
 #define DNSR_LIGHT_SLOTS 4
 #define DNSR_MAX_CASCADES 4

@@ -412,6 +412,17 @@ pub struct DnsrSettings {
     /// hard light; where the estimate errs, the output is the input). Range [0, 16]; 0 disables (the FidelityFX
     /// behaviour). Default 0.25 (FidelityFX 0).
     pub hard_penumbra_pixels: f32,
+    /// A shadow that moved over a still surface (an occluder moving without motion vectors on the receiver): where
+    /// a pixel's motion vector is under 0.01 px and this frame's samples around its 8x4 tile (24x20 px) lie more
+    /// than this many standard deviations (plus two samples) from last frame's accumulated means, its history is
+    /// clamped to movingHistoryClampSigmas instead of historyClampSigmas. 3 takes a moving occluder's error to
+    /// about two thirds for 0.09 ms more at 4K on an H100 (docs/do-no-harm.md); off in every preset. Needs
+    /// stableHistorySamples or convergedSamples > 0.
+    /// Range [0, 16]; 0 disables (the pipelines compile it out). Default 0 (FidelityFX 0).
+    pub moving_shadow_sigmas: f32,
+    /// The history clamp's width in local standard deviations where the shadow moved (movingShadowSigmas).
+    /// Range [0, 16]. Default 0.1.
+    pub moving_history_clamp_sigmas: f32,
 }
 
 /// Everything needed to create a context. Read during `dnsr_context_create` only (callback structs are copied;

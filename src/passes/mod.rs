@@ -62,6 +62,10 @@ const _: () = assert!((WIDE_GROUP[0] * WIDE_GROUP[1]) % WINDOW_TILE_COUNT == 0 &
 // The surface window: each invocation fetches the same number of window pixel pairs (its fetch loop has no bound
 // test).
 const _: () = assert!(WINDOW_TILE_COUNT * TILE[0] * TILE[1] / 2 % (WIDE_GROUP[0] * WIDE_GROUP[1]) == 0);
+// A moving shadow's test: each invocation sums the same number of window pixels, consecutive in one row of one
+// window tile (`dnsr_sum_previous_moments`).
+const MOVING_PIXELS: u32 = WINDOW_TILE_COUNT * TILE[0] * TILE[1] / (WIDE_GROUP[0] * WIDE_GROUP[1]);
+const _: () = assert!(WINDOW_TILE_COUNT * TILE[0] * TILE[1] % (WIDE_GROUP[0] * WIDE_GROUP[1]) == 0 && TILE[0] % MOVING_PIXELS == 0);
 const _: () = assert!(1 << (MAX_FILTER_PASSES - 1) <= GROUP[0] && 1 << (MAX_FILTER_PASSES - 1) <= GROUP[1]);
 
 /// Lights one dispatch of the filter's light-slot variants filters (a record of more lights runs several).
@@ -100,8 +104,13 @@ pub(crate) const SPEC_STABLE_HISTORY: u32 = 1;
 /// filter pass only. A runtime test of a flag in either, in every form tried, made lavapipe (Mesa 22.3) leak JIT
 /// memory on every dispatch of those passes (the minimal example's LeakSanitizer run), lights of no size or not.
 pub(crate) const SPEC_HARD_LIGHT: u32 = 2;
+/// `DNSR_SPEC_MOVING_SHADOWS`: classification tells a shadow that moved over a still surface
+/// (`Settings::moving_shadow_sigmas` > 0, with the run features). Behind its own constant: its fetches and sums cost
+/// classification 10-20% on an H100 at 4K (docs/do-no-harm.md), which a context that does not ask for it must not
+/// pay.
+pub(crate) const SPEC_MOVING_SHADOWS: u32 = 3;
 /// Specialization constant ids the passes set: 0..SPEC_COUNT.
-pub(crate) const SPEC_COUNT: usize = 3;
+pub(crate) const SPEC_COUNT: usize = 4;
 
 /// Which specialization constants are on for one dispatch of a pass (bit i: constant id i).
 pub(crate) type Specialization = u32;

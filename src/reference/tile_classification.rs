@@ -276,8 +276,45 @@ fn stable_agreeing(run: f64, x: f64, stable_after: f64) -> bool {
     is_exact(x) && stable_after > 0.0 && run.abs() >= stable_after && if x >= 0.5 { run > 0.0 } else { run < 0.0 }
 }
 
-/// The temporal part for one receiver pixel of a mixed tile: returns (moments, (shadow, variance)).
-pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVec2) {
+/// What a pixel's stored moments (their first word, `storage::pack_moments`) add to its window tile's sums in
+/// `shadow_moved` (`dnsr_moment_terms`): its mean (the unorm14 code over 16: 1024 is one sample) in the low 16 bits,
+/// its Bernoulli variance mean * (1 - mean) (code * (max - code) over 2^16) in the high 16; integers, summed alike in
+/// any order.
+pub fn moment_terms(word: u32) -> u32 {
+    let max = crate::state::MOMENTS_MEAN_MAX;
+    let code = word & max;
+    ((code + 8) >> 4) | (((code * (max - code)) >> 16) << 16)
+}
+
+/// Whether the shadow moved over `tile`'s neighbourhood (one tile either side, two above and below) since last
+/// frame (`dnsr_shadow_moved`; shaders/tile_classification.glsl says why): over the pixels whose last frame's
+/// moments are not empty (a receiver's), this frame's samples (in 1/1024 of a sample) differ from the moments'
+/// accumulated means by more than `Settings::moving_shadow_sigmas` of their Bernoulli spread, plus two samples.
+pub fn shadow_moved<Io: Read + ?Sized>(io: &Io, tile: Coord) -> bool {
+    let sigmas = io.settings().moving_shadow_sigmas as f64;
+    let (mut samples, mut means, mut variances) = (0u64, 0u64, 0u64);
+    for y in (tile[1] - 2) * TILE[1]..(tile[1] + 3) * TILE[1] {
+        for x in (tile[0] - 1) * TILE[0]..(tile[0] + 2) * TILE[0] {
+            if !inside(io, [x, y]) {
+                continue;
+            }
+            let word = super::storage::pack_moments(io.read_previous_moments([x, y]));
+            if word == 0 {
+                continue;
+            }
+            samples += (sample(io, [x, y]) * 1024.0 + 0.5).floor() as u64;
+            means += (moment_terms(word) & 0xFFFF) as u64;
+            variances += (moment_terms(word) >> 16) as u64;
+        }
+    }
+    let change = (samples as f64 - means as f64).abs() / 1024.0;
+    let max = crate::state::MOMENTS_MEAN_MAX as f64;
+    sigmas > 0.0 && !io.is_reset() && change > sigmas * (variances as f64 * 65536.0 / (max * max)).sqrt() + 2.0
+}
+
+/// The temporal part for one receiver pixel of a mixed tile: returns (moments, (shadow, variance)). `moved`: the
+/// shadow moved over its tile's neighbourhood (`shadow_moved`).
+pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool) -> (DVec4, DVec2) {
     let s = io.settings();
     let (thr_facing, thr_grazing, angle_exp, clamp_k) = (
         s.disocclusion_threshold_facing as f64,
@@ -303,7 +340,12 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64) -> (DVec4, DVe
     let untraced = !io.is_traced(p);
     let uv = pixel_uv(io, p);
     let ndc = uv_to_ndc(uv);
-    let history_uv = uv + quad_velocity(io, p);
+    let velocity = quad_velocity(io, p);
+    let history_uv = uv + velocity;
+    // Where the shadow moved over this still pixel, its history holds where the shadow was: a tighter clamp (a
+    // pixel that moves under 0.01 px; shaders/tile_classification.glsl says why).
+    let motion = velocity * DVec2::new(e[0] as f64, e[1] as f64);
+    let clamp_k = if moved && motion.dot(motion) < 1e-4 { s.moving_history_clamp_sigmas as f64 } else { clamp_k };
 
     let prev_clip = io.reprojection_matrix() * DVec4::new(ndc.x, ndc.y, depth, 1.0);
     let prev_ndc = prev_clip.truncate() / prev_clip.w;
@@ -564,6 +606,9 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
     let e = io.extent();
     let max_samples = io.settings().max_history_samples as f64;
     let tiles = tile_count(io);
+    // The run features' pipelines tell a shadow that moved (`shadow_moved`), from last frame's moments.
+    let tells = io.settings().tells_moving_shadows();
+    let moved: Vec<bool> = (0..tiles[0] * tiles[1]).map(|i| tells && shadow_moved(io, [i % tiles[0], i / tiles[0]])).collect();
     for ty in 0..tiles[1] {
         for tx in 0..tiles[0] {
             let tile = [tx, ty];
@@ -591,7 +636,7 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
                     } else if !receiver {
                         (DVec4::ZERO, SKY_SIGNAL)
                     } else {
-                        temporal(io, p, depth)
+                        temporal(io, p, depth, moved[(ty * tiles[0] + tx) as usize])
                     };
                     io.write_moments(p, moments);
                     io.write_reprojection(p, result);

@@ -79,7 +79,7 @@ fn bless_bench_copy_spirv_matches_glslc() {
 fn reflected_interfaces_match_what_the_host_binds() {
     use Resource::*;
     // (variant, bindings, push-constant bytes, specialization constants declared)
-    use crate::passes::{SPEC_HARD_LIGHT as HARD, SPEC_PENUMBRA_GUIDED as GUIDED, SPEC_STABLE_HISTORY as STABLE};
+    use crate::passes::{SPEC_HARD_LIGHT as HARD, SPEC_MOVING_SHADOWS as MOVING, SPEC_PENUMBRA_GUIDED as GUIDED, SPEC_STABLE_HISTORY as STABLE};
     let expect: &[(&str, &[Resource], u32, u32)] = &[
         ("prepare", &[Constants, HitMask, TileMaskOut], 0, 0),
         (
@@ -89,7 +89,7 @@ fn reflected_interfaces_match_what_the_host_binds() {
                 Reprojection, TileMetaOut, Output, HitDistance, TileBlockerOut,
             ],
             0,
-            (1 << GUIDED) | (1 << STABLE) | (1 << HARD),
+            (1 << GUIDED) | (1 << STABLE) | (1 << HARD) | (1 << MOVING),
         ),
         (
             "filter",
@@ -230,7 +230,7 @@ fn generated_layout_header() -> String {
         disocclusion_angle_exponent, spatial_falloff, history_clamp_sigmas, history_rejection_falloff,
         history_rejection_min_sigma, variance_boost_samples, full_history_samples, min_current_weight,
         max_history_samples, kernel_cross_weight, normal_power, output_contrast, min_shadow_sigma, stable_history_samples,
-        history_flip_samples, converged_samples, hard_penumbra_pixels,
+        history_flip_samples, converged_samples, hard_penumbra_pixels, moving_shadow_sigmas, moving_history_clamp_sigmas,
     });
     check!(DnsrContextCreateInfo {
         s_type, p_next, instance, physical_device, device, vulkan_functions, api_version, queue_family_index,

@@ -129,9 +129,9 @@ vec2 dnsr_read_velocity(ivec2 p) {
 // (dnsr_pack_depth_copy).
 float dnsr_read_previous_depth(ivec2 p) { return dnsr_depth_copy_depth(texelFetch(dnsr_previous_depth, p + dnsr_get_offset(), 0).r); }
 vec3 dnsr_read_previous_normal(ivec2 p) { return dnsr_depth_copy_normal(texelFetch(dnsr_previous_depth, p + dnsr_get_offset(), 0).r); }
-// (mean, sum of squared deviations, sample count, run of identical samples: +n lit, -n shadowed).
 // The first word of p's moments as stored (dnsr_pack_moments; 0: no receiver's).
 uint dnsr_read_previous_moments_word(ivec2 p) { return texelFetch(dnsr_previous_moments, p + dnsr_get_offset(), 0).x; }
+// (mean, sum of squared deviations, sample count, run of identical samples: +n lit, -n shadowed).
 vec4 dnsr_read_previous_moments(ivec2 p) {
     uvec2 v = texelFetch(dnsr_previous_moments, p + dnsr_get_offset(), 0).xy;
     vec4 m = dnsr_unpack_moments(v.x);
@@ -159,7 +159,6 @@ float dnsr_read_history(vec2 uv) {
 void dnsr_write_moments(ivec2 p, vec4 m) { imageStore(dnsr_moments, p + dnsr_get_offset(), uvec4(dnsr_pack_moments(m), floatBitsToUint(m.y), 0u, 0u)); }
 void dnsr_write_reprojection(ivec2 p, vec2 mean_var) { imageStore(dnsr_reprojection, p + dnsr_get_offset(), dnsr_encode_signal(mean_var, dnsr_get_signal_scale())); }
 void dnsr_write_tile_meta(ivec2 tile, uint meta) { imageStore(dnsr_tile_meta_out, tile + dnsr_get_tile_offset(), uvec4(meta)); }
-
 // Penumbra guidance: the host's distance to the first occluder (read where the mask says the ray hit), and each
 // tile's blocker estimate for the filter (-1: unknown).
 layout(set = 0, binding = 21) uniform texture2D dnsr_hit_distance;

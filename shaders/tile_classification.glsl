@@ -55,7 +55,7 @@ shared uint s_uniform[DNSR_GROUP_TILES.y][DNSR_GROUP_TILES.x];
 ivec2 g_window_base;
 
 // A shadow that moved over a still surface (DNSR_SPEC_MOVING_SHADOWS): per window tile, this frame's samples (in
-// 1/1024 of a sample) on the pixels whose last frame's moments are not empty, and those moments' summed terms
+// units of DNSR_MOVING_SAMPLE_UNIT per sample) on the pixels whose last frame's moments are not empty, and those moments' summed terms
 // (dnsr_moment_terms); per tile of the group, whether the shadow moved there (dnsr_shadow_moved).
 shared uint s_moving_samples[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
 shared uint s_moving_terms[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
@@ -392,7 +392,7 @@ bool dnsr_two_neighbours_share(ivec2 p, ivec2 lid, float x) {
 }
 
 // What a pixel's stored moments (their first word: dnsr_pack_moments) add to its window tile's sums: its mean (the
-// unorm14 code over 16: 1024 is one sample) in the low half, its Bernoulli variance mean * (1 - mean) (code *
+// unorm14 code over 16: DNSR_MOVING_SAMPLE_UNIT is one sample) in the low half, its Bernoulli variance mean * (1 - mean) (code *
 // (max - code) over 2^16) in the high half; at most 1024 each, so a tile's 32 pixels fit 16 bits. Integers: the
 // sums do not depend on the order of the atomics, and the CPU reference sums the same terms.
 uint dnsr_moment_terms(uint word) {
@@ -418,9 +418,9 @@ void dnsr_sum_previous_moments(int thread) {
         if (words[k] == 0u) continue;
         terms += dnsr_moment_terms(words[k]);
 #ifdef DNSR_VISIBILITY_INPUT
-        samples += uint(floor(s_visibility[w.y][w.x + k] * 1024.0 + 0.5));
+        samples += uint(floor(s_visibility[w.y][w.x + k] * float(DNSR_MOVING_SAMPLE_UNIT) + 0.5));
 #else
-        samples += ((s_words[t.y][t.x] >> uint((w.y % DNSR_TILE_HEIGHT) * DNSR_TILE_WIDTH + (w.x + k) % DNSR_TILE_WIDTH)) & 1u) * 1024u;
+        samples += ((s_words[t.y][t.x] >> uint((w.y % DNSR_TILE_HEIGHT) * DNSR_TILE_WIDTH + (w.x + k) % DNSR_TILE_WIDTH)) & 1u) * DNSR_MOVING_SAMPLE_UNIT;
 #endif
     }
     atomicAdd(s_moving_samples[t.y][t.x], samples);
@@ -429,11 +429,11 @@ void dnsr_sum_previous_moments(int thread) {
 
 // Whether the shadow moved over the tile's neighbourhood (one tile either side, two above and below: the window
 // tiles around it) since last frame: this frame's samples differ from last frame's accumulated means there by more
-// than Settings::moving_shadow_sigmas of their Bernoulli spread, plus two samples. The accumulated means, not last
-// frame's samples: they hold the few frames the history holds, so the spread is this frame's alone (`make
-// accuracy`'s moving family: against last frame's samples, at the same false alarms, the test found a third as much
-// of the error; docs/do-no-harm.md). No early return on the settings: with one, lavapipe (Mesa 22.3) leaked memory
-// on every dispatch.
+// than Settings::moving_shadow_sigmas of their Bernoulli spread, plus DNSR_MOVING_MARGIN_SAMPLES. The accumulated
+// means, not last frame's samples: they hold the few frames the history holds, so the spread is this frame's alone
+// (`make accuracy`'s moving family, at 3 deviations: median ratio to the input 0.326 this way, 0.444 against last
+// frame's samples; docs/do-no-harm.md). No early return on the settings: with one, lavapipe (Mesa 22.3) leaked
+// memory frame after frame.
 bool dnsr_shadow_moved(ivec2 own_tile) {
     uint samples = 0u, means = 0u, variances = 0u;
     for (int dy = 0; dy <= 4; ++dy) {
@@ -444,10 +444,10 @@ bool dnsr_shadow_moved(ivec2 own_tile) {
             variances += s_moving_terms[w.y][w.x] >> 16;
         }
     }
-    float change = abs(float(samples) - float(means)) / 1024.0;
+    float change = abs(float(samples) - float(means)) / float(DNSR_MOVING_SAMPLE_UNIT);
     float variance = float(variances) * (65536.0 / float(DNSR_MOMENTS_MEAN_MAX * DNSR_MOMENTS_MEAN_MAX));
     float sigmas = dnsr_get_moving_settings().x;
-    return sigmas > 0.0 && !dnsr_get_is_reset() && change > sigmas * sqrt(variance) + 2.0;
+    return sigmas > 0.0 && !dnsr_get_is_reset() && change > sigmas * sqrt(variance) + float(DNSR_MOVING_MARGIN_SAMPLES);
 }
 
 // A pixel of a cleared tile: its value is known exactly; keep the state of the next frame consistent with it.
@@ -721,9 +721,9 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     vec2 ndc = dnsr_uv_to_ndc(uv);
     vec2 velocity = s_quad_velocity[best.y][best.x];
     vec2 history_uv = uv + velocity;
-    // A pixel that moves under 0.01 px (the moving shadow's clamp below).
-    vec2 motion = velocity * vec2(dnsr_get_extent());
-    bool still = dot(motion, motion) < 1e-4;
+    // A pixel that moves under 1 / DNSR_STILL_MOTION_INV_PIXELS px (the moving shadow's clamp below).
+    vec2 motion = velocity * vec2(dnsr_get_extent() * int(DNSR_STILL_MOTION_INV_PIXELS));
+    bool still = dot(motion, motion) < 1.0;
 
     // Disocclusion: where the camera motion puts this surface last frame, was the same depth there?
     vec4 prev_clip = dnsr_get_reprojection_matrix() * vec4(ndc, depth, 1.0);

@@ -185,10 +185,8 @@ impl Settings {
     }
 
     /// Whether classification tells a shadow that moved over a still surface (`moving_shadow_sigmas` > 0, with the
-    /// run features): its pipelines are specialized with DNSR_SPEC_MOVING_SHADOWS. Public (hidden) for dnsr-bench's
-    /// byte model only.
-    #[doc(hidden)]
-    pub fn tells_moving_shadows(&self) -> bool {
+    /// run features): its pipelines are specialized with DNSR_SPEC_MOVING_SHADOWS.
+    pub(crate) fn tells_moving_shadows(&self) -> bool {
         self.moving_shadow_sigmas > 0.0 && self.uses_runs()
     }
 }

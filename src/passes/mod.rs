@@ -65,6 +65,14 @@ const _: () = assert!(WINDOW_TILE_COUNT * TILE[0] * TILE[1] / 2 % (WIDE_GROUP[0]
 // A moving shadow's test: each invocation sums the same number of window pixels, consecutive in one row of one
 // window tile (`dnsr_sum_previous_moments`).
 const MOVING_PIXELS: u32 = WINDOW_TILE_COUNT * TILE[0] * TILE[1] / (WIDE_GROUP[0] * WIDE_GROUP[1]);
+/// A moving shadow's test counts samples and moment means in fixed point: this many units are one sample
+/// (the moments' unorm14 mean code over 16). Generated into GLSL; the CPU reference counts the same.
+pub(crate) const MOVING_SAMPLE_UNIT: u32 = 1024;
+const _: () = assert!((crate::state::MOMENTS_MEAN_MAX + 8) >> 4 == MOVING_SAMPLE_UNIT);
+/// The test's margin, in samples, beyond the Bernoulli spread (a few samples' difference is no motion).
+pub(crate) const MOVING_MARGIN_SAMPLES: u32 = 2;
+/// A pixel counts as still for the test where its motion vector is under 1 / this many pixels.
+pub(crate) const STILL_MOTION_INV_PIXELS: u32 = 100;
 const _: () = assert!(WINDOW_TILE_COUNT * TILE[0] * TILE[1] % (WIDE_GROUP[0] * WIDE_GROUP[1]) == 0 && TILE[0] % MOVING_PIXELS == 0);
 const _: () = assert!(1 << (MAX_FILTER_PASSES - 1) <= GROUP[0] && 1 << (MAX_FILTER_PASSES - 1) <= GROUP[1]);
 
@@ -106,8 +114,8 @@ pub(crate) const SPEC_STABLE_HISTORY: u32 = 1;
 pub(crate) const SPEC_HARD_LIGHT: u32 = 2;
 /// `DNSR_SPEC_MOVING_SHADOWS`: classification tells a shadow that moved over a still surface
 /// (`Settings::moving_shadow_sigmas` > 0, with the run features). Behind its own constant: its fetches and sums cost
-/// classification 10-20% on an H100 at 4K (docs/do-no-harm.md), which a context that does not ask for it must not
-/// pay.
+/// Quality's classification 0.810 -> 0.896 ms on an H100 at 4K (docs/do-no-harm.md), which a context that does not
+/// ask for it must not pay.
 pub(crate) const SPEC_MOVING_SHADOWS: u32 = 3;
 /// Specialization constant ids the passes set: 0..SPEC_COUNT.
 pub(crate) const SPEC_COUNT: usize = 4;

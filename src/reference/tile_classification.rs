@@ -277,7 +277,8 @@ fn stable_agreeing(run: f64, x: f64, stable_after: f64) -> bool {
 }
 
 /// What a pixel's stored moments (their first word, `storage::pack_moments`) add to its window tile's sums in
-/// `shadow_moved` (`dnsr_moment_terms`): its mean (the unorm14 code over 16: 1024 is one sample) in the low 16 bits,
+/// `shadow_moved` (`dnsr_moment_terms`): its mean (the unorm14 code over 16: `passes::MOVING_SAMPLE_UNIT` is one
+/// sample) in the low 16 bits,
 /// its Bernoulli variance mean * (1 - mean) (code * (max - code) over 2^16) in the high 16; integers, summed alike in
 /// any order.
 pub fn moment_terms(word: u32) -> u32 {
@@ -288,9 +289,12 @@ pub fn moment_terms(word: u32) -> u32 {
 
 /// Whether the shadow moved over `tile`'s neighbourhood (one tile either side, two above and below) since last
 /// frame (`dnsr_shadow_moved`; shaders/tile_classification.glsl says why): over the pixels whose last frame's
-/// moments are not empty (a receiver's), this frame's samples (in 1/1024 of a sample) differ from the moments'
-/// accumulated means by more than `Settings::moving_shadow_sigmas` of their Bernoulli spread, plus two samples.
+/// moments are not empty (a receiver's), this frame's samples (`passes::MOVING_SAMPLE_UNIT` per sample) differ from
+/// the moments' accumulated means by more than `Settings::moving_shadow_sigmas` of their Bernoulli spread, plus
+/// `passes::MOVING_MARGIN_SAMPLES`.
 pub fn shadow_moved<Io: Read + ?Sized>(io: &Io, tile: Coord) -> bool {
+    use crate::passes::{MOVING_MARGIN_SAMPLES, MOVING_SAMPLE_UNIT};
+    let unit = MOVING_SAMPLE_UNIT as f64;
     let sigmas = io.settings().moving_shadow_sigmas as f64;
     let (mut samples, mut means, mut variances) = (0u64, 0u64, 0u64);
     for y in (tile[1] - 2) * TILE[1]..(tile[1] + 3) * TILE[1] {
@@ -302,14 +306,14 @@ pub fn shadow_moved<Io: Read + ?Sized>(io: &Io, tile: Coord) -> bool {
             if word == 0 {
                 continue;
             }
-            samples += (sample(io, [x, y]) * 1024.0 + 0.5).floor() as u64;
+            samples += (sample(io, [x, y]) * unit + 0.5).floor() as u64;
             means += (moment_terms(word) & 0xFFFF) as u64;
             variances += (moment_terms(word) >> 16) as u64;
         }
     }
-    let change = (samples as f64 - means as f64).abs() / 1024.0;
+    let change = (samples as f64 - means as f64).abs() / unit;
     let max = crate::state::MOMENTS_MEAN_MAX as f64;
-    sigmas > 0.0 && !io.is_reset() && change > sigmas * (variances as f64 * 65536.0 / (max * max)).sqrt() + 2.0
+    sigmas > 0.0 && !io.is_reset() && change > sigmas * (variances as f64 * 65536.0 / (max * max)).sqrt() + MOVING_MARGIN_SAMPLES as f64
 }
 
 /// The temporal part for one receiver pixel of a mixed tile: returns (moments, (shadow, variance)). `moved`: the
@@ -343,9 +347,9 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool) -
     let velocity = quad_velocity(io, p);
     let history_uv = uv + velocity;
     // Where the shadow moved over this still pixel, its history holds where the shadow was: a tighter clamp (a
-    // pixel that moves under 0.01 px; shaders/tile_classification.glsl says why).
-    let motion = velocity * DVec2::new(e[0] as f64, e[1] as f64);
-    let clamp_k = if moved && motion.dot(motion) < 1e-4 { s.moving_history_clamp_sigmas as f64 } else { clamp_k };
+    // pixel that moves under 1 / `passes::STILL_MOTION_INV_PIXELS` px; shaders/tile_classification.glsl says why).
+    let motion = velocity * DVec2::new(e[0] as f64, e[1] as f64) * crate::passes::STILL_MOTION_INV_PIXELS as f64;
+    let clamp_k = if moved && motion.dot(motion) < 1.0 { s.moving_history_clamp_sigmas as f64 } else { clamp_k };
 
     let prev_clip = io.reprojection_matrix() * DVec4::new(ndc.x, ndc.y, depth, 1.0);
     let prev_ndc = prev_clip.truncate() / prev_clip.w;

@@ -161,7 +161,7 @@ fn a_million_static_frames(precision: Precision) {
     let mut info = g.create_info(w, h);
     info.precision = precision;
     if precision == Precision::Fp32 {
-        // With the moving shadows' test too (its first form made lavapipe leak memory on every dispatch).
+        // With the moving shadows' test too (its first form made lavapipe leak memory frame after frame).
         info.settings = crate::Settings { moving_shadow_sigmas: 3.0, ..crate::Settings::preset(crate::Preset::Quality) };
     }
     let mut r = runner(&g, &info);

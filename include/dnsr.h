@@ -438,6 +438,15 @@ typedef struct DnsrSettings {
    * Range [0, 16]. Default 0.1.
    */
   float movingHistoryClampSigmas;
+  /**
+   * Without penumbra guidance: each 8x4 tile counts the frames since one of its receivers' samples contradicted
+   * last frame's (a world point in a penumbra changes its value at random, one in a hard shadow keeps it); where
+   * the 3x3 tiles around a receiver's tile all counted this many frames, a receiver that neither contradicts nor
+   * is disoccluded outputs its sample (hard and nearly hard shadows under a moving camera stay exact; where a
+   * penumbra shows no contradiction the output is the input, never worse). Needs stableHistorySamples or
+   * convergedSamples > 0. Range [0, 255]; 0 disables (the FidelityFX behaviour). Default 6 (FidelityFX 0).
+   */
+  float hardTileFrames;
 } DnsrSettings;
 
 /**
@@ -1405,6 +1414,16 @@ typedef struct DnsrReferenceCallbacks {
    * `readNormal`'s: classification leaves history texels whose surface turned out of the blend.
    */
   void (*readPreviousNormal)(void *user, int32_t x, int32_t y, float *rgb);
+  /**
+   * Optional. Previous frame's count of quiet frames of a tile (see DnsrSettings::hardTileFrames; the previous
+   * frame's `writeTileQuiet`). NULL: 0 for every tile (no tile is hard by time this frame).
+   */
+  uint32_t (*readPreviousTileQuiet)(void *user, int32_t tile_x, int32_t tile_y);
+  /**
+   * Optional. Receives this frame's count of quiet frames of a tile (written with the run features on:
+   * stableHistorySamples or convergedSamples > 0).
+   */
+  void (*writeTileQuiet)(void *user, int32_t tile_x, int32_t tile_y, uint32_t frames);
 } DnsrReferenceCallbacks;
 
 /**

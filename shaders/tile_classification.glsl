@@ -60,6 +60,8 @@ ivec2 g_window_base;
 shared uint s_moving_samples[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
 shared uint s_moving_terms[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
 shared uint s_moved[DNSR_GROUP_TILES.y][DNSR_GROUP_TILES.x];
+// Per tile of the group, whether the 3x3 tiles around it were all quiet long enough (dnsr_quiet_tiles).
+shared uint s_hard_tile[DNSR_GROUP_TILES.y][DNSR_GROUP_TILES.x];
 
 // Penumbra guidance: every window tile's (sum, count) of usable hit distances over its shadowed pixels, summed
 // from DNSR_HIT_PARTS partial sums of DNSR_HIT_PIXELS pixels each. The partial sums borrow s_hsum before the
@@ -460,6 +462,47 @@ void dnsr_write_cleared(ivec2 p, bool receiver, uint state, bool tile_writer) {
     dnsr_write_output(p, receiver ? value : 1.0);
 }
 
+// Hard tiles told by time (Settings::hard_tile_frames): a world point in a hard shadow keeps its value from frame to
+// frame, one in a penumbra changes it at random, and one frame's samples cannot tell a narrow penumbra from a hard
+// edge (docs/do-no-harm.md, "A spatial test for hard shadows in one frame"). The tile writer of tile t stores this
+// frame's count of quiet frames (last frame's plus one; 0 on a reset) and returns whether the 3x3 tiles around t
+// all had at least hard_tile_frames of them last frame; a receiver that contradicts clears its tile's count later
+// (dnsr_clear_tile_quiet), after the barriers between (memoryBarrierImage before the first). The tile's own count
+// is taken from the loop's fetches: a second fetch site for it made lavapipe (Mesa 22.3) leak memory every frame
+// (the million-frame test: +130 MB/s).
+bool dnsr_quiet_tiles(ivec2 t) {
+    uint frames = uint(dnsr_get_moving_settings().z);
+    bool reset = dnsr_get_is_reset();
+    uint least = 0xFFFFFFFFu;
+    uint own = 0u;
+    for (int k = 0; k < 9; ++k) {
+        uint count = dnsr_read_previous_tile_quiet(clamp(t + ivec2(k % 3, k / 3) - 1, ivec2(0), dnsr_tile_count() - 1));
+        least = min(least, count);
+        own = k == 4 ? count : own;
+    }
+    dnsr_write_tile_quiet(t, reset ? 0u : min(own + 1u, uint(DNSR_MAX_QUIET_FRAMES)));
+    return frames > 0u && !reset && least >= frames;
+}
+
+// Whether last frame's samples (the sign of each texel's run) around history position t contradict this frame's
+// sample x, on a pixel that is not disoccluded and whose footprint's texels (weighed at 1/16 or more) are all
+// receivers on its surface: under a still camera (one texel) that texel's sample differs; under a moving one every
+// footprint texel's does and no receiver of the 3x3 texels around t holds x (a sub-pixel feature the moving camera
+// brought onto a pixel centre is no contradiction: the 2x2 footprint alone took a grille's dots for noise), or
+// every footprint texel held both values, each at least DNSR_MIXED_TEXEL_SPREAD_PERCENT percent of its
+// DNSR_MIXED_TEXEL_SAMPLES or more samples (a wide penumbra under a moving camera, whose 3x3 texels seldom agree).
+bool dnsr_contradicts(vec2 t, float x, int texels, int other, int mixed) {
+    if (texels == 1) return other == 1;
+    if (mixed == texels) return true;
+    if (other < texels) return false;
+    for (int k = 0; k < 9; ++k) {
+        ivec2 q = clamp(ivec2(floor(t + 0.5)) - 1 + ivec2(k % 3, k / 3), ivec2(0), dnsr_get_extent() - 1);
+        vec4 mq = dnsr_read_previous_moments(q);
+        if (mq.z > 0.0 && (mq.w > 0.0) == (x >= 0.5)) return false;
+    }
+    return true;
+}
+
 void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     ivec2 origin = gid * DNSR_WIDE_GROUP_SIZE;
     ivec2 p = origin + lid;
@@ -493,10 +536,13 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     }
 #endif
     if (tile_writer) s_tile_has_receiver[own_tile.y][own_tile.x] = 0u;
+    if (DNSR_SPEC_STABLE_HISTORY && tile_writer) s_hard_tile[own_tile.y][own_tile.x] = inside && dnsr_quiet_tiles(p / DNSR_TILE_SIZE) ? 1u : 0u;
 
     float depth = inside ? dnsr_read_depth(p) : 0.0;
     bool receiver = inside && dnsr_is_receiver(depth);
     s_quad_key[lid.y][lid.x] = receiver ? (inverted ? -depth : depth) : 1e30;
+    // The tile writers' quiet counts stored before any receiver clears one (dnsr_quiet_tiles).
+    memoryBarrierImage();
     barrier();
     if (receiver) atomicOr(s_tile_has_receiver[own_tile.y][own_tile.x], 1u);
     if (tile_writer) s_uniform[own_tile.y][own_tile.x] = dnsr_uniform_state(own_tile);
@@ -752,6 +798,8 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     vec4 m = vec4(0.0);
     // A resolved change (see below): this frame's sample stands alone.
     bool resolved = false;
+    // This sample contradicts last frame's around its history position (dnsr_contradicts).
+    bool contradicted = false;
     // History blended from the texels that agree (run_history.y > 0), when only some of them do.
     vec2 run_history = vec2(0.0);
     if (!disoccluded) {
@@ -769,8 +817,8 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         // its run's value as this frame's sample (and keeps its run, below), unless its neighbours' mean lies more
         // than 0.5 from that value (most of them hold the other one: the shadow moved over it). Without this Quality's error on hard edges rose twentyfold at
         // half a ray per pixel.
-        bool contradicted = abs(x - (m.w > 0.0 ? 1.0 : 0.0)) > 0.5;
-        if (untraced && !contradicted && stable_after > 0.0 && abs(m.w) >= stable_after && abs(m.w) <= float(DNSR_MAX_SAMPLE_RUN)) {
+        bool run_contradicted = abs(x - (m.w > 0.0 ? 1.0 : 0.0)) > 0.5;
+        if (untraced && !run_contradicted && stable_after > 0.0 && abs(m.w) >= stable_after && abs(m.w) <= float(DNSR_MAX_SAMPLE_RUN)) {
             x = m.w > 0.0 ? 1.0 : 0.0;
         }
 #endif
@@ -802,6 +850,9 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             // The heaviest receiver texel whose normal did not turn: its moments, where the nearest texel turned.
             vec4 kept = vec4(0.0);
             float kept_weight = 0.0;
+            // Receiver texels whose last sample was not x, and those that held both values (dnsr_contradicts).
+            int other_texels = 0;
+            int mixed_texels = 0;
             for (int k = 0; k < 4; ++k) {
                 float weight = ((k & 1) != 0 ? f.x : 1.0 - f.x) * ((k & 2) != 0 ? f.y : 1.0 - f.y);
                 ivec2 q = clamp(ivec2(floor(t)) + ivec2(k & 1, k >> 1), ivec2(0), dnsr_get_extent() - 1);
@@ -817,6 +868,9 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
                 }
                 float texel = dnsr_read_history_texel(q);
                 receivers += vec2(weight * texel, weight);
+                other_texels += (mq.w > 0.0) != (x >= 0.5) ? 1 : 0;
+                mixed_texels += mq.z >= float(DNSR_MIXED_TEXEL_SAMPLES)
+                    && abs(mq.x - 0.5) <= float(DNSR_MIXED_TEXEL_SPREAD_PERCENT) / 100.0 ? 1 : 0;
                 bool agreeing = dnsr_sign_agreeing(mq.w, x);
                 bool texel_pure = dnsr_pure(mq);
                 bool converged_run = abs(mq.w) >= converged_after;
@@ -839,6 +893,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             // on the whole footprint a penumbra pixel took a lit neighbour's pure moments, converged, and passed
             // its history on the same way next frame (make accuracy, disocclusion 2000: 0.0445 -> 0.0417).
             if (turned) m = kept;
+            contradicted = texels > 0 && !(receivers.y < all_weight) && dnsr_contradicts(t, x, texels, other_texels, mixed_texels);
             bool adopt = pure.z > 0.0 && !dnsr_sign_agreeing(m.w, x) && dnsr_pure(m) && all_pure;
             // Elsewhere, where the nearest texel lies across the edge from this surface point (a moving camera at
             // a silhouette or a crease), the pixel stays stable: it continues a stable run of stable_after samples,
@@ -971,8 +1026,17 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     bool own_sample = true;
 #ifdef DNSR_VISIBILITY_INPUT
     own_sample = !untraced;
+    // A sample that is not exact contradicts nothing: it lies in a penumbra, whose tiles are not hard anyway.
+    contradicted = contradicted && dnsr_is_exact(x) && own_sample;
 #endif
-    if (own_sample && (DNSR_SPEC_HARD_LIGHT
+    // In a tile whose 3x3 tiles were quiet long enough, a pixel that neither contradicts last frame nor was
+    // disoccluded is resolved by its sample (Settings::hard_tile_frames).
+    bool quiet = false;
+    if (DNSR_SPEC_STABLE_HISTORY) {
+        if (contradicted) dnsr_clear_tile_quiet(p / DNSR_TILE_SIZE);
+        quiet = s_hard_tile[own_tile.y][own_tile.x] != 0u && !contradicted && !disoccluded;
+    }
+    if (own_sample && (quiet || DNSR_SPEC_HARD_LIGHT
                        || dnsr_hard_penumbra(blocker, dnsr_get_penumbra_settings(), dnsr_linear_depth(ndc, depth))
                        || dnsr_no_blocker(blocker))) {
         shadow = x;

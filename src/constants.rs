@@ -46,8 +46,8 @@ gpu_block! {
         /// converged (0: never); w: penumbra guidance's hard penumbra half-width in pixels (0: off).
         runs: [f32; 4],
         /// A shadow that moved over a still surface (the run features' pipelines): x: the neighbourhood's change, in
-        /// standard deviations, that counts as moved (0: never); y: the history clamp's width there, in sigmas; zw:
-        /// unused.
+        /// standard deviations, that counts as moved (0: never); y: the history clamp's width there, in sigmas; z:
+        /// the quiet frames that make a tile hard (`Settings::hard_tile_frames`, 0: never); w: unused.
         moving: [f32; 4],
         /// Penumbra guidance (the pipelines specialized with DNSR_SPEC_PENUMBRA_GUIDED): x: tan(light angular diameter / 2); yz: a pixel's
         /// world-space size at linear view depth z is y + z * z; w: the kernel's sigma in penumbra half-widths.
@@ -73,7 +73,7 @@ impl FrameConstants {
         self.runs = [s.stable_history_samples, s.history_flip_samples, s.converged_samples, s.hard_penumbra_pixels];
         self.temporal = [s.full_history_samples, s.min_current_weight, s.max_history_samples, s.spatial_falloff];
         self.filtering = [s.kernel_cross_weight, s.normal_power, s.output_contrast, s.min_shadow_sigma];
-        self.moving = [s.moving_shadow_sigmas, s.moving_history_clamp_sigmas, 0.0, 0.0];
+        self.moving = [s.moving_shadow_sigmas, s.moving_history_clamp_sigmas, s.hard_tile_frames, 0.0];
     }
 }
 
@@ -147,6 +147,9 @@ pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
     ("DNSR_MOVING_SAMPLE_UNIT", crate::passes::MOVING_SAMPLE_UNIT),
     ("DNSR_MOVING_MARGIN_SAMPLES", crate::passes::MOVING_MARGIN_SAMPLES),
     ("DNSR_STILL_MOTION_INV_PIXELS", crate::passes::STILL_MOTION_INV_PIXELS),
+    ("DNSR_MAX_QUIET_FRAMES", crate::passes::MAX_QUIET_FRAMES),
+    ("DNSR_MIXED_TEXEL_SAMPLES", crate::passes::MIXED_TEXEL_SAMPLES),
+    ("DNSR_MIXED_TEXEL_SPREAD_PERCENT", crate::passes::MIXED_TEXEL_SPREAD_PERCENT),
     ("DNSR_SPEC_ID_HARD_LIGHT", crate::passes::SPEC_HARD_LIGHT),
     ("DNSR_LIGHT_SLOTS", crate::passes::LIGHT_SLOTS as u32),
     ("DNSR_MAX_CASCADES", crate::passes::classify::MAX_CASCADES as u32),

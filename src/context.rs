@@ -582,6 +582,8 @@ impl Context {
             depth_copy: light.depth_copy.view,
             previous_moments: light.moments[cur ^ 1].view,
             moments: light.moments[cur].view,
+            previous_tile_quiet: light.tile_quiet[cur ^ 1].view,
+            tile_quiet: light.tile_quiet[cur].view,
             engine: d.engine_images.map(|e| e.map_or(Binding::default(), |e| image(e.view, e.layout))),
             penumbra_tan_half_angle: penumbra_tan_half_angle(d),
         }
@@ -940,6 +942,8 @@ pub(crate) struct Internals {
     pub history: vk::Image,
     /// Written by the last recorded frame.
     pub moments: vk::Image,
+    /// Written by the last recorded frame.
+    pub tile_quiet: vk::Image,
     pub depth: vk::Image,
     pub intermediate_format: vk::Format,
 }
@@ -956,6 +960,7 @@ impl Context {
             reprojection: l.reprojection.image,
             history: l.history.image,
             moments: l.moments[l.parity ^ 1].image,
+            tile_quiet: l.tile_quiet[l.parity ^ 1].image,
             depth: l.depth_copy.image,
             intermediate_format: crate::state::intermediate_format(self.precision),
         }

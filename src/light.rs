@@ -26,6 +26,8 @@ pub(crate) struct LightState {
     pub depth_copy: InternalImage,
     /// Ping-pong pair indexed by `parity` (current) and `parity ^ 1` (previous frame).
     pub moments: [InternalImage; 2],
+    /// Each tile's frames without a contradiction (`Settings::hard_tile_frames`); a pair indexed as `moments`.
+    pub tile_quiet: [InternalImage; 2],
     /// Flips once per recorded frame of this light: advances with recording, not with frameIndex.
     pub parity: usize,
     /// False until the first frame's commands (layout transitions + clears) have been recorded.
@@ -66,6 +68,7 @@ impl LightState {
             history: always(Image::History, 0),
             depth_copy: always(Image::DepthCopy, 0),
             moments: [always(Image::Moments, 0), always(Image::Moments, 1)],
+            tile_quiet: [always(Image::TileQuiet, 0), always(Image::TileQuiet, 1)],
             tmp: take(Image::Tmp, 0),
             reconstructed: take(Image::Reconstructed, 0),
             parity: 0,
@@ -85,6 +88,7 @@ impl LightState {
             Image::History => Some(&self.history),
             Image::DepthCopy => Some(&self.depth_copy),
             Image::Moments => return self.moments.get(copy as usize),
+            Image::TileQuiet => return self.tile_quiet.get(copy as usize),
             Image::Tmp => self.tmp.as_ref(),
             Image::Reconstructed => self.reconstructed.as_ref(),
         };
@@ -134,6 +138,7 @@ impl LightState {
         for img in [&mut self.tile_mask, &mut self.tile_dark, &mut self.tile_meta, &mut self.tile_blocker, &mut self.reprojection, &mut self.history, &mut self.depth_copy]
             .into_iter()
             .chain(self.moments.iter_mut())
+            .chain(self.tile_quiet.iter_mut())
             .chain(self.tmp.iter_mut())
             .chain(self.reconstructed.iter_mut())
         {

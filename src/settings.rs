@@ -99,6 +99,17 @@ declare_settings! {
     moving_shadow_sigmas: f32 = 0.0, [0.0, 16.0] "[0, 16]";
     /// The history clamp's width, in local standard deviations, where the shadow moved (`moving_shadow_sigmas`).
     moving_history_clamp_sigmas: f32 = 0.1, [0.0, 16.0] "[0, 16]";
+    /// Hard tiles told by time, without penumbra guidance: a world point in a hard shadow keeps its value from frame
+    /// to frame, one in a penumbra changes it at random. Each 8x4 tile counts the frames since one of its receivers'
+    /// samples contradicted last frame (under a still camera, the sample differs from its texel's last sample; under
+    /// a moving one, from the last samples of every texel of its footprint and of the 3x3 texels around it, or every
+    /// texel of the footprint held both values, at least a quarter each, over 8 samples or more). Where the 3x3
+    /// tiles around a receiver's tile all counted this many frames or more, and the receiver neither contradicts
+    /// nor is disoccluded, its output is its sample of this frame (a hard or nearly hard shadow that the history and
+    /// the filter would blur under a moving camera). Where a penumbra shows no contradiction the output is its input,
+    /// never worse than it. 0 turns this off (the FidelityFX behaviour); it needs the run features
+    /// (`stable_history_samples` or `converged_samples` > 0). docs/do-no-harm.md, "Hard tiles told by time".
+    hard_tile_frames: f32 = 6.0, [0.0, crate::passes::MAX_QUIET_FRAMES] "[0, 255]";
     /// Penumbra guidance only (a dispatch with hit distances): where the blockers near a tile cast a penumbra
     /// narrower than this many pixels either side of its edge (from their mean hit distance, the light's angular
     /// size and the receiver's depth) and lie at least two pixel footprints away (under a light of angular size 0:
@@ -165,6 +176,7 @@ impl Settings {
             history_flip_samples: 0.0,
             converged_samples: 0.0,
             hard_penumbra_pixels: 0.0,
+            hard_tile_frames: 0.0,
             ..quality
         };
         match preset {
@@ -221,6 +233,6 @@ mod tests {
         assert_eq!(Settings::preset(Preset::Quality), Settings::default());
         // Balanced is FidelityFX: none of the run-based features, which FidelityFX does not have.
         let b = Settings::preset(Preset::Balanced);
-        assert!(!b.uses_runs() && b.hard_penumbra_pixels == 0.0 && b.moving_shadow_sigmas == 0.0 && b.output_contrast == 1.2);
+        assert!(!b.uses_runs() && b.hard_penumbra_pixels == 0.0 && b.hard_tile_frames == 0.0 && b.moving_shadow_sigmas == 0.0 && b.output_contrast == 1.2);
     }
 }

@@ -38,7 +38,7 @@ DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrDebugNameCallback) == 8, "alignof(DnsrDebugN
 DNSR_STATIC_ASSERT(offsetof(DnsrDebugNameCallback, userData) == 0, "offsetof(DnsrDebugNameCallback, userData)");
 DNSR_STATIC_ASSERT(offsetof(DnsrDebugNameCallback, setName) == 8, "offsetof(DnsrDebugNameCallback, setName)");
 
-DNSR_STATIC_ASSERT(sizeof(DnsrSettings) == 104, "sizeof(DnsrSettings)");
+DNSR_STATIC_ASSERT(sizeof(DnsrSettings) == 112, "sizeof(DnsrSettings)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrSettings) == 8, "alignof(DnsrSettings)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, sType) == 0, "offsetof(DnsrSettings, sType)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, pNext) == 8, "offsetof(DnsrSettings, pNext)");
@@ -64,6 +64,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrSettings, convergedSamples) == 88, "offsetof(Dns
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, hardPenumbraPixels) == 92, "offsetof(DnsrSettings, hardPenumbraPixels)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, movingShadowSigmas) == 96, "offsetof(DnsrSettings, movingShadowSigmas)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, movingHistoryClampSigmas) == 100, "offsetof(DnsrSettings, movingHistoryClampSigmas)");
+DNSR_STATIC_ASSERT(offsetof(DnsrSettings, hardTileFrames) == 104, "offsetof(DnsrSettings, hardTileFrames)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrContextCreateInfo) == 160, "sizeof(DnsrContextCreateInfo)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrContextCreateInfo) == 8, "alignof(DnsrContextCreateInfo)");
@@ -217,7 +218,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, reprojectionMatrix) == 136, 
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, viewProjectionInverse) == 200, "offsetof(DnsrReferenceFrameInfo, viewProjectionInverse)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, lightAngularSize) == 264, "offsetof(DnsrReferenceFrameInfo, lightAngularSize)");
 
-DNSR_STATIC_ASSERT(sizeof(DnsrReferenceCallbacks) == 128, "sizeof(DnsrReferenceCallbacks)");
+DNSR_STATIC_ASSERT(sizeof(DnsrReferenceCallbacks) == 144, "sizeof(DnsrReferenceCallbacks)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrReferenceCallbacks) == 8, "alignof(DnsrReferenceCallbacks)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, userData) == 0, "offsetof(DnsrReferenceCallbacks, userData)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readHitMask) == 8, "offsetof(DnsrReferenceCallbacks, readHitMask)");
@@ -235,6 +236,8 @@ DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, writeHistory) == 96, "offset
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readHitDistance) == 104, "offsetof(DnsrReferenceCallbacks, readHitDistance)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readVisibility) == 112, "offsetof(DnsrReferenceCallbacks, readVisibility)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readPreviousNormal) == 120, "offsetof(DnsrReferenceCallbacks, readPreviousNormal)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, readPreviousTileQuiet) == 128, "offsetof(DnsrReferenceCallbacks, readPreviousTileQuiet)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceCallbacks, writeTileQuiet) == 136, "offsetof(DnsrReferenceCallbacks, writeTileQuiet)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrDiagnosis) == 528, "sizeof(DnsrDiagnosis)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrDiagnosis) == 8, "alignof(DnsrDiagnosis)");

@@ -121,6 +121,12 @@ pub struct DnsrReferenceCallbacks {
     /// Optional (required without DNSR_REFERENCE_RESET). Previous frame's raw normal texel (rgb), decoded as
     /// `readNormal`'s: classification leaves history texels whose surface turned out of the blend.
     pub read_previous_normal: Option<unsafe extern "C" fn(user: *mut c_void, x: i32, y: i32, rgb: *mut f32)>,
+    /// Optional. Previous frame's count of quiet frames of a tile (see DnsrSettings::hardTileFrames; the previous
+    /// frame's `writeTileQuiet`). NULL: 0 for every tile (no tile is hard by time this frame).
+    pub read_previous_tile_quiet: Option<unsafe extern "C" fn(user: *mut c_void, tile_x: i32, tile_y: i32) -> u32>,
+    /// Optional. Receives this frame's count of quiet frames of a tile (written with the run features on:
+    /// stableHistorySamples or convergedSamples > 0).
+    pub write_tile_quiet: Option<unsafe extern "C" fn(user: *mut c_void, tile_x: i32, tile_y: i32, frames: u32)>,
 }
 
 fn mat(m: &[f32; 16]) -> DMat4 {
@@ -309,6 +315,13 @@ pub extern "C" fn dnsr_reference_run_frame(
             }
         }
 
+        if let (Some(read), false) = (cb.read_previous_tile_quiet, reset) {
+            for ty in 0..th {
+                for tx in 0..tw {
+                    f.previous_tile_quiet[(ty * tw + tx) as usize] = unsafe { read(user, tx, ty) };
+                }
+            }
+        }
         let lit_bits = info.flags & DNSR_REFERENCE_HIT_MASK_LIT_BITS != 0;
         if checkerboard {
             // Prepare always reconstructs a checkerboard input, from the FidelityFX convention.
@@ -325,6 +338,13 @@ pub extern "C" fn dnsr_reference_run_frame(
             for ty in 0..th {
                 for tx in 0..tw {
                     unsafe { write(user, tx, ty, f.tile_meta[(ty * tw + tx) as usize]) };
+                }
+            }
+        }
+        if let (Some(write), true) = (cb.write_tile_quiet, f.settings.uses_runs()) {
+            for ty in 0..th {
+                for tx in 0..tw {
+                    unsafe { write(user, tx, ty, f.tile_quiet[(ty * tw + tx) as usize]) };
                 }
             }
         }

@@ -33,6 +33,8 @@ pub(crate) enum Resource {
     TileDarkOut,
     TileDark,
     VisibilityOut,
+    PreviousTileQuiet,
+    TileQuiet,
     /// Slots 1..LIGHT_SLOTS of the filter's light-slot variants (slot 0 is the resource without a number).
     TileMeta1,
     TileMeta2,
@@ -135,6 +137,8 @@ const TABLE: [(&str, Resource, vk::DescriptorType); NAMED_COUNT] = [
     ("dnsr_tile_dark_out", Resource::TileDarkOut, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_tile_dark", Resource::TileDark, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_visibility_out", Resource::VisibilityOut, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_previous_tile_quiet", Resource::PreviousTileQuiet, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_tile_quiet", Resource::TileQuiet, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_tile_meta_1", Resource::TileMeta1, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_tile_meta_2", Resource::TileMeta2, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_tile_meta_3", Resource::TileMeta3, vk::DescriptorType::SAMPLED_IMAGE),

@@ -73,6 +73,15 @@ const _: () = assert!((crate::state::MOMENTS_MEAN_MAX + 8) >> 4 == MOVING_SAMPLE
 pub(crate) const MOVING_MARGIN_SAMPLES: u32 = 2;
 /// A pixel counts as still for the test where its motion vector is under 1 / this many pixels.
 pub(crate) const STILL_MOTION_INV_PIXELS: u32 = 100;
+
+// Hard tiles told by time (`Settings::hard_tile_frames`, `dnsr_quiet_tiles` and `dnsr_contradicts` in
+// shaders/tile_classification.glsl, `reference::tile_classification::contradicts`).
+/// A tile's count of quiet frames stops here (`Settings::hard_tile_frames`' upper bound).
+pub(crate) const MAX_QUIET_FRAMES: u32 = 255;
+/// A footprint texel held both values when its moments count at least this many samples...
+pub(crate) const MIXED_TEXEL_SAMPLES: u32 = 8;
+/// ...and their mean lies within this many percent of 0.5 (between 0.25 and 0.75).
+pub(crate) const MIXED_TEXEL_SPREAD_PERCENT: u32 = 25;
 const _: () = assert!(WINDOW_TILE_COUNT * TILE[0] * TILE[1] % (WIDE_GROUP[0] * WIDE_GROUP[1]) == 0 && TILE[0] % MOVING_PIXELS == 0);
 const _: () = assert!(1 << (MAX_FILTER_PASSES - 1) <= GROUP[0] && 1 << (MAX_FILTER_PASSES - 1) <= GROUP[1]);
 
@@ -270,6 +279,8 @@ pub(crate) struct FrameViews {
     pub depth_copy: vk::ImageView,
     pub previous_moments: vk::ImageView,
     pub moments: vk::ImageView,
+    pub previous_tile_quiet: vk::ImageView,
+    pub tile_quiet: vk::ImageView,
     /// The engine's own images (slot i: binding ENGINE_BINDING_BASE + i), for its shader variants.
     pub engine: [Binding; crate::dispatch::MAX_ENGINE_IMAGES],
     /// tan(light angular diameter / 2) of penumbra guidance (0 without): the one per-light filter constant.

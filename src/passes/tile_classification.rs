@@ -27,6 +27,8 @@ pub(crate) fn pass(v: &FrameViews) -> Pass {
     t[Resource::PreviousDepth as usize] = internal(v.depth_copy);
     t[Resource::PreviousMoments as usize] = internal(v.previous_moments);
     t[Resource::Moments as usize] = internal(v.moments);
+    t[Resource::PreviousTileQuiet as usize] = internal(v.previous_tile_quiet);
+    t[Resource::TileQuiet as usize] = internal(v.tile_quiet);
     t[Resource::History as usize] = internal(v.history);
     t[Resource::Reprojection as usize] = internal(v.reprojection);
     t[Resource::TileMetaOut as usize] = internal(v.tile_meta);

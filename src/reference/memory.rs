@@ -52,6 +52,10 @@ pub struct Frame {
     pub previous_moments: Vec<DVec4>,
     /// Previous frame's history (filter pass 0 mean).
     pub history: Vec<f64>,
+    /// Previous frame's count of quiet frames per tile.
+    pub previous_tile_quiet: Vec<u32>,
+    /// Output: this frame's count of quiet frames per tile.
+    pub tile_quiet: Vec<u32>,
     /// Output: lit-bit tile mask.
     pub tile_mask: Vec<u32>,
     /// Output: the exactly shadowed pixels per tile (visibility input).
@@ -116,6 +120,8 @@ impl Frame {
             previous_depth: filled(n, 0)?,
             previous_moments: filled(n, DVec4::ZERO)?,
             history: filled(n, 0.0)?,
+            previous_tile_quiet: filled(tiles, 0)?,
+            tile_quiet: filled(tiles, 0)?,
             tile_mask: filled(tiles, 0)?,
             tile_dark: filled(tiles, 0)?,
             tile_meta: filled(tiles, 0)?,
@@ -151,6 +157,7 @@ impl Frame {
     pub fn advance(&mut self) {
         self.previous_depth = self.depth_copy.clone();
         self.previous_moments = self.moments.clone();
+        self.previous_tile_quiet = self.tile_quiet.clone();
         if let Some(h) = self.filter_out.first() {
             self.history = h.iter().map(|v| v.x).collect();
         }
@@ -261,6 +268,9 @@ impl Read for Frame {
     fn read_tile_meta(&self, tile: Coord) -> u32 {
         self.tile_meta[self.tile(tile)]
     }
+    fn read_previous_tile_quiet(&self, tile: Coord) -> u32 {
+        self.previous_tile_quiet[self.tile(tile)]
+    }
     fn read_filter_input(&self, p: Coord) -> DVec2 {
         let i = self.px(p);
         if self.pass == 0 { self.reprojection_out[i] } else { self.filter_out[self.pass as usize - 1][i] }
@@ -300,6 +310,10 @@ impl Write for Frame {
     fn write_reprojection(&mut self, p: Coord, mean_var: DVec2) {
         let i = self.px(p);
         self.reprojection_out[i] = self.store(mean_var);
+    }
+    fn write_tile_quiet(&mut self, tile: Coord, frames: u32) {
+        let i = self.tile(tile);
+        self.tile_quiet[i] = frames;
     }
     fn write_tile_meta(&mut self, tile: Coord, meta: u32) {
         let i = self.tile(tile);

@@ -85,6 +85,8 @@ pub trait Read: Get {
     fn read_history_texel(&self, p: Coord) -> f64;
     /// Tile metadata word.
     fn read_tile_meta(&self, tile: Coord) -> u32;
+    /// Last frame's count of quiet frames of a tile (`tile_classification::contradicts`), as stored.
+    fn read_previous_tile_quiet(&self, tile: Coord) -> u32;
     /// Filter pass input (mean, variance).
     fn read_filter_input(&self, p: Coord) -> DVec2;
     /// Host hit distance (read only with penumbra guidance, where the mask says the ray hit).
@@ -113,6 +115,8 @@ pub trait Write {
     fn write_reprojection(&mut self, p: Coord, mean_var: DVec2);
     /// Tile metadata word.
     fn write_tile_meta(&mut self, tile: Coord, meta: u32);
+    /// This frame's count of quiet frames of a tile (the next frame's `read_previous_tile_quiet`).
+    fn write_tile_quiet(&mut self, tile: Coord, frames: u32);
     /// A tile's blocker distance (penumbra guidance; -1: unknown).
     fn write_tile_blocker(&mut self, tile: Coord, distance: f64);
     /// Filter pass output (mean, variance).

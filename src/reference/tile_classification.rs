@@ -316,9 +316,56 @@ pub fn shadow_moved<Io: Read + ?Sized>(io: &Io, tile: Coord) -> bool {
     sigmas > 0.0 && !io.is_reset() && change > sigmas * (variances as f64 * 65536.0 / (max * max)).sqrt() + MOVING_MARGIN_SAMPLES as f64
 }
 
-/// The temporal part for one receiver pixel of a mixed tile: returns (moments, (shadow, variance)). `moved`: the
-/// shadow moved over its tile's neighbourhood (`shadow_moved`).
-pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool) -> (DVec4, DVec2) {
+/// Whether the 3x3 tiles around `tile` were all quiet (no receiver's sample contradicted last frame's) for
+/// `Settings::hard_tile_frames` frames or more last frame, on a frame that is no reset (`dnsr_quiet_tiles`).
+pub fn quiet_tiles<Io: Read + ?Sized>(io: &Io, tile: Coord) -> bool {
+    let (t, frames) = (tile_count(io), io.settings().hard_tile_frames as u32);
+    let least = (-1..=1)
+        .flat_map(|j| (-1..=1).map(move |i| [(tile[0] + i).clamp(0, t[0] - 1), (tile[1] + j).clamp(0, t[1] - 1)]))
+        .map(|q| io.read_previous_tile_quiet(q))
+        .min()
+        .unwrap_or(0);
+    frames > 0 && !io.is_reset() && least >= frames
+}
+
+/// A tile's count of quiet frames before its receivers' contradictions clear it: last frame's plus one (at most
+/// `passes::MAX_QUIET_FRAMES`), 0 on a reset.
+fn quiet_count<Io: Read + ?Sized>(io: &Io, tile: Coord) -> u32 {
+    if io.is_reset() { 0 } else { (io.read_previous_tile_quiet(tile) + 1).min(crate::passes::MAX_QUIET_FRAMES) }
+}
+
+/// A footprint texel's moments that held both values (`passes::MIXED_TEXEL_SAMPLES`,
+/// `passes::MIXED_TEXEL_SPREAD_PERCENT`).
+fn mixed_texel(mq: DVec4) -> bool {
+    mq.z >= crate::passes::MIXED_TEXEL_SAMPLES as f64 && (mq.x - 0.5).abs() <= crate::passes::MIXED_TEXEL_SPREAD_PERCENT as f64 / 100.0
+}
+
+/// Whether sample `x` contradicts last frame's samples around history position `t` (`dnsr_contradicts`: why), given
+/// the footprint's `texels` (all receivers on the pixel's surface), how many of them last sampled the other value
+/// and how many held both.
+fn contradicts<Io: Read + ?Sized>(io: &Io, t: DVec2, x: f64, texels: u32, other: u32, mixed: u32) -> bool {
+    if texels == 1 {
+        return other == 1;
+    }
+    if mixed == texels {
+        return true;
+    }
+    if other < texels {
+        return false;
+    }
+    let e = io.extent();
+    let centre = [(t.x + 0.5).floor() as i32, (t.y + 0.5).floor() as i32];
+    !(0..9).any(|k| {
+        let q = [(centre[0] - 1 + k % 3).clamp(0, e[0] - 1), (centre[1] - 1 + k / 3).clamp(0, e[1] - 1)];
+        let mq = io.read_previous_moments(q);
+        mq.z > 0.0 && (mq.w > 0.0) == (x >= 0.5)
+    })
+}
+
+/// The temporal part for one receiver pixel of a mixed tile: returns (moments, (shadow, variance), whether its
+/// sample contradicts last frame's: `contradicts`). `moved`: the shadow moved over its tile's neighbourhood
+/// (`shadow_moved`); `quiet`: its tile is hard by time (`quiet_tiles`).
+pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, quiet: bool) -> (DVec4, DVec2, bool) {
     let s = io.settings();
     let (thr_facing, thr_grazing, angle_exp, clamp_k) = (
         s.disocclusion_threshold_facing as f64,
@@ -374,6 +421,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool) -
     let mut m = DVec4::ZERO;
     // A resolved change (see below): this frame's sample stands alone.
     let mut resolved = false;
+    let mut contradiction = false;
     // History blended from the texels that agree (weighted sum, weight), when only some of them do.
     let mut run_history = None;
     if !disoccluded {
@@ -410,6 +458,8 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool) -
             let (mut all_resolved, mut any_other, mut all_pure) = (true, false, true);
             // The heaviest receiver texel whose normal did not turn: its moments, where the nearest texel turned.
             let (mut kept, mut kept_weight) = (DVec4::ZERO, 0.0);
+            // Receiver texels whose last sample was not x, and those that held both values (`contradicts`).
+            let (mut other_texels, mut mixed_texels) = (0, 0);
             for k in 0..4 {
                 let weight = (if k & 1 != 0 { f.x } else { 1.0 - f.x }) * (if k & 2 != 0 { f.y } else { 1.0 - f.y });
                 let q = [
@@ -433,6 +483,8 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool) -
                 }
                 let texel = io.read_history_texel(q);
                 receivers += DVec2::new(weight * texel, weight);
+                other_texels += u32::from((mq.w > 0.0) != (x >= 0.5));
+                mixed_texels += u32::from(mixed_texel(mq));
                 let agreeing = sign_agreeing(mq.w, x);
                 let texel_pure = pure_moments(mq);
                 let converged_run = mq.w.abs() >= converged_after;
@@ -454,6 +506,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool) -
             if turned {
                 m = kept;
             }
+            contradiction = texels > 0 && !(receivers.y < all) && contradicts(io, t, x, texels, other_texels, mixed_texels);
             let adopt = pure.z > 0.0 && !sign_agreeing(m.w, x) && pure_moments(m) && all_pure;
             // Elsewhere, where the nearest texel lies across the edge from this surface point, the pixel continues
             // a stable run of stable_after samples, no longer (shaders/tile_classification.glsl says why).
@@ -554,14 +607,19 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool) -
     let history_weight = ((full - m.z).max(0.0) / full).sqrt();
     let alpha = min_blend + (1.0 - min_blend) * history_weight;
     let shadow = clamped + (x - clamped) * alpha;
+    // A sample that is not exact contradicts nothing (its tile is no hard one anyway); nor does an untraced one.
+    let contradicted = contradiction && is_exact(x) && !untraced;
     // A resolved pixel is this sample, flagged converged.
     if resolved {
-        return (m, DVec2::new(x, 0.0));
+        return (m, DVec2::new(x, 0.0), contradicted);
     }
-    // Under a light of no size or a hard penumbra (Settings::hard_penumbra_pixels) this sample is the output; the
-    // moments go on. Not on an untraced pixel of a checkerboard input (its value is its neighbours' mean).
-    if !untraced && super::filter::hard_penumbra(io, [p[0] / TILE[0], p[1] / TILE[1]], linear_depth(io, ndc, depth)) {
-        return (m, DVec2::new(x, 0.0));
+    // Under a light of no size, a hard penumbra (Settings::hard_penumbra_pixels) or in a tile hard by time
+    // (Settings::hard_tile_frames) where the pixel neither contradicts nor was disoccluded, this sample is the
+    // output; the moments go on. Not on an untraced pixel of a checkerboard input (its value is its neighbours'
+    // mean).
+    let quiet = s.uses_runs() && quiet && !contradicted && !disoccluded;
+    if !untraced && (quiet || super::filter::hard_penumbra(io, [p[0] / TILE[0], p[1] / TILE[1]], linear_depth(io, ndc, depth))) {
+        return (m, DVec2::new(x, 0.0), contradicted);
     }
     // Converged (Settings::converged_samples, on a stable pixel): variance 0 tells the filter that the input may
     // resolve this pixel; the value stays the temporal one (shaders/tile_classification.glsl says why).
@@ -570,7 +628,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool) -
     } else {
         super::filter::unconverged_variance(io, variance)
     };
-    (m, DVec2::new(shadow, variance))
+    (m, DVec2::new(shadow, variance), contradicted)
 }
 
 /// A pixel's hit distance counts towards its tile's blocker estimate when finite and positive.
@@ -623,6 +681,11 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
                 _ => TILE_CLEARED,
             };
             io.write_tile_meta(tile, meta);
+            // Hard tiles told by time: last frame's counts decide; this frame's is written, and cleared below where
+            // a receiver contradicts (with the run features only, as the GPU's DNSR_SPEC_STABLE_HISTORY).
+            let runs = io.settings().uses_runs();
+            let quiet = runs && quiet_tiles(io, tile);
+            let mut count = quiet_count(io, tile);
             if state == 0 && io.penumbra().is_some() {
                 let blocker = tile_blocker(io, tile);
                 io.write_tile_blocker(tile, blocker);
@@ -640,11 +703,18 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
                     } else if !receiver {
                         (DVec4::ZERO, SKY_SIGNAL)
                     } else {
-                        temporal(io, p, depth, moved[(ty * tiles[0] + tx) as usize])
+                        let (m, r, contradicted) = temporal(io, p, depth, moved[(ty * tiles[0] + tx) as usize], quiet);
+                        if contradicted {
+                            count = 0;
+                        }
+                        (m, r)
                     };
                     io.write_moments(p, moments);
                     io.write_reprojection(p, result);
                 }
+            }
+            if runs {
+                io.write_tile_quiet(tile, count);
             }
         }
     }

@@ -41,6 +41,9 @@ pub enum Image {
     Tmp,
     /// The visibility prepare reconstructs from a checkerboard input.
     Reconstructed,
+    /// Per tile, the frames since one of its receivers' samples contradicted last frame's (`Settings::
+    /// hard_tile_frames`), read by the next frame (ping-pong pair).
+    TileQuiet,
 }
 
 /// The formats of an image: the fp32 path's and the fp16 path's (`Precision`).
@@ -204,7 +207,7 @@ use Per::{Pixel, Tile};
 use Scope::Light;
 
 /// Every internal image, in `Image` order (which is the order a light creates them in).
-pub const RESOURCES: [Resource; 10] = [
+pub const RESOURCES: [Resource; 11] = [
     resource(Image::TileMask, "tile_mask", Formats::both(vk::Format::R32_UINT), Tile, Light, 1, Transient, Needed::Always),
     // 4 bytes per tile, so allocated whatever the input.
     resource(Image::TileDark, "tile_dark", Formats::both(vk::Format::R32_UINT), Tile, Light, 1, Transient, Needed::Always),
@@ -224,6 +227,8 @@ pub const RESOURCES: [Resource; 10] = [
     },
     resource(Image::Tmp, "filter_tmp", SIGNAL, Pixel, Light, 1, Transient, Needed::Passes(MAX_FILTER_PASSES)),
     resource(Image::Reconstructed, "reconstructed_visibility", Formats::both(vk::Format::R32_SFLOAT), Pixel, Light, 1, Transient, Needed::Checkerboard),
+    // 4 bytes per tile and frame (0.25 B/px for the pair), so allocated whatever the settings.
+    resource(Image::TileQuiet, "tile_quiet", Formats::both(vk::Format::R32_UINT), Tile, Light, 2, Persistent, Needed::Always),
 ];
 
 /// The row of `image`.
@@ -434,6 +439,9 @@ pub const ACCESSES: &[StateAccess] = {
         a(TileClassification, I(Reprojection), Write, All, When::Always, Config::Any),
         a(TileClassification, I(TileMeta), Write, Tiles, When::Always, Config::Any),
         a(TileClassification, I(TileBlocker), Write, Tiles, When::Always, Config::PenumbraGuidance),
+        // The 3x3 tiles around each tile: each texel counted once.
+        a(TileClassification, Previous(TileQuiet), Read, Tiles, When::Always, Config::Any),
+        a(TileClassification, I(TileQuiet), Write, Tiles, When::Always, Config::Any),
         a(Filter, I(TileMeta), Read, Tiles, When::Always, Config::Any),
         a(Filter, I(TileBlocker), Read, Tiles, When::Always, Config::PenumbraGuidance),
         a(Filter, I(DepthCopy), Write, All, When::FirstPass, Config::Any),

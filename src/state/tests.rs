@@ -36,20 +36,21 @@ fn memory_follows_the_table() {
         for precision in PRECISIONS {
             for passes in 1..=MAX_FILTER_PASSES {
                 for input in INPUTS {
-                    // Per light: tile mask, dark mask, metadata and blocker (4 B per tile each); reprojection and
+                    // Per light: tile mask, dark mask, metadata and blocker (4 B per tile each), the tiles' quiet
+                    // counts (4 B per tile, two of them); reprojection and
                     // history (4 B), the depth copy (4 B), two moments (4 B, 8 B with fractional samples); the
                     // fourth pass's intermediate (4 B); a checkerboard input's reconstructed visibility (4 B). Per
                     // context: nothing (the later filter passes' guide is each light's depth copy).
                     let tmp = if passes == 4 { 4 } else { 0 };
                     let reconstructed = if input == ShadowInput::Checkerboard { 4 } else { 0 };
                     let moments = if input == ShadowInput::HitMask { 4 } else { 8 };
-                    let light = 4 * 4 * tiles + px * (4 + 4 + 4 + 2 * moments + tmp + reconstructed);
+                    let light = 4 * 4 * tiles + 2 * 4 * tiles + px * (4 + 4 + 4 + 2 * moments + tmp + reconstructed);
                     assert_eq!(texel_bytes(Scope::Light, [w, h], precision, passes, input), light, "{precision:?} {passes} {input:?}");
                     assert_eq!(texel_bytes(Scope::Context, [w, h], precision, passes, input), 0, "{precision:?} {passes} {input:?}");
                 }
             }
-            assert_eq!(persistent_texel_bytes([w, h], precision, ShadowInput::HitMask), 16 * px);
-            assert_eq!(persistent_texel_bytes([w, h], precision, ShadowInput::Visibility), 24 * px);
+            assert_eq!(persistent_texel_bytes([w, h], precision, ShadowInput::HitMask), 16 * px + 8 * tiles);
+            assert_eq!(persistent_texel_bytes([w, h], precision, ShadowInput::Visibility), 24 * px + 8 * tiles);
         }
     }
 }
@@ -122,6 +123,8 @@ fn views() -> FrameViews {
         depth_copy: view(Image::DepthCopy, 0),
         previous_moments: view(Image::Moments, 1),
         moments: view(Image::Moments, 0),
+        previous_tile_quiet: view(Image::TileQuiet, 1),
+        tile_quiet: view(Image::TileQuiet, 0),
         engine: [Binding::default(); crate::dispatch::MAX_ENGINE_IMAGES],
         penumbra_tan_half_angle: 0.0,
     }
@@ -237,7 +240,7 @@ fn specs_are_in_table_order() {
         names,
         [
             "tile_mask", "tile_dark", "tile_meta", "tile_blocker", "reprojection", "history", "depth_copy", "moments_0",
-            "moments_1", "filter_tmp", "reconstructed_visibility"
+            "moments_1", "filter_tmp", "reconstructed_visibility", "tile_quiet_0", "tile_quiet_1"
         ]
     );
 }

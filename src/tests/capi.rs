@@ -327,6 +327,8 @@ mod reference_table {
             read_hit_distance: Some(read_hit_distance),
             read_visibility: Some(read_visibility),
             read_previous_normal: None,
+            read_previous_tile_quiet: None,
+            write_tile_quiet: None,
         };
         assert_eq!(dnsr_reference_run_frame(&frame, &callbacks), DnsrResult::DNSR_SUCCESS);
         let worst = gpu_out.iter().zip(&user.output).map(|(a, b)| (a - b).abs()).fold(0.0f32, f32::max);
@@ -419,6 +421,8 @@ mod host_memory {
             read_hit_distance: None,
             read_visibility: None,
             read_previous_normal: None,
+            read_previous_tile_quiet: None,
+            write_tile_quiet: None,
         };
         let mut count = 0u32;
         [

@@ -86,7 +86,7 @@ fn reflected_interfaces_match_what_the_host_binds() {
             "tile_classification_r16f",
             &[
                 Constants, TileMask, Depth, Velocity, Normals, PreviousDepth, PreviousMoments, Moments, History,
-                Reprojection, TileMetaOut, Output, HitDistance, TileBlockerOut,
+                Reprojection, TileMetaOut, Output, HitDistance, TileBlockerOut, PreviousTileQuiet, TileQuiet,
             ],
             0,
             (1 << GUIDED) | (1 << STABLE) | (1 << HARD) | (1 << MOVING),
@@ -231,6 +231,7 @@ fn generated_layout_header() -> String {
         history_rejection_min_sigma, variance_boost_samples, full_history_samples, min_current_weight,
         max_history_samples, kernel_cross_weight, normal_power, output_contrast, min_shadow_sigma, stable_history_samples,
         history_flip_samples, converged_samples, hard_penumbra_pixels, moving_shadow_sigmas, moving_history_clamp_sigmas,
+        hard_tile_frames,
     });
     check!(DnsrContextCreateInfo {
         s_type, p_next, instance, physical_device, device, vulkan_functions, api_version, queue_family_index,
@@ -266,7 +267,8 @@ fn generated_layout_header() -> String {
         check!(DnsrReferenceCallbacks {
             user_data, read_hit_mask, read_depth, read_normal, read_velocity, read_previous_depth,
             read_previous_moments, read_history, write_output, write_tile_meta, write_reprojection, write_moments,
-            write_history, read_hit_distance, read_visibility, read_previous_normal,
+            write_history, read_hit_distance, read_visibility, read_previous_normal, read_previous_tile_quiet,
+            write_tile_quiet,
         });
         check!(DnsrDiagnosis { kind, value, message });
     }

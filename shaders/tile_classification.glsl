@@ -60,8 +60,10 @@ ivec2 g_window_base;
 shared uint s_moving_samples[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
 shared uint s_moving_terms[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
 shared uint s_moved[DNSR_GROUP_TILES.y][DNSR_GROUP_TILES.x];
-// Per tile of the group, whether the 3x3 tiles around it were all quiet long enough (dnsr_quiet_tiles).
+// Per tile of the group, whether the 3x3 tiles around it were all quiet long enough (dnsr_quiet_tiles); last frame's
+// quiet counts of the window's tiles (the group's tiles and their neighbours), loaded with the tile words.
 shared uint s_hard_tile[DNSR_GROUP_TILES.y][DNSR_GROUP_TILES.x];
+shared uint s_quiet[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
 
 // Penumbra guidance: every window tile's (sum, count) of usable hit distances over its shadowed pixels, summed
 // from DNSR_HIT_PARTS partial sums of DNSR_HIT_PIXELS pixels each. The partial sums borrow s_hsum before the
@@ -464,23 +466,19 @@ void dnsr_write_cleared(ivec2 p, bool receiver, uint state, bool tile_writer) {
 
 // Hard tiles told by time (Settings::hard_tile_frames): a world point in a hard shadow keeps its value from frame to
 // frame, one in a penumbra changes it at random, and one frame's samples cannot tell a narrow penumbra from a hard
-// edge (docs/do-no-harm.md, "A spatial test for hard shadows in one frame"). The tile writer of tile t stores this
-// frame's count of quiet frames (last frame's plus one; 0 on a reset) and returns whether the 3x3 tiles around t
-// all had at least hard_tile_frames of them last frame; a receiver that contradicts clears its tile's count later
-// (dnsr_clear_tile_quiet), after the barriers between (memoryBarrierImage before the first). The tile's own count
-// is taken from the loop's fetches: a second fetch site for it made lavapipe (Mesa 22.3) leak memory every frame
-// (the million-frame test: +130 MB/s).
-bool dnsr_quiet_tiles(ivec2 t) {
+// edge (docs/do-no-harm.md, "A spatial test for hard shadows in one frame"). The tile writer of the group's tile
+// `own` (at image tile t) stores this frame's count of quiet frames (last frame's plus one; 0 on a reset) and returns
+// whether the 3x3 tiles around it all had at least hard_tile_frames of them last frame (s_quiet); a receiver that
+// contradicts clears its tile's count later (dnsr_clear_tile_quiet), after the barriers between (memoryBarrierImage
+// before the last). Last frame's counts are fetched once per window tile, with the tile words: fetched per tile
+// writer, nine each, they cost all-lit frames 0.06 ms at 4K on an H200, and a second fetch site for the tile's own
+// count made lavapipe (Mesa 22.3) leak memory every frame (the million-frame test: +130 MB/s).
+bool dnsr_quiet_tiles(ivec2 own, ivec2 t) {
     uint frames = uint(dnsr_get_moving_settings().z);
     bool reset = dnsr_get_is_reset();
     uint least = 0xFFFFFFFFu;
-    uint own = 0u;
-    for (int k = 0; k < 9; ++k) {
-        uint count = dnsr_read_previous_tile_quiet(clamp(t + ivec2(k % 3, k / 3) - 1, ivec2(0), dnsr_tile_count() - 1));
-        least = min(least, count);
-        own = k == 4 ? count : own;
-    }
-    dnsr_write_tile_quiet(t, reset ? 0u : min(own + 1u, uint(DNSR_MAX_QUIET_FRAMES)));
+    for (int k = 0; k < 9; ++k) least = min(least, s_quiet[own.y + 1 + k / 3][own.x + k % 3]);
+    dnsr_write_tile_quiet(t, reset ? 0u : min(s_quiet[own.y + 2][own.x + 1] + 1u, uint(DNSR_MAX_QUIET_FRAMES)));
     return frames > 0u && !reset && least >= frames;
 }
 
@@ -517,6 +515,8 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         ivec2 w = ivec2(thread % DNSR_WINDOW_TILES.x, thread / DNSR_WINDOW_TILES.x);
         ivec2 tile = g_window_base + w;
         s_words[w.y][w.x] = dnsr_tile_valid_bits(tile) != 0u ? dnsr_read_tile_mask(tile) : 0u;
+        // Outside the tile grid: the nearest tile's count (the 3x3 test clamps to the grid).
+        if (DNSR_SPEC_STABLE_HISTORY) s_quiet[w.y][w.x] = dnsr_read_previous_tile_quiet(clamp(tile, ivec2(0), dnsr_tile_count() - 1));
         if (DNSR_SPEC_MOVING_SHADOWS) {
             s_moving_samples[w.y][w.x] = 0u;
             s_moving_terms[w.y][w.x] = 0u;
@@ -536,16 +536,14 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     }
 #endif
     if (tile_writer) s_tile_has_receiver[own_tile.y][own_tile.x] = 0u;
-    if (DNSR_SPEC_STABLE_HISTORY && tile_writer) s_hard_tile[own_tile.y][own_tile.x] = inside && dnsr_quiet_tiles(p / DNSR_TILE_SIZE) ? 1u : 0u;
 
     float depth = inside ? dnsr_read_depth(p) : 0.0;
     bool receiver = inside && dnsr_is_receiver(depth);
     s_quad_key[lid.y][lid.x] = receiver ? (inverted ? -depth : depth) : 1e30;
-    // The tile writers' quiet counts stored before any receiver clears one (dnsr_quiet_tiles).
-    memoryBarrierImage();
     barrier();
     if (receiver) atomicOr(s_tile_has_receiver[own_tile.y][own_tile.x], 1u);
     if (tile_writer) s_uniform[own_tile.y][own_tile.x] = dnsr_uniform_state(own_tile);
+    if (DNSR_SPEC_STABLE_HISTORY && tile_writer) s_hard_tile[own_tile.y][own_tile.x] = inside && dnsr_quiet_tiles(own_tile, p / DNSR_TILE_SIZE) ? 1u : 0u;
     barrier();
     // Every tile of the group cleared (no receiver, or a uniform neighbourhood): their values are known exactly
     // and no moments are needed. Same condition for the whole group, so the barrier below stays uniform.
@@ -707,6 +705,9 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         }
         s_hsum[row][lid.x] = floatBitsToUint(sum);
     }
+    // The tile writers' quiet counts (dnsr_quiet_tiles) stored before any receiver clears one; here, not after the
+    // stores, so that no invocation waits for them.
+    if (DNSR_SPEC_STABLE_HISTORY) memoryBarrierImage();
     barrier();
     if (!inside) return;
 

@@ -540,6 +540,30 @@ impl Context {
         self.features
     }
 
+    /// The specialization constants of a frame's passes: with hit distances (`guided`), of a light of no size
+    /// (`hard_light`), under the current settings.
+    fn specialization(&self, guided: bool, hard_light: bool) -> u32 {
+        (if guided { 1 << SPEC_PENUMBRA_GUIDED } else { 0 })
+            | (if self.settings.uses_runs() { 1 << SPEC_STABLE_HISTORY } else { 0 })
+            | (if self.settings.tells_moving_shadows() { 1 << SPEC_MOVING_SHADOWS } else { 0 })
+            | (if hard_light { 1 << SPEC_HARD_LIGHT } else { 0 })
+    }
+
+    /// For dnsr-bench: the driver's statistics of each of this context's pipelines (its shader variant's name)
+    /// as a frame with the current settings, with or without hit distances (`guided`), runs them: (name, value)
+    /// pairs from VK_KHR_pipeline_executable_properties (on NVIDIA the register count, which sets how many
+    /// invocations a multiprocessor holds). Each pipeline is compiled again with statistics captured, then
+    /// destroyed. The host must have enabled the extension and its `pipelineExecutableInfo` feature
+    /// (`Error::MissingFeature` without the extension).
+    #[doc(hidden)]
+    pub fn pipeline_statistics(&self, guided: bool) -> Result<Vec<(&'static str, Vec<(String, String)>)>> {
+        let spec = self.specialization(guided, false);
+        self.pipeline_names()
+            .into_iter()
+            .map(|name| Ok((name, PassPipeline::statistics(&self.vk, name, variant(name).spirv, spec)?)))
+            .collect()
+    }
+
     /// GPU timings of the most recent recorded frame that has completed, if timestamps are enabled and one has.
     pub fn timings(&self) -> Result<Option<PassTimings>> {
         match &self.timestamps {
@@ -568,10 +592,7 @@ impl Context {
             // Without hit distances the binding takes an image of a float format that the pass only samples.
             hit_distance: d.hit_distance.as_ref().map_or(image(light.history.view, vk::ImageLayout::GENERAL), host),
             tile_blocker: light.tile_blocker.view,
-            spec: (if d.hit_distance.is_some() { 1 << SPEC_PENUMBRA_GUIDED } else { 0 })
-                | (if self.settings.uses_runs() { 1 << SPEC_STABLE_HISTORY } else { 0 })
-                | (if self.settings.tells_moving_shadows() { 1 << SPEC_MOVING_SHADOWS } else { 0 })
-                | (if d.hard_light { 1 << SPEC_HARD_LIGHT } else { 0 }),
+            spec: self.specialization(d.hit_distance.is_some(), d.hard_light),
             output: d.output.view,
             tile_mask: if self.reads_mask_directly(d) { host(&d.hit_mask) } else { image(light.tile_mask.view, vk::ImageLayout::GENERAL) },
             tile_dark: light.tile_dark.view,

@@ -19,6 +19,25 @@ impl PassPipeline {
     /// Reflects `spirv`, checks its constants block against the host's, and makes its pipelines (one per
     /// combination of the specialization constants it declares).
     pub(crate) fn new(vk: &Vk, name: &str, spirv: &[u8], push_descriptors: bool) -> Result<PassPipeline> {
+        let interface = Self::interface(spirv)?;
+        let vulkan = Self::with_layout(&interface, |layout| Pipeline::new(vk, name, spirv, layout, push_descriptors))?;
+        Ok(PassPipeline { vulkan, interface })
+    }
+
+    /// The driver's statistics of `spirv`'s pipeline specialized with `spec` (gpu::shader::Pipeline::statistics).
+    pub(crate) fn statistics(vk: &Vk, name: &str, spirv: &[u8], spec: u32) -> Result<Vec<(String, String)>> {
+        let interface = Self::interface(spirv)?;
+        Self::with_layout(&interface, |layout| Pipeline::statistics(vk, name, spirv, layout, spec))
+    }
+
+    /// Calls `f` with the pipeline layout that `interface` declares.
+    fn with_layout<T>(interface: &Interface, f: impl FnOnce(&Layout) -> Result<T>) -> Result<T> {
+        let bindings: Vec<(u32, vk::DescriptorType)> = interface.bindings.iter().map(|b| (b.binding, b.descriptor_type)).collect();
+        f(&Layout { bindings: &bindings, push_constant_bytes: interface.push_constant_bytes, specializes: interface.specializes })
+    }
+
+    /// `spirv`'s reflected interface, its constants block checked against the host's.
+    fn interface(spirv: &[u8]) -> Result<Interface> {
         let interface = reflect(spirv)?;
         if let Some(bytes) = interface.uniform_bytes {
             let expected = std::mem::size_of::<FrameConstants>() as u32;
@@ -26,10 +45,7 @@ impl PassPipeline {
                 return Err(Error::ShaderInterface(format!("constants block is {bytes} bytes, host writes {expected}")));
             }
         }
-        let bindings: Vec<(u32, vk::DescriptorType)> = interface.bindings.iter().map(|b| (b.binding, b.descriptor_type)).collect();
-        let layout = Layout { bindings: &bindings, push_constant_bytes: interface.push_constant_bytes, specializes: interface.specializes };
-        let vulkan = Pipeline::new(vk, name, spirv, &layout, push_descriptors)?;
-        Ok(PassPipeline { vulkan, interface })
+        Ok(interface)
     }
 
     /// What `table` binds at each binding of this pipeline, images with `sampler` (which only combined image

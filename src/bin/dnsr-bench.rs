@@ -204,7 +204,7 @@ fn main() {
     let opts = parse_args();
     let started = Instant::now();
     let date = utc(std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs()));
-    let mut gpu = Gpu::new(GpuOptions { validation: opts.validation, ..Default::default() });
+    let mut gpu = Gpu::new(GpuOptions { validation: opts.validation, pipeline_statistics: true, ..Default::default() });
     if !opts.push_descriptors {
         gpu.features.push_descriptor = false;
     }

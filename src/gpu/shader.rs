@@ -54,11 +54,46 @@ pub(crate) struct Pipeline {
     pub set_layout: vk::DescriptorSetLayout,
     /// The type of each binding of the set layout, in binding order (descriptor pools are sized from them).
     pub descriptor_types: Vec<vk::DescriptorType>,
+    /// Compiled with VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR (`Pipeline::statistics`).
+    capture_statistics: bool,
 }
 
 impl Pipeline {
     /// One pipeline per combination of the specialization constants the module declares.
     pub(crate) fn new(vk: &Vk, name: &str, spirv: &[u8], layout: &Layout, push_descriptors: bool) -> Result<Pipeline> {
+        Self::compile(vk, name, spirv, layout, push_descriptors, false)
+    }
+
+    /// What the driver reports of the pipeline compiled for specialization `spec` (VK_KHR_pipeline_executable_properties:
+    /// on NVIDIA its register count, shared memory and binary size), as (name, value) pairs of each executable.
+    /// The host must have enabled the extension and its `pipelineExecutableInfo` feature; without the extension
+    /// this is `Error::MissingFeature`.
+    pub(crate) fn statistics(vk: &Vk, name: &str, spirv: &[u8], layout: &Layout, spec: u32) -> Result<Vec<(String, String)>> {
+        let get = c"vkGetPipelineExecutableStatisticsKHR";
+        // A device-level command of an extension the host did not enable is null here, and ash would panic on it.
+        if unsafe { vk.instance.get_device_proc_addr(vk.device.handle(), get.as_ptr()) }.is_none() {
+            return Err(Error::MissingFeature("VK_KHR_pipeline_executable_properties (pipelineExecutableInfo) enabled"));
+        }
+        let mut p = Self::compile(vk, name, spirv, layout, false, true)?;
+        let ext = ash::khr::pipeline_executable_properties::Device::new(&vk.instance, &vk.device);
+        let pipeline = p.for_frame(spec);
+        let executables = vk_check("vkGetPipelineExecutablePropertiesKHR", unsafe {
+            ext.get_pipeline_executable_properties(&vk::PipelineInfoKHR::default().pipeline(pipeline))
+        });
+        let mut out = Vec::new();
+        let result = executables.and_then(|executables| {
+            for index in 0..executables.len() as u32 {
+                let info = vk::PipelineExecutableInfoKHR::default().pipeline(pipeline).executable_index(index);
+                let stats = vk_check("vkGetPipelineExecutableStatisticsKHR", unsafe { ext.get_pipeline_executable_statistics(&info) })?;
+                out.extend(stats.iter().map(|s| (s.name_as_c_str().map_or(String::new(), |c| c.to_string_lossy().into_owned()), statistic_value(s))));
+            }
+            Ok(())
+        });
+        p.destroy(vk);
+        result.map(|()| out)
+    }
+
+    fn compile(vk: &Vk, name: &str, spirv: &[u8], layout: &Layout, push_descriptors: bool, capture_statistics: bool) -> Result<Pipeline> {
         // Combinations up to the highest declared id: variants[c] for every c with no bit outside `specializes`.
         let combinations = 1usize << (u32::BITS - layout.specializes.leading_zeros());
         let mut p = Pipeline {
@@ -67,6 +102,7 @@ impl Pipeline {
             layout: vk::PipelineLayout::null(),
             set_layout: vk::DescriptorSetLayout::null(),
             descriptor_types: layout.bindings.iter().map(|&(_, t)| t).collect(),
+            capture_statistics,
         };
         let result = p.create(vk, spirv, layout, push_descriptors);
         match result {
@@ -127,7 +163,8 @@ impl Pipeline {
         for combination in (0..self.variants.len() as u32).filter(|c| c & !specializes == 0) {
             let data: Vec<u8> = ids.iter().flat_map(|i| ((combination >> i) & 1).to_ne_bytes()).collect();
             let spec = vk::SpecializationInfo::default().map_entries(&entries).data(&data);
-            let info = vk::ComputePipelineCreateInfo::default().stage(stage.specialization_info(&spec)).layout(self.layout);
+            let flags = if self.capture_statistics { vk::PipelineCreateFlags::CAPTURE_STATISTICS_KHR } else { vk::PipelineCreateFlags::empty() };
+            let info = vk::ComputePipelineCreateInfo::default().flags(flags).stage(stage.specialization_info(&spec)).layout(self.layout);
             let created = unsafe { device.create_compute_pipelines(vk::PipelineCache::null(), std::slice::from_ref(&info), alloc) };
             // Keep what was created before a failure, so that destroy() releases it.
             match vk_check("vkCreateComputePipelines", created.map_err(|(_, e)| e)) {
@@ -160,5 +197,18 @@ impl Pipeline {
         self.variants.fill(vk::Pipeline::null());
         self.layout = vk::PipelineLayout::null();
         self.set_layout = vk::DescriptorSetLayout::null();
+    }
+}
+
+/// A pipeline statistic's value as text, whatever its format.
+fn statistic_value(s: &vk::PipelineExecutableStatisticKHR) -> String {
+    // The union's member is the one `format` names.
+    unsafe {
+        match s.format {
+            vk::PipelineExecutableStatisticFormatKHR::BOOL32 => (s.value.b32 != 0).to_string(),
+            vk::PipelineExecutableStatisticFormatKHR::INT64 => s.value.i64.to_string(),
+            vk::PipelineExecutableStatisticFormatKHR::UINT64 => s.value.u64.to_string(),
+            _ => s.value.f64.to_string(),
+        }
     }
 }

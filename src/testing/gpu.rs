@@ -15,11 +15,14 @@ pub struct GpuOptions {
     pub push_descriptor: bool,
     /// Enable shaderFloat16 + storageBuffer16BitAccess when the device has them.
     pub float16: bool,
+    /// Enable VK_KHR_pipeline_executable_properties (pipelineExecutableInfo) when the device has it, for
+    /// `Context::pipeline_statistics`.
+    pub pipeline_statistics: bool,
 }
 
 impl Default for GpuOptions {
     fn default() -> Self {
-        GpuOptions { validation: true, push_descriptor: true, float16: true }
+        GpuOptions { validation: true, push_descriptor: true, float16: true, pipeline_statistics: false }
     }
 }
 
@@ -43,6 +46,8 @@ pub struct Gpu {
     pub messages: Arc<Mutex<Vec<String>>>,
     /// Optional features actually enabled.
     pub features: EnabledFeatures,
+    /// VK_KHR_pipeline_executable_properties is enabled (`GpuOptions::pipeline_statistics` and the device has it).
+    pub pipeline_statistics: bool,
     /// Device name as the driver reports it.
     pub device_name: String,
     /// Instance/device API version used.
@@ -189,14 +194,20 @@ impl Gpu {
 
         let mut e11 = vk::PhysicalDeviceVulkan11Features::default().storage_buffer16_bit_access(float16);
         let mut e12 = vk::PhysicalDeviceVulkan12Features::default().shader_float16(float16);
-        let device_exts: Vec<*const i8> = push_descriptor.then_some(ash::khr::push_descriptor::NAME.as_ptr()).into_iter().collect();
+        let pipeline_statistics = opts.pipeline_statistics && has_ext(ash::khr::pipeline_executable_properties::NAME);
+        let device_exts: Vec<*const i8> = [(push_descriptor, ash::khr::push_descriptor::NAME), (pipeline_statistics, ash::khr::pipeline_executable_properties::NAME)]
+            .into_iter()
+            .filter_map(|(on, name)| on.then_some(name.as_ptr()))
+            .collect();
+        let mut executables = vk::PhysicalDevicePipelineExecutablePropertiesFeaturesKHR::default().pipeline_executable_info(pipeline_statistics);
         let priorities = [1.0f32];
         let queue_info = vk::DeviceQueueCreateInfo::default().queue_family_index(queue_family).queue_priorities(&priorities);
         let info = vk::DeviceCreateInfo::default()
             .queue_create_infos(std::slice::from_ref(&queue_info))
             .enabled_extension_names(&device_exts)
             .push_next(&mut e11)
-            .push_next(&mut e12);
+            .push_next(&mut e12)
+            .push_next(&mut executables);
         let device = unsafe { instance.create_device(physical_device, &info, None) }.expect("vkCreateDevice");
         let queue = unsafe { device.get_device_queue(queue_family, 0) };
         let pool_info = vk::CommandPoolCreateInfo::default()
@@ -214,6 +225,7 @@ impl Gpu {
             debug,
             messages,
             features: EnabledFeatures { float16, push_descriptor },
+            pipeline_statistics,
             device_name,
             api_version,
         }

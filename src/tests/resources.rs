@@ -319,3 +319,27 @@ fn state_table_is_what_the_images_are_created_with() {
     }
     g.assert_clean();
 }
+
+/// The driver's pipeline statistics: an error, not a panic, where the host did not enable
+/// VK_KHR_pipeline_executable_properties (lavapipe has none); where it did, every pipeline the preset's frames
+/// bind, each with a statistic.
+#[test]
+fn pipeline_statistics_need_their_extension() {
+    for pipeline_statistics in [false, true] {
+        let g = Gpu::new(GpuOptions { pipeline_statistics, ..Default::default() });
+        let ctx = crate::Context::new(&g.create_info(40, 24)).unwrap();
+        match ctx.pipeline_statistics(false) {
+            Ok(pipelines) => {
+                assert!(g.pipeline_statistics, "statistics without the extension enabled");
+                assert_eq!(pipelines.len(), 6, "{pipelines:?}");
+                assert!(pipelines.iter().all(|(_, stats)| !stats.is_empty()), "{pipelines:?}");
+            }
+            Err(e) => {
+                assert!(!g.pipeline_statistics, "extension enabled, yet: {e}");
+                assert!(matches!(e, crate::Error::MissingFeature(_)), "{e}");
+            }
+        }
+        drop(ctx);
+        assert!(g.take_messages().is_empty());
+    }
+}

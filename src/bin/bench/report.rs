@@ -46,6 +46,8 @@ pub struct Summary {
     pub host: HostFormats,
     /// The shadow input fed.
     pub input: ShadowInput,
+    /// ConfigRun::pipelines.
+    pub pipelines: Vec<(&'static str, Vec<(String, String)>)>,
 }
 
 pub fn preset_name(p: Preset) -> &'static str {
@@ -121,6 +123,7 @@ impl Summary {
             lights,
             host: fed.host,
             input: fed.input,
+            pipelines: run.pipelines,
         }
     }
 
@@ -234,6 +237,17 @@ impl Report<'_> {
                         ]),
                     ),
                     ("total_ms_samples", s.total_ms.clone().into()),
+                    (
+                        "pipelines",
+                        Json::Arr(
+                            s.pipelines
+                                .iter()
+                                .map(|(name, stats)| {
+                                    Json::obj([("pipeline", (*name).into()), ("statistics", Json::Obj(stats.iter().map(|(k, v)| (k.clone(), v.as_str().into())).collect()))])
+                                })
+                                .collect(),
+                        ),
+                    ),
                 ])
             })
             .collect();
@@ -402,6 +416,7 @@ impl Report<'_> {
             }
         }
 
+        s += &pipelines_markdown(self.results);
         s += "\n## Scenes\n\nPixel fractions: sky / lit / shadowed / penumbra from the generator (visibility within 0.02 of 1, of 0, in between); \
               the byte model's classes measured on the device through dnsr's debug views (first configuration of each size and scene; \
               every configuration's are in bench.json).\n\n";
@@ -478,4 +493,45 @@ fn fmt_ratio(x: f64) -> String {
     } else {
         format!("{x:.2}x")
     }
+}
+
+/// The driver's statistics of every pipeline a preset ran, once per precision, preset and input (the first row
+/// that ran them): on NVIDIA the register count, which sets how many invocations a multiprocessor holds.
+fn pipelines_markdown(results: &[Summary]) -> String {
+    let mut seen: Vec<(Precision, String)> = Vec::new();
+    let mut names: Vec<&str> = Vec::new();
+    let mut rows: Vec<(&Summary, &str, &[(String, String)])> = Vec::new();
+    for r in results.iter().filter(|r| !r.pipelines.is_empty()) {
+        if seen.contains(&(r.precision, r.preset_cell())) {
+            continue;
+        }
+        seen.push((r.precision, r.preset_cell()));
+        for (pipeline, stats) in &r.pipelines {
+            for (name, _) in stats {
+                if !names.contains(&name.as_str()) {
+                    names.push(name);
+                }
+            }
+            rows.push((r, pipeline, stats));
+        }
+    }
+    if rows.is_empty() {
+        return String::new();
+    }
+    let mut s = String::from(
+        "\n## Pipelines\n\nThe driver's statistics of each pipeline as the preset's frames ran it (VK_KHR_pipeline_executable_properties, \
+         `Context::pipeline_statistics`), first row of each precision and preset.\n\n| precision | preset | pipeline |",
+    );
+    for n in &names {
+        s += &format!(" {n} |");
+    }
+    s += &format!("\n|---|---|---|{}\n", "---|".repeat(names.len()));
+    for (r, pipeline, stats) in rows {
+        s += &format!("| {} | {} | {pipeline} |", precision_name(r.precision), r.preset_cell());
+        for n in &names {
+            s += &format!(" {} |", stats.iter().find(|(k, _)| k == n).map_or("-", |(_, v)| v.as_str()));
+        }
+        s += "\n";
+    }
+    s
 }

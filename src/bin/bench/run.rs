@@ -85,6 +85,9 @@ pub struct ConfigRun {
     pub persistent_bytes: u64,
     pub filter_passes: u32,
     pub warmup: WarmupDone,
+    /// The driver's statistics of each of the context's pipelines as the frames ran them
+    /// (`Context::pipeline_statistics`; empty where the device lacks VK_KHR_pipeline_executable_properties).
+    pub pipelines: Vec<(&'static str, Vec<(String, String)>)>,
 }
 
 /// Penumbra guidance for a run: a hit-distance image (every pixel 1.0 in R16_SFLOAT) and the light's angular size.
@@ -179,6 +182,11 @@ pub fn run(
         info.hooks.gpu_memory = Some(std::sync::Arc::new(dnsr::testing::gpu::HostAllocator::new(gpu)));
     }
     let mut ctx = Context::new(&info).map_err(|e| format!("Context::new: {e}"))?;
+    let pipelines = if gpu.pipeline_statistics {
+        ctx.pipeline_statistics(light_angle.is_some()).map_err(|e| format!("Context::pipeline_statistics: {e}"))?
+    } else {
+        Vec::new()
+    };
     let outputs: Vec<TestImage> = (0..lights).map(|_| gpu.image(vk::Format::R16_SFLOAT, w, h, READ)).collect();
     let cmd = gpu.command_buffer();
     let hit_distance = light_angle.map(|_| {
@@ -207,7 +215,7 @@ pub fn run(
     outputs.iter().for_each(|o| gpu.destroy_image(o));
     let (timings, record_us, counts, warmup) = result?;
     let record_us_untimed = untimed.transpose()?.unwrap_or_default();
-    Ok(ConfigRun { timings, record_us, record_us_untimed, counts, memory_bytes, persistent_bytes, filter_passes, warmup })
+    Ok(ConfigRun { timings, record_us, record_us_untimed, counts, memory_bytes, persistent_bytes, filter_passes, warmup, pipelines })
 }
 
 /// How long to warm up before the timed frames.

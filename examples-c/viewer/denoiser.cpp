@@ -1,6 +1,8 @@
 // denoiser.cpp: see denoiser.h. dnsr's C API (include/dnsr.h), called as an engine calls it.
 #include "denoiser.h"
 
+#include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <string>
 
@@ -37,6 +39,38 @@ const DnsrShaderOverride kPackedOverrides[] = {
 };
 
 // Every dnsr call returns a DnsrResult; dnsr_last_error_message() says which field was wrong and why.
+// DnsrSettings' fields by name, for --set: every one but filterPasses is a float.
+struct SettingField {
+    const char *name;
+    float DnsrSettings::*field;
+};
+#define DNSR_VIEWER_SETTING(f) SettingField{#f, &DnsrSettings::f}
+const SettingField kSettingFields[] = {
+    DNSR_VIEWER_SETTING(disocclusionThresholdFacing), DNSR_VIEWER_SETTING(disocclusionThresholdGrazing),
+    DNSR_VIEWER_SETTING(disocclusionAngleExponent),   DNSR_VIEWER_SETTING(spatialFalloff),
+    DNSR_VIEWER_SETTING(historyClampSigmas),          DNSR_VIEWER_SETTING(historyRejectionFalloff),
+    DNSR_VIEWER_SETTING(historyRejectionMinSigma),    DNSR_VIEWER_SETTING(varianceBoostSamples),
+    DNSR_VIEWER_SETTING(fullHistorySamples),          DNSR_VIEWER_SETTING(minCurrentWeight),
+    DNSR_VIEWER_SETTING(maxHistorySamples),           DNSR_VIEWER_SETTING(kernelCrossWeight),
+    DNSR_VIEWER_SETTING(normalPower),                 DNSR_VIEWER_SETTING(outputContrast),
+    DNSR_VIEWER_SETTING(minShadowSigma),              DNSR_VIEWER_SETTING(stableHistorySamples),
+    DNSR_VIEWER_SETTING(historyFlipSamples),          DNSR_VIEWER_SETTING(convergedSamples),
+    DNSR_VIEWER_SETTING(hardPenumbraPixels),          DNSR_VIEWER_SETTING(movingShadowSigmas),
+    DNSR_VIEWER_SETTING(movingHistoryClampSigmas),    DNSR_VIEWER_SETTING(hardTileFrames),
+};
+#undef DNSR_VIEWER_SETTING
+
+void applySetting(DnsrSettings &s, const std::string &name, double value)
+{
+    if (name == "filterPasses") {
+        // Out of range (negative, fractional or huge) reaches dnsr as a count it rejects.
+        s.filterPasses = value >= 0.0 && value <= 1e9 && value == std::floor(value) ? uint32_t(value) : UINT32_MAX;
+        return;
+    }
+    for (const SettingField &f : kSettingFields)
+        if (name == f.name) s.*f.field = float(value);
+}
+
 [[noreturn]] void dnsrFail(const char *call, DnsrResult r)
 {
     throw VulkanError(std::string(call) + " failed: " + dnsr_result_to_string(r) + ": " + dnsr_last_error_message());
@@ -51,6 +85,21 @@ DnsrHostImage hostImage(const GpuImage &img)
 DnsrHostImage hostImage(const GpuImage *img) { return img ? hostImage(*img) : DnsrHostImage{}; }
 
 }  // namespace
+
+bool isDenoiserSetting(const std::string &name)
+{
+    if (name == "filterPasses") return true;
+    for (const SettingField &f : kSettingFields)
+        if (name == f.name) return true;
+    return false;
+}
+
+std::string denoiserSettingNames()
+{
+    std::string names = "filterPasses";
+    for (const SettingField &f : kSettingFields) names += std::string(", ") + f.name;
+    return names;
+}
 
 bool addDenoiserDeviceExtensions(VkPhysicalDevice physicalDevice, uint32_t apiVersion,
                                  std::vector<const char *> &extensions)
@@ -110,6 +159,7 @@ void Denoiser::create(const VulkanContext &ctx, const DenoiserSettings &settings
     // A preset fills every setting; an engine would tweak single fields of it before setting it.
     DnsrSettings dnsrSettings;
     r = dnsr_settings_init_preset(settings.preset, &dnsrSettings);
+    for (const auto &[name, value] : settings.overrides) applySetting(dnsrSettings, name, value);
     if (r == DNSR_SUCCESS) r = dnsr_context_set_settings(context_, &dnsrSettings);
     if (r != DNSR_SUCCESS) dnsrFail("dnsr_settings_init_preset / dnsr_context_set_settings", r);
 }

@@ -18,6 +18,8 @@
 
 #include <dnsr.h>
 
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "cascades.h"
@@ -40,8 +42,15 @@ struct DenoiserSettings {
     // the engine's callbacks (examples-c/custom_gbuffer) instead of reading the default formats.
     bool packedGbuffer = false;
     DnsrPreset preset = DNSR_PRESET_QUALITY;
+    // Single settings changed after the preset filled them (--set), by their DnsrSettings field names:
+    // dnsr_context_set_settings checks the values.
+    std::vector<std::pair<std::string, double>> overrides;
     bool classifier = false;  // hybrid shadows: recordClassify (DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER)
 };
+
+// Whether `name` is a DnsrSettings field that DenoiserSettings::overrides may set; every such name, for messages.
+bool isDenoiserSetting(const std::string &name);
+std::string denoiserSettingNames();
 
 // What every dnsr dispatch of one frame reads: the G-buffer, the camera and where the frame is in the sequence.
 struct DenoiserFrame {

@@ -1,6 +1,8 @@
 // options.cpp: see options.h.
 #include "options.h"
 
+#include "denoiser.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -63,6 +65,9 @@ const char *kUsage =
     "  --reverse-rays          hybrid: trace from the light's end of the classifier's interval towards the surface\n"
     "                          (with --hit-distance off: guidance needs the occluder nearest the surface)\n"
     "  --preset NAME           dnsr's settings: fast, balanced (the FidelityFX values) or quality (default)\n"
+    "  --set NAME=VALUE[,...]  change single dnsr settings after the preset filled them, by their DnsrSettings\n"
+    "                          field names (include/dnsr.h), e.g. --set hardTileFrames=4,filterPasses=1; dnsr\n"
+    "                          checks the values (dnsr_context_set_settings); report.json lists them\n"
     "  --validate              enable VK_LAYER_KHRONOS_validation; any validation message makes the exit status 1\n"
     "                          (the Vulkan loader's own notices are shown but not counted)\n"
     "  -h, --help              print this and exit\n"
@@ -163,6 +168,24 @@ Options parseOptions(int argc, char **argv)
             auto it = std::find(std::begin(names), std::end(names), v);
             if (it == std::end(names)) throw UsageError("--preset wants fast, balanced or quality, got '" + v + "'");
             o.preset = static_cast<DnsrPreset>(it - std::begin(names));
+        } else if (a == "--set") {
+            std::string list = value();
+            for (size_t at = 0; at <= list.size();) {
+                size_t end = std::min(list.find(',', at), list.size());
+                std::string item = list.substr(at, end - at);
+                size_t eq = item.find('=');
+                std::string name = item.substr(0, eq);
+                if (eq == std::string::npos || !isDenoiserSetting(name))
+                    throw UsageError("--set wants NAME=VALUE with NAME one of " + denoiserSettingNames() + ", got '" +
+                                     item + "'");
+                const char *number = item.c_str() + eq + 1;
+                char *rest = nullptr;
+                double v = std::strtod(number, &rest);
+                if (!*number || *rest || !std::isfinite(v))
+                    throw UsageError("--set " + name + " wants a finite number, got '" + number + "'");
+                o.settings.emplace_back(name, v);
+                at = end + 1;
+            }
         } else if (a == "--gbuffer") {
             std::string v = value();
             if (v != "default" && v != "packed") throw UsageError("--gbuffer wants default or packed, got '" + v + "'");

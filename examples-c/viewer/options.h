@@ -3,6 +3,8 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "renderer.h"
 
@@ -34,6 +36,7 @@ struct Options {
     float lightElevationDeg = 50.0f;
     float lightAzimuthDeg = 100.0f;  // around the up axis from the starting view's direction
     DnsrPreset preset = DNSR_PRESET_QUALITY;
+    std::vector<std::pair<std::string, double>> settings;  // --set: DnsrSettings fields changed after the preset
     View view = View::Composite;  // window mode: the view shown first
     // Hybrid shadows (RendererSettings::hybrid): start in hybrid mode, and its settings.
     bool hybrid = false;

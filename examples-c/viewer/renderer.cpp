@@ -259,6 +259,7 @@ void Renderer::create(VulkanContext &ctx, const Scene &scene, const RendererSett
                                              : DNSR_SHADOW_INPUT_HIT_MASK;
     ds.packedGbuffer = settings.packedGbuffer;
     ds.preset = settings.preset;
+    ds.overrides = settings.settingOverrides;
     ds.classifier = hybrid.enabled;
     denoiser_.create(ctx, ds);
     if (hybrid.enabled) denoiser_.classifierBuffers(tileList_, tileCounts_);

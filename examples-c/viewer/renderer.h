@@ -65,6 +65,7 @@ struct RendererSettings {
     float sceneRadius = 1.0f;  // sets the shadow-ray offset
     float ambient = 0.2f;
     DnsrPreset preset = DNSR_PRESET_QUALITY;  // dnsr's settings (dnsr_settings_init_preset)
+    std::vector<std::pair<std::string, double>> settingOverrides;  // then these (DenoiserSettings::overrides)
     // Linear depth and octahedral normals, read by dnsr through custom callbacks (examples-c/custom_gbuffer).
     bool packedGbuffer = false;
     // Shadow rays per pixel: 1 packs them into the hit mask; more go to dnsr as per-pixel visibility.

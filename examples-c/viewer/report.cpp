@@ -61,6 +61,10 @@ void writeReport(const std::string &path, const Session &session, const Measurem
     r["hard_light"] = last.hardLight;
     const char *presets[] = {"fast", "balanced", "quality"};
     r["preset"] = presets[opt.preset];
+    if (!opt.settings.empty()) {
+        auto &set = r["settings"];
+        for (const auto &[name, value] : opt.settings) set[name] = value;
+    }
     r["gbuffer"] = opt.packedGbuffer ? "packed" : "default";
     r["rays_per_pixel"] = opt.rays;
     r["checkerboard"] = opt.checkerboard;

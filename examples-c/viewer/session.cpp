@@ -36,6 +36,7 @@ void Session::createRenderer()
     rs.width = opt.width, rs.height = opt.height;
     rs.sceneRadius = scene.radius;
     rs.preset = opt.preset;
+    rs.settingOverrides = opt.settings;
     rs.packedGbuffer = opt.packedGbuffer;
     rs.rays = opt.rays;
     rs.checkerboard = opt.checkerboard;

@@ -383,6 +383,41 @@ status=0
   fail "--preset best: status $status, message: $(cat "$tmp/preset.err")"
 echo "presets: quality ran clean unguided and guided (against the saved reference), 'best' and 'maybe' refused"
 
+# ---- --set: single settings after the preset ----
+# Every DnsrSettings field of the header is a name --set takes (a new setting cannot be left out), a changed
+# setting changes the output against the same reference and report.json lists it, and a name dnsr does not have
+# (status 2) and a value out of dnsr's range (status 1, dnsr's own message) are refused.
+fields=$(awk '/^typedef struct DnsrSettings/,/^} DnsrSettings;/' include/dnsr.h | grep -oE '^  (uint32_t|float) [a-zA-Z0-9]+;' |
+  awk '{print $2}' | tr -d ';')
+[[ $(wc -w <<<"$fields") -ge 20 ]] || fail "found only $(wc -w <<<"$fields") DnsrSettings fields in include/dnsr.h"
+for f in $fields; do
+  "$viewer" --set "$f=1x" > /dev/null 2> "$tmp/set.err" && fail "--set $f=1x accepted"
+  grep -qF -- "--set $f wants a finite number" "$tmp/set.err" || fail "--set does not know DnsrSettings::$f: $(cat "$tmp/set.err")"
+done
+status=0
+"$viewer" --headless --validate --preset quality --hit-distance off --frames 4 --size 64x48 --out "$tmp/set" \
+  --load-reference "$tmp/quality.ref" --set filterPasses=1,minCurrentWeight=0.5 > "$tmp/set.log" 2>&1 || status=$?
+(( status == 0 )) || { cat "$tmp/set.log"; fail "--set filterPasses=1,minCurrentWeight=0.5 exited with status $status"; }
+python3 - "$tmp/quality/report.json" "$tmp/set/report.json" <<'PY' || fail "--set check failed"
+import json, sys
+plain, changed = (json.load(open(p)) for p in sys.argv[1:])
+assert changed["settings"] == {"filterPasses": 1, "minCurrentWeight": 0.5}, changed.get("settings")
+assert "settings" not in plain, "a run without --set lists settings"
+assert len(changed["dnsr_gpu_ms"]["filter"]) == 1, changed["dnsr_gpu_ms"]
+assert changed["rmse"]["noisy"] == plain["rmse"]["noisy"] and changed["rmse"]["denoised"] != plain["rmse"]["denoised"]
+PY
+status=0
+"$viewer" --headless --set filterPass=1 --frames 1 --size 16x16 --out "$tmp/bad-set" > /dev/null 2> "$tmp/set.err" ||
+  status=$?
+(( status == 2 )) && grep -qF -- "--set wants NAME=VALUE with NAME one of filterPasses" "$tmp/set.err" ||
+  fail "--set filterPass=1: status $status, message: $(cat "$tmp/set.err")"
+status=0
+"$viewer" --headless --set normalPower=300 --frames 1 --size 16x16 --out "$tmp/bad-set" > /dev/null 2> "$tmp/set.err" ||
+  status=$?
+(( status == 1 )) && grep -qF "setting normalPower is 300; it must be in [0, 256]" "$tmp/set.err" ||
+  fail "--set normalPower=300: status $status, message: $(cat "$tmp/set.err")"
+echo "--set: takes all $(wc -w <<<"$fields") DnsrSettings fields, changes the output, refuses unknown names and values out of range"
+
 # ---- Do no harm: a fixed subset of the procedural scene family (family.py; make viewer-accuracy runs 100) ----
 # Ten seeded scenes (with and without a ground plane, hard and soft lights, point lights), a still camera, the
 # Quality preset: never worse than the 1-spp input, exact pixels within 1/255 (hard shadows only: RMSE <= 0.002),

@@ -6,7 +6,7 @@ distributions over the scenes: the output's RMSE against the 1-spp input's, how 
 and the error on the pixel classes of metrics.h (exact pixels, silhouettes, creases, thin features).
 
 usage: family.py VIEWER OUT_DIR [--first SEED] [--count N] [--size WxH] [--frames N] [--presets a,b] [--md FILE]
-                 [--check PRESET] [--camera KIND] [--references DIR] [--jobs N]
+                 [--check PRESET] [--camera KIND] [--references DIR] [--jobs N] [--set NAME=VALUE,...]
 
 A preset is a dnsr preset name, run without penumbra guidance, or NAME+guided: with it (hit distances given), or
 NAME+untold: without guidance and without telling dnsr that a light of no size has none (--hard-light off: what a
@@ -23,6 +23,8 @@ binary; not the library, which the reference does not use), so a second run (ano
 renders none, and a changed scene generator or viewer renders it again. --jobs N runs N scenes at once.
 To compare two builds of the library, run the family once with each (the viewer loads the libdnsr.so.0.1 that
 LD_LIBRARY_PATH names first), sharing --references, and compare the two family.json files with family_compare.py.
+--set passes single dnsr settings to every run (the viewer's --set, by DnsrSettings field names): to measure a
+setting against the same build, run the family with and without it, sharing --references (they do not depend on it).
 """
 import argparse
 import hashlib
@@ -39,7 +41,7 @@ sys.path.insert(0, str(HERE / "scenes"))
 REFERENCE_RAYS = 1024
 
 
-def run(viewer, scene, preset, size, frames, out, reference, save):
+def run(viewer, scene, preset, size, frames, out, reference, save, settings):
     # "NAME+guided": preset NAME given the hit distances (penumbra guidance); without the suffix, none.
     # "NAME+untold": not told that a light of no size is hard.
     name, _, variant = preset.partition("+")
@@ -48,6 +50,7 @@ def run(viewer, scene, preset, size, frames, out, reference, save):
     args = [viewer, scene["scene"], "--headless", "--frames", str(frames), "--size", size, "--preset", name,
             "--hit-distance", "on" if variant == "guided" else "off",
             "--hard-light", "off" if variant == "untold" else "on", "--out", out] + scene["viewer_args"]
+    args += ["--set", settings] if settings else []
     args += ["--reference-samples", str(REFERENCE_RAYS), "--save-reference", reference] if save else \
         ["--load-reference", reference]
     subprocess.run(args, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, timeout=900)
@@ -186,6 +189,7 @@ def main():
                     help="view every scene with this camera instead of its own")
     ap.add_argument("--references", help="where each scene's reference is kept (default OUT_DIR/references)")
     ap.add_argument("--jobs", type=int, default=1, help="scenes run at once")
+    ap.add_argument("--set", help="dnsr settings for every run, NAME=VALUE[,...] (the viewer's --set)")
     a = ap.parse_args()
     presets = a.presets.split(",")
     out = Path(a.out)
@@ -211,7 +215,7 @@ def main():
         reference = references / f"{s['seed']}_{key.hexdigest()[:16]}.bin"
         save = not reference.exists()
         tmp = str(out / f"run_{s['seed']}")
-        s["results"] = {p: run(a.viewer, s, p, a.size, a.frames, tmp, str(reference), save and i == 0)
+        s["results"] = {p: run(a.viewer, s, p, a.size, a.frames, tmp, str(reference), save and i == 0, a.set)
                         for i, p in enumerate(presets)}
         return s, json.loads((Path(tmp) / "report.json").read_text())["device"]
 

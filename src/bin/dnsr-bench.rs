@@ -223,6 +223,7 @@ fn main() {
     eprintln!("dnsr-bench: copy bandwidth {:.1} GB/s (read + write, median of {})", copy.gbps(copy.median_ms()), copy.runs_ms.len());
 
     let mut results = Vec::new();
+    let mut with_statistics = Vec::new();
     for &size in &opts.sizes {
         for &scene in &opts.scenes {
             let t = Instant::now();
@@ -234,7 +235,9 @@ fn main() {
             for &precision in &precisions {
                 for (&preset, &lights) in opts.presets.iter().flat_map(|p| opts.lights.iter().map(move |l| (p, l))) {
                     let warmup = Warmup { frames: opts.warmup, min_ms: opts.warmup_ms as f64 };
-                    let run = bench::run::run(&gpu, &gpu_scene, size, preset, precision, warmup, opts.frames, opts.light_angle, lights)
+                    let statistics = !with_statistics.contains(&(preset, precision, lights));
+                    with_statistics.push((preset, precision, lights));
+                    let run = bench::run::run(&gpu, &gpu_scene, size, preset, precision, warmup, opts.frames, opts.light_angle, lights, statistics)
                         .unwrap_or_else(|e| {
                             fail(format!("{}x{} {} {} {} {lights} light(s): {e}", size.0, size.1, scene.id(), preset_name(preset), precision_name(precision)))
                         });

@@ -86,7 +86,8 @@ pub struct ConfigRun {
     pub filter_passes: u32,
     pub warmup: WarmupDone,
     /// The driver's statistics of each of the context's pipelines as the frames ran them
-    /// (`Context::pipeline_statistics`; empty where the device lacks VK_KHR_pipeline_executable_properties).
+    /// (`Context::pipeline_statistics`; empty where the device lacks VK_KHR_pipeline_executable_properties, and
+    /// after the first row of a preset and precision).
     pub pipelines: Vec<(&'static str, Vec<(String, String)>)>,
 }
 
@@ -162,6 +163,7 @@ pub fn run(
     frames: usize,
     light_angle: Option<f32>,
     lights: usize,
+    pipeline_statistics: bool,
 ) -> Result<ConfigRun, String> {
     let mut info = gpu.create_info(w, h);
     info.enable_timestamps = true;
@@ -182,7 +184,8 @@ pub fn run(
         info.hooks.gpu_memory = Some(std::sync::Arc::new(dnsr::testing::gpu::HostAllocator::new(gpu)));
     }
     let mut ctx = Context::new(&info).map_err(|e| format!("Context::new: {e}"))?;
-    let pipelines = if gpu.pipeline_statistics {
+    // Each pipeline compiled again with statistics captured: once per preset and precision is enough.
+    let pipelines = if pipeline_statistics && gpu.pipeline_statistics {
         ctx.pipeline_statistics(light_angle.is_some()).map_err(|e| format!("Context::pipeline_statistics: {e}"))?
     } else {
         Vec::new()

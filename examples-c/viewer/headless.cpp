@@ -148,6 +148,9 @@ void printSummary(const Session &s, const Measurements &m, const std::string &di
                     m.traced.listedTiles, m.traced.tiles, m.traced.decidedWrong, m.traced.decidedMeanError,
                     s.renderer.viewerTimings.cascades,
                     s.renderer.viewerTimings.classify, s.renderer.viewerTimings.shadow);
+    if (s.opt.debugView != View::Composite)
+        std::printf("viewer: --debug-view: the last frame's dnsr output is the debug view, not the shadow: denoised.png "
+                    "and every denoised figure below and in report.json show the view\n");
     std::printf("viewer: %u frames, penumbra guidance %s; RMSE vs %u-ray reference over %zu pixels: noisy %.4f "
                 "(%.1f dB), denoised %.4f (%.1f dB)\n",
                 s.opt.frames, s.light.hitDistance ? "on" : "off", m.referenceSamples, e.pixels, e.rmseNoisy,
@@ -191,7 +194,8 @@ int runHeadless(VulkanContext &ctx, const Options &opt, const Scene &scene, cons
         if (s.light.moving) s.light.azimuth += radians(0.5f);
         FrameInput in = makeFrame(s.scene, o, s.light, opt.width, opt.height);
         in.cameraCut = f == 0;
-        in.display = View::Composite;
+        // --debug-view: dnsr writes the view instead of the last frame's shadow (the frames before are unchanged).
+        in.display = last && s.opt.debugView != View::Composite ? s.opt.debugView : View::Composite;
         in.hybrid = s.hybrid;
         // The reference, for the frame that is measured only: many rays per pixel from the same G-buffer (none when
         // it comes from --load-reference).

@@ -64,6 +64,10 @@ const char *kUsage =
     "                          receiver's tangent plane to block it (default: two texels of the finest cascade)\n"
     "  --reverse-rays          hybrid: trace from the light's end of the classifier's interval towards the surface\n"
     "                          (with --hit-distance off: guidance needs the occluder nearest the surface)\n"
+    "  --debug-view NAME       headless: the last frame's dnsr output is its debug view NAME (classification,\n"
+    "                          samples, variance or disocclusion; the window's keys 6-9) instead of the shadow:\n"
+    "                          denoised.png and every denoised figure of report.json (which names the view) then\n"
+    "                          show the view. A run without it is the same up to that frame\n"
     "  --preset NAME           dnsr's settings: fast, balanced (the FidelityFX values) or quality (default)\n"
     "  --set NAME=VALUE[,...]  change single dnsr settings after the preset filled them, by their DnsrSettings\n"
     "                          field names (include/dnsr.h), e.g. --set hardTileFrames=4,filterPasses=1; dnsr\n"
@@ -168,6 +172,13 @@ Options parseOptions(int argc, char **argv)
             auto it = std::find(std::begin(names), std::end(names), v);
             if (it == std::end(names)) throw UsageError("--preset wants fast, balanced or quality, got '" + v + "'");
             o.preset = static_cast<DnsrPreset>(it - std::begin(names));
+        } else if (a == "--debug-view") {
+            std::string v = value();
+            const char *names[] = {"classification", "samples", "variance", "disocclusion"};  // View::DnsrTiles..
+            auto it = std::find(std::begin(names), std::end(names), v);
+            if (it == std::end(names))
+                throw UsageError("--debug-view wants classification, samples, variance or disocclusion, got '" + v + "'");
+            o.debugView = static_cast<View>(uint32_t(View::DnsrTiles) + uint32_t(it - std::begin(names)));
         } else if (a == "--set") {
             std::string list = value();
             for (size_t at = 0; at <= list.size();) {
@@ -258,6 +269,8 @@ Options parseOptions(int argc, char **argv)
                          "variants, which examples-c/custom_gbuffer does not compile against the packed G-buffer)");
     if (o.headless && !o.screenshot.empty()) throw UsageError("--screenshot is for window mode (headless writes PNGs)");
     if (!o.screenshot.empty() && !o.frames) throw UsageError("--screenshot needs --frames N");
+    if (!o.headless && o.debugView != View::Composite)
+        throw UsageError("--debug-view is for --headless (the window shows the debug views on keys 6-9, or --view)");
     if (!o.headless && !(o.saveReference.empty() && o.loadReference.empty()))
         throw UsageError("--save-reference and --load-reference are for --headless");
     if (!o.saveReference.empty() && !o.loadReference.empty())

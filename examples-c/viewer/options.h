@@ -38,6 +38,9 @@ struct Options {
     DnsrPreset preset = DNSR_PRESET_QUALITY;
     std::vector<std::pair<std::string, double>> settings;  // --set: DnsrSettings fields changed after the preset
     View view = View::Composite;  // window mode: the view shown first
+    // Headless: the last frame's dnsr output is this debug view (View::DnsrTiles..DnsrDisocclusion) instead of the
+    // shadow; Composite: none.
+    View debugView = View::Composite;
     // Hybrid shadows (RendererSettings::hybrid): start in hybrid mode, and its settings.
     bool hybrid = false;
     uint32_t cascades = 2, cascadeSize = 0, taps = 24, tileCutoff = 0;

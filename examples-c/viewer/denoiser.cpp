@@ -1,6 +1,7 @@
 // denoiser.cpp: see denoiser.h. dnsr's C API (include/dnsr.h), called as an engine calls it.
 #include "denoiser.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -63,8 +64,8 @@ const SettingField kSettingFields[] = {
 void applySetting(DnsrSettings &s, const std::string &name, double value)
 {
     if (name == "filterPasses") {
-        // Out of range (negative, fractional or huge) reaches dnsr as a count it rejects.
-        s.filterPasses = value >= 0.0 && value <= 1e9 && value == std::floor(value) ? uint32_t(value) : UINT32_MAX;
+        // A whole number (--set checks it); one out of range reaches dnsr, which says its range.
+        s.filterPasses = uint32_t(std::min(value, 1e9));
         return;
     }
     for (const SettingField &f : kSettingFields)

@@ -194,6 +194,8 @@ Options parseOptions(int argc, char **argv)
                 double v = std::strtod(number, &rest);
                 if (!*number || *rest || !std::isfinite(v))
                     throw UsageError("--set " + name + " wants a finite number, got '" + number + "'");
+                if (name == "filterPasses" && !(v >= 0.0 && v == std::floor(v)))
+                    throw UsageError("--set filterPasses wants a whole number of passes, got '" + std::string(number) + "'");
                 o.settings.emplace_back(name, v);
                 at = end + 1;
             }

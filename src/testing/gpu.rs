@@ -202,12 +202,15 @@ impl Gpu {
         let mut executables = vk::PhysicalDevicePipelineExecutablePropertiesFeaturesKHR::default().pipeline_executable_info(pipeline_statistics);
         let priorities = [1.0f32];
         let queue_info = vk::DeviceQueueCreateInfo::default().queue_family_index(queue_family).queue_priorities(&priorities);
-        let info = vk::DeviceCreateInfo::default()
+        let mut info = vk::DeviceCreateInfo::default()
             .queue_create_infos(std::slice::from_ref(&queue_info))
             .enabled_extension_names(&device_exts)
             .push_next(&mut e11)
-            .push_next(&mut e12)
-            .push_next(&mut executables);
+            .push_next(&mut e12);
+        // An extension's feature struct only with the extension enabled (VUID-VkDeviceCreateInfo-pNext-pNext).
+        if pipeline_statistics {
+            info = info.push_next(&mut executables);
+        }
         let device = unsafe { instance.create_device(physical_device, &info, None) }.expect("vkCreateDevice");
         let queue = unsafe { device.get_device_queue(queue_family, 0) };
         let pool_info = vk::CommandPoolCreateInfo::default()

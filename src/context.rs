@@ -554,13 +554,21 @@ impl Context {
     /// pairs from VK_KHR_pipeline_executable_properties (on NVIDIA the register count, which sets how many
     /// invocations a multiprocessor holds). Each pipeline is compiled again with statistics captured, then
     /// destroyed. The host must have enabled the extension and its `pipelineExecutableInfo` feature
-    /// (`Error::MissingFeature` without the extension).
+    /// (`Error::MissingFeature` without the extension). `overrides`: the SPIR-V the context was created with
+    /// (`ContextCreateInfo::shader_overrides`), so that the statistics are those of the pipelines that run.
     #[doc(hidden)]
-    pub fn pipeline_statistics(&self, guided: bool) -> Result<Vec<(&'static str, Vec<(String, String)>)>> {
+    pub fn pipeline_statistics(
+        &self,
+        guided: bool,
+        overrides: &[crate::create_info::ShaderOverride],
+    ) -> Result<Vec<(&'static str, Vec<(String, String)>)>> {
         let spec = self.specialization(guided, false);
         self.pipeline_names()
             .into_iter()
-            .map(|name| Ok((name, PassPipeline::statistics(&self.vk, name, variant(name).spirv, spec)?)))
+            .map(|name| {
+                let spirv = overrides.iter().find(|o| o.variant == name).map_or(variant(name).spirv, |o| &o.spirv[..]);
+                Ok((name, PassPipeline::statistics(&self.vk, name, spirv, spec)?))
+            })
             .collect()
     }
 

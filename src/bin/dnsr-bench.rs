@@ -50,6 +50,11 @@ const USAGE: &str = "usage: dnsr-bench [options]
                               images out of UNDEFINED
   --hard-light                every light has no size (ShadowsDispatch::hard_light): the output is each pixel's
                               ray, and one filter pass runs (not with a non-zero --light-angle)
+  --shader-override V=FILE    run the SPIR-V in FILE for shader variant V (ContextCreateInfo::shader_overrides;
+                              repeatable): a shader change or an engine's callbacks timed by the same binary as
+                              dnsr's own (the variants: dnsr::shader_variants; fp32 contexts with the bench's R16F
+                              output run e.g. tile_classification_r16f). One light per record (overrides run a
+                              dispatch per light)
 
 The device is the first whose name contains $DNSR_DEVICE (any device when unset). The commit recorded is
 $DNSR_COMMIT, else `git rev-parse HEAD` of the working directory.";
@@ -114,6 +119,7 @@ struct Options {
     host: HostFormats,
     alias_transient: bool,
     hard_light: bool,
+    shader_overrides: Vec<dnsr::ShaderOverride>,
 }
 
 impl Options {
@@ -149,6 +155,7 @@ fn parse_args() -> Options {
         host: HostFormats::Engine,
         alias_transient: false,
         hard_light: false,
+        shader_overrides: Vec::new(),
     };
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
@@ -170,6 +177,12 @@ fn parse_args() -> Options {
             "--float-gbuffer" => o.host = HostFormats::Float,
             "--alias-transient" => o.alias_transient = true,
             "--hard-light" => o.hard_light = true,
+            "--shader-override" => {
+                let value = args.next().unwrap_or_else(|| usage("--shader-override needs VARIANT=FILE"));
+                let (variant, file) = value.split_once('=').unwrap_or_else(|| usage("--shader-override needs VARIANT=FILE"));
+                let spirv = std::fs::read(file).unwrap_or_else(|e| usage(&format!("--shader-override: cannot read {file}: {e}")));
+                o.shader_overrides.push(dnsr::ShaderOverride { variant: variant.to_string(), spirv });
+            }
             "--lights" => {
                 let max = dnsr::MAX_LIGHTS_PER_RECORD;
                 o.lights = list(args.next(), "--lights", |s| s.parse().ok().filter(|n| (1..=max).contains(n)));
@@ -231,6 +244,7 @@ fn main() {
             gpu_scene.checkerboard = opts.checkerboard;
             gpu_scene.alias_transient = opts.alias_transient;
             gpu_scene.hard_light = opts.hard_light;
+            gpu_scene.shader_overrides = opts.shader_overrides.clone();
             eprintln!("dnsr-bench: {}x{} {}: {} frames generated in {:.1} s", size.0, size.1, scene.id(), gpu_scene.frames.len(), t.elapsed().as_secs_f64());
             for &precision in &precisions {
                 for (&preset, &lights) in opts.presets.iter().flat_map(|p| opts.lights.iter().map(move |l| (p, l))) {

@@ -328,7 +328,7 @@ fn pipeline_statistics_need_their_extension() {
     for pipeline_statistics in [false, true] {
         let g = Gpu::new(GpuOptions { pipeline_statistics, ..Default::default() });
         let ctx = crate::Context::new(&g.create_info(40, 24)).unwrap();
-        match ctx.pipeline_statistics(false) {
+        match ctx.pipeline_statistics(false, &[]) {
             Ok(pipelines) => {
                 assert!(g.pipeline_statistics, "statistics without the extension enabled");
                 assert_eq!(pipelines.len(), 6, "{pipelines:?}");

@@ -177,6 +177,7 @@ pub fn run(
         info.shadow_input = dnsr::ShadowInput::Checkerboard;
     }
     info.light_count = lights as u32;
+    info.shader_overrides = scene.shader_overrides.clone();
     if scene.alias_transient {
         info.alias_transient_memory = true;
         // One allocation per image: an engine would alias the transient ones; the bench measures what aliasing
@@ -186,7 +187,7 @@ pub fn run(
     let mut ctx = Context::new(&info).map_err(|e| format!("Context::new: {e}"))?;
     // Each pipeline compiled again with statistics captured: once per preset and precision is enough.
     let pipelines = if pipeline_statistics && gpu.pipeline_statistics {
-        ctx.pipeline_statistics(light_angle.is_some()).map_err(|e| format!("Context::pipeline_statistics: {e}"))?
+        ctx.pipeline_statistics(light_angle.is_some(), &scene.shader_overrides).map_err(|e| format!("Context::pipeline_statistics: {e}"))?
     } else {
         Vec::new()
     };

@@ -51,6 +51,10 @@ shared vec2 s_quad_velocity[DNSR_WIDE_GROUP_HEIGHT][DNSR_WIDE_GROUP_WIDTH];
 shared uint s_tile_has_receiver[DNSR_GROUP_TILES.y][DNSR_GROUP_TILES.x];
 // dnsr_uniform_state of the group's tiles (the receiver test aside), computed once per tile.
 shared uint s_uniform[DNSR_GROUP_TILES.y][DNSR_GROUP_TILES.x];
+// Per window tile, from its word where it is loaded: bit 0 every valid pixel exactly lit, bit 1 every one exactly
+// shadowed (both for a tile outside the rectangle). The tile writers' uniform test then ANDs 15 of them; testing
+// the 15 words against their valid bits itself kept a cleared group waiting on one invocation per tile.
+shared uint s_window_uniform[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
 // First tile of the group's window (same for every invocation of the group).
 ivec2 g_window_base;
 
@@ -230,20 +234,11 @@ vec4 dnsr_window_and_surface_moments(ivec2 p, ivec2 lid) {
 // 0: mixed, 1: every valid pixel within +-8 px of the group's tile `t` is exactly lit, 2: every one is exactly
 // shadowed.
 uint dnsr_uniform_state(ivec2 t) {
-    bool all_lit = true, all_shadow = true;
+    uint both = 3u;
     for (int r = 0; r < 5; ++r) {
-        for (int c = 0; c < 3; ++c) {
-            uint word = s_words[t.y + r][t.x + c];
-            uint valid = dnsr_tile_valid_bits(g_window_base + t + ivec2(c, r));
-            all_lit = all_lit && (word & valid) == valid;
-#ifdef DNSR_VISIBILITY_INPUT
-            all_shadow = all_shadow && (s_dark[t.y + r][t.x + c] & valid) == valid;
-#else
-            all_shadow = all_shadow && (word & valid) == 0u;
-#endif
-        }
+        for (int c = 0; c < 3; ++c) both &= s_window_uniform[t.y + r][t.x + c];
     }
-    return all_lit ? 1u : (all_shadow ? 2u : 0u);
+    return (both & 1u) != 0u ? 1u : ((both & 2u) != 0u ? 2u : 0u);
 }
 
 // 0: the group's tile `t` needs temporal work, 1: cleared lit (no receiver, or all lit), 2: cleared shadowed.
@@ -514,7 +509,9 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     if (thread < DNSR_WINDOW_TILES.x * DNSR_WINDOW_TILES.y) {
         ivec2 w = ivec2(thread % DNSR_WINDOW_TILES.x, thread / DNSR_WINDOW_TILES.x);
         ivec2 tile = g_window_base + w;
-        s_words[w.y][w.x] = dnsr_tile_valid_bits(tile) != 0u ? dnsr_read_tile_mask(tile) : 0u;
+        uint valid = dnsr_tile_valid_bits(tile);
+        uint word = valid != 0u ? dnsr_read_tile_mask(tile) : 0u;
+        s_words[w.y][w.x] = word;
         // Outside the tile grid: the nearest tile's count (the 3x3 test clamps to the grid).
         if (DNSR_SPEC_STABLE_HISTORY) s_quiet[w.y][w.x] = dnsr_read_previous_tile_quiet(clamp(tile, ivec2(0), dnsr_tile_count() - 1));
         if (DNSR_SPEC_MOVING_SHADOWS) {
@@ -522,8 +519,13 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             s_moving_terms[w.y][w.x] = 0u;
         }
 #ifdef DNSR_VISIBILITY_INPUT
-        s_dark[w.y][w.x] = dnsr_tile_valid_bits(tile) != 0u ? dnsr_read_tile_dark(tile) : 0u;
+        uint dark = valid != 0u ? dnsr_read_tile_dark(tile) : 0u;
+        s_dark[w.y][w.x] = dark;
+        bool shadowed = (dark & valid) == valid;
+#else
+        bool shadowed = (word & valid) == 0u;
 #endif
+        s_window_uniform[w.y][w.x] = ((word & valid) == valid ? 1u : 0u) | (shadowed ? 2u : 0u);
     }
 #ifdef DNSR_VISIBILITY_INPUT
     // The window's visibilities, loaded with the words (behind the same barrier) although a group whose tiles are

@@ -320,6 +320,13 @@ bool dnsr_stable_agreeing(float run, float x, float stable_after) {
     return stable_after > 0.0 && abs(run) >= stable_after && (x >= 0.5 ? run > 0.0 : run < 0.0);
 }
 
+// The bilinear blend of a footprint's four texels (x, then y) at t (texel units, centres at integers): what
+// dnsr_read_history returns for the same position.
+float dnsr_bilinear(float texels[4], vec2 t) {
+    vec2 f = t - floor(t);
+    return mix(mix(texels[0], texels[1], f.x), mix(texels[2], texels[3], f.x), f.y);
+}
+
 // Normals a and b (last frame's, this frame's) both known and more than acos(DNSR_TURNED_NORMAL_COS_PERCENT / 100)
 // apart.
 bool dnsr_normal_turned(vec3 a, vec3 b) {
@@ -787,12 +794,31 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         && all(greaterThanEqual(prev_uv, vec2(0.0))) && all(lessThan(prev_uv, vec2(1.0)))
         && all(greaterThanEqual(history_uv, vec2(0.0))) && all(lessThan(history_uv, vec2(1.0)));
     bool disoccluded = dnsr_get_is_reset() || !on_screen;
+    // Without the run features (Balanced), what last frame left for this pixel is fetched before the disocclusion
+    // test decides whether it is used (at clamped positions; off screen it is fetched and not used), so that the
+    // pixel waits for one round trip to memory, not three (the depth copy, then the nearest texel's moments, then
+    // the bilinear history): Balanced's classification 0.317 -> 0.297 ms at 4K on an H200. With them (Fast,
+    // Quality) each stays where it is used: fetched here with the footprint's moments and normals, or only the
+    // depth copy and the nearest texel, they took classification from 64 to 78 registers and 0.707 to 0.762-0.781
+    // ms (BENCHMARKS.md change log).
+    ivec2 last_texel = dnsr_get_extent() - 1;
+    ivec2 prev_p = clamp(ivec2(prev_uv * vec2(dnsr_get_extent())), ivec2(0), last_texel);
+    float previous_depth = DNSR_SPEC_STABLE_HISTORY ? 0.0 : dnsr_read_previous_depth(prev_p);
+    ivec2 hp = clamp(ivec2(history_uv * vec2(dnsr_get_extent())), ivec2(0), last_texel);
+    vec4 nearest = DNSR_SPEC_STABLE_HISTORY ? vec4(0.0) : dnsr_read_previous_moments(hp);
+    vec2 t = history_uv * vec2(dnsr_get_extent()) - 0.5;
+    ivec2 footprint = ivec2(floor(t));
+    float texel_history[4];
+    if (!DNSR_SPEC_STABLE_HISTORY) {
+        [[unroll]] for (int k = 0; k < 4; ++k) {
+            texel_history[k] = dnsr_read_history_texel(clamp(footprint + ivec2(k & 1, k >> 1), ivec2(0), last_texel));
+        }
+    }
     if (!disoccluded) {
-        ivec2 prev_p = clamp(ivec2(prev_uv * vec2(dnsr_get_extent())), ivec2(0), dnsr_get_extent() - 1);
-        float previous = dnsr_read_previous_depth(prev_p);
         float expected = dnsr_linear_depth(prev_ndc.xy, prev_ndc.z);
+        if (DNSR_SPEC_STABLE_HISTORY) previous_depth = dnsr_read_previous_depth(prev_p);
         // Written so that NaN or infinite depths count as disoccluded.
-        disoccluded = !(abs(previous - expected) < threshold * expected);
+        disoccluded = !(abs(previous_depth - expected) < threshold * expected);
     }
 
     // Temporal moments (Welford), restarted on disocclusion, count bounded by max_samples.
@@ -806,8 +832,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     // History blended from the texels that agree (run_history.y > 0), when only some of them do.
     vec2 run_history = vec2(0.0);
     if (!disoccluded) {
-        ivec2 hp = clamp(ivec2(history_uv * vec2(dnsr_get_extent())), ivec2(0), dnsr_get_extent() - 1);
-        m = dnsr_read_previous_moments(hp);
+        m = DNSR_SPEC_STABLE_HISTORY ? dnsr_read_previous_moments(hp) : nearest;
         // The depth test passes a surface at the same distance that faces another way (the other face of a crease
         // or a fin, a thin receiver beside a lit one): where the nearest texel's normal turned, its moments are
         // another surface's. Start again, or (below) continue the heaviest texel of the footprint that kept this
@@ -834,7 +859,6 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         // brighten a shadowed receiver along every silhouette against the background.
         // (No runtime condition beside the specialization: with one, lavapipe leaked memory every frame.)
         if (DNSR_SPEC_STABLE_HISTORY) {
-            vec2 t = history_uv * vec2(dnsr_get_extent()) - 0.5;
             vec2 f = t - floor(t);
             float all_weight = 0.0;
             // Texels weighed at 1/16 or more: one where the camera stood still.
@@ -860,7 +884,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             // on the 9- and 16-texel loops changed nothing).
             [[unroll]] for (int k = 0; k < 4; ++k) {
                 float weight = ((k & 1) != 0 ? f.x : 1.0 - f.x) * ((k & 2) != 0 ? f.y : 1.0 - f.y);
-                ivec2 q = clamp(ivec2(floor(t)) + ivec2(k & 1, k >> 1), ivec2(0), dnsr_get_extent() - 1);
+                ivec2 q = clamp(footprint + ivec2(k & 1, k >> 1), ivec2(0), last_texel);
                 if (weight < 1.0 / 16.0) continue;
                 vec4 mq = dnsr_read_previous_moments(q);
                 all_weight += weight;
@@ -991,7 +1015,8 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     float clamp_sigmas = DNSR_SPEC_MOVING_SHADOWS && still && s_moved[own_tile.y][own_tile.x] != 0u ? dnsr_get_moving_settings().y
                                                                                                   : disocc.w;
     float history = disoccluded ? local.x
-                  : (run_history.y > 0.0 ? run_history.x / run_history.y : dnsr_read_history(history_uv));
+                  : (run_history.y > 0.0 ? run_history.x / run_history.y
+                                        : (DNSR_SPEC_STABLE_HISTORY ? dnsr_read_history(history_uv) : dnsr_bilinear(texel_history, t)));
     if (!dnsr_finite(history)) history = local.x;
     // A stable pixel's history is clamped to what its run allows instead: after n identical samples the
     // visibility lies within DNSR_RUN_CLAMP_SAMPLES / n of them (the rule of three: 95% confidence for 3).

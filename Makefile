@@ -94,6 +94,18 @@ bench-smoke:
 		assert all(0 < x["persistent_memory_bytes"] < x["memory_bytes"] for x in r); \
 		assert d["copy_bandwidth"]["gbps_median"] > 0; \
 		open("out/bench-smoke/bench.md").read(); print(f"bench smoke: {len(r)} configurations, valid bench.json")'
+	@# --shader-override with dnsr's own SPIR-V for two variants: the override path under validation, and a bad
+	@# variant name refused with the context's error.
+	env -u VK_LOADER_DEBUG DNSR_DEVICE="$(DNSR_DEVICE)" target/release/dnsr-bench --sizes 64x32 --scenes typical \
+		--presets quality --precisions fp32 --frames 3 --warmup 1 --warmup-ms 0 --copy-mib 8 --copy-runs 1 --validation \
+		--shader-override tile_classification_r16f=shaders/spv/tile_classification_r16f.spv \
+		--shader-override filter=shaders/spv/filter.spv --out out/bench-smoke-override > /dev/null
+	grep -q -- "--shader-override filter=" out/bench-smoke-override/bench.md
+	! target/release/dnsr-bench --sizes 64x32 --scenes typical --presets quality --precisions fp32 --frames 1 \
+		--warmup 0 --warmup-ms 0 --copy-mib 8 --copy-runs 1 --shader-override no_such_variant=shaders/spv/filter.spv \
+		--out out/bench-smoke-bad 2> out/bench-smoke-bad.log > /dev/null
+	grep -q "not a dnsr shader variant" out/bench-smoke-bad.log
+	@echo "bench smoke: --shader-override runs and refuses an unknown variant"
 
 # Regenerates every generated, committed file: shaders/generated/dnsr_constants.glsl, shaders/spv/*.spv (needs
 # glslc), include/dnsr.h (cbindgen) and capi-tests/generated/layout.h. `make test` fails when any is stale.

@@ -9,7 +9,8 @@
  * that killed it, and the next batch goes on after that case, so one run lists every such case.
  *
  * Besides the seeded random cases, a few targeted ones change exactly what once aborted the process inside
- * SPIRV-Reflect (an image's Sampled operand, an interface variable's storage class, a huge id bound).
+ * SPIRV-Reflect (an image's Sampled operand, an interface variable's storage class, a huge id bound) or the driver
+ * (a descriptor set that SPIRV-Reflect does not report).
  *
  * Usage: override_fuzz [--seed S] [--cases N] [--batch N] [--first K]   (rerun case K: --seed S --cases 1 --first K);
  * the environment variable DNSR_SPV_DIR replaces the folder of dnsr's modules compiled in.
@@ -74,8 +75,8 @@ static size_t find(const Module *m, uint32_t opcode, size_t from)
     return 0;
 }
 
-enum { OP_ENTRY_POINT = 15, OP_TYPE_IMAGE = 25, OP_VARIABLE = 59 };
-#define TARGETED_CASES 4u
+enum { OP_ENTRY_POINT = 15, OP_TYPE_IMAGE = 25, OP_VARIABLE = 59, OP_DECORATE = 71, DECORATION_DESCRIPTOR_SET = 34 };
+#define TARGETED_CASES 5u
 
 /* Case `index`: the module of a variant with what the case changes; returns the variant and writes a description. */
 static uint32_t *make_case(uint64_t seed, uint32_t index, size_t *count, const char **variant, char *what, size_t cap)
@@ -113,6 +114,13 @@ static uint32_t *make_case(uint64_t seed, uint32_t index, size_t *count, const c
         at = find(m, OP_TYPE_IMAGE, 0);
         w[at + 3] = 7;
         snprintf(what, cap, "OpTypeImage at word %zu: Dim 7", at);
+        return w;
+    case 4: /* a DescriptorSet decoration of 0xFFFFFFFF (SPIRV-Reflect's "no set": the binding went unchecked, and
+             * lavapipe crashed creating the pipeline) */
+        for (at = find(m, OP_DECORATE, 0); at && w[at + 2] != DECORATION_DESCRIPTOR_SET; at = find(m, OP_DECORATE, at + 1)) {}
+        CHECK(at, "%s has no DescriptorSet decoration", *variant);
+        w[at + 3] = 0xFFFFFFFFu;
+        snprintf(what, cap, "OpDecorate at word %zu: DescriptorSet 0xFFFFFFFF", at);
         return w;
     }
     uint32_t changes = 1 + next() % 6;

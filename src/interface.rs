@@ -53,6 +53,21 @@ fn specialization_ids(spirv: &[u8]) -> Result<Specialization> {
     Ok(mask)
 }
 
+/// Every DescriptorSet decoration names set 0, the only one dnsr binds. Checked on the words, not through the
+/// reflection library: SPIRV-Reflect takes set 0xFFFFFFFF for "no set" and leaves such a binding out, so a module
+/// decorated so passed the binding checks and the driver met a set its layout lacks (lavapipe crashed in
+/// vkCreateComputePipelines; override_fuzz's case 4).
+fn only_set_zero(spirv: &[u8]) -> Result<()> {
+    const OP_DECORATE: u32 = 71;
+    const DECORATION_DESCRIPTOR_SET: u32 = 34;
+    for (opcode, ops) in instructions(spirv)? {
+        if opcode == OP_DECORATE && ops.len() >= 3 && ops[1] == DECORATION_DESCRIPTOR_SET && ops[2] != 0 {
+            return Err(Error::ShaderInterface(format!("id {} is in descriptor set {}; dnsr binds set 0 only", ops[0], ops[2])));
+        }
+    }
+    Ok(())
+}
+
 /// The workgroup size of the module's GLCompute entry point named "main"; an error without one.
 fn entry_workgroup_size(spirv: &[u8]) -> Result<[u32; 3]> {
     const OP_ENTRY_POINT: u32 = 15;
@@ -166,6 +181,7 @@ fn image_format_name(format: u32) -> String {
 
 /// Reflects a module and checks every binding against the interface dnsr knows.
 pub(crate) fn reflect(spirv: &[u8]) -> Result<Interface> {
+    only_set_zero(spirv)?;
     let (raw, push_constant_bytes, push_layout) = reflect_module(spirv)?;
     let mut bindings = Vec::with_capacity(raw.len());
     let mut layouts = vec![(None, push_layout)];

@@ -155,6 +155,16 @@ fn reflection_refuses_what_it_cannot_handle() {
     let spv: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
     let err = reflect(&spv).unwrap_err().to_string();
     assert!(err.contains("specialization constant id 7"), "{err}");
+    // A descriptor set of 0xFFFFFFFF (OpDecorate <id> DescriptorSet 0 -> ~0), which SPIRV-Reflect takes for "no set"
+    // and leaves out; and set 1. Both refused before a pipeline is made of them.
+    for set in [u32::MAX, 1] {
+        let mut words: Vec<u32> = classification.spirv.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+        let at = words.windows(4).position(|w| w[0] == (4 << 16 | 71) && w[2] == 34).expect("a DescriptorSet decoration");
+        words[at + 3] = set;
+        let spv: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
+        let err = reflect(&spv).unwrap_err().to_string();
+        assert!(err.contains(&format!("descriptor set {set}; dnsr binds set 0 only")), "{err}");
+    }
 }
 
 /// include/dnsr.h as cbindgen generates it with cbindgen.toml from src/capi alone: only what the C API module

@@ -35,10 +35,12 @@ pub(crate) struct Interface {
     pub specializes: Specialization,
 }
 
+/// SPIR-V's OpDecorate, which the checks below read from the words.
+const OP_DECORATE: u32 = 71;
+
 /// The specialization constant ids a module declares (OpDecorate SpecId), as a mask; an id dnsr does not set is
 /// refused.
 fn specialization_ids(spirv: &[u8]) -> Result<Specialization> {
-    const OP_DECORATE: u32 = 71;
     const DECORATION_SPEC_ID: u32 = 1;
     let mut mask = 0;
     for (opcode, ops) in instructions(spirv)? {
@@ -58,7 +60,6 @@ fn specialization_ids(spirv: &[u8]) -> Result<Specialization> {
 /// decorated so passed the binding checks and the driver met a set its layout lacks (lavapipe crashed in
 /// vkCreateComputePipelines; override_fuzz's case 4).
 fn only_set_zero(spirv: &[u8]) -> Result<()> {
-    const OP_DECORATE: u32 = 71;
     const DECORATION_DESCRIPTOR_SET: u32 = 34;
     for (opcode, ops) in instructions(spirv)? {
         if opcode == OP_DECORATE && ops.len() >= 3 && ops[1] == DECORATION_DESCRIPTOR_SET && ops[2] != 0 {

@@ -50,7 +50,7 @@ macro_rules! declare_settings {
 
 declare_settings! {
     /// Number of a-trous filter passes, with tap steps 1, 2, 4, 8 pixels.
-    filter_passes: u32 = 3, [1, MAX_FILTER_PASSES] "[1, 4]";
+    filter_passes: u32 = 2, [1, MAX_FILTER_PASSES] "[1, 4]";
     /// Relative depth change that counts as disocclusion when the surface faces the camera.
     disocclusion_threshold_facing: f32 = 0.01, [0.0, 10.0] "[0, 10]";
     /// Relative depth change that counts as disocclusion at grazing angles.
@@ -150,17 +150,18 @@ pub enum Preset {
     /// its mean error is lower (small objects lose less to a single pass); on wide penumbrae its error is higher
     /// (docs/do-no-harm.md, docs/accuracy.md).
     Fast,
-    /// The FidelityFX shadow denoiser's values (its output, for engines that need the old look): 5% current-frame
-    /// weight, output contrast 1.2, cross-tap weight 2/3, none of the run-based features.
+    /// The FidelityFX shadow denoiser's values (its output, for engines that need the old look): 3 filter
+    /// passes, 5% current-frame weight, output contrast 1.2, cross-tap weight 2/3, none of the run-based features.
     Balanced,
-    /// The default (`Settings::default()`): the measured best knobs combined. 3 filter passes (a fourth's 16-px
-    /// kernel blurs small objects and silhouettes: docs/do-no-harm.md), 10% current-frame weight, no output
-    /// contrast, cross tap weight 0.5, history of pixels with 8 identical samples in a row clamped to their run and
-    /// restarted after 3 samples of the other value (1 where the neighbourhood agrees; see docs/accuracy.md for
-    /// why each), pixels with 8 identical samples in a row converged (passed through the filter among converged
-    /// neighbours; docs/do-no-harm.md), without penumbra guidance the local statistics taken over the pixel's
-    /// own surface (creases, fins and the sky left out: docs/do-no-harm.md), and, with penumbra guidance, pixels
-    /// under a penumbra narrower than a quarter of a pixel either side output as sampled.
+    /// The default (`Settings::default()`): the measured best knobs combined. 2 filter passes (a third's 4-px step
+    /// blurs hard edges and thin features on scenes it has never seen, and costs a quarter of the frame at 4K:
+    /// docs/do-no-harm.md), 10% current-frame weight, no output contrast, cross tap weight 0.5, history of pixels with 8
+    /// identical samples in a row clamped to their run and restarted after 3 samples of the other value (1 where the
+    /// neighbourhood agrees; see docs/accuracy.md for why each), pixels with 8 identical samples in a row converged
+    /// (passed through the filter among converged neighbours; docs/do-no-harm.md), without penumbra guidance the local
+    /// statistics taken over the pixel's own surface (creases, fins and the sky left out: docs/do-no-harm.md), and,
+    /// with penumbra guidance, pixels under a penumbra narrower than a quarter of a pixel either side output as
+    /// sampled.
     Quality,
 }
 
@@ -169,6 +170,7 @@ impl Settings {
     pub fn preset(preset: Preset) -> Settings {
         let quality = Settings::default();
         let balanced = Settings {
+            filter_passes: 3,
             min_current_weight: 0.05,
             output_contrast: 1.2,
             kernel_cross_weight: 2.0 / 3.0,

@@ -837,7 +837,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
          `Preset::Quality` takes each knob's winner unless it costs stability elsewhere: min_current_weight 0.1 \
          rather than 0.2 (0.2 doubles the flicker of static penumbrae again), history_clamp_sigmas stays 0.5 (0.25 \
          helps moving shadows but blurs static penumbrae and edges), output_contrast 1 (the FidelityFX darkening is \
-         a bias), three filter passes (four win on these sequences alone but blur the scene family's small objects and silhouettes: docs/do-no-harm.md), kernel_cross_weight 0.5, stable_history_samples 8 and history_flip_samples 3 \
+         a bias), two filter passes (three and four win on these sequences alone, but a third blurs the scene family's hard edges and thin features and a fourth its small objects and silhouettes too: docs/do-no-harm.md), kernel_cross_weight 0.5, stable_history_samples 8 and history_flip_samples 3 \
          (table above: together they lower every sequence's RMSE against Quality without them; stable history \
          alone keeps a hard edge the 1-spp input already resolves from being pulled towards its 17x17 mean but \
          lets a moving hard shadow lag, which the flip restart removes at a small cost in static penumbrae; 8 \
@@ -847,8 +847,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
          sample brings moving_occluder to 0.019 but leaves the static penumbrae and the camera pan worse than \
          Quality without either knob, 0.032 and 0.031); converged_samples 8 comes from \
          the scene family of docs/viewer-family.md (docs/do-no-harm.md). `Preset::Fast` is Quality \
-         in one filter pass (the scene family's small objects lose less to one pass than to three; these \
-         sequences' wide penumbrae gain from three). `Preset::Balanced` is the FidelityFX values. Timings \
+         in one filter pass (the scene family's small objects lose less to one pass than to two; these \
+         sequences' wide penumbrae gain from two). `Preset::Balanced` is the FidelityFX values. Timings \
          for the same settings come from `make bench` (BENCHMARKS.md).\n",
         best.join(", ")
     );

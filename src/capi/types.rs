@@ -198,10 +198,10 @@ pub type DnsrPreset = u32;
 /// Quality's values with one filter pass: the cheapest setting with Quality's do-no-harm features (runs,
 /// converged pixels, hard penumbrae); docs/do-no-harm.md measures both.
 pub const DNSR_PRESET_FAST: DnsrPreset = 0;
-/// The FidelityFX shadow denoiser's values: its output, for engines that need the old look (5% current-frame
-/// weight, output contrast 1.2, cross-tap weight 2/3, none of the run-based features).
+/// The FidelityFX shadow denoiser's values: its output, for engines that need the old look (3 filter passes, 5%
+/// current-frame weight, output contrast 1.2, cross-tap weight 2/3, none of the run-based features).
 pub const DNSR_PRESET_BALANCED: DnsrPreset = 1;
-/// The default (same as `dnsr_settings_init_default`): the measured best knobs combined. 3 filter passes, 10%
+/// The default (same as `dnsr_settings_init_default`): the measured best knobs combined. 2 filter passes, 10%
 /// current-frame weight, no output contrast, cross-tap weight 0.5, stable history after 8 identical samples,
 /// restarted after 3 samples of the other value, converged after 8 identical samples (unfiltered among converged
 /// neighbours), with penumbra guidance pixels under a penumbra narrower than a quarter pixel output as sampled.

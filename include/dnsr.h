@@ -428,9 +428,9 @@ typedef struct DnsrSettings {
    * a pixel's motion vector is under 0.01 px and this frame's samples around its 8x4 tile (24x20 px) lie more
    * than this many standard deviations (plus two samples) from last frame's accumulated means, its history is
    * clamped to movingHistoryClampSigmas instead of historyClampSigmas. 3 takes a moving occluder's error to
-   * about two thirds for 0.09 ms more at 4K on an H100 (docs/do-no-harm.md); off in every preset. Needs
+   * about two thirds for 0.07 ms more at 4K on an H200 (docs/do-no-harm.md); 0 in DNSR_PRESET_BALANCED. Needs
    * stableHistorySamples or convergedSamples > 0.
-   * Range [0, 16]; 0 disables (the pipelines compile it out). Default 0 (FidelityFX 0).
+   * Range [0, 16]; 0 disables (the pipelines compile it out). Default 3 (FidelityFX 0).
    */
   float movingShadowSigmas;
   /**
@@ -1689,7 +1689,8 @@ typedef struct DnsrDiagnosis {
  * The default (same as `dnsr_settings_init_default`): the measured best knobs combined. 2 filter passes, 10%
  * current-frame weight, no output contrast, cross-tap weight 0.5, stable history after 8 identical samples,
  * restarted after 3 samples of the other value, converged after 8 identical samples (unfiltered among converged
- * neighbours), with penumbra guidance pixels under a penumbra narrower than a quarter pixel output as sampled.
+ * neighbours), a shadow that moved over a still surface clamped to its new samples, with penumbra guidance pixels
+ * under a penumbra narrower than a quarter pixel output as sampled.
  */
 #define DNSR_PRESET_QUALITY 2
 

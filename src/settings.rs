@@ -92,11 +92,11 @@ declare_settings! {
     /// many standard deviations (their Bernoulli spread, plus two samples), its history is clamped to
     /// `moving_history_clamp_sigmas` instead of `history_clamp_sigmas`: the history still holds where the shadow
     /// was. 3 takes `make accuracy`'s moving family from 0.51 to 0.33 of its input's error (its still twins
-    /// unchanged) for 0.09 ms more classification at 4K on an H100; off in every preset, which keeps Quality within
-    /// 1.3x Balanced's time (docs/do-no-harm.md, "A shadow moving over a still surface"). 0 turns it off (its
-    /// pipelines compile it out: `DNSR_SPEC_MOVING_SHADOWS`); it needs the run features (`stable_history_samples`
-    /// or `converged_samples` > 0).
-    moving_shadow_sigmas: f32 = 0.0, [0.0, 16.0] "[0, 16]";
+    /// unchanged) for 0.07 ms more classification at 4K on an H200; on in Quality and Fast since Quality's second
+    /// filter pass went, which paid for it (docs/do-no-harm.md, "A shadow moving over a still surface"). 0 turns it
+    /// off (its pipelines compile it out: `DNSR_SPEC_MOVING_SHADOWS`; Balanced); it needs the run features
+    /// (`stable_history_samples` or `converged_samples` > 0).
+    moving_shadow_sigmas: f32 = 3.0, [0.0, 16.0] "[0, 16]";
     /// The history clamp's width, in local standard deviations, where the shadow moved (`moving_shadow_sigmas`).
     moving_history_clamp_sigmas: f32 = 0.1, [0.0, 16.0] "[0, 16]";
     /// Hard tiles told by time, without penumbra guidance: a world point in a hard shadow keeps its value from frame
@@ -154,14 +154,15 @@ pub enum Preset {
     /// passes, 5% current-frame weight, output contrast 1.2, cross-tap weight 2/3, none of the run-based features.
     Balanced,
     /// The default (`Settings::default()`): the measured best knobs combined. 2 filter passes (a third's 4-px step
-    /// blurs hard edges and thin features on scenes it has never seen, and costs a quarter of the frame at 4K:
-    /// docs/do-no-harm.md), 10% current-frame weight, no output contrast, cross tap weight 0.5, history of pixels with 8
-    /// identical samples in a row clamped to their run and restarted after 3 samples of the other value (1 where the
+    /// blurs hard edges and thin features on scenes it has never seen, and costs 0.25 ms at 4K on an H200:
+    /// docs/do-no-harm.md), 10% current-frame weight, no output contrast, cross tap weight 0.5, history of pixels with
+    /// 8 identical samples in a row clamped to their run and restarted after 3 samples of the other value (1 where the
     /// neighbourhood agrees; see docs/accuracy.md for why each), pixels with 8 identical samples in a row converged
-    /// (passed through the filter among converged neighbours; docs/do-no-harm.md), without penumbra guidance the local
-    /// statistics taken over the pixel's own surface (creases, fins and the sky left out: docs/do-no-harm.md), and,
-    /// with penumbra guidance, pixels under a penumbra narrower than a quarter of a pixel either side output as
-    /// sampled.
+    /// (passed through the filter among converged neighbours; docs/do-no-harm.md), a shadow that moved over a still
+    /// surface clamped to its new samples (`moving_shadow_sigmas`), without penumbra guidance the local statistics
+    /// taken over the pixel's own surface (creases, fins and the sky left out: docs/do-no-harm.md) and hard tiles told
+    /// by time, and, with penumbra guidance, pixels under a penumbra narrower than a quarter of a pixel either side
+    /// output as sampled.
     Quality,
 }
 
@@ -179,6 +180,7 @@ impl Settings {
             converged_samples: 0.0,
             hard_penumbra_pixels: 0.0,
             hard_tile_frames: 0.0,
+            moving_shadow_sigmas: 0.0,
             ..quality
         };
         match preset {

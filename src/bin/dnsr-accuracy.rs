@@ -846,7 +846,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
          beat 2 on every sequence but moving_occluder, where both stay below 0.03; a restart after any single \
          sample brings moving_occluder to 0.019 but leaves the static penumbrae and the camera pan worse than \
          Quality without either knob, 0.032 and 0.031); converged_samples 8 comes from \
-         the scene family of docs/viewer-family.md (docs/do-no-harm.md). `Preset::Fast` is Quality \
+         the scene family of docs/viewer-family.md (docs/do-no-harm.md); moving_shadow_sigmas 3 takes the moving \
+         family's error to two thirds (docs/do-no-harm.md). `Preset::Fast` is Quality \
          in one filter pass (the scene family's small objects lose less to one pass than to two; these \
          sequences' wide penumbrae gain from two). `Preset::Balanced` is the FidelityFX values. Timings \
          for the same settings come from `make bench` (BENCHMARKS.md).\n",

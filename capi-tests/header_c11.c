@@ -53,19 +53,21 @@ int main(void)
     /* A pure query needs no device: the default settings come back tagged. */
     DnsrSettings s;
     memset(&s, 0, sizeof s);
-    if (dnsr_settings_init_default(&s) != DNSR_SUCCESS || s.sType != DNSR_STRUCTURE_TYPE_SETTINGS || s.filterPasses != 3) {
+    if (dnsr_settings_init_default(&s) != DNSR_SUCCESS || s.sType != DNSR_STRUCTURE_TYPE_SETTINGS || s.filterPasses != 2) {
         fprintf(stderr, "dnsr_settings_init_default: sType %u, filterPasses %u\n", s.sType, s.filterPasses);
         failures++;
     }
 
-    /* Presets: Quality is the default (three passes, stable history); Balanced the FidelityFX values; Fast Quality in one pass. */
+    /* Presets: Quality is the default (two passes, stable history, the moving-shadow test); Balanced the FidelityFX values
+       (three passes, none of the run features); Fast Quality in one pass. */
     DnsrSettings fast, balanced, quality;
     if (dnsr_settings_init_preset(DNSR_PRESET_FAST, &fast) != DNSR_SUCCESS || fast.filterPasses != 1
         || fast.stableHistorySamples != 8.0f
         || dnsr_settings_init_preset(DNSR_PRESET_QUALITY, &quality) != DNSR_SUCCESS || memcmp(&quality, &s, sizeof s) != 0
-        || quality.filterPasses != 3 || quality.stableHistorySamples != 8.0f || quality.sType != DNSR_STRUCTURE_TYPE_SETTINGS
+        || quality.filterPasses != 2 || quality.stableHistorySamples != 8.0f || quality.movingShadowSigmas != 3.0f || quality.sType != DNSR_STRUCTURE_TYPE_SETTINGS
         || dnsr_settings_init_preset(DNSR_PRESET_BALANCED, &balanced) != DNSR_SUCCESS || balanced.filterPasses != 3
-        || balanced.stableHistorySamples != 0.0f || balanced.outputContrast != 1.2f) {
+        || balanced.stableHistorySamples != 0.0f || balanced.outputContrast != 1.2f
+        || balanced.movingShadowSigmas != 0.0f) {
         fprintf(stderr, "dnsr_settings_init_preset: fast %u passes, quality %u passes, stable %g, balanced stable %g\n",
                 fast.filterPasses, quality.filterPasses, (double)quality.stableHistorySamples,
                 (double)balanced.stableHistorySamples);

@@ -153,7 +153,7 @@ fn handles_codes_and_messages() {
     assert_eq!(dnsr_context_get_timings(ctx, &mut timings), DnsrResult::DNSR_NOT_READY);
     let mut s = unsafe { std::mem::zeroed::<DnsrSettings>() };
     assert_eq!(dnsr_context_get_settings(ctx, &mut s), DnsrResult::DNSR_SUCCESS);
-    assert_eq!(s.filter_passes, 3);
+    assert_eq!(s.filter_passes, crate::Settings::default().filter_passes);
     s.filter_passes = 9;
     assert_eq!(dnsr_context_set_settings(ctx, &s), DnsrResult::DNSR_ERROR_INVALID_SETTING);
     assert!(last_error().contains("filterPasses"), "{}", last_error());

@@ -92,10 +92,10 @@ declare_settings! {
     /// many standard deviations (their Bernoulli spread, plus two samples), its history is clamped to
     /// `moving_history_clamp_sigmas` instead of `history_clamp_sigmas`: the history still holds where the shadow
     /// was. 3 takes `make accuracy`'s moving family from 0.51 to 0.33 of its input's error (its still twins
-    /// unchanged) for 0.07 ms more classification at 4K on an H200; on in Quality and Fast since Quality's second
-    /// filter pass went, which paid for it (docs/do-no-harm.md, "A shadow moving over a still surface"). 0 turns it
-    /// off (its pipelines compile it out: `DNSR_SPEC_MOVING_SHADOWS`; Balanced); it needs the run features
-    /// (`stable_history_samples` or `converged_samples` > 0).
+    /// unchanged, measured with three filter passes) for 0.07 ms more classification at 4K on an H200; on in Quality
+    /// and Fast since Quality's third filter pass went, which paid for it (docs/do-no-harm.md, "A shadow moving over
+    /// a still surface"). 0 turns it off (its pipelines compile it out: `DNSR_SPEC_MOVING_SHADOWS`; Balanced); it
+    /// needs the run features (`stable_history_samples` or `converged_samples` > 0).
     moving_shadow_sigmas: f32 = 3.0, [0.0, 16.0] "[0, 16]";
     /// The history clamp's width, in local standard deviations, where the shadow moved (`moving_shadow_sigmas`).
     moving_history_clamp_sigmas: f32 = 0.1, [0.0, 16.0] "[0, 16]";

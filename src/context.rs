@@ -134,6 +134,8 @@ pub struct Context {
     alias_transient: bool,
     timestamps: Option<Timestamps>,
     frames_recorded: u64,
+    /// The barrier bookkeeping of `record`, kept between records so that no record zeroes its 8 KB again.
+    hazards: Box<Hazards>,
     /// `record_classify` calls recorded (numbers the classifier's timestamps).
     classify_dispatches: u64,
     /// Stages `HostSync` may name on this device and queue family.
@@ -276,6 +278,7 @@ impl Context {
             alias_transient: info.alias_transient_memory,
             timestamps: None,
             frames_recorded: 0,
+            hazards: Box::default(),
             classify_dispatches: 0,
             supported_stages,
             engine_reads: false,
@@ -752,12 +755,6 @@ impl Context {
             }
         }
 
-        let constants: [Option<FrameConstants>; MAX_LIGHTS_PER_RECORD] = std::array::from_fn(|i| {
-            let d = ds.get(i)?;
-            let light = &self.lights[d.light_index as usize];
-            Some(self.frame_constants(d, rect, d.reset || light.pending_reset || !light.initialized))
-        });
-
         let dev = &self.vk.device;
         self.frames_recorded += 1;
         let first_query = self.timestamps.as_mut().map(|t| t.begin(dev, cmd, self.frames_recorded, self.settings.filter_passes));
@@ -816,8 +813,10 @@ impl Context {
             unsafe { dev.cmd_clear_color_image(cmd, img.image, vk::ImageLayout::GENERAL, &zero, &[color_range()]) };
         }
         // Each light's constants at its slot (one update each: no padded staging copy of every slot).
-        for (i, c) in constants.iter().flatten().enumerate() {
-            unsafe { dev.cmd_update_buffer(cmd, self.constants_buffer, i as u64 * CONSTANTS_STRIDE, bytemuck::bytes_of(c)) };
+        for (i, d) in ds.iter().enumerate() {
+            let light = &self.lights[d.light_index as usize];
+            let c = self.frame_constants(d, rect, d.reset || light.pending_reset || !light.initialized);
+            unsafe { dev.cmd_update_buffer(cmd, self.constants_buffer, i as u64 * CONSTANTS_STRIDE, bytemuck::bytes_of(&c)) };
         }
         barrier::transfer_to_compute(dev, cmd);
 
@@ -825,7 +824,8 @@ impl Context {
         // one wrote, or writes what an earlier one read, since the last barrier. The lights' dispatches of one pass
         // touch only their own images and run together.
         let binder = binder_ref(&self.binder);
-        let mut hazards = Hazards::default();
+        let hazards = &mut self.hazards;
+        hazards.clear();
         stamp(0);
         for index in 0..pass_count {
             for k in 0..dispatch_count(index) {
@@ -1045,6 +1045,11 @@ impl Default for Hazards {
 }
 
 impl Hazards {
+    /// Forgets every access: the state after a barrier (the arrays' stale entries lie beyond the counts).
+    fn clear(&mut self) {
+        (self.reads, self.writes) = (0, 0);
+    }
+
     /// Whether `pass` must wait for the passes since the last barrier (read-after-write, write-after-write or
     /// write-after-read on one of its images); records its own accesses either way.
     fn needs_barrier(&mut self, pipeline: &PassPipeline, pass: &Pass) -> bool {
@@ -1061,7 +1066,7 @@ impl Hazards {
                 self.written[..self.writes].contains(&view) || (write && self.read[..self.reads].contains(&view))
             });
         if conflict {
-            (self.reads, self.writes) = (0, 0);
+            self.clear();
         }
         for (view, write) in accesses() {
             let (list, n) = if write { (&mut self.written, &mut self.writes) } else { (&mut self.read, &mut self.reads) };

@@ -392,6 +392,20 @@ impl Gpu {
         r
     }
 
+    /// Resets and begins `cmd`, calls `record` on it and ends it without submitting it (the bench's back-to-back
+    /// record timing).
+    pub fn record_unsubmitted<R>(&self, cmd: vk::CommandBuffer, record: impl FnOnce(vk::CommandBuffer) -> R) -> R {
+        let d = &self.device;
+        unsafe {
+            d.reset_command_buffer(cmd, vk::CommandBufferResetFlags::empty()).expect("reset");
+            d.begin_command_buffer(cmd, &vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT))
+                .expect("begin");
+        }
+        let r = record(cmd);
+        unsafe { d.end_command_buffer(cmd).expect("end") };
+        r
+    }
+
     /// Records a copy between a staging buffer and an image, moving the image to the transfer layout and back to
     /// its resting layout with full barriers around it.
     pub fn cmd_copy(&self, cmd: vk::CommandBuffer, img: &TestImage, staging: &Staging, offset: u64, to_image: bool) {

@@ -47,7 +47,9 @@ fn record(
 
 /// Wall microseconds of `frames` records (each submitted and waited for, as in `measure`) of a context without
 /// timestamps, after as many untimed ones as `measure`'s pixel-class pass records (a context's first records
-/// compile the pipelines of the specialization its frames use).
+/// compile the pipelines of the specialization its frames use); then of `frames` records back to back into the
+/// same command buffer, reset and never submitted (warm: caches and clocks as on a busy render thread, where the
+/// first list's records each follow an idle wait for the GPU).
 fn record_only(
     gpu: &Gpu,
     ctx: &mut Context,
@@ -56,7 +58,7 @@ fn record_only(
     cmd: vk::CommandBuffer,
     frames: usize,
     guidance: Option<Guidance>,
-) -> Result<Vec<f64>, String> {
+) -> Result<(Vec<f64>, Vec<f64>), String> {
     let mut us = Vec::with_capacity(frames);
     let skip = 2 * scene.frames.len();
     for index in 0..skip + frames {
@@ -67,7 +69,14 @@ fn record_only(
             us.push(elapsed.as_secs_f64() * 1e6);
         }
     }
-    Ok(us)
+    let mut warm = Vec::with_capacity(frames);
+    for index in skip + frames..skip + 2 * frames {
+        let d = dispatch(scene, index, &outputs[0], guidance);
+        let (r, elapsed) = gpu.record_unsubmitted(cmd, |cmd| record(ctx, cmd, &d, scene, index, outputs, guidance));
+        r.map_err(|e| format!("record back to back: {e}"))?;
+        warm.push(elapsed.as_secs_f64() * 1e6);
+    }
+    Ok((us, warm))
 }
 
 const READ: vk::ImageLayout = vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL;
@@ -79,6 +88,8 @@ pub struct ConfigRun {
     pub record_us: Vec<f64>,
     /// The same, recorded by a context without timestamps.
     pub record_us_untimed: Vec<f64>,
+    /// The same context's records back to back, never submitted (`record_only`).
+    pub record_us_warm: Vec<f64>,
     pub counts: PixelCounts,
     pub memory_bytes: u64,
     /// Context::persistent_memory_bytes: kept between records.
@@ -218,8 +229,8 @@ pub fn run(
     drop(ctx);
     outputs.iter().for_each(|o| gpu.destroy_image(o));
     let (timings, record_us, counts, warmup) = result?;
-    let record_us_untimed = untimed.transpose()?.unwrap_or_default();
-    Ok(ConfigRun { timings, record_us, record_us_untimed, counts, memory_bytes, persistent_bytes, filter_passes, warmup, pipelines })
+    let (record_us_untimed, record_us_warm) = untimed.transpose()?.unwrap_or_default();
+    Ok(ConfigRun { timings, record_us, record_us_untimed, record_us_warm, counts, memory_bytes, persistent_bytes, filter_passes, warmup, pipelines })
 }
 
 /// How long to warm up before the timed frames.

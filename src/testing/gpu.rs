@@ -377,15 +377,9 @@ impl Gpu {
 
     /// Records into `cmd` (reset first), submits it and waits.
     pub fn submit_with<R>(&self, cmd: vk::CommandBuffer, record: impl FnOnce(vk::CommandBuffer) -> R) -> R {
+        let r = self.record_unsubmitted(cmd, record);
         let d = &self.device;
         unsafe {
-            d.reset_command_buffer(cmd, vk::CommandBufferResetFlags::empty()).expect("reset");
-            d.begin_command_buffer(cmd, &vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT))
-                .expect("begin");
-        }
-        let r = record(cmd);
-        unsafe {
-            d.end_command_buffer(cmd).expect("end");
             d.queue_submit(self.queue, &[vk::SubmitInfo::default().command_buffers(&[cmd])], vk::Fence::null()).expect("submit");
             d.queue_wait_idle(self.queue).expect("wait");
         }

@@ -1184,7 +1184,7 @@ typedef struct DnsrPassTimings {
    */
   uint64_t frame;
   /**
-   * prepare (0 when skipped).
+   * prepare: visibility and checkerboard inputs only (otherwise the empty interval between its two timestamps).
    */
   double prepareMs;
   /**
@@ -1460,7 +1460,7 @@ typedef struct DnsrDiagnosis {
 #define DNSR_REFERENCE_DEPTH_INVERTED (1 << 1)
 
 /**
- * The hit mask holds lit bits (prepare skipped).
+ * The hit mask holds lit bits (the reference's prepare, which models the word classification forms, is skipped).
  */
 #define DNSR_REFERENCE_HIT_MASK_LIT_BITS (1 << 2)
 
@@ -1700,12 +1700,12 @@ typedef struct DnsrDiagnosis {
 #define DNSR_PRESET_MAX_ENUM 2147483647
 
 /**
- * FidelityFX SDK: bit = 1 means the shadow ray hit an occluder (dnsr inverts it in its prepare pass).
+ * FidelityFX SDK: bit = 1 means the shadow ray hit an occluder (classification inverts it as it reads it).
  */
 #define DNSR_HIT_MASK_OCCLUDED_BITS 0
 
 /**
- * bit = 1 means lit: read directly, prepare pass skipped.
+ * bit = 1 means lit. Either convention is read as it is, without a prepare pass.
  */
 #define DNSR_HIT_MASK_LIT_BITS 1
 

@@ -1,11 +1,12 @@
-// prepare: the host's hit mask (FidelityFX convention, bit = 1 means the ray hit an occluder) becomes dnsr's
-// internal tile mask (bit = 1 means lit). With a visibility input (DNSR_VISIBILITY_INPUT) it writes two words per
-// tile instead: the pixels whose visibility is exactly 1 (the tile mask) and exactly 0 (the dark mask), which the
-// uniform-tile test and the window sums of classification read. With a checkerboard input
-// (DNSR_CHECKERBOARD_INPUT) it first reconstructs each pixel's visibility from the half of the pixels traced this
-// frame (a traced pixel keeps its bit, the others take the mean of their four traced neighbours) and writes it for
-// classification, which then runs as for a visibility input. One invocation per 8x4 tile (per pixel for the
-// checkerboard input).
+// prepare: with a visibility input (DNSR_VISIBILITY_INPUT) it writes two words per tile: the pixels whose
+// visibility is exactly 1 (the tile mask) and exactly 0 (the dark mask), which the uniform-tile test and the window
+// sums of classification read. With a checkerboard input (DNSR_CHECKERBOARD_INPUT) it first reconstructs each
+// pixel's visibility from the half of the pixels traced this frame (a traced pixel keeps its bit, the others take
+// the mean of their four traced neighbours) and writes it for classification, which then runs as for a visibility
+// input. One invocation per 8x4 tile (per pixel for the checkerboard input). A hit mask does not go through it:
+// classification reads the host's words as they are and inverts FidelityFX's occluded bits itself (the variant
+// without either define, hit mask -> lit-bit tile mask, is what the CPU reference's prepare models; a hit-mask
+// context creates it but never dispatches it).
 #ifndef DNSR_PREPARE_GLSL
 #define DNSR_PREPARE_GLSL
 

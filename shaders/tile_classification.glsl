@@ -518,6 +518,10 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         ivec2 tile = g_window_base + w;
         uint valid = dnsr_tile_valid_bits(tile);
         uint word = valid != 0u ? dnsr_read_tile_mask(tile) : 0u;
+#ifndef DNSR_VISIBILITY_INPUT
+        // A hit mask is the host's, read as it is (no prepare pass): FidelityFX's convention sets occluded bits.
+        if (!dnsr_get_is_lit_bit_mask()) word = valid != 0u ? ~word : 0u;
+#endif
         s_words[w.y][w.x] = word;
         // Outside the tile grid: the nearest tile's count (the 3x3 test clamps to the grid).
         if (DNSR_SPEC_STABLE_HISTORY) s_quiet[w.y][w.x] = dnsr_read_previous_tile_quiet(clamp(tile, ivec2(0), dnsr_tile_count() - 1));

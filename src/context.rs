@@ -605,7 +605,7 @@ impl Context {
             tile_blocker: light.tile_blocker.view,
             spec: self.specialization(d.hit_distance.is_some(), d.hard_light),
             output: d.output.view,
-            tile_mask: if self.reads_mask_directly(d) { host(&d.hit_mask) } else { image(light.tile_mask.view, vk::ImageLayout::GENERAL) },
+            tile_mask: if self.reads_mask_directly() { host(&d.hit_mask) } else { image(light.tile_mask.view, vk::ImageLayout::GENERAL) },
             tile_dark: light.tile_dark.view,
             tile_meta: light.tile_meta.view,
             reprojection: light.reprojection.view,
@@ -696,7 +696,7 @@ impl Context {
         let extent = [rect.width, rect.height];
         // Shared by every light of the call: the shadow input, the mask convention, the settings, the debug view.
         let shared = &ds[0];
-        let run_prepare = !self.reads_mask_directly(shared);
+        let run_prepare = !self.reads_mask_directly();
         // Each light's views; its passes are built from them one at a time (a frame of passes is several KB, and
         // a record must not need eight of them on the host's stack).
         let views: [Option<FrameViews>; MAX_LIGHTS_PER_RECORD] =
@@ -884,10 +884,11 @@ impl Context {
         Ok(())
     }
 
-    /// Classification reads the host's hit mask as it is, without prepare: a hit mask of lit bits (visibility and
-    /// checkerboard inputs always go through prepare).
-    fn reads_mask_directly(&self, d: &ShadowsDispatch) -> bool {
-        self.shadow_input == ShadowInput::HitMask && d.hit_mask_convention == HitMaskConvention::LitBits
+    /// Classification reads the host's hit mask as it is, without prepare, in either convention (it inverts
+    /// FidelityFX's occluded bits itself; visibility and checkerboard inputs always go through prepare). Prepare
+    /// did nothing else for a hit mask, and cost a dispatch, a barrier and 0.005-0.007 ms (BENCHMARKS.md).
+    fn reads_mask_directly(&self) -> bool {
+        self.shadow_input == ShadowInput::HitMask
     }
 
     /// The constants of one light's frame.

@@ -24,10 +24,10 @@ pub struct HostImage {
 /// The bit convention of the hit mask.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum HitMaskConvention {
-    /// FidelityFX SDK: bit = 1 means the shadow ray hit an occluder. dnsr's prepare pass inverts it.
+    /// FidelityFX SDK: bit = 1 means the shadow ray hit an occluder. Classification inverts it as it reads it.
     #[default]
     OccludedBits,
-    /// bit = 1 means lit: dnsr reads the mask directly and skips its prepare pass.
+    /// bit = 1 means lit. Either convention is read as it is, without a prepare pass.
     LitBits,
 }
 

@@ -18,7 +18,8 @@ const CLASSIFY_BASE: u32 = QUERIES_PER_FRAME * FRAME_SLOTS;
 pub struct PassTimings {
     /// Which recorded frame these are from (counts `record_shadows` calls from 1).
     pub frame: u64,
-    /// prepare pass (0 when skipped).
+    /// prepare pass: visibility and checkerboard inputs only (otherwise the empty interval between its two
+    /// timestamps).
     pub prepare_ms: f64,
     /// tile classification pass.
     pub tile_classification_ms: f64,

@@ -15,7 +15,7 @@ pub type DnsrReferenceFlags = u32;
 pub const DNSR_REFERENCE_RESET: DnsrReferenceFlags = 1 << 0;
 /// Reverse-Z depth.
 pub const DNSR_REFERENCE_DEPTH_INVERTED: DnsrReferenceFlags = 1 << 1;
-/// The hit mask holds lit bits (prepare skipped).
+/// The hit mask holds lit bits (the reference's prepare, which models the word classification forms, is skipped).
 pub const DNSR_REFERENCE_HIT_MASK_LIT_BITS: DnsrReferenceFlags = 1 << 2;
 /// Penumbra guidance, as DNSR_DISPATCH_USE_HIT_DISTANCE: `readHitDistance` and `lightAngularSize` are used.
 pub const DNSR_REFERENCE_USE_HIT_DISTANCE: DnsrReferenceFlags = 1 << 3;

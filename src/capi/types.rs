@@ -218,9 +218,9 @@ pub const DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS: u32 = 1 << 30;
 
 /// Bit convention of the hit mask.
 pub type DnsrHitMaskConvention = u32;
-/// FidelityFX SDK: bit = 1 means the shadow ray hit an occluder (dnsr inverts it in its prepare pass).
+/// FidelityFX SDK: bit = 1 means the shadow ray hit an occluder (classification inverts it as it reads it).
 pub const DNSR_HIT_MASK_OCCLUDED_BITS: DnsrHitMaskConvention = 0;
-/// bit = 1 means lit: read directly, prepare pass skipped.
+/// bit = 1 means lit. Either convention is read as it is, without a prepare pass.
 pub const DNSR_HIT_MASK_LIT_BITS: DnsrHitMaskConvention = 1;
 /// Forces 32 bits.
 pub const DNSR_HIT_MASK_MAX_ENUM: DnsrHitMaskConvention = 0x7FFF_FFFF;
@@ -762,7 +762,7 @@ pub struct DnsrPassTimings {
     pub p_next: *mut c_void,
     /// Which recorded frame (counting record calls from 1).
     pub frame: u64,
-    /// prepare (0 when skipped).
+    /// prepare: visibility and checkerboard inputs only (otherwise the empty interval between its two timestamps).
     pub prepare_ms: f64,
     /// tile classification.
     pub tile_classification_ms: f64,

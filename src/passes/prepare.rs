@@ -1,6 +1,7 @@
-//! prepare: FidelityFX hit mask (1 = occluded) -> internal lit-bit tile mask, or with a visibility input the tile
-//! words of exactly lit and exactly shadowed pixels (a checkerboard input: the reconstructed visibility too).
-//! Shader: shaders/prepare.comp. Skipped when the host's mask already holds lit bits.
+//! prepare: with a visibility input the tile words of exactly lit and exactly shadowed pixels (a checkerboard
+//! input: the reconstructed visibility too). Shader: shaders/prepare.comp. Not run for a hit mask, which
+//! classification reads as the host gives it in either convention; a hit-mask context's prepare pipeline (FidelityFX
+//! hit mask -> lit-bit tile mask, what the CPU reference's prepare models) is created but never dispatched.
 
 use super::bindings::Resource;
 use super::{internal, FrameViews, Grid, Pass, Role};

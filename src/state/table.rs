@@ -208,6 +208,8 @@ use Scope::Light;
 
 /// Every internal image, in `Image` order (which is the order a light creates them in).
 pub const RESOURCES: [Resource; 11] = [
+    // Written by prepare for a visibility or checkerboard input (a hit mask is read as the host gives it); 4 bytes
+    // per tile, so allocated whatever the input.
     resource(Image::TileMask, "tile_mask", Formats::both(vk::Format::R32_UINT), Tile, Light, 1, Transient, Needed::Always),
     // 4 bytes per tile, so allocated whatever the input.
     resource(Image::TileDark, "tile_dark", Formats::both(vk::Format::R32_UINT), Tile, Light, 1, Transient, Needed::Always),
@@ -426,10 +428,11 @@ pub const ACCESSES: &[StateAccess] = {
     use Pixels::{Active, ActiveGroups, All, Tiles};
     use Target::{FilterInput, FilterOutput, Image as I, Previous};
     &[
-        a(Prepare, I(TileMask), Write, Tiles, When::Always, Config::Any),
+        // A hit mask is read as it is, by classification (prepare does not run for it).
+        a(Prepare, I(TileMask), Write, Tiles, When::Always, Config::VisibilityInput),
         a(Prepare, I(TileDark), Write, Tiles, When::Always, Config::VisibilityInput),
         a(Prepare, I(Reconstructed), Write, All, When::Always, Config::CheckerboardInput),
-        a(TileClassification, I(TileMask), Read, Tiles, When::Always, Config::Any),
+        a(TileClassification, I(TileMask), Read, Tiles, When::Always, Config::VisibilityInput),
         a(TileClassification, I(TileDark), Read, Tiles, When::Always, Config::VisibilityInput),
         a(TileClassification, I(Reconstructed), Read, All, When::Always, Config::CheckerboardInput),
         a(TileClassification, I(DepthCopy), Read, Active, When::Always, Config::Any),

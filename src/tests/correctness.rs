@@ -269,7 +269,7 @@ fn resize_and_odd_sizes_run_in_bounds() {
 }
 
 #[test]
-fn render_rect_writes_only_inside_and_lit_bit_masks_skip_prepare() {
+fn render_rect_writes_only_inside_and_both_mask_conventions_agree() {
     let g = gpu();
     let (w, h) = (48, 32);
     let mut r = runner(&g, w, h, Precision::Fp32);
@@ -284,7 +284,8 @@ fn render_rect_writes_only_inside_and_lit_bit_masks_skip_prepare() {
         }
     }
 
-    // The same frames with the mask delivered as lit bits (prepare skipped) give the same output, bit for bit.
+    // The same frames with the mask delivered as lit bits give the same output, bit for bit (classification reads
+    // either convention as the host gives it).
     let mut a = runner(&g, w, h, Precision::Fp32);
     let mut b = runner(&g, w, h, Precision::Fp32);
     for frame in 0..4 {

@@ -375,7 +375,11 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     }
 
     // Exact integer state, and every tile state present.
-    assert_eq!(tile_mask, cpu.tile_mask, "tile mask");
+    // A hit mask is read as the host gives it (no prepare): the reference's tile mask is then the lit-bit word
+    // classification forms on reading it, which the GPU does not store.
+    if visibility_input || checkerboard {
+        assert_eq!(tile_mask, cpu.tile_mask, "tile mask");
+    }
     if visibility_input || checkerboard {
         assert_eq!(tile_dark, cpu.tile_dark, "dark mask");
     }

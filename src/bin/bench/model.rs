@@ -62,8 +62,10 @@ fn host_rows(fed: Fed) -> Vec<Row> {
     let velocity_name = format!("velocity (host, {:?})", host.velocity());
     let normals_name = format!("normals (host, {:?})", host.normals());
     let mut rows = match fed.input {
+        // Classification reads a hit mask as it is (no prepare pass).
+        ShadowInput::HitMask => vec![row(TileClassification, "hit mask (host, R32_UINT)", 4.0, 4.0, Read, Tiles, Always)],
         // A checkerboard input reads the traced half of each frame's mask: its words hold both halves.
-        ShadowInput::HitMask | ShadowInput::Checkerboard => vec![row(Prepare, "hit mask (host, R32_UINT)", 4.0, 4.0, Read, Tiles, Always)],
+        ShadowInput::Checkerboard => vec![row(Prepare, "hit mask (host, R32_UINT)", 4.0, 4.0, Read, Tiles, Always)],
         // Prepare derives the tile words from every pixel's visibility, classification its moments' window.
         ShadowInput::Visibility => vec![
             row(Prepare, "visibility (host, R8_UNORM)", 1.0, 1.0, Read, All, Always),

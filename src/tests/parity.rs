@@ -379,8 +379,6 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     // classification forms on reading it, which the GPU does not store.
     if visibility_input || checkerboard {
         assert_eq!(tile_mask, cpu.tile_mask, "tile mask");
-    }
-    if visibility_input || checkerboard {
         assert_eq!(tile_dark, cpu.tile_dark, "dark mask");
     }
     assert_eq!(tile_meta, cpu.tile_meta, "tile metadata");

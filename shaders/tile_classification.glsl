@@ -1063,14 +1063,16 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     // A sample that is not exact contradicts nothing: it lies in a penumbra, whose tiles are not hard anyway.
     contradicted = contradicted && dnsr_is_exact(x) && own_sample;
 #endif
-    // In a tile whose 3x3 tiles were quiet long enough, a pixel that neither contradicts last frame nor was
-    // disoccluded is resolved by its sample (Settings::hard_tile_frames).
+    // In a tile whose 3x3 tiles were quiet long enough, a pixel that does not contradict last frame is resolved
+    // by its sample (Settings::hard_tile_frames). A disoccluded one too: it has no history, and filtering it with
+    // its neighbours blurred the hard edges that a moving camera uncovers (scene family, Quality not told that its
+    // light is hard: worse than the input 32 -> 23; docs/do-no-harm.md, "Disoccluded pixels of hard tiles").
     bool quiet = false;
     if (DNSR_SPEC_STABLE_HISTORY) {
         if (contradicted) dnsr_clear_tile_quiet(p / DNSR_TILE_SIZE);
         // Not under penumbra guidance: its hit distances tell hard penumbrae (dnsr_hard_penumbra), and the quiet tiles
         // of its penumbrae took the guided family's median ratio to the input from 0.70 to 0.81. The counts go on.
-        quiet = !guided && s_hard_tile[own_tile.y][own_tile.x] != 0u && !contradicted && !disoccluded;
+        quiet = !guided && s_hard_tile[own_tile.y][own_tile.x] != 0u && !contradicted;
     }
     if (own_sample && (quiet || DNSR_SPEC_HARD_LIGHT
                        || dnsr_hard_penumbra(blocker, dnsr_get_penumbra_settings(), dnsr_linear_depth(ndc, depth))

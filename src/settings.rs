@@ -104,8 +104,8 @@ declare_settings! {
     /// samples contradicted last frame (under a still camera, the sample differs from its texel's last sample; under
     /// a moving one, from the last samples of every texel of its footprint and of the 3x3 texels around it, or every
     /// texel of the footprint held both values, at least a quarter each, over 8 samples or more). Where the 3x3
-    /// tiles around a receiver's tile all counted this many frames or more, and the receiver neither contradicts
-    /// nor is disoccluded, its output is its sample of this frame (a hard or nearly hard shadow that the history and
+    /// tiles around a receiver's tile all counted this many frames or more, and the receiver does not contradict
+    /// (disoccluded or not), its output is its sample of this frame (a hard or nearly hard shadow that the history and
     /// the filter would blur under a moving camera). Where a penumbra shows no contradiction the output is its input,
     /// never worse than it. 0 turns this off (the FidelityFX behaviour); it needs the run features
     /// (`stable_history_samples` or `converged_samples` > 0). docs/do-no-harm.md, "Hard tiles told by time".

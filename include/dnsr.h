@@ -441,8 +441,8 @@ typedef struct DnsrSettings {
   /**
    * Without penumbra guidance: each 8x4 tile counts the frames since one of its receivers' samples contradicted
    * last frame's (a world point in a penumbra changes its value at random, one in a hard shadow keeps it); where
-   * the 3x3 tiles around a receiver's tile all counted this many frames, a receiver that neither contradicts nor
-   * is disoccluded outputs its sample (hard and nearly hard shadows under a moving camera stay exact; where a
+   * the 3x3 tiles around a receiver's tile all counted this many frames, a receiver that does not contradict
+   * (disoccluded or not) outputs its sample (hard and nearly hard shadows under a moving camera stay exact; where a
    * penumbra shows no contradiction the output is the input, never worse). Needs stableHistorySamples or
    * convergedSamples > 0. Range [0, 255]; 0 disables (the FidelityFX behaviour). Default 6 (FidelityFX 0).
    */

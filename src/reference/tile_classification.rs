@@ -615,8 +615,9 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, q
     }
     // Under a light of no size, a hard penumbra (Settings::hard_penumbra_pixels) or in a tile hard by time
     // (Settings::hard_tile_frames) where the pixel does not contradict (disoccluded or not: the shader says why),
-    // this sample is the output; the moments go on. Not on an untraced pixel of a checkerboard input (its value is its neighbours'
-    // mean). Hard tiles not under penumbra guidance (shaders/tile_classification.glsl says why); the counts go on.
+    // this sample is the output; the moments go on. Not on an untraced pixel of a checkerboard input (its value is
+    // its neighbours' mean). Hard tiles not under penumbra guidance (shaders/tile_classification.glsl says why); the
+    // counts go on.
     let quiet = quiet && io.penumbra().is_none() && !contradicted;
     if !untraced && (quiet || super::filter::hard_penumbra(io, [p[0] / TILE[0], p[1] / TILE[1]], linear_depth(io, ndc, depth))) {
         return (m, DVec2::new(x, 0.0), contradicted);

@@ -949,6 +949,18 @@ typedef struct DnsrShadowsDispatch {
    * checkerboardPhase (x, y in image pixels), 0 or 1; alternate it every frame. 0 for the other inputs.
    */
   uint32_t checkerboardPhase;
+  /**
+   * Read when DNSR_DISPATCH_USE_LIGHT_POSITION is set. Where the light is, in world space (the space
+   * viewProjectionInverse maps to), as a homogeneous point: {x, y, z, 0} the direction toward a directional
+   * light (any non-zero length), {x, y, z, 1} a point or sphere light's centre. With it, a receiver whose
+   * normal faces away from the light (N.L < 0, the normals as decoded) and whose ray hit keeps that result as
+   * its output: it cannot see the light, and the history and the filter would only blend it with the lit face
+   * beside it (a pole's or a sphere's dark side against the sky, the far face of a fin). A ray that reached the
+   * light is filtered as any other (a normal-mapped face may see it). Fast and Quality only (Balanced keeps the
+   * FidelityFX behaviour). NaN/Inf: DNSR_ERROR_NON_FINITE; w other than 0 or 1, or a direction of length 0:
+   * DNSR_ERROR_INVALID_ARGUMENT.
+   */
+  float lightPosition[4];
 } DnsrShadowsDispatch;
 
 /**
@@ -998,6 +1010,10 @@ typedef struct DnsrLightDispatch {
    * Read with DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE: this light's angular diameter in radians, in [0, pi).
    */
   float lightAngularSize;
+  /**
+   * Read with DNSR_LIGHT_DISPATCH_USE_LIGHT_POSITION: where this light is, as DnsrShadowsDispatch::lightPosition.
+   */
+  float lightPosition[4];
 } DnsrLightDispatch;
 
 /**
@@ -1337,6 +1353,10 @@ typedef struct DnsrReferenceFrameInfo {
    * With DNSR_REFERENCE_USE_HIT_DISTANCE: the light's angular diameter in radians, in [0, pi).
    */
   float lightAngularSize;
+  /**
+   * With DNSR_REFERENCE_USE_LIGHT_POSITION: where the light is, as DnsrShadowsDispatch::lightPosition.
+   */
+  float lightPosition[4];
 } DnsrReferenceFrameInfo;
 
 /**
@@ -1490,6 +1510,12 @@ typedef struct DnsrDiagnosis {
  * DNSR_REFERENCE_USE_HIT_DISTANCE, `lightAngularSize` must be 0.
  */
 #define DNSR_REFERENCE_HARD_LIGHT (1 << 7)
+
+/**
+ * `lightPosition` is used, as DNSR_DISPATCH_USE_LIGHT_POSITION: receivers turned away from the light keep their
+ * shadowed samples.
+ */
+#define DNSR_REFERENCE_USE_LIGHT_POSITION (1 << 8)
 
 /**
  * Forces 32 bits.
@@ -1737,6 +1763,12 @@ typedef struct DnsrDiagnosis {
 #define DNSR_DISPATCH_HARD_LIGHT (1 << 3)
 
 /**
+ * `lightPosition` is read: receivers turned away from the light keep their shadowed rays' result
+ * (ShadowsDispatch::light_position in the Rust API).
+ */
+#define DNSR_DISPATCH_USE_LIGHT_POSITION (1 << 4)
+
+/**
  * Forces 32 bits.
  */
 #define DNSR_DISPATCH_MAX_ENUM 2147483647
@@ -1821,6 +1853,11 @@ typedef struct DnsrDiagnosis {
  * This light has no size, as DNSR_DISPATCH_HARD_LIGHT.
  */
 #define DNSR_LIGHT_DISPATCH_HARD_LIGHT (1 << 2)
+
+/**
+ * `lightPosition` is read for this light, as DNSR_DISPATCH_USE_LIGHT_POSITION.
+ */
+#define DNSR_LIGHT_DISPATCH_USE_LIGHT_POSITION (1 << 3)
 
 /**
  * Forces 32 bits.

@@ -35,6 +35,9 @@ bool dnsr_get_is_depth_inverted() { return (dnsr_constants.flags.x & DNSR_FLAG_D
 bool dnsr_get_is_lit_bit_mask() { return (dnsr_constants.flags.x & DNSR_FLAG_LIT_BIT_MASK) != 0u; }
 // Checkerboard input: this frame's rays were traced for the pixels with (x + y) % 2 == phase.
 bool dnsr_get_is_checkerboard() { return (dnsr_constants.flags.x & DNSR_FLAG_CHECKERBOARD) != 0u; }
+// Whether the host gave the light's position (ShadowsDispatch::light_position), and that homogeneous point.
+bool dnsr_get_has_light_position() { return (dnsr_constants.flags.x & DNSR_FLAG_LIGHT_POSITION) != 0u; }
+vec4 dnsr_get_light_position() { return dnsr_constants.light_position; }
 int dnsr_get_checkerboard_phase() { return int(dnsr_constants.flags.y); }
 // Whether pixel p (render-rectangle coordinates: its offset is a whole number of tiles, so the parity is the
 // image's) was traced this frame by a checkerboard input.

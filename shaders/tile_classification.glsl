@@ -1074,7 +1074,15 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         // of its penumbrae took the guided family's median ratio to the input from 0.70 to 0.81. The counts go on.
         quiet = !guided && s_hard_tile[own_tile.y][own_tile.x] != 0u && !contradicted;
     }
-    if (own_sample && (quiet || DNSR_SPEC_HARD_LIGHT
+    // A receiver turned away from the light (ShadowsDispatch::light_position) whose ray hit cannot see the light:
+    // its sample is exact, and the history and the filter would only blend it with the lit face beside it (a
+    // pole's or a sphere's dark side against the sky). A ray that reached the light may come from a normal-mapped
+    // face: it is filtered as any other. (NaN, where a point light sits on the surface, turns nothing away.) With
+    // the run features only: Balanced keeps the FidelityFX behaviour.
+    vec4 light = dnsr_get_light_position();
+    bool turned_away = DNSR_SPEC_STABLE_HISTORY && dnsr_get_has_light_position() && x == 0.0
+        && dot(normal, light.xyz - light.w * (world.xyz / world.w)) < 0.0;
+    if (own_sample && (quiet || turned_away || DNSR_SPEC_HARD_LIGHT
                        || dnsr_hard_penumbra(blocker, dnsr_get_penumbra_settings(), dnsr_linear_depth(ndc, depth))
                        || dnsr_no_blocker(blocker))) {
         shadow = x;

@@ -52,6 +52,9 @@ gpu_block! {
         /// Penumbra guidance (the pipelines specialized with DNSR_SPEC_PENUMBRA_GUIDED): x: tan(light angular diameter / 2); yz: a pixel's
         /// world-space size at linear view depth z is y + z * z; w: the kernel's sigma in penumbra half-widths.
         penumbra: [f32; 4],
+        /// With DNSR_FLAG_LIGHT_POSITION: the light as a homogeneous world-space point (xyz: direction toward it,
+        /// w 0; or its centre, w 1).
+        light_position: [f32; 4],
     }
 }
 
@@ -85,6 +88,9 @@ pub(crate) const FLAG_DEPTH_INVERTED: u32 = 1 << 1;
 pub(crate) const FLAG_LIT_BIT_MASK: u32 = 1 << 2;
 /// Frame flag: a checkerboard input (flags.y holds the phase): classification knows which pixels were traced.
 pub(crate) const FLAG_CHECKERBOARD: u32 = 1 << 3;
+/// Frame flag: the host gave the light's position (`ShadowsDispatch::light_position`): receivers turned away from
+/// it keep their shadowed samples.
+pub(crate) const FLAG_LIGHT_POSITION: u32 = 1 << 4;
 
 /// Binding names shared by shaders and host. The host finds each binding's number through reflection.
 #[cfg_attr(not(test), allow(dead_code))]
@@ -93,6 +99,7 @@ pub(crate) const GLSL_FLAGS: &[(&str, u32)] = &[
     ("DNSR_FLAG_DEPTH_INVERTED", FLAG_DEPTH_INVERTED),
     ("DNSR_FLAG_LIT_BIT_MASK", FLAG_LIT_BIT_MASK),
     ("DNSR_FLAG_CHECKERBOARD", FLAG_CHECKERBOARD),
+    ("DNSR_FLAG_LIGHT_POSITION", FLAG_LIGHT_POSITION),
     ("DNSR_PASS_WRITE_INTERNAL", PASS_WRITE_INTERNAL),
     ("DNSR_PASS_SKIP_CLEARED", PASS_SKIP_CLEARED),
     ("DNSR_TILE_CLEARED", crate::passes::TILE_CLEARED),

@@ -1,6 +1,6 @@
 //! The denoiser context: pipelines, internal state per light, and recording into the host's command buffer.
 
-use crate::constants::{FrameConstants, FLAG_CHECKERBOARD, FLAG_DEPTH_INVERTED, FLAG_LIT_BIT_MASK, FLAG_RESET};
+use crate::constants::{FrameConstants, FLAG_CHECKERBOARD, FLAG_DEPTH_INVERTED, FLAG_LIGHT_POSITION, FLAG_LIT_BIT_MASK, FLAG_RESET};
 use crate::create_info::{ContextCreateInfo, EnabledFeatures, Precision, ShadowInput};
 use crate::dispatch::{HitMaskConvention, LightDispatch, Rect, ShadowsDispatch, MAX_LIGHTS_PER_RECORD};
 use crate::error::{vk_check, Error, Result};
@@ -904,13 +904,15 @@ impl Context {
                 (if reset { FLAG_RESET } else { 0 })
                     | (if self.depth_inverted { FLAG_DEPTH_INVERTED } else { 0 })
                     | (if d.hit_mask_convention == HitMaskConvention::LitBits { FLAG_LIT_BIT_MASK } else { 0 })
-                    | (if self.shadow_input == ShadowInput::Checkerboard { FLAG_CHECKERBOARD } else { 0 }),
+                    | (if self.shadow_input == ShadowInput::Checkerboard { FLAG_CHECKERBOARD } else { 0 })
+                    | (if d.light_position.is_some() { FLAG_LIGHT_POSITION } else { 0 }),
                 d.checkerboard_phase,
                 0,
                 0,
             ],
             inv_extent: [1.0 / rect.width as f32, 1.0 / rect.height as f32, 1.0 / self.size[0] as f32, 1.0 / self.size[1] as f32],
             penumbra: penumbra_constants(d, rect.height),
+            light_position: d.light_position.unwrap_or_default().to_array(),
             ..Default::default()
         };
         c.set_settings(&self.settings);

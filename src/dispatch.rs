@@ -1,7 +1,7 @@
 //! Per-frame input, shaped like the FidelityFX dispatch description so integrations port mechanically.
 
 use ash::vk;
-use glam::{Mat4, Vec2, Vec3};
+use glam::{Mat4, Vec2, Vec3, Vec4};
 
 /// One of the host's images. dnsr never changes its layout permanently: an output declared in another layout
 /// than GENERAL is moved to GENERAL for the filter and back to `layout` before the call returns.
@@ -132,6 +132,15 @@ pub struct ShadowsDispatch {
     /// size continues from it. Only the first filter pass runs for such a light (it writes the output), whatever
     /// `Settings::filter_passes` says. Not available through the FidelityFX layer, whose dispatch has no light size.
     pub hard_light: bool,
+    /// Optional: where the light is, in world space (the space `view_projection_inverse` maps to), as a
+    /// homogeneous point: (direction toward the light, 0) for a directional light, (centre, 1) for a point or
+    /// sphere light. With it, a receiver whose normal faces away from the light (N.L < 0, the normals as given)
+    /// and whose ray hit keeps its sample as its output: it cannot see the light, and the history and the filter
+    /// would only blend it with the lit face beside it (a pole's or a sphere's dark side against the sky, the far
+    /// face of a fin). Its ray that missed is filtered as any other (a normal-mapped face may see the light).
+    /// Fast and Quality (the run features) only: Balanced keeps the FidelityFX behaviour. `None`: not given (the
+    /// FidelityFX layer, whose dispatch has no light).
+    pub light_position: Option<Vec4>,
     /// Multiplier from stored motion vectors to uv offsets.
     pub motion_vector_scale: Vec2,
     /// Normal decode multiplier (2.0 for UNORM-packed normals).
@@ -197,6 +206,7 @@ impl Default for ShadowsDispatch {
             hit_distance: None,
             light_angular_size: 0.0,
             hard_light: false,
+            light_position: None,
             motion_vector_scale: Vec2::ONE,
             normals_unpack_mul: 1.0,
             normals_unpack_add: 0.0,
@@ -237,6 +247,8 @@ pub struct LightDispatch {
     pub light_angular_size: f32,
     /// This light has no size, as `ShadowsDispatch::hard_light`.
     pub hard_light: bool,
+    /// Where this light is, as `ShadowsDispatch::light_position`. Optional.
+    pub light_position: Option<Vec4>,
     /// Discard this light's history alone before this frame (the other lights of the call keep theirs).
     pub reset: bool,
 }
@@ -252,6 +264,7 @@ impl LightDispatch {
             hit_distance: self.hit_distance,
             light_angular_size: self.light_angular_size,
             hard_light: self.hard_light,
+            light_position: self.light_position,
             reset: self.reset,
             ..*shared
         }

@@ -241,6 +241,9 @@ pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, rules: &DispatchRules) -> R
         }
     }
 
+    if let Some(light) = d.light_position {
+        light_position(light)?;
+    }
     camera(&Camera::of(d))?;
     host_sync(&d.sync, supported_stages)?;
     let rect = render_rect(d.render_rect, size)?;
@@ -403,6 +406,7 @@ pub(crate) fn light_list(shared: &ShadowsDispatch, lights: &[crate::dispatch::Li
         ("hit_distance", shared.hit_distance.is_some(), "given".into()),
         ("light_angular_size", shared.light_angular_size != 0.0, shared.light_angular_size.to_string()),
         ("hard_light", shared.hard_light, "true".into()),
+        ("light_position", shared.light_position.is_some(), "given".into()),
         ("reset", shared.reset, "true".into()),
     ];
     if let Some((field, _, value)) = scalars.into_iter().find(|s| s.1) {
@@ -459,6 +463,20 @@ pub(crate) fn light_angular_size(angle: f32) -> Result<()> {
         });
     }
     Ok(())
+}
+
+/// Checks a light's homogeneous world-space position (`ShadowsDispatch::light_position`): finite, w 0 (a direction,
+/// then of non-zero length) or 1 (a point).
+pub(crate) fn light_position(light: glam::Vec4) -> Result<()> {
+    if !light.is_finite() {
+        return Err(Error::NonFinite("light_position"));
+    }
+    let allowed = match light.w {
+        0.0 if !light.truncate().length_squared().is_normal() => "a direction toward the light (w 0) of non-zero length",
+        0.0 | 1.0 => return Ok(()),
+        _ => "w 0 (xyz: the direction toward a directional light) or w 1 (xyz: a point light's centre)",
+    };
+    Err(Error::InvalidValue { field: "light_position", value: format!("{:?}", light.to_array()), allowed })
 }
 
 /// Checks the angular size that penumbra guidance gives a light the host calls hard (`hard_light`): 0.

@@ -128,7 +128,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrHostSync, inputSrcAccess) == 4, "offsetof(DnsrHo
 DNSR_STATIC_ASSERT(offsetof(DnsrHostSync, outputDstStages) == 8, "offsetof(DnsrHostSync, outputDstStages)");
 DNSR_STATIC_ASSERT(offsetof(DnsrHostSync, outputDstAccess) == 12, "offsetof(DnsrHostSync, outputDstAccess)");
 
-DNSR_STATIC_ASSERT(sizeof(DnsrShadowsDispatch) == 552, "sizeof(DnsrShadowsDispatch)");
+DNSR_STATIC_ASSERT(sizeof(DnsrShadowsDispatch) == 568, "sizeof(DnsrShadowsDispatch)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrShadowsDispatch) == 8, "alignof(DnsrShadowsDispatch)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, sType) == 0, "offsetof(DnsrShadowsDispatch, sType)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, pNext) == 8, "offsetof(DnsrShadowsDispatch, pNext)");
@@ -159,6 +159,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, engineImageCount) == 500, "offs
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, pEngineImages) == 504, "offsetof(DnsrShadowsDispatch, pEngineImages)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, visibility) == 512, "offsetof(DnsrShadowsDispatch, visibility)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, checkerboardPhase) == 544, "offsetof(DnsrShadowsDispatch, checkerboardPhase)");
+DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, lightPosition) == 548, "offsetof(DnsrShadowsDispatch, lightPosition)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrEngineImage) == 24, "sizeof(DnsrEngineImage)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrEngineImage) == 8, "alignof(DnsrEngineImage)");
@@ -166,7 +167,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrEngineImage, binding) == 0, "offsetof(DnsrEngine
 DNSR_STATIC_ASSERT(offsetof(DnsrEngineImage, view) == 8, "offsetof(DnsrEngineImage, view)");
 DNSR_STATIC_ASSERT(offsetof(DnsrEngineImage, layout) == 16, "offsetof(DnsrEngineImage, layout)");
 
-DNSR_STATIC_ASSERT(sizeof(DnsrLightDispatch) == 160, "sizeof(DnsrLightDispatch)");
+DNSR_STATIC_ASSERT(sizeof(DnsrLightDispatch) == 176, "sizeof(DnsrLightDispatch)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrLightDispatch) == 8, "alignof(DnsrLightDispatch)");
 DNSR_STATIC_ASSERT(offsetof(DnsrLightDispatch, sType) == 0, "offsetof(DnsrLightDispatch, sType)");
 DNSR_STATIC_ASSERT(offsetof(DnsrLightDispatch, pNext) == 8, "offsetof(DnsrLightDispatch, pNext)");
@@ -177,6 +178,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrLightDispatch, visibility) == 56, "offsetof(Dnsr
 DNSR_STATIC_ASSERT(offsetof(DnsrLightDispatch, output) == 88, "offsetof(DnsrLightDispatch, output)");
 DNSR_STATIC_ASSERT(offsetof(DnsrLightDispatch, hitDistance) == 120, "offsetof(DnsrLightDispatch, hitDistance)");
 DNSR_STATIC_ASSERT(offsetof(DnsrLightDispatch, lightAngularSize) == 152, "offsetof(DnsrLightDispatch, lightAngularSize)");
+DNSR_STATIC_ASSERT(offsetof(DnsrLightDispatch, lightPosition) == 156, "offsetof(DnsrLightDispatch, lightPosition)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrPassTimings) == 88, "sizeof(DnsrPassTimings)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrPassTimings) == 8, "alignof(DnsrPassTimings)");
@@ -200,7 +202,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrDeviceRequirements, optionalExtensionCount) == 3
 DNSR_STATIC_ASSERT(offsetof(DnsrDeviceRequirements, ppOptionalExtensionNames) == 40, "offsetof(DnsrDeviceRequirements, ppOptionalExtensionNames)");
 DNSR_STATIC_ASSERT(offsetof(DnsrDeviceRequirements, optionalFeatures) == 48, "offsetof(DnsrDeviceRequirements, optionalFeatures)");
 
-DNSR_STATIC_ASSERT(sizeof(DnsrReferenceFrameInfo) == 272, "sizeof(DnsrReferenceFrameInfo)");
+DNSR_STATIC_ASSERT(sizeof(DnsrReferenceFrameInfo) == 288, "sizeof(DnsrReferenceFrameInfo)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrReferenceFrameInfo) == 8, "alignof(DnsrReferenceFrameInfo)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, sType) == 0, "offsetof(DnsrReferenceFrameInfo, sType)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, pNext) == 8, "offsetof(DnsrReferenceFrameInfo, pNext)");
@@ -217,6 +219,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, projectionInverse) == 72, "o
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, reprojectionMatrix) == 136, "offsetof(DnsrReferenceFrameInfo, reprojectionMatrix)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, viewProjectionInverse) == 200, "offsetof(DnsrReferenceFrameInfo, viewProjectionInverse)");
 DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, lightAngularSize) == 264, "offsetof(DnsrReferenceFrameInfo, lightAngularSize)");
+DNSR_STATIC_ASSERT(offsetof(DnsrReferenceFrameInfo, lightPosition) == 268, "offsetof(DnsrReferenceFrameInfo, lightPosition)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrReferenceCallbacks) == 144, "sizeof(DnsrReferenceCallbacks)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrReferenceCallbacks) == 8, "alignof(DnsrReferenceCallbacks)");

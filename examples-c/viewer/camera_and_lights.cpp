@@ -52,6 +52,7 @@ FrameInput makeFrame(const SceneFrame &sf, const Orbit &orbit, const LightState 
     in.pointLight = light.point;
     in.hitDistance = light.hitDistance;
     in.hardLight = light.hardLight && light.angle == 0.0f;
+    in.lightPosition = light.lightPosition;
     if (light.point) {
         // A sphere at half the scene radius from the centre; the angular radius is as seen from the centre. dnsr's
         // penumbra guidance takes one angular diameter for all receivers: the one seen from the centre, 2 asin(r / D)

@@ -35,6 +35,7 @@ struct LightState {
     bool moving = false;
     bool hitDistance = true;  // penumbra guidance for dnsr
     bool hardLight = true;    // tell dnsr when the light has no size (angle 0)
+    bool lightPosition = true;  // tell dnsr where the light is
 
     Vec3 direction(uint32_t light) const
     {

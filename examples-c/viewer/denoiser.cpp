@@ -206,7 +206,9 @@ void Denoiser::recordDenoise(const DenoiserFrame &frame, const std::vector<Denoi
         l.lightIndex = i;
         l.flags = (frame.cameraCut ? DNSR_LIGHT_DISPATCH_RESET : 0) |
                   (lights[i].hitDistance ? DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE : 0) |
-                  (lights[i].hardLight ? DNSR_LIGHT_DISPATCH_HARD_LIGHT : 0);
+                  (lights[i].hardLight ? DNSR_LIGHT_DISPATCH_HARD_LIGHT : 0) |
+                  (lights[i].useLightPosition ? DNSR_LIGHT_DISPATCH_USE_LIGHT_POSITION : 0);
+        std::memcpy(l.lightPosition, lights[i].lightPosition, sizeof l.lightPosition);
         l.hitMask = hostImage(lights[i].hitMask);
         l.visibility = hostImage(lights[i].visibility);
         l.output = hostImage(lights[i].output);
@@ -224,7 +226,9 @@ void Denoiser::recordDenoise(const DenoiserFrame &frame, const std::vector<Denoi
         d.lightIndex = l.lightIndex;
         d.flags = (l.flags & DNSR_LIGHT_DISPATCH_RESET ? DNSR_DISPATCH_RESET : 0) |
                   (l.flags & DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE ? DNSR_DISPATCH_USE_HIT_DISTANCE : 0) |
-                  (l.flags & DNSR_LIGHT_DISPATCH_HARD_LIGHT ? DNSR_DISPATCH_HARD_LIGHT : 0);
+                  (l.flags & DNSR_LIGHT_DISPATCH_HARD_LIGHT ? DNSR_DISPATCH_HARD_LIGHT : 0) |
+                  (l.flags & DNSR_LIGHT_DISPATCH_USE_LIGHT_POSITION ? DNSR_DISPATCH_USE_LIGHT_POSITION : 0);
+        std::memcpy(d.lightPosition, l.lightPosition, sizeof d.lightPosition);
         d.hitMask = l.hitMask, d.visibility = l.visibility, d.output = l.output;
         d.hitDistance = l.hitDistance, d.lightAngularSize = l.lightAngularSize;
         DnsrResult r = dnsr_shadows_record(context_, &d);

@@ -71,6 +71,8 @@ struct DenoiserLight {
     const GpuImage *hitDistance = nullptr;  // penumbra guidance; null: off
     float lightAngularSize = 0.0f;          // with hitDistance: the light's angular diameter, radians
     bool hardLight = false;                 // the light has no size: its rays are exact (DNSR_DISPATCH_HARD_LIGHT)
+    bool useLightPosition = false;          // lightPosition is given (DNSR_DISPATCH_USE_LIGHT_POSITION)
+    float lightPosition[4] = {};            // world space: {direction to the light, 0} or {centre, 1}
     const GpuImage *output = nullptr;
 };
 

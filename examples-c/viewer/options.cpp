@@ -40,6 +40,9 @@ const char *kUsage =
     "                          the light's angular diameter (DNSR_DISPATCH_USE_HIT_DISTANCE; default on; key H)\n"
     "  --hard-light on|off     tell dnsr when the light has no size (--light-angle 0): DNSR_DISPATCH_HARD_LIGHT, its\n"
     "                          rays are exact and are the output (default on; off: dnsr filters them as any light)\n"
+    "  --light-position on|off tell dnsr where the light is (DNSR_DISPATCH_USE_LIGHT_POSITION): receivers turned away\n"
+    "                          from it keep their shadowed rays (default on; off: as the FidelityFX layer, whose\n"
+    "                          dispatch has no light)\n"
     "  --reference-samples N   shadow rays per pixel of the reference, 1..65536 (default 256)\n"
     "  --save-reference FILE   headless: also write the last frame's reference (and depth) to FILE (--lights 1)\n"
     "  --load-reference FILE   headless: measure against FILE's reference instead of rendering one (same scene,\n"
@@ -217,6 +220,10 @@ Options parseOptions(int argc, char **argv)
             std::string v = value();
             if (v != "on" && v != "off") throw UsageError("--hard-light wants on or off, got '" + v + "'");
             o.hardLight = v == "on";
+        } else if (a == "--light-position") {
+            std::string v = value();
+            if (v != "on" && v != "off") throw UsageError("--light-position wants on or off, got '" + v + "'");
+            o.lightPosition = v == "on";
         } else if (a == "--hybrid") {
             o.hybrid = true;
         } else if (a == "--cascades") {

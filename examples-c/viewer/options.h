@@ -28,6 +28,7 @@ struct Options {
     float lightAngleDeg = 3.0f;
     bool hitDistance = true;  // penumbra guidance (DNSR_DISPATCH_USE_HIT_DISTANCE)
     bool hardLight = true;    // tell dnsr when the light has no size (DNSR_DISPATCH_HARD_LIGHT)
+    bool lightPosition = true;  // tell dnsr where the light is (DNSR_DISPATCH_USE_LIGHT_POSITION)
     bool lightMotion = false;
     uint32_t referenceSamples = 256;
     std::string saveReference, loadReference;  // headless: the reference, written to / read from a file

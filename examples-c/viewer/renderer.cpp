@@ -547,6 +547,12 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
         else l.hitMask = &lights_[i].hitMask;
         if (guidance) l.hitDistance = &lights_[i].hitDistance, l.lightAngularSize = in.lightAngularSize;
         l.hardLight = in.hardLight;
+        if (in.lightPosition) {
+            l.useLightPosition = true;
+            Vec3 v = in.lights[i];
+            l.lightPosition[0] = v.x, l.lightPosition[1] = v.y, l.lightPosition[2] = v.z;
+            l.lightPosition[3] = in.pointLight ? 1.0f : 0.0f;  // a point light's centre, or the direction to the sun
+        }
         l.output = &lights_[i].denoised;
     }
     // Views 5..8 map in order onto DNSR_DEBUG_VIEW_TILE_CLASSIFICATION .. DNSR_DEBUG_VIEW_DISOCCLUSION.

@@ -95,6 +95,8 @@ struct FrameInput {
     float lightAngularSize = 0.0f;
     // The light has no size and dnsr is told so (DNSR_DISPATCH_HARD_LIGHT): its rays are the output.
     bool hardLight = false;
+    // dnsr is told where each light is (DNSR_DISPATCH_USE_LIGHT_POSITION): `lights` as homogeneous points.
+    bool lightPosition = false;
     bool cameraCut = false;          // discard dnsr's history (first frame, view reset)
     // Hybrid mode (needs RendererSettings::hybrid.enabled): rays only where dnsr's classifier cannot decide from
     // the cascades. With penumbra guidance, only the traced pixels have a hit distance (the others 0: unknown).

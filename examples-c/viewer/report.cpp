@@ -59,6 +59,7 @@ void writeReport(const std::string &path, const Session &session, const Measurem
     r["hit_distance"] = session.light.hitDistance;
     r["light_angular_size_rad"] = rounded(last.lightAngularSize, 6);
     r["hard_light"] = last.hardLight;
+    r["light_position"] = last.lightPosition;
     const char *presets[] = {"fast", "balanced", "quality"};
     r["preset"] = presets[opt.preset];
     // --debug-view: the last frame's dnsr output, and every "denoised" figure below, is this view, not the shadow.

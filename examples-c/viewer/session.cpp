@@ -22,6 +22,7 @@ Session::Session(const Options &options, const Scene &s, VulkanContext &context)
     light.moving = opt.lightMotion;
     light.hitDistance = opt.hitDistance;
     light.hardLight = opt.hardLight;
+    light.lightPosition = opt.lightPosition;
     // Light from the side of the starting view (100 degrees around from the camera), so that the shadows fall where
     // the camera sees them whatever the scene.
     light.azimuth = orbit.yaw + radians(opt.lightAzimuthDeg);

@@ -18,6 +18,7 @@ struct DnsrFrameConstants {
     vec4 runs;
     vec4 moving;
     vec4 penumbra;
+    vec4 light_position;
 };
 
 struct DnsrFilterPush {
@@ -42,6 +43,7 @@ struct DnsrClassifyConstants {
 #define DNSR_FLAG_DEPTH_INVERTED 2u
 #define DNSR_FLAG_LIT_BIT_MASK 4u
 #define DNSR_FLAG_CHECKERBOARD 8u
+#define DNSR_FLAG_LIGHT_POSITION 16u
 #define DNSR_PASS_WRITE_INTERNAL 1u
 #define DNSR_PASS_SKIP_CLEARED 2u
 #define DNSR_TILE_CLEARED 1u

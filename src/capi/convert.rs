@@ -7,7 +7,7 @@ use crate::dispatch::{DebugView, HitMaskConvention, HostImage, HostSync, LightDi
 use crate::host::{GpuAllocation, GpuMemoryAllocator, HostHooks, ResourceKind};
 use crate::settings::Settings;
 use ash::vk;
-use glam::{Mat4, Vec2, Vec3};
+use glam::{Mat4, Vec2, Vec3, Vec4};
 use std::sync::Arc;
 
 pub(crate) fn settings_from_c(s: &DnsrSettings, what: &str) -> Result<Settings, CallError> {
@@ -234,7 +234,12 @@ pub(crate) fn dispatch_from_c(c: &DnsrShadowsDispatch) -> Result<(vk::CommandBuf
     const WHAT: &str = "pDispatch";
     check_type(c.s_type, DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH, "DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH", WHAT)?;
     check_no_next(c.p_next, WHAT)?;
-    let unknown = c.flags & !(DNSR_DISPATCH_RESET | DNSR_DISPATCH_USE_RENDER_RECT | DNSR_DISPATCH_USE_HIT_DISTANCE | DNSR_DISPATCH_HARD_LIGHT);
+    let known = DNSR_DISPATCH_RESET
+        | DNSR_DISPATCH_USE_RENDER_RECT
+        | DNSR_DISPATCH_USE_HIT_DISTANCE
+        | DNSR_DISPATCH_HARD_LIGHT
+        | DNSR_DISPATCH_USE_LIGHT_POSITION;
+    let unknown = c.flags & !known;
     if unknown != 0 {
         return Err(CallError::InvalidArgument(format!("pDispatch->flags has unknown bits {unknown:#x}")));
     }
@@ -261,6 +266,7 @@ pub(crate) fn dispatch_from_c(c: &DnsrShadowsDispatch) -> Result<(vk::CommandBuf
         hit_distance: (c.flags & DNSR_DISPATCH_USE_HIT_DISTANCE != 0).then(|| image(&c.hit_distance)),
         light_angular_size: c.light_angular_size,
         hard_light: c.flags & DNSR_DISPATCH_HARD_LIGHT != 0,
+        light_position: (c.flags & DNSR_DISPATCH_USE_LIGHT_POSITION != 0).then(|| Vec4::from_array(c.light_position)),
         motion_vector_scale: Vec2::from_array(c.motion_vector_scale),
         normals_unpack_mul: c.normals_unpack_mul,
         normals_unpack_add: c.normals_unpack_add,
@@ -355,7 +361,11 @@ pub(crate) fn lights_from_c(
         let what = format!("pLights[{i}]");
         check_type(c.s_type, DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH, "DNSR_STRUCTURE_TYPE_LIGHT_DISPATCH", &what)?;
         check_no_next(c.p_next, &what)?;
-        let unknown = c.flags & !(DNSR_LIGHT_DISPATCH_RESET | DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE | DNSR_LIGHT_DISPATCH_HARD_LIGHT);
+        let known = DNSR_LIGHT_DISPATCH_RESET
+            | DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE
+            | DNSR_LIGHT_DISPATCH_HARD_LIGHT
+            | DNSR_LIGHT_DISPATCH_USE_LIGHT_POSITION;
+        let unknown = c.flags & !known;
         if unknown != 0 {
             return Err(CallError::InvalidArgument(format!("{what}.flags has unknown bits {unknown:#x}")));
         }
@@ -367,6 +377,7 @@ pub(crate) fn lights_from_c(
             hit_distance: (c.flags & DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE != 0).then(|| image(&c.hit_distance)),
             light_angular_size: c.light_angular_size,
             hard_light: c.flags & DNSR_LIGHT_DISPATCH_HARD_LIGHT != 0,
+            light_position: (c.flags & DNSR_LIGHT_DISPATCH_USE_LIGHT_POSITION != 0).then(|| Vec4::from_array(c.light_position)),
             reset: c.flags & DNSR_LIGHT_DISPATCH_RESET != 0,
         };
     }

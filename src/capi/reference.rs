@@ -29,6 +29,9 @@ pub const DNSR_REFERENCE_CHECKERBOARD_PHASE_1: DnsrReferenceFlags = 1 << 6;
 /// The light has no size (DNSR_DISPATCH_HARD_LIGHT): every receiver's output is its own sample. With
 /// DNSR_REFERENCE_USE_HIT_DISTANCE, `lightAngularSize` must be 0.
 pub const DNSR_REFERENCE_HARD_LIGHT: DnsrReferenceFlags = 1 << 7;
+/// `lightPosition` is used, as DNSR_DISPATCH_USE_LIGHT_POSITION: receivers turned away from the light keep their
+/// shadowed samples.
+pub const DNSR_REFERENCE_USE_LIGHT_POSITION: DnsrReferenceFlags = 1 << 8;
 /// Forces 32 bits.
 pub const DNSR_REFERENCE_MAX_ENUM: DnsrReferenceFlags = 0x7FFF_FFFF;
 /// Every DNSR_REFERENCE_* bit.
@@ -39,7 +42,8 @@ const KNOWN_FLAGS: DnsrReferenceFlags = DNSR_REFERENCE_RESET
     | DNSR_REFERENCE_VISIBILITY_INPUT
     | DNSR_REFERENCE_CHECKERBOARD_INPUT
     | DNSR_REFERENCE_CHECKERBOARD_PHASE_1
-    | DNSR_REFERENCE_HARD_LIGHT;
+    | DNSR_REFERENCE_HARD_LIGHT
+    | DNSR_REFERENCE_USE_LIGHT_POSITION;
 
 /// The constants of one reference frame (the same values as a DnsrShadowsDispatch; the render rectangle is
 /// the whole `width` x `height`).
@@ -76,6 +80,8 @@ pub struct DnsrReferenceFrameInfo {
     pub view_projection_inverse: [f32; 16],
     /// With DNSR_REFERENCE_USE_HIT_DISTANCE: the light's angular diameter in radians, in [0, pi).
     pub light_angular_size: f32,
+    /// With DNSR_REFERENCE_USE_LIGHT_POSITION: where the light is, as DnsrShadowsDispatch::lightPosition.
+    pub light_position: [f32; 4],
 }
 
 /// Read and write callbacks over the engine's own data. Reads are required unless marked optional; writes are
@@ -164,6 +170,9 @@ fn checked<'a>(
         if info.flags & DNSR_REFERENCE_HARD_LIGHT != 0 {
             crate::validate::hard_light_size(info.light_angular_size)?;
         }
+    }
+    if info.flags & DNSR_REFERENCE_USE_LIGHT_POSITION != 0 {
+        crate::validate::light_position(glam::Vec4::from_array(info.light_position))?;
     }
     Ok((info, cb))
 }
@@ -266,6 +275,8 @@ pub extern "C" fn dnsr_reference_run_frame(
         f.eye = DVec3::from_array(info.eye.map(|v| v as f64));
         f.depth_similarity_sigma = info.depth_similarity_sigma as f64;
         f.hard_light = info.flags & DNSR_REFERENCE_HARD_LIGHT != 0;
+        let light = info.light_position.map(|v| v as f64);
+        f.light_position = (info.flags & DNSR_REFERENCE_USE_LIGHT_POSITION != 0).then(|| glam::DVec4::from_array(light));
         if guided {
             f.penumbra = Some(crate::reference::Penumbra::new(info.light_angular_size as f64, f.projection_inverse, h));
         }

@@ -237,6 +237,9 @@ pub const DNSR_DISPATCH_USE_HIT_DISTANCE: DnsrDispatchFlags = 1 << 2;
 /// own ray's result, with or without hit distances, and only the first filter pass runs for it
 /// (ShadowsDispatch::hard_light in the Rust API). With DNSR_DISPATCH_USE_HIT_DISTANCE, `lightAngularSize` must be 0.
 pub const DNSR_DISPATCH_HARD_LIGHT: DnsrDispatchFlags = 1 << 3;
+/// `lightPosition` is read: receivers turned away from the light keep their shadowed rays' result
+/// (ShadowsDispatch::light_position in the Rust API).
+pub const DNSR_DISPATCH_USE_LIGHT_POSITION: DnsrDispatchFlags = 1 << 4;
 /// Forces 32 bits.
 pub const DNSR_DISPATCH_MAX_ENUM: DnsrDispatchFlags = 0x7FFF_FFFF;
 
@@ -690,6 +693,16 @@ pub struct DnsrShadowsDispatch {
     /// DNSR_SHADOW_INPUT_CHECKERBOARD: this frame's rays were traced for the pixels with (x + y) % 2 ==
     /// checkerboardPhase (x, y in image pixels), 0 or 1; alternate it every frame. 0 for the other inputs.
     pub checkerboard_phase: u32,
+    /// Read when DNSR_DISPATCH_USE_LIGHT_POSITION is set. Where the light is, in world space (the space
+    /// viewProjectionInverse maps to), as a homogeneous point: {x, y, z, 0} the direction toward a directional
+    /// light (any non-zero length), {x, y, z, 1} a point or sphere light's centre. With it, a receiver whose
+    /// normal faces away from the light (N.L < 0, the normals as decoded) and whose ray hit keeps that result as
+    /// its output: it cannot see the light, and the history and the filter would only blend it with the lit face
+    /// beside it (a pole's or a sphere's dark side against the sky, the far face of a fin). A ray that reached the
+    /// light is filtered as any other (a normal-mapped face may see it). Fast and Quality only (Balanced keeps the
+    /// FidelityFX behaviour). NaN/Inf: DNSR_ERROR_NON_FINITE; w other than 0 or 1, or a direction of length 0:
+    /// DNSR_ERROR_INVALID_ARGUMENT.
+    pub light_position: [f32; 4],
 }
 
 /// Per-light flags of `DnsrLightDispatch`.
@@ -700,6 +713,8 @@ pub const DNSR_LIGHT_DISPATCH_RESET: DnsrLightDispatchFlags = 1 << 0;
 pub const DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE: DnsrLightDispatchFlags = 1 << 1;
 /// This light has no size, as DNSR_DISPATCH_HARD_LIGHT.
 pub const DNSR_LIGHT_DISPATCH_HARD_LIGHT: DnsrLightDispatchFlags = 1 << 2;
+/// `lightPosition` is read for this light, as DNSR_DISPATCH_USE_LIGHT_POSITION.
+pub const DNSR_LIGHT_DISPATCH_USE_LIGHT_POSITION: DnsrLightDispatchFlags = 1 << 3;
 /// Forces 32 bits.
 pub const DNSR_LIGHT_DISPATCH_MAX_ENUM: DnsrLightDispatchFlags = 0x7FFF_FFFF;
 
@@ -731,6 +746,8 @@ pub struct DnsrLightDispatch {
     pub hit_distance: DnsrHostImage,
     /// Read with DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE: this light's angular diameter in radians, in [0, pi).
     pub light_angular_size: f32,
+    /// Read with DNSR_LIGHT_DISPATCH_USE_LIGHT_POSITION: where this light is, as DnsrShadowsDispatch::lightPosition.
+    pub light_position: [f32; 4],
 }
 
 /// First binding number of an engine's own images in dnsr's set 0 (see DnsrShadowsDispatch::pEngineImages).

@@ -501,6 +501,8 @@ impl Denoiser {
             p_engine_images: std::ptr::null(),
             visibility: DnsrHostImage::default(),
             checkerboard_phase: 0,
+            // The FFX dispatch has no light.
+            light_position: [0.0; 4],
         };
         check(dnsr_shadows_record(self.context, &dispatch))?;
         self.output_format = Some(output_format);

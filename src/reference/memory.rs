@@ -31,6 +31,8 @@ pub struct Frame {
     pub penumbra: Option<Penumbra>,
     /// The light has no size (`ShadowsDispatch::hard_light`).
     pub hard_light: bool,
+    /// Where the light is (`ShadowsDispatch::light_position`); None: not given.
+    pub light_position: Option<DVec4>,
     /// Host hit distance per pixel (read only with penumbra guidance).
     pub hit_distance: Vec<f64>,
     /// Host hit mask (FidelityFX convention), one word per tile.
@@ -109,6 +111,7 @@ impl Frame {
             depth_inverted: false,
             penumbra: None,
             hard_light: false,
+            light_position: None,
             hit_distance: filled(n, 0.0)?,
             hit_mask: filled(tiles, 0)?,
             visibility: None,
@@ -210,6 +213,9 @@ impl Get for Frame {
     }
     fn hard_light(&self) -> bool {
         self.hard_light
+    }
+    fn light_position(&self) -> Option<DVec4> {
+        self.light_position
     }
     fn checkerboard_phase(&self) -> Option<u32> {
         self.checkerboard_phase

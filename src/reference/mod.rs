@@ -48,6 +48,8 @@ pub trait Get {
     fn penumbra(&self) -> Option<Penumbra>;
     /// The light has no size (`ShadowsDispatch::hard_light`): every receiver's own sample is its output.
     fn hard_light(&self) -> bool;
+    /// Where the light is (`ShadowsDispatch::light_position`), a homogeneous world-space point; None: not given.
+    fn light_position(&self) -> Option<DVec4>;
     /// The shadow input is per-pixel visibility (`read_visibility`) instead of the hit mask; a checkerboard input
     /// is one too, from prepare on (prepare writes the visibility classification reads).
     fn visibility_input(&self) -> bool;

@@ -619,7 +619,11 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, q
     // its neighbours' mean). Hard tiles not under penumbra guidance (shaders/tile_classification.glsl says why); the
     // counts go on.
     let quiet = quiet && io.penumbra().is_none() && !contradicted;
-    if !untraced && (quiet || super::filter::hard_penumbra(io, [p[0] / TILE[0], p[1] / TILE[1]], linear_depth(io, ndc, depth))) {
+    // A receiver turned away from the light whose ray hit keeps its sample (`ShadowsDispatch::light_position`;
+    // shaders/tile_classification.glsl says why). With the run features only: Balanced keeps the FidelityFX behaviour.
+    let to_light = |l: DVec4| l.truncate() - l.w * (world.truncate() / world.w);
+    let turned_away = s.uses_runs() && x == 0.0 && io.light_position().is_some_and(|l| normal.dot(to_light(l)) < 0.0);
+    if !untraced && (quiet || turned_away || super::filter::hard_penumbra(io, [p[0] / TILE[0], p[1] / TILE[1]], linear_depth(io, ndc, depth))) {
         return (m, DVec2::new(x, 0.0), contradicted);
     }
     // Converged (Settings::converged_samples, on a stable pixel): variance 0 tells the filter that the input may

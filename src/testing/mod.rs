@@ -60,6 +60,8 @@ pub struct Runner<'g> {
     pub guidance: Option<f32>,
     /// `ShadowsDispatch::hard_light` of `dispatch`.
     pub hard_light: bool,
+    /// `ShadowsDispatch::light_position` of `dispatch`.
+    pub light_position: Option<glam::Vec4>,
     /// `ShadowsDispatch::checkerboard_phase` of `dispatch` (a checkerboard input).
     pub checkerboard_phase: u32,
     visibility_input: bool,
@@ -111,7 +113,7 @@ impl<'g> Runner<'g> {
         let staging = gpu.staging(staging_bytes(info.width, info.height));
         let cmd = gpu.command_buffer();
         let visibility_input = info.shadow_input == crate::ShadowInput::Visibility;
-        Ok(Runner { gpu, ctx, mask, depth, velocity, normals, output, hit_distance, visibility, visibility_input, guidance: None, hard_light: false, checkerboard_phase: 0, staging, cmd })
+        Ok(Runner { gpu, ctx, mask, depth, velocity, normals, output, hit_distance, visibility, visibility_input, guidance: None, hard_light: false, light_position: None, checkerboard_phase: 0, staging, cmd })
     }
 
     /// A dispatch for `f` over this runner's images (no reset; penumbra guidance as `guidance` says).
@@ -128,6 +130,7 @@ impl<'g> Runner<'g> {
             hit_distance: self.guidance.map(|_| self.hit_distance.host()),
             light_angular_size: self.guidance.unwrap_or(0.0),
             hard_light: self.hard_light,
+            light_position: self.light_position,
             checkerboard_phase: self.checkerboard_phase,
             eye: f.eye,
             projection_inverse: f.projection_inverse,

@@ -296,6 +296,21 @@ fn bad_dispatches_record_nothing() {
             |e| matches!(e, Error::InvalidValue { field: "light_angular_size", .. }),
         ),
         (
+            "NaN light position",
+            |d| d.light_position = Some(glam::Vec4::new(0.0, f32::NAN, 1.0, 0.0)),
+            |e| *e == Error::NonFinite("light_position"),
+        ),
+        (
+            "light direction of length 0",
+            |d| d.light_position = Some(glam::Vec4::ZERO),
+            |e| matches!(e, Error::InvalidValue { field: "light_position", allowed, .. } if allowed.contains("non-zero length")),
+        ),
+        (
+            "light position with w 0.5",
+            |d| d.light_position = Some(glam::Vec4::new(0.0, 1.0, 0.0, 0.5)),
+            |e| matches!(e, Error::InvalidValue { field: "light_position", allowed, .. } if allowed.contains("w 1")),
+        ),
+        (
             "NaN projection inverse",
             |d| d.projection_inverse = Mat4::from_cols_array(&[f32::NAN; 16]),
             |e| *e == Error::NonFinite("projection_inverse"),

@@ -52,7 +52,8 @@ fn c_dispatch(d: &crate::ShadowsDispatch, cmd: vk::CommandBuffer) -> DnsrShadows
         light_index: d.light_index,
         flags: (if d.reset { DNSR_DISPATCH_RESET } else { 0 })
             | (if d.hit_distance.is_some() { DNSR_DISPATCH_USE_HIT_DISTANCE } else { 0 })
-            | (if d.hard_light { DNSR_DISPATCH_HARD_LIGHT } else { 0 }),
+            | (if d.hard_light { DNSR_DISPATCH_HARD_LIGHT } else { 0 })
+            | (if d.light_position.is_some() { DNSR_DISPATCH_USE_LIGHT_POSITION } else { 0 }),
         hit_mask_convention: DNSR_HIT_MASK_OCCLUDED_BITS,
         hit_mask: host(&d.hit_mask),
         depth: host(&d.depth),
@@ -82,6 +83,7 @@ fn c_dispatch(d: &crate::ShadowsDispatch, cmd: vk::CommandBuffer) -> DnsrShadows
         p_engine_images: std::ptr::null(),
         visibility: host(&d.visibility),
         checkerboard_phase: d.checkerboard_phase,
+        light_position: d.light_position.unwrap_or_default().to_array(),
     }
 }
 
@@ -309,6 +311,7 @@ mod reference_table {
             reprojection_matrix: d.reprojection_matrix.to_cols_array(),
             view_projection_inverse: d.view_projection_inverse.to_cols_array(),
             light_angular_size: guidance.unwrap_or(0.0),
+            light_position: [0.0; 4],
         };
         let callbacks = DnsrReferenceCallbacks {
             user_data: &mut user as *mut Data as *mut c_void,
@@ -403,6 +406,7 @@ mod host_memory {
             reprojection_matrix: identity,
             view_projection_inverse: identity,
             light_angular_size: 0.0,
+            light_position: [0.0; 4],
         };
         let callbacks = DnsrReferenceCallbacks {
             user_data: std::ptr::null_mut(),

@@ -258,10 +258,10 @@ fn generated_layout_header() -> String {
         s_type, p_next, command_buffer, light_index, flags, hit_mask_convention, hit_mask, depth, velocity, normals,
         output, motion_vector_scale, normals_unpack_mul, normals_unpack_add, eye, frame_index, projection_inverse,
         reprojection_matrix, view_projection_inverse, depth_similarity_sigma, render_rect, sync, debug_view, hit_distance,
-        light_angular_size, engine_image_count, p_engine_images, visibility, checkerboard_phase,
+        light_angular_size, engine_image_count, p_engine_images, visibility, checkerboard_phase, light_position,
     });
     check!(DnsrEngineImage { binding, view, layout });
-    check!(DnsrLightDispatch { s_type, p_next, light_index, flags, hit_mask, visibility, output, hit_distance, light_angular_size });
+    check!(DnsrLightDispatch { s_type, p_next, light_index, flags, hit_mask, visibility, output, hit_distance, light_angular_size, light_position });
     check!(DnsrPassTimings { s_type, p_next, frame, prepare_ms, tile_classification_ms, filter_ms, filter_passes, total_ms });
     check!(DnsrDeviceRequirements {
         s_type, p_next, min_api_version, required_extension_count, pp_required_extension_names,
@@ -272,7 +272,7 @@ fn generated_layout_header() -> String {
         check!(DnsrReferenceFrameInfo {
             s_type, p_next, width, height, flags, p_settings, motion_vector_scale, normals_unpack_mul,
             normals_unpack_add, eye, depth_similarity_sigma, projection_inverse, reprojection_matrix,
-            view_projection_inverse, light_angular_size,
+            view_projection_inverse, light_angular_size, light_position,
         });
         check!(DnsrReferenceCallbacks {
             user_data, read_hit_mask, read_depth, read_normal, read_velocity, read_previous_depth,

@@ -66,6 +66,8 @@ fn light(index: usize, mask: &TestImage, output: &TestImage, hit_distance: &Test
         hit_distance: guided(index).then(|| hit_distance.host()),
         light_angular_size: if guided(index) { GUIDED_ANGLE * (index / 2) as f32 } else { 0.0 },
         hard_light: index == HARD_LIGHT,
+        // One light is given as a direction: its receivers turned away from it keep their shadowed samples.
+        light_position: (index == 2).then(|| glam::Vec4::new(0.6, -0.2, 0.8, 0.0)),
         reset: index == 1 && frame == RESET_FRAME,
         ..Default::default()
     }
@@ -79,6 +81,7 @@ fn shared(d: &ShadowsDispatch) -> ShadowsDispatch {
         output: Default::default(),
         hit_distance: None,
         light_angular_size: 0.0,
+        light_position: None,
         reset: false,
         ..*d
     }
@@ -203,6 +206,12 @@ fn a_bad_light_refuses_the_whole_record() {
         ("reset in the shared dispatch", ShadowsDispatch { reset: true, ..d }, base.to_vec(), |e| matches!(e, Error::InvalidValue { field: "reset", .. })),
         ("hard_light in the shared dispatch", ShadowsDispatch { hard_light: true, ..d }, base.to_vec(), |e| {
             matches!(e, Error::InvalidValue { field: "hard_light", .. })
+        }),
+        ("light_position in the shared dispatch", ShadowsDispatch { light_position: Some(glam::Vec4::Y), ..d }, base.to_vec(), |e| {
+            matches!(e, Error::InvalidValue { field: "light_position", .. })
+        }),
+        ("a light position with w 2", d, vec![base[0], LightDispatch { light_position: Some(glam::Vec4::new(0.0, 1.0, 0.0, 2.0)), ..base[1] }], |e| {
+            matches!(e, Error::Light { position: 1, error } if matches!(**error, Error::InvalidValue { field: "light_position", .. }))
         }),
         // The camera is the shared dispatch's: its error names no light.
         ("a NaN in the shared camera", ShadowsDispatch { view_projection_inverse: glam::Mat4::NAN, ..d }, base.to_vec(), |e| {

@@ -282,6 +282,14 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     let mut r = Runner::new(g, &info).unwrap();
     // Seed 13: a light of no size without hit distances (ShadowsDispatch::hard_light) under sub-pixel motion.
     r.hard_light = seed == 13;
+    // Some cases give the light: receivers turned away from it keep their shadowed samples. Seed 3's direction
+    // (a directional light) and seed 12's point light (under sub-pixel motion) leave about half of the random
+    // normals turned away.
+    r.light_position = match seed {
+        3 => Some(glam::Vec4::new(1.0, 0.2, -0.3, 0.0)),
+        12 => Some(glam::Vec4::new(3.0, 20.0, -4.0, 1.0)),
+        _ => None,
+    };
     // Some cases guide the filter by the hit distances (penumbrae from under a pixel to tens of pixels wide).
     r.guidance = match seed {
         2 | 6 => Some(0.5),
@@ -356,6 +364,7 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     cpu.checkerboard_phase = checkerboard.then_some(1);
     cpu.hit_distance = f.hit_distance.iter().map(|&v| v as f64).collect();
     cpu.hard_light = d.hard_light;
+    cpu.light_position = d.light_position.map(|l| l.as_dvec4());
     cpu.penumbra = d.hit_distance.map(|_| reference::Penumbra::new(d.light_angular_size as f64, cpu.projection_inverse, h as i32));
     cpu.depth = f.depth.iter().map(|&v| v as f64).collect();
     cpu.velocity = f.velocity.iter().map(|v| DVec2::new(v[0] as f64, v[1] as f64)).collect();

@@ -449,8 +449,8 @@ static void lights_calls(void)
     LIGHTS_CASE("lights: NULL pLights", DNSR_ERROR_INVALID_ARGUMENT, "pLights is NULL", pl = NULL);
     LIGHTS_CASE("lights: wrong sType", DNSR_ERROR_INVALID_STRUCTURE, "pLights[0]",
                 lights[0].sType = DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH);
-    LIGHTS_CASE("lights: unknown light flags", DNSR_ERROR_INVALID_ARGUMENT, "pLights[0].flags has unknown bits 0x8",
-                lights[0].flags = 1u << 3);
+    LIGHTS_CASE("lights: unknown light flags", DNSR_ERROR_INVALID_ARGUMENT, "pLights[0].flags has unknown bits 0x10",
+                lights[0].flags = 1u << 4);
     LIGHTS_CASE("lights: light 0 twice", DNSR_ERROR_INVALID_ARGUMENT, "pLights[1]: lightIndex is 0 (as pLights[0])",
                 count = 2);
     LIGHTS_CASE("lights: lightIndex 1", DNSR_ERROR_INVALID_LIGHT_INDEX, "pLights[0]: light index 1",
@@ -478,6 +478,10 @@ static void dispatch_calls(void)
     DISPATCH_CASE("record: null commandBuffer", DNSR_ERROR_NULL_HANDLE, "commandBuffer", d.commandBuffer = NULL);
     DISPATCH_CASE("record: unknown flags", DNSR_ERROR_INVALID_ARGUMENT, "pDispatch->flags has unknown bits 0x20",
                   d.flags = DNSR_DISPATCH_RESET | (1u << 5));
+    DISPATCH_CASE("record: NaN light position", DNSR_ERROR_NON_FINITE, "lightPosition",
+                  (d.flags |= DNSR_DISPATCH_USE_LIGHT_POSITION, d.lightPosition[1] = NAN));
+    DISPATCH_CASE("record: light position with w 2", DNSR_ERROR_INVALID_ARGUMENT, "w 0",
+                  (d.flags |= DNSR_DISPATCH_USE_LIGHT_POSITION, d.lightPosition[1] = 1.0f, d.lightPosition[3] = 2.0f));
     DISPATCH_CASE("record: hitMaskConvention 9", DNSR_ERROR_INVALID_ARGUMENT, "hitMaskConvention 9",
                   d.hitMaskConvention = 9);
     DISPATCH_CASE("record: lightIndex 1", DNSR_ERROR_INVALID_LIGHT_INDEX, "light index 1", d.lightIndex = 1);

@@ -82,6 +82,26 @@ fn entry_workgroup_size(spirv: &[u8]) -> Result<[u32; 3]> {
         (*opcode == OP_ENTRY_POINT && ops.len() >= 3 && ops[0] == GL_COMPUTE && name == "main").then(|| ops[1])
     });
     let main = main.ok_or_else(|| Error::ShaderInterface("has no GLCompute entry point named \"main\"".into()))?;
+    // A constant decorated BuiltIn WorkgroupSize overrides the LocalSize mode (the driver dispatches its size): an
+    // override whose composite says otherwise than its mode passed this check and met the device limits
+    // (override_fuzz, seed 0xdd5eed, case 1633: local_size (8, 8, 595902102)).
+    const DECORATION_BUILTIN: u32 = 11;
+    const BUILTIN_WORKGROUP_SIZE: u32 = 25;
+    const OP_CONSTANT: u32 = 43;
+    const OP_CONSTANT_COMPOSITE: u32 = 44;
+    let builtin = all.iter().find_map(|(opcode, ops)| {
+        (*opcode == OP_DECORATE && ops.len() == 3 && ops[1] == DECORATION_BUILTIN && ops[2] == BUILTIN_WORKGROUP_SIZE).then(|| ops[0])
+    });
+    if let Some(id) = builtin {
+        let not_fixed = || Error::ShaderInterface("its WorkgroupSize is not three literal constants (dnsr dispatches fixed workgroups)".into());
+        let parts = all.iter().find_map(|(opcode, ops)| (*opcode == OP_CONSTANT_COMPOSITE && ops.len() == 5 && ops[1] == id).then(|| [ops[2], ops[3], ops[4]]));
+        let value = |part: u32| all.iter().find_map(|(opcode, ops)| (*opcode == OP_CONSTANT && ops.len() == 3 && ops[1] == part).then(|| ops[2]));
+        let parts = parts.ok_or_else(not_fixed)?;
+        return match parts.map(value) {
+            [Some(x), Some(y), Some(z)] => Ok([x, y, z]),
+            _ => Err(not_fixed()),
+        };
+    }
     all.iter()
         .find_map(|(opcode, ops)| {
             (*opcode == OP_EXECUTION_MODE && ops.len() == 5 && ops[0] == main && ops[1] == LOCAL_SIZE).then(|| [ops[2], ops[3], ops[4]])

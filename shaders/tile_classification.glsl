@@ -796,10 +796,9 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     // The receiver faces away from the light (ShadowsDispatch::light_position): decided here, where its position
     // and normal are at hand, and used at the end (keeping them live until then cost Quality's classification
     // 16% at 4K on an H200). (NaN, where a point light sits on the surface, turns nothing away.)
-    // (No short-circuit branch: runtime conditions in this pass have made lavapipe, Mesa 22.3, leak JIT memory.)
     vec4 light = dnsr_get_light_position();
-    float facing = dot(normal, light.xyz - light.w * (world.xyz / world.w));
-    bool faces_away = all(bvec3(DNSR_SPEC_STABLE_HISTORY, dnsr_get_has_light_position(), facing < 0.0));
+    bool faces_away = DNSR_SPEC_STABLE_HISTORY && dnsr_get_has_light_position()
+        && dot(normal, light.xyz - light.w * (world.xyz / world.w)) < 0.0;
     float threshold = mix(disocc.x, disocc.y, pow(1.0 - n_dot_v, disocc.z));
     bool on_screen = dnsr_finite(prev_uv) && dnsr_finite(history_uv) && prev_clip.w > 0.0
         && all(greaterThanEqual(prev_uv, vec2(0.0))) && all(lessThan(prev_uv, vec2(1.0)))

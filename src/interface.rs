@@ -82,9 +82,15 @@ fn entry_workgroup_size(spirv: &[u8]) -> Result<[u32; 3]> {
         (*opcode == OP_ENTRY_POINT && ops.len() >= 3 && ops[0] == GL_COMPUTE && name == "main").then(|| ops[1])
     });
     let main = main.ok_or_else(|| Error::ShaderInterface("has no GLCompute entry point named \"main\"".into()))?;
-    // A constant decorated BuiltIn WorkgroupSize overrides the LocalSize mode (the driver dispatches its size): an
-    // override whose composite says otherwise than its mode passed this check and met the device limits
-    // (override_fuzz, seed 0xdd5eed, case 1633: local_size (8, 8, 595902102)).
+    let mode = all
+        .iter()
+        .find_map(|(opcode, ops)| {
+            (*opcode == OP_EXECUTION_MODE && ops.len() == 5 && ops[0] == main && ops[1] == LOCAL_SIZE).then(|| [ops[2], ops[3], ops[4]])
+        })
+        .ok_or_else(|| Error::ShaderInterface("entry point \"main\" has no literal LocalSize (dnsr dispatches fixed workgroups)".into()))?;
+    // A constant decorated BuiltIn WorkgroupSize overrides the LocalSize mode (the driver dispatches its size): it
+    // must say the same (override_fuzz, seed 0xdd5eed, case 1633: a module whose composite said (8, 8, 595902102)
+    // passed the mode's check and met the device limits).
     const DECORATION_BUILTIN: u32 = 11;
     const BUILTIN_WORKGROUP_SIZE: u32 = 25;
     const OP_CONSTANT: u32 = 43;
@@ -92,21 +98,17 @@ fn entry_workgroup_size(spirv: &[u8]) -> Result<[u32; 3]> {
     let builtin = all.iter().find_map(|(opcode, ops)| {
         (*opcode == OP_DECORATE && ops.len() == 3 && ops[1] == DECORATION_BUILTIN && ops[2] == BUILTIN_WORKGROUP_SIZE).then(|| ops[0])
     });
-    if let Some(id) = builtin {
-        let not_fixed = || Error::ShaderInterface("its WorkgroupSize is not three literal constants (dnsr dispatches fixed workgroups)".into());
-        let parts = all.iter().find_map(|(opcode, ops)| (*opcode == OP_CONSTANT_COMPOSITE && ops.len() == 5 && ops[1] == id).then(|| [ops[2], ops[3], ops[4]]));
-        let value = |part: u32| all.iter().find_map(|(opcode, ops)| (*opcode == OP_CONSTANT && ops.len() == 3 && ops[1] == part).then(|| ops[2]));
-        let parts = parts.ok_or_else(not_fixed)?;
-        return match parts.map(value) {
-            [Some(x), Some(y), Some(z)] => Ok([x, y, z]),
-            _ => Err(not_fixed()),
-        };
+    let Some(id) = builtin else { return Ok(mode) };
+    let composite = |id: u32| all.iter().find_map(|(opcode, ops)| (*opcode == OP_CONSTANT_COMPOSITE && ops.len() == 5 && ops[1] == id).then(|| [ops[2], ops[3], ops[4]]));
+    let value = |part: u32| all.iter().find_map(|(opcode, ops)| (*opcode == OP_CONSTANT && ops.len() == 3 && ops[1] == part).then(|| ops[2]));
+    match composite(id).map(|parts| parts.map(value)) {
+        Some([Some(x), Some(y), Some(z)]) if [x, y, z] == mode => Ok(mode),
+        Some([Some(x), Some(y), Some(z)]) => Err(Error::ShaderInterface(format!(
+            "its WorkgroupSize constant is {:?}, its LocalSize {mode:?} (the constant decides the workgroup size)",
+            [x, y, z]
+        ))),
+        _ => Err(Error::ShaderInterface("its WorkgroupSize is not three literal constants (dnsr dispatches fixed workgroups)".into())),
     }
-    all.iter()
-        .find_map(|(opcode, ops)| {
-            (*opcode == OP_EXECUTION_MODE && ops.len() == 5 && ops[0] == main && ops[1] == LOCAL_SIZE).then(|| [ops[2], ops[3], ops[4]])
-        })
-        .ok_or_else(|| Error::ShaderInterface("entry point \"main\" has no literal LocalSize (dnsr dispatches fixed workgroups)".into()))
 }
 
 /// Checks an engine's SPIR-V for `name` against what dnsr relies on in its own variant: the entry point and

@@ -10,12 +10,16 @@
  *     frames through dnsr.h with a fresh context's settings (dnsr's default, the Quality preset); a second FFX
  *     context writing the sample's RGBA8 output holds the same values, rounded, in every channel; with
  *     DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS in the description's flags, the same against dnsr.h with
- *     DNSR_PRESET_BALANCED (the FidelityFX settings), and those frames differ from the default's;
+ *     DNSR_PRESET_BALANCED (the FidelityFX settings), and those frames differ from the default's; told the light
+ *     through dnsr_ffx_context_set_light (its position behind the receivers, or that it has no size), the same
+ *     against dnsr.h dispatches with those bits, after a refused call that must not change the context's light;
  *   - the depth buffer itself (D32_SFLOAT, reverse-Z, FFX_DENOISER_ENABLE_DEPTH_INVERTED) equals dnsr.h with
  *     DNSR_CONTEXT_CREATE_DEPTH_INVERTED on it;
  *   - misuse the SDK does not catch (NULL pointers, a destroyed or never-created context, a create into a live
  *     one, the reflections flag, an output format dnsr cannot write, a NULL image, a scratch buffer too small, an
  *     interface not from ffxGetInterfaceVK): each a specific FfxErrorCode with a message, nothing recorded;
+ *     dnsr_ffx_context_set_light's (NULL, dead or destroyed context, unknown bits, a missing, zero, non-finite or
+ *     non-homogeneous position): each a specific DnsrResult with a message;
  *   - no validation message from any of it.
  */
 #include <FidelityFX/host/backends/vk/ffx_vk.h>
@@ -103,6 +107,15 @@ static HostBuffer readback;
         CHECK(ffx_got_ == FfxErrorCode(want), "%s gave 0x%08x, want %s", #call, (unsigned)ffx_got_, #want);                 \
         CHECK(dnsr_last_error_message()[0] != 0, "%s: no message", #call);                                      \
         std::printf("refused as %s: %s\n", #want, dnsr_last_error_message());                                    \
+        cases++;                                                                                                 \
+    } while (0)
+// `call` returns the DnsrResult `want` and leaves a message.
+#define EXPECT_DNSR(want, call)                                                                                  \
+    do {                                                                                                         \
+        DnsrResult dnsr_got_ = (call);                                                                           \
+        CHECK(dnsr_got_ == (want), "%s gave %s, want %s", #call, dnsr_result_to_string(dnsr_got_), #want);       \
+        CHECK(dnsr_last_error_message()[0] != 0, "%s: no message", #call);                                      \
+        std::printf("refused as %s: %s\n", #want, dnsr_last_error_message());                                   \
         cases++;                                                                                                 \
     } while (0)
 static int cases = 0;
@@ -222,8 +235,10 @@ static void integrate(Integration &in, uint32_t flags)
 }
 
 // Returns the last noisy frame's output. fidelityfx: the FFX contexts get DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS and
-// the dnsr.h context DNSR_PRESET_BALANCED; else both run dnsr's default settings.
-static std::vector<float> frames_match_native(bool fidelityfx)
+// the dnsr.h context DNSR_PRESET_BALANCED; else both run dnsr's default settings. lightFlags (DNSR_DISPATCH_HARD_LIGHT,
+// DNSR_DISPATCH_USE_LIGHT_POSITION) and lightPosition: told to the FFX contexts by dnsr_ffx_context_set_light (after
+// which a refused call must leave them as they were), to the dnsr.h context in each dispatch.
+static std::vector<float> frames_match_native(bool fidelityfx, uint32_t lightFlags = 0, const float *lightPosition = nullptr)
 {
     Integration in, in8;
     uint32_t settings = fidelityfx ? DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS : 0u;
@@ -236,6 +251,13 @@ static std::vector<float> frames_match_native(bool fidelityfx)
     if (fidelityfx) info.pSettings = &balanced;
     DnsrContext native = nullptr;
     DNSR_CHECK(dnsr_context_create(&info, &native));
+    if (lightFlags) {
+        const float behind[4] = {0.0f, 0.0f, NAN, 0.0f};
+        for (Integration *i : {&in, &in8}) {
+            DNSR_CHECK(dnsr_ffx_context_set_light(i->context.get(), lightFlags, lightPosition));
+            EXPECT_DNSR(DNSR_ERROR_NON_FINITE, dnsr_ffx_context_set_light(i->context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, behind));
+        }
+    }
 
     std::vector<float> a, b, c, lastNoisy;
     for (uint32_t frame = 0; frame < 6; frame++) {
@@ -248,6 +270,8 @@ static std::vector<float> frames_match_native(bool fidelityfx)
         Dispatch fd8 = ffx_dispatch(cmd, frame, outFfx8);
         FFX_CHECK(ffxDenoiserContextDispatchShadows(in8.context.get(), &fd8));
         DnsrShadowsDispatch nd = native_dispatch(cmd, frame);
+        nd.flags |= lightFlags;
+        if (lightPosition) std::memcpy(nd.lightPosition, lightPosition, sizeof nd.lightPosition);
         DNSR_CHECK(dnsr_shadows_record(native, &nd));
         host_submit(&host, cmd);
         read_output(outFfx, a);
@@ -260,8 +284,8 @@ static std::vector<float> frames_match_native(bool fidelityfx)
         }
         float lo = a[0], hi = a[0];
         for (float v : a) lo = v < lo ? v : lo, hi = v > hi ? v : hi;
-        std::printf("frame %u (%s settings): FFX API == dnsr.h on all %u pixels, output in [%g, %g]\n", frame,
-                    fidelityfx ? "FidelityFX" : "default", W * H, lo, hi);
+        std::printf("frame %u (%s settings, light flags 0x%x): FFX API == dnsr.h on all %u pixels, output in [%g, %g]\n",
+                    frame, fidelityfx ? "FidelityFX" : "default", lightFlags, W * H, lo, hi);
         if (frame < 4) CHECK(hi > lo, "frame %u: a noisy mask gave a flat output", frame);
         if (frame == 3) lastNoisy = a;
     }
@@ -503,7 +527,22 @@ static void misuse(void)
     EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDispatchShadows(in.context.get(), &bad));
     host_submit(&host, cmd);
 
+    // dnsr_ffx_context_set_light: the context, the bits and the position.
+    const float sun[4] = {0.3f, 0.8f, 0.2f, 0.0f}, zero[4] = {0.0f, 0.0f, 0.0f, 0.0f}, half[4] = {1.0f, 2.0f, 3.0f, 0.5f};
+    const float inf[4] = {INFINITY, 0.0f, 1.0f, 1.0f};
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(nullptr, DNSR_DISPATCH_HARD_LIGHT, nullptr));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(other, DNSR_DISPATCH_HARD_LIGHT, nullptr)); /* never created */
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_RESET, nullptr));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), 1u << 31, nullptr));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, nullptr));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, zero));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, half));
+    EXPECT_DNSR(DNSR_ERROR_NON_FINITE, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, inf));
+    DNSR_CHECK(dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION | DNSR_DISPATCH_HARD_LIGHT, sun));
+    DNSR_CHECK(dnsr_ffx_context_set_light(in.context.get(), 0, nullptr));
+
     FFX_CHECK(ffxDenoiserContextDestroy(in.context.get()));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_HARD_LIGHT, nullptr)); /* destroyed */
     EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDestroy(in.context.get())); /* twice */
     cmd = host_begin(&host);
     d = ffx_dispatch(cmd, 1);
@@ -552,6 +591,17 @@ int main(void)
         CHECK(differ > 0, "DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS changed no pixel of frame 3");
         std::printf("DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS: %zu of %u pixels of frame 3 differ from the default's\n",
                     differ, W * H);
+        // The light through dnsr_ffx_context_set_light: behind every receiver (their normals face +z), so that each
+        // shadowed ray is its receiver's output; then a light of no size.
+        const float behind[4] = {0.2f, -0.1f, -1.0f, 0.0f};
+        for (uint32_t flags : {DNSR_DISPATCH_USE_LIGHT_POSITION, DNSR_DISPATCH_HARD_LIGHT}) {
+            std::vector<float> told = frames_match_native(false, flags, behind);
+            differ = 0;
+            for (size_t i = 0; i < quality.size(); i++) differ += quality[i] != told[i];
+            CHECK(differ > 0, "dnsr_ffx_context_set_light(0x%x) changed no pixel of frame 3", flags);
+            std::printf("dnsr_ffx_context_set_light(0x%x): %zu of %u pixels of frame 3 differ from the untold default's\n",
+                        flags, differ, W * H);
+        }
     }
     depth_buffer_reverse_z();
     misuse();
@@ -560,6 +610,7 @@ int main(void)
     host_buffer_destroy(&host, &readback);
     for (HostImage *img : {&mask, &depth, &depthBuffer, &velocity, &velocityVarying, &normals, &outFfx, &outFfx8, &outNative}) host_image_destroy(&host, img);
     host_destroy(&host);
-    std::printf("ffx_dropin: layout, versions, 6 frames equal to dnsr.h (R32F and RGBA8 outputs), %d misuse cases refused\n", cases);
+    std::printf("ffx_dropin: layout, versions, 6 frames equal to dnsr.h (R32F and RGBA8 outputs; untold, told the light's "
+                "position, told it has no size), %d misuse cases refused\n", cases);
     return 0;
 }

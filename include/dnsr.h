@@ -2019,6 +2019,30 @@ DnsrResult dnsr_context_get_classifier_timings(DnsrContext context,
                                                struct DnsrClassifierTimings *pTimings);
 
 /**
+ * Tells dnsr's FidelityFX layer (include/ffx) about the light of a shadow denoiser context's later dispatches,
+ * which the FFX interface has no field for: `pFfxContext` is the `FfxDenoiserContext*` that
+ * ffxDenoiserContextCreate filled. `flags` holds DNSR_DISPATCH_HARD_LIGHT (the light has no size: every receiver's
+ * output is its ray, which is exact) and DNSR_DISPATCH_USE_LIGHT_POSITION (where the light is, in the world space of
+ * the dispatches' viewProjectionInverse: `pLightPosition` points at 4 floats, read as DnsrShadowsDispatch::
+ * lightPosition); every other bit is refused. 0 returns the context to knowing nothing of its light. Each later
+ * ffxDenoiserContextDispatchShadows records as dnsr_shadows_record does with these bits and this position, so a
+ * point light or a moving sun calls it before each dispatch whose light moved; the values are copied.
+ *
+ * What it changes (docs/do-no-harm.md): on the 100 scenes of `make viewer-accuracy`, dnsr's default settings are
+ * worse than their 1-spp input on 25 scenes without it and on 11 with both bits (docs/viewer-family.md: quality+untold
+ * and quality). The SDK's own denoiser has no such
+ * function: call it only where dnsr's FidelityFX layer is linked.
+ *
+ * Errors: DNSR_ERROR_INVALID_ARGUMENT for a NULL `pFfxContext`, a context that is not live (never created, or
+ * destroyed), an unknown bit, or DNSR_DISPATCH_USE_LIGHT_POSITION with a NULL `pLightPosition` or a position that
+ * is neither a direction (w 0, non-zero xyz) nor a point (w 1); DNSR_ERROR_NON_FINITE for a NaN or infinite
+ * coordinate. On error the context keeps the light it had.
+ */
+DnsrResult dnsr_ffx_context_set_light(void *pFfxContext,
+                                      DnsrDispatchFlags flags,
+                                      const float *pLightPosition);
+
+/**
  * Bytes of device memory the context allocated (driver padding included).
  */
 DnsrResult dnsr_context_get_memory_usage(DnsrContext context, uint64_t *pBytes);

@@ -280,6 +280,30 @@ struct Denoiser {
     height: u32,
     views: ViewRing,
     dispatches: u64,
+    /// What `dnsr_ffx_context_set_light` last told of the light (none by default: the FFX dispatch has no light).
+    light: FfxLight,
+}
+
+/// The light of a context's dispatches (`dnsr_ffx_context_set_light`): DNSR_DISPATCH_HARD_LIGHT and
+/// DNSR_DISPATCH_USE_LIGHT_POSITION bits, and the position that the second reads. Checked by the caller.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct FfxLight {
+    pub flags: u32,
+    pub position: [f32; 4],
+}
+
+/// Gives the live context at `context` the light of its later dispatches; false when `context` is NULL or holds
+/// no live context.
+pub(crate) fn set_light(context: *mut FfxDenoiserContext, light: FfxLight) -> bool {
+    // SAFETY: the C caller guarantees that a non-null pointer points at an FfxDenoiserContext.
+    let Some(context) = (unsafe { context.as_ref() }) else { return false };
+    match lock(&CONTEXTS).get_mut(&context_id(context)) {
+        Some(d) => {
+            d.light = light;
+            true
+        }
+        None => false,
+    }
 }
 
 // SAFETY: the dnsr context is used behind the registry's lock only.
@@ -384,7 +408,7 @@ pub extern "C" fn ffxDenoiserContextCreate(context: *mut FfxDenoiserContext, des
         let fidelityfx = d.flags & DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS != 0;
         let dnsr = new_dnsr_context(&device, width, height, depth_inverted, fidelityfx, vk::Format::R8_UNORM)?;
         let id = NEXT_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let denoiser = Denoiser { context: dnsr, device, output_format: None, depth_inverted, fidelityfx, width, height, views: ViewRing::default(), dispatches: 0 };
+        let denoiser = Denoiser { context: dnsr, device, output_format: None, depth_inverted, fidelityfx, width, height, views: ViewRing::default(), dispatches: 0, light: FfxLight::default() };
         lock(&CONTEXTS).insert(id, denoiser);
         out.data[1] = id as u32;
         out.data[2] = (id >> 32) as u32;
@@ -470,7 +494,7 @@ impl Denoiser {
             p_next: std::ptr::null(),
             command_buffer: command_buffer(d.commandList),
             light_index: 0,
-            flags: if self.dispatches == 0 { DNSR_DISPATCH_RESET } else { 0 },
+            flags: (if self.dispatches == 0 { DNSR_DISPATCH_RESET } else { 0 }) | self.light.flags,
             hit_mask_convention: DNSR_HIT_MASK_OCCLUDED_BITS,
             hit_mask,
             depth,
@@ -501,8 +525,8 @@ impl Denoiser {
             p_engine_images: std::ptr::null(),
             visibility: DnsrHostImage::default(),
             checkerboard_phase: 0,
-            // The FFX dispatch has no light.
-            light_position: [0.0; 4],
+            // The FFX dispatch has no light: only what dnsr_ffx_context_set_light gave.
+            light_position: self.light.position,
         };
         check(dnsr_shadows_record(self.context, &dispatch))?;
         self.output_format = Some(output_format);

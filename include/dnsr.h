@@ -2057,7 +2057,7 @@ DnsrResult dnsr_context_get_persistent_memory_usage(DnsrContext context,
 /**
  * The part of dnsr_get_memory_requirements' bytes that persists between records (as
  * dnsr_context_get_persistent_memory_usage), before driver padding, with a hit-mask input (a visibility or
- * checkerboard input adds 8 B/px per light). Needs no device.
+ * checkerboard input adds 4 B/px per light, the kept moments' second word). Needs no device.
  */
 DnsrResult dnsr_get_persistent_memory_requirements(uint32_t width,
                                                    uint32_t height,

@@ -203,6 +203,17 @@ layout(set = 0, binding = 8, r32ui) uniform writeonly uimage2D dnsr_depth_copy;
 void dnsr_write_depth_copy(ivec2 p, float linear_depth, vec3 normal) {
     imageStore(dnsr_depth_copy, p + dnsr_get_offset(), uvec4(dnsr_pack_depth_copy(linear_depth, normal)));
 }
+// This frame's moments as classification stored them, and the image the next frame's classification reads them
+// from (dnsr_read_previous_moments), which this pass writes once classification has read last frame's: one kept
+// image, the other transient. Copied as stored words (the second one with a visibility input's fractions).
+layout(set = 0, binding = 64) uniform utexture2D dnsr_frame_moments;
+#ifdef DNSR_VISIBILITY_INPUT
+layout(set = 0, binding = 65, rg32ui) uniform writeonly uimage2D dnsr_kept_moments;
+#else
+layout(set = 0, binding = 65, r32ui) uniform writeonly uimage2D dnsr_kept_moments;
+#endif
+uvec2 dnsr_read_frame_moments(ivec2 p) { return texelFetch(dnsr_frame_moments, p + dnsr_get_offset(), 0).xy; }
+void dnsr_write_kept_moments(ivec2 p, uvec2 words) { imageStore(dnsr_kept_moments, p + dnsr_get_offset(), uvec4(words, 0u, 0u)); }
 #endif
 
 int dnsr_get_filter_step() { return int(dnsr_push.pass.x); }

@@ -277,6 +277,7 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     ivec2 fetched = min(p, dnsr_get_extent() - 1);
     float depth = dnsr_read_depth(fetched);
     vec3 normal = dnsr_read_normal(fetched);
+    uvec2 moments = dnsr_read_frame_moments(fetched);
     barrier();
 
     // The apron is loaded when any block of the group is not cleared (the whole group decides alike, so the
@@ -293,6 +294,9 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     }
 
     if (!dnsr_inside(p)) return;
+    // This frame's moments, kept for the next frame's classification (which reads them at other pixels than its
+    // own, so classification cannot update them in place).
+    dnsr_write_kept_moments(p, moments);
     // The later passes weigh their taps by these, and next frame's classification compares its reprojected depth
     // and its normal with them (the depth copy): kept as a linear depth, which a 16-bit float code holds finely
     // enough at any scale (the device depth needs 32 bits), and a normal in 8+8 bits. Written here, not in

@@ -29,7 +29,7 @@ pub fn memory_requirements(width: u32, height: u32, precision: Precision, filter
 }
 
 /// `memory_requirements` for a context with shadow input `input` (a visibility input adds 8 B/px per light, the
-/// second word of its moments in both halves of the pair; a checkerboard input 12, with its reconstructed visibility).
+/// second word of its kept and of its frame's moments; a checkerboard input 12, with its reconstructed visibility).
 pub fn memory_requirements_for_input(
     width: u32,
     height: u32,
@@ -48,7 +48,8 @@ pub fn memory_requirements_for_input(
 
 /// Bytes of the part of `memory_requirements` whose contents must survive from one record of a light to the next
 /// (each light's moments, depth copy and history: `state::Lifetime`), with a hit-mask input (a visibility or
-/// checkerboard input adds 8 B/px per light); the rest is written and read within one record. Needs no device.
+/// checkerboard input adds 4 B/px per light, the kept moments' second word); the rest is written and read within
+/// one record. Needs no device.
 pub fn persistent_memory_requirements(width: u32, height: u32, precision: Precision, light_count: u32) -> Result<u64> {
     validate::extent("render size", width, height, u32::MAX)?;
     validate::light_count(light_count)?;
@@ -310,10 +311,10 @@ impl Context {
         [
             prepare::shader(self.shadow_input),
             tile_classification::shader(self.precision, self.output_format, self.shadow_input).expect("output format checked"),
-            filter::shader(self.precision, None, false).expect("non-final variant exists"),
-            filter::shader(self.precision, None, true).expect("non-final variant exists"),
-            filter::shader(self.precision, Some(self.output_format), true).expect("output format checked"),
-            filter::shader(self.precision, Some(self.output_format), false).expect("output format checked"),
+            filter::shader(self.precision, None, false, self.shadow_input).expect("non-final variant exists"),
+            filter::shader(self.precision, None, true, self.shadow_input).expect("non-final variant exists"),
+            filter::shader(self.precision, Some(self.output_format), true, self.shadow_input).expect("output format checked"),
+            filter::shader(self.precision, Some(self.output_format), false, self.shadow_input).expect("output format checked"),
         ]
     }
 
@@ -612,8 +613,8 @@ impl Context {
             history: light.history.view,
             tmp: light.tmp.as_ref().map_or(vk::ImageView::null(), |t| t.view),
             depth_copy: light.depth_copy.view,
-            previous_moments: light.moments[cur ^ 1].view,
-            moments: light.moments[cur].view,
+            kept_moments: light.moments.view,
+            frame_moments: light.frame_moments.view,
             previous_tile_quiet: light.tile_quiet[cur ^ 1].view,
             tile_quiet: light.tile_quiet[cur].view,
             engine: d.engine_images.map(|e| e.map_or(Binding::default(), |e| image(e.view, e.layout))),
@@ -991,7 +992,7 @@ impl Context {
             tile_blocker: l.tile_blocker.image,
             reprojection: l.reprojection.image,
             history: l.history.image,
-            moments: l.moments[l.parity ^ 1].image,
+            moments: l.moments.image,
             tile_quiet: l.tile_quiet[l.parity ^ 1].image,
             depth: l.depth_copy.image,
             intermediate_format: crate::state::intermediate_format(self.precision),
@@ -1005,8 +1006,7 @@ impl Context {
 
     /// The moments image written by the last recorded frame of `light` (packed: src/reference/storage.rs; GENERAL).
     pub(crate) fn last_moments(&self, light: usize) -> vk::Image {
-        let l = &self.lights[light];
-        l.moments[l.parity ^ 1].image
+        self.lights[light].moments.image
     }
 
     /// The image of the state table's row `image` (half `copy` of a pair) of `light`, or the context's own for

@@ -24,9 +24,12 @@ pub(crate) struct LightState {
     pub reconstructed: Option<InternalImage>,
     /// Linear depth: last frame's until the first filter pass writes this frame's.
     pub depth_copy: InternalImage,
-    /// Ping-pong pair indexed by `parity` (current) and `parity ^ 1` (previous frame).
-    pub moments: [InternalImage; 2],
-    /// Each tile's frames without a contradiction (`Settings::hard_tile_frames`); a pair indexed as `moments`.
+    /// Last frame's moments until filter pass 0 copies this frame's over them.
+    pub moments: InternalImage,
+    /// This frame's moments (transient): classification writes them, filter pass 0 copies them into `moments`.
+    pub frame_moments: InternalImage,
+    /// Each tile's frames without a contradiction (`Settings::hard_tile_frames`): a ping-pong pair indexed by
+    /// `parity` (current) and `parity ^ 1` (previous frame).
     pub tile_quiet: [InternalImage; 2],
     /// Flips once per recorded frame of this light: advances with recording, not with frameIndex.
     pub parity: usize,
@@ -67,7 +70,8 @@ impl LightState {
             reprojection: always(Image::Reprojection, 0),
             history: always(Image::History, 0),
             depth_copy: always(Image::DepthCopy, 0),
-            moments: [always(Image::Moments, 0), always(Image::Moments, 1)],
+            moments: always(Image::Moments, 0),
+            frame_moments: always(Image::FrameMoments, 0),
             tile_quiet: [always(Image::TileQuiet, 0), always(Image::TileQuiet, 1)],
             tmp: take(Image::Tmp, 0),
             reconstructed: take(Image::Reconstructed, 0),
@@ -87,7 +91,8 @@ impl LightState {
             Image::Reprojection => Some(&self.reprojection),
             Image::History => Some(&self.history),
             Image::DepthCopy => Some(&self.depth_copy),
-            Image::Moments => return self.moments.get(copy as usize),
+            Image::Moments => Some(&self.moments),
+            Image::FrameMoments => Some(&self.frame_moments),
             Image::TileQuiet => return self.tile_quiet.get(copy as usize),
             Image::Tmp => self.tmp.as_ref(),
             Image::Reconstructed => self.reconstructed.as_ref(),
@@ -135,9 +140,8 @@ impl LightState {
     }
 
     pub(crate) fn destroy(&mut self, vk: &Vk) {
-        for img in [&mut self.tile_mask, &mut self.tile_dark, &mut self.tile_meta, &mut self.tile_blocker, &mut self.reprojection, &mut self.history, &mut self.depth_copy]
+        for img in [&mut self.tile_mask, &mut self.tile_dark, &mut self.tile_meta, &mut self.tile_blocker, &mut self.reprojection, &mut self.history, &mut self.depth_copy, &mut self.moments, &mut self.frame_moments]
             .into_iter()
-            .chain(self.moments.iter_mut())
             .chain(self.tile_quiet.iter_mut())
             .chain(self.tmp.iter_mut())
             .chain(self.reconstructed.iter_mut())

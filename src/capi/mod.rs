@@ -345,7 +345,7 @@ pub extern "C" fn dnsr_context_get_persistent_memory_usage(context: DnsrContext,
 
 /// The part of dnsr_get_memory_requirements' bytes that persists between records (as
 /// dnsr_context_get_persistent_memory_usage), before driver padding, with a hit-mask input (a visibility or
-/// checkerboard input adds 8 B/px per light). Needs no device.
+/// checkerboard input adds 4 B/px per light, the kept moments' second word). Needs no device.
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_get_persistent_memory_requirements(
     width: u32,

@@ -35,6 +35,9 @@ pub(crate) enum Resource {
     VisibilityOut,
     PreviousTileQuiet,
     TileQuiet,
+    /// Filter pass 0's copy of this frame's moments into the kept ones.
+    FrameMoments,
+    KeptMoments,
     /// Slots 1..LIGHT_SLOTS of the filter's light-slot variants (slot 0 is the resource without a number).
     TileMeta1,
     TileMeta2,
@@ -139,6 +142,8 @@ const TABLE: [(&str, Resource, vk::DescriptorType); NAMED_COUNT] = [
     ("dnsr_visibility_out", Resource::VisibilityOut, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_previous_tile_quiet", Resource::PreviousTileQuiet, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_tile_quiet", Resource::TileQuiet, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_frame_moments", Resource::FrameMoments, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_kept_moments", Resource::KeptMoments, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_tile_meta_1", Resource::TileMeta1, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_tile_meta_2", Resource::TileMeta2, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_tile_meta_3", Resource::TileMeta3, vk::DescriptorType::SAMPLED_IMAGE),

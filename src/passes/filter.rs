@@ -12,7 +12,7 @@
 use super::bindings::Resource;
 use super::{internal, FrameViews, Grid, Pass, Role, LIGHT_SLOTS, SPEC_PENUMBRA_GUIDED, WIDE_GROUP};
 use super::variants::variant_name;
-use crate::create_info::Precision;
+use crate::create_info::{Precision, ShadowInput};
 use crate::dispatch::DebugView;
 use crate::glsl::gpu_block;
 use crate::state::table::{Image, FILTER_INPUT, FILTER_OUTPUT};
@@ -39,14 +39,18 @@ pub(crate) const PASS_WRITE_INTERNAL: u32 = 1 << 0;
 /// already in place).
 pub(crate) const PASS_SKIP_CLEARED: u32 = 1 << 1;
 
-/// The variant of the first pass (`later` false: step 1, shared-memory apron, writes the depth copy) or of a later
-/// pass (reads the depth copy as its guide), intermediate or final (writing `final_output`).
-pub(crate) fn shader(precision: Precision, final_output: Option<vk::Format>, later: bool) -> Option<&'static str> {
-    let stem = match (later, final_output.is_some()) {
-        (false, false) => "filter",
-        (false, true) => "filter_final",
-        (true, false) => "filter_later",
-        (true, true) => "filter_later_final",
+/// The variant of the first pass (`later` false: step 1, shared-memory apron, writes the depth copy and keeps the
+/// moments, in the format of shadow input `input`) or of a later pass (reads the depth copy as its guide),
+/// intermediate or final (writing `final_output`).
+pub(crate) fn shader(precision: Precision, final_output: Option<vk::Format>, later: bool, input: ShadowInput) -> Option<&'static str> {
+    let fractions = input != ShadowInput::HitMask;
+    let stem = match (later, final_output.is_some(), fractions) {
+        (false, false, false) => "filter",
+        (false, false, true) => "filter_visibility",
+        (false, true, false) => "filter_final",
+        (false, true, true) => "filter_final_visibility",
+        (true, false, _) => "filter_later",
+        (true, true, _) => "filter_later_final",
     };
     variant_name(stem, final_output, precision)
 }
@@ -94,10 +98,12 @@ pub(crate) fn pass(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView
     t[Resource::Guide as usize] = internal(v.depth_copy);
     if pass == 0 {
         t[Resource::DepthCopy as usize] = internal(v.depth_copy);
+        t[Resource::FrameMoments as usize] = internal(v.frame_moments);
+        t[Resource::KeptMoments as usize] = internal(v.kept_moments);
     }
     if is_final(pass, passes) {
         t[Resource::Output as usize] = internal(v.output);
-        t[Resource::DebugMoments as usize] = internal(v.moments);
+        t[Resource::DebugMoments as usize] = internal(v.frame_moments);
     }
     let role = match (is_final(pass, passes), pass) {
         (true, 0) => Role::FilterOnly,

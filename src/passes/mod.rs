@@ -277,8 +277,10 @@ pub(crate) struct FrameViews {
     /// Linear depth and normal: classification reads last frame's, the first filter pass writes this frame's, the
     /// later filter passes read it as their guide.
     pub depth_copy: vk::ImageView,
-    pub previous_moments: vk::ImageView,
-    pub moments: vk::ImageView,
+    /// Last frame's moments (classification reads them), then this frame's (filter pass 0 copies them in).
+    pub kept_moments: vk::ImageView,
+    /// This frame's moments, written by classification (transient).
+    pub frame_moments: vk::ImageView,
     pub previous_tile_quiet: vk::ImageView,
     pub tile_quiet: vk::ImageView,
     /// The engine's own images (slot i: binding ENGINE_BINDING_BASE + i), for its shader variants.

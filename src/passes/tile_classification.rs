@@ -25,8 +25,8 @@ pub(crate) fn pass(v: &FrameViews) -> Pass {
     t[Resource::TileDark as usize] = internal(v.tile_dark);
     t[Resource::Velocity as usize] = v.velocity;
     t[Resource::PreviousDepth as usize] = internal(v.depth_copy);
-    t[Resource::PreviousMoments as usize] = internal(v.previous_moments);
-    t[Resource::Moments as usize] = internal(v.moments);
+    t[Resource::PreviousMoments as usize] = internal(v.kept_moments);
+    t[Resource::Moments as usize] = internal(v.frame_moments);
     t[Resource::PreviousTileQuiet as usize] = internal(v.previous_tile_quiet);
     t[Resource::TileQuiet as usize] = internal(v.tile_quiet);
     t[Resource::History as usize] = internal(v.history);

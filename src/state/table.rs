@@ -35,7 +35,8 @@ pub enum Image {
     /// Each frame's linear depth and normal: the later filter passes' guide, and the next frame's previous depth and
     /// normal.
     DepthCopy,
-    /// The temporal moments of each frame, read by the next one (ping-pong pair).
+    /// Each pixel's temporal moments as the last record left them: the next frame's classification reads them (at
+    /// its pixels' history positions), filter pass 0 then copies this frame's (`FrameMoments`) over them.
     Moments,
     /// The fourth pass's input (four filter passes only).
     Tmp,
@@ -44,6 +45,10 @@ pub enum Image {
     /// Per tile, the frames since one of its receivers' samples contradicted last frame's (`Settings::
     /// hard_tile_frames`), read by the next frame (ping-pong pair).
     TileQuiet,
+    /// This frame's moments, which classification writes while it reads last frame's (`Moments`, at other pixels
+    /// than its own too, so not in place) and filter pass 0 copies into `Moments`: a transient image instead of
+    /// the second half of a persistent pair.
+    FrameMoments,
 }
 
 /// The formats of an image: the fp32 path's and the fp16 path's (`Precision`).
@@ -98,8 +103,8 @@ pub enum Scope {
 /// Whether an image's contents must survive from one record of its light to the next.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Lifetime {
-    /// Read by a later frame: the moments, the depth copy (both halves of each ping-pong pair: the next frame reads
-    /// the half this one wrote) and the history.
+    /// Read by a later frame: the moments, the depth copy, the history and the tiles' quiet counts (both halves
+    /// of their ping-pong pair: the next frame reads the half this one wrote).
     Persistent,
     /// Written and read within one record (tile state, the temporal result, the filter's intermediates, the
     /// reconstructed visibility): its contents between records do not matter.
@@ -207,7 +212,7 @@ use Per::{Pixel, Tile};
 use Scope::Light;
 
 /// Every internal image, in `Image` order (which is the order a light creates them in).
-pub const RESOURCES: [Resource; 11] = [
+pub const RESOURCES: [Resource; 12] = [
     // Written by prepare for a visibility or checkerboard input (a hit mask is read as the host gives it); 4 bytes
     // per tile, so allocated whatever the input.
     resource(Image::TileMask, "tile_mask", Formats::both(vk::Format::R32_UINT), Tile, Light, 1, Transient, Needed::Always),
@@ -222,15 +227,21 @@ pub const RESOURCES: [Resource; 11] = [
     // values before the first filter pass writes this frame's, which the later passes read as their guide.
     resource(Image::DepthCopy, "depth_copy", Formats::both(vk::Format::R32_UINT), Pixel, Light, 1, Persistent, Needed::Always),
     // Per pixel: mean (unorm14), sample count (9-bit float), run of identical samples (9-bit integer) packed into
-    // one word; with fractional samples their sum of squared deviations (float32) in a second.
+    // one word; with fractional samples their sum of squared deviations (float32) in a second. One image: filter
+    // pass 0 copies this frame's (FrameMoments) into it once classification has read last frame's.
     Resource {
         fraction_format: Some(vk::Format::R32G32_UINT),
-        ..packed(resource(Image::Moments, "moments", Formats::both(vk::Format::R32_UINT), Pixel, Light, 2, Persistent, Needed::Always))
+        ..packed(resource(Image::Moments, "moments", Formats::both(vk::Format::R32_UINT), Pixel, Light, 1, Persistent, Needed::Always))
     },
     resource(Image::Tmp, "filter_tmp", SIGNAL, Pixel, Light, 1, Transient, Needed::Passes(MAX_FILTER_PASSES)),
     resource(Image::Reconstructed, "reconstructed_visibility", Formats::both(vk::Format::R32_SFLOAT), Pixel, Light, 1, Transient, Needed::Checkerboard),
     // 4 bytes per tile and frame (0.25 B/px for the pair), so allocated whatever the settings.
     resource(Image::TileQuiet, "tile_quiet", Formats::both(vk::Format::R32_UINT), Tile, Light, 2, Persistent, Needed::Always),
+    // As the moments.
+    Resource {
+        fraction_format: Some(vk::Format::R32G32_UINT),
+        ..packed(resource(Image::FrameMoments, "frame_moments", Formats::both(vk::Format::R32_UINT), Pixel, Light, 1, Transient, Needed::Always))
+    },
 ];
 
 /// The row of `image`.
@@ -436,9 +447,10 @@ pub const ACCESSES: &[StateAccess] = {
         a(TileClassification, I(TileDark), Read, Tiles, When::Always, Config::VisibilityInput),
         a(TileClassification, I(Reconstructed), Read, All, When::Always, Config::CheckerboardInput),
         a(TileClassification, I(DepthCopy), Read, Active, When::Always, Config::Any),
-        a(TileClassification, Previous(Moments), Read, Pixels::History, When::Always, Config::Any),
+        // Last frame's moments, at the history positions.
+        a(TileClassification, I(Moments), Read, Pixels::History, When::Always, Config::Any),
         a(TileClassification, I(History), Read, Pixels::History, When::Always, Config::Any),
-        a(TileClassification, I(Moments), Write, All, When::Always, Config::Any),
+        a(TileClassification, I(FrameMoments), Write, All, When::Always, Config::Any),
         a(TileClassification, I(Reprojection), Write, All, When::Always, Config::Any),
         a(TileClassification, I(TileMeta), Write, Tiles, When::Always, Config::Any),
         a(TileClassification, I(TileBlocker), Write, Tiles, When::Always, Config::PenumbraGuidance),
@@ -448,10 +460,13 @@ pub const ACCESSES: &[StateAccess] = {
         a(Filter, I(TileMeta), Read, Tiles, When::Always, Config::Any),
         a(Filter, I(TileBlocker), Read, Tiles, When::Always, Config::PenumbraGuidance),
         a(Filter, I(DepthCopy), Write, All, When::FirstPass, Config::Any),
+        // Pass 0 keeps this frame's moments for the next.
+        a(Filter, I(FrameMoments), Read, All, When::FirstPass, Config::Any),
+        a(Filter, I(Moments), Write, All, When::FirstPass, Config::Any),
         a(Filter, I(DepthCopy), Read, ActiveGroups, When::LaterPasses, Config::Any),
         a(Filter, FilterInput, Read, ActiveGroups, When::Always, Config::Any),
         a(Filter, FilterOutput, Write, All, When::WritesIntermediate, Config::Any),
         // The moments debug views.
-        a(Filter, I(Moments), Read, All, When::FinalPass, Config::DebugView),
+        a(Filter, I(FrameMoments), Read, All, When::FinalPass, Config::DebugView),
     ]
 };

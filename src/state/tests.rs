@@ -27,8 +27,8 @@ fn every_format_has_a_size_and_is_checked() {
     }
 }
 
-/// The byte counts follow the table; the numbers are those of docs/performance.md's "State model" (16 B/px kept
-/// with a hit mask, 24 with fractional samples).
+/// The byte counts follow the table; the numbers are those of docs/performance.md's "State model" (12 B/px kept
+/// with a hit mask, 16 with fractional samples).
 #[test]
 fn memory_follows_the_table() {
     for [w, h] in [[64u32, 32u32], [1921, 1081]] {
@@ -38,7 +38,8 @@ fn memory_follows_the_table() {
                 for input in INPUTS {
                     // Per light: tile mask, dark mask, metadata and blocker (4 B per tile each), the tiles' quiet
                     // counts (4 B per tile, two of them); reprojection and
-                    // history (4 B), the depth copy (4 B), two moments (4 B, 8 B with fractional samples); the
+                    // history (4 B), the depth copy (4 B), the kept and this frame's moments (4 B each, 8 B with
+                    // fractional samples); the
                     // fourth pass's intermediate (4 B); a checkerboard input's reconstructed visibility (4 B). Per
                     // context: nothing (the later filter passes' guide is each light's depth copy).
                     let tmp = if passes == 4 { 4 } else { 0 };
@@ -49,8 +50,8 @@ fn memory_follows_the_table() {
                     assert_eq!(texel_bytes(Scope::Context, [w, h], precision, passes, input), 0, "{precision:?} {passes} {input:?}");
                 }
             }
-            assert_eq!(persistent_texel_bytes([w, h], precision, ShadowInput::HitMask), 16 * px + 8 * tiles);
-            assert_eq!(persistent_texel_bytes([w, h], precision, ShadowInput::Visibility), 24 * px + 8 * tiles);
+            assert_eq!(persistent_texel_bytes([w, h], precision, ShadowInput::HitMask), 12 * px + 8 * tiles);
+            assert_eq!(persistent_texel_bytes([w, h], precision, ShadowInput::Visibility), 16 * px + 8 * tiles);
         }
     }
 }
@@ -121,8 +122,8 @@ fn views() -> FrameViews {
         history: view(Image::History, 0),
         tmp: view(Image::Tmp, 0),
         depth_copy: view(Image::DepthCopy, 0),
-        previous_moments: view(Image::Moments, 1),
-        moments: view(Image::Moments, 0),
+        kept_moments: view(Image::Moments, 0),
+        frame_moments: view(Image::FrameMoments, 0),
         previous_tile_quiet: view(Image::TileQuiet, 1),
         tile_quiet: view(Image::TileQuiet, 0),
         engine: [Binding::default(); crate::dispatch::MAX_ENGINE_IMAGES],
@@ -239,8 +240,8 @@ fn specs_are_in_table_order() {
     assert_eq!(
         names,
         [
-            "tile_mask", "tile_dark", "tile_meta", "tile_blocker", "reprojection", "history", "depth_copy", "moments_0",
-            "moments_1", "filter_tmp", "reconstructed_visibility", "tile_quiet_0", "tile_quiet_1"
+            "tile_mask", "tile_dark", "tile_meta", "tile_blocker", "reprojection", "history", "depth_copy", "moments",
+            "filter_tmp", "reconstructed_visibility", "tile_quiet_0", "tile_quiet_1", "frame_moments"
         ]
     );
 }

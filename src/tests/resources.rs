@@ -103,7 +103,7 @@ fn timestamps_and_memory_are_reported() {
     assert_eq!(t.filter_ms[2..], [0.0, 0.0], "passes beyond filter_passes report 0");
 
     // Per pixel: reprojection + history (RG16 unorm, 4 B each), the depth copy (R32_UINT, also the later filter
-    // passes' guide), two moments (packed, 4 B with a hit mask); per tile: mask + metadata (R32_UINT) and the two
+    // passes' guide), the kept and this frame's moments (packed, 4 B each with a hit mask); per tile: mask + metadata (R32_UINT) and the two
     // quiet counts (R32_UINT). Drivers may pad, never shrink.
     let px = (w * h) as u64;
     let tiles = (w.div_ceil(8) * h.div_ceil(4)) as u64;
@@ -112,11 +112,11 @@ fn timestamps_and_memory_are_reported() {
     assert!(bytes >= minimum && bytes < minimum * 2 + 65536, "memory_bytes {bytes}, expected about {minimum}");
     let estimate = crate::memory_requirements(w, h, crate::Precision::Fp32, 3, 1).unwrap();
     assert!(estimate >= minimum && estimate <= bytes, "memory_requirements {estimate}, allocated {bytes}");
-    // What persists between records: the history (4 B), the depth copy (4 B), two moments (4 B each); per tile the
-    // two quiet counts (4 B each).
+    // What persists between records: the history (4 B), the depth copy (4 B), the kept moments (4 B; this frame's
+    // are transient); per tile the two quiet counts (4 B each).
     let persistent = r.ctx.persistent_memory_bytes();
     let persistent_estimate = crate::persistent_memory_requirements(w, h, crate::Precision::Fp32, 1).unwrap();
-    assert_eq!(persistent_estimate, px * (4 + 4 + 2 * 4) + 2 * 4 * tiles);
+    assert_eq!(persistent_estimate, px * (4 + 4 + 4) + 2 * 4 * tiles);
     assert!(persistent >= persistent_estimate && persistent < bytes, "persistent {persistent} of {bytes}");
     assert_eq!(crate::persistent_memory_requirements(w, h, crate::Precision::Fp32, 3).unwrap(), 3 * persistent_estimate);
     drop(r);
@@ -259,7 +259,7 @@ mod hooks {
         assert!(log.iter().any(|(k, _)| *k == ResourceKind::Buffer));
         assert_eq!(gpu_alloc.live.load(Ordering::SeqCst), 0, "GPU allocations leaked");
         let names = names.lock().unwrap();
-        for expect in ["dnsr.light0.history", "dnsr.light0.moments_1", "dnsr.tile_classification_r32f", "dnsr.constants"] {
+        for expect in ["dnsr.light0.history", "dnsr.light0.moments", "dnsr.light0.frame_moments", "dnsr.tile_classification_r32f", "dnsr.constants"] {
             assert!(names.iter().any(|(_, n)| n == expect), "no object named {expect}: {names:?}");
         }
         assert!(names.iter().any(|(t, _)| *t == vk::ObjectType::PIPELINE));

@@ -98,18 +98,20 @@ void dnsr_write_visibility(ivec2 p, float v) { imageStore(dnsr_visibility_out, p
 #endif
 #endif
 
+// The moments' storage format: one word per pixel (dnsr_pack_moments); a visibility input's moments keep their sum
+// of squared deviations in a second (float32 bits).
+#ifdef DNSR_VISIBILITY_INPUT
+#define DNSR_MOMENTS_FORMAT rg32ui
+#else
+#define DNSR_MOMENTS_FORMAT r32ui
+#endif
+
 #ifdef DNSR_PASS_TILE_CLASSIFICATION
 layout(set = 0, binding = 3) uniform utexture2D dnsr_tile_mask;
 layout(set = 0, binding = 5) uniform texture2D dnsr_velocity;
 layout(set = 0, binding = 7) uniform utexture2D dnsr_previous_depth;
 layout(set = 0, binding = 9) uniform utexture2D dnsr_previous_moments;
-// One word per pixel (dnsr_pack_moments); a visibility input's moments keep their sum of squared deviations in a
-// second (float32 bits).
-#ifdef DNSR_VISIBILITY_INPUT
-layout(set = 0, binding = 10, rg32ui) uniform writeonly uimage2D dnsr_moments;
-#else
-layout(set = 0, binding = 10, r32ui) uniform writeonly uimage2D dnsr_moments;
-#endif
+layout(set = 0, binding = 10, DNSR_MOMENTS_FORMAT) uniform writeonly uimage2D dnsr_moments;
 layout(set = 0, binding = 11) uniform texture2D dnsr_history;
 layout(set = 0, binding = 12, DNSR_INTERMEDIATE_FORMAT) uniform writeonly image2D dnsr_reprojection;
 layout(set = 0, binding = 13, r32ui) uniform writeonly uimage2D dnsr_tile_meta_out;
@@ -207,11 +209,7 @@ void dnsr_write_depth_copy(ivec2 p, float linear_depth, vec3 normal) {
 // from (dnsr_read_previous_moments), which this pass writes once classification has read last frame's: one kept
 // image, the other transient. Copied as stored words (the second one with a visibility input's fractions).
 layout(set = 0, binding = 64) uniform utexture2D dnsr_frame_moments;
-#ifdef DNSR_VISIBILITY_INPUT
-layout(set = 0, binding = 65, rg32ui) uniform writeonly uimage2D dnsr_kept_moments;
-#else
-layout(set = 0, binding = 65, r32ui) uniform writeonly uimage2D dnsr_kept_moments;
-#endif
+layout(set = 0, binding = 65, DNSR_MOMENTS_FORMAT) uniform writeonly uimage2D dnsr_kept_moments;
 uvec2 dnsr_read_frame_moments(ivec2 p) { return texelFetch(dnsr_frame_moments, p + dnsr_get_offset(), 0).xy; }
 void dnsr_write_kept_moments(ivec2 p, uvec2 words) { imageStore(dnsr_kept_moments, p + dnsr_get_offset(), uvec4(words, 0u, 0u)); }
 #endif

@@ -113,7 +113,8 @@ fn entry_workgroup_size(spirv: &[u8]) -> Result<[u32; 3]> {
 
 /// Checks an engine's SPIR-V for `name` against what dnsr relies on in its own variant: the entry point and
 /// workgroup size its dispatches assume, each binding it declares at the number and of the type dnsr binds
-/// there (it may leave some out), the push-constant and constants-block sizes, the specialization constants.
+/// there (it may leave out what it reads, not what it writes), the push-constant and constants-block sizes, the
+/// specialization constants.
 pub(crate) fn check_override(name: &str, spirv: &[u8], offers: DeviceOffers) -> Result<()> {
     let fail = |what: String| Error::ShaderInterface(format!("shader override \"{name}\": {what}"));
     let wrap = |e: Error| match e {
@@ -154,6 +155,16 @@ pub(crate) fn check_override(name: &str, spirv: &[u8], offers: DeviceOffers) -> 
                 image_format_name(expected.format)
             )));
         }
+    }
+    // What dnsr's variant writes is state a later pass or frame reads (the moments it keeps, the depth copy, the
+    // filter's signal): an override may leave out what it reads, not what it writes, or that state would go stale
+    // without an error (a variant compiled from an older dnsr's sources, for one).
+    let writes = |t: vk::DescriptorType| matches!(t, vk::DescriptorType::STORAGE_IMAGE | vk::DescriptorType::STORAGE_TEXEL_BUFFER);
+    if let Some(o) = ours.bindings.iter().find(|o| writes(o.descriptor_type) && !theirs.bindings.iter().any(|b| b.resource == o.resource)) {
+        return Err(fail(format!(
+            "does not declare {:?} (binding {}), which dnsr's variant writes (compile the variant from this dnsr's shader sources)",
+            o.resource, o.binding
+        )));
     }
     if let Some(b) = theirs.bindings.iter().find(|b| is_classify_variant(name) && b.resource.engine_slot().is_some()) {
         return Err(fail(format!("declares an engine image at binding {}; the classifier's dispatch has no engine images", b.binding)));

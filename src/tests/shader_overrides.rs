@@ -146,6 +146,11 @@ fn mismatched_overrides_are_refused_before_anything_is_created() {
     };
     // The depth copy written as r16ui (what a callbacks file copied before it became R32_UINT declares).
     let narrow_depth_copy = edited(&|s| s.replace("binding = 8, r32ui) uniform writeonly uimage2D dnsr_depth_copy", "binding = 8, r16ui) uniform writeonly uimage2D dnsr_depth_copy"));
+    // A callbacks file from before the first filter pass kept the moments: nothing writes them.
+    let moments_not_kept = edited(&|s| {
+        s.replace("layout(set = 0, binding = 65, DNSR_MOMENTS_FORMAT) uniform writeonly uimage2D dnsr_kept_moments;", "")
+            .replace("{ imageStore(dnsr_kept_moments, p + dnsr_get_offset(), uvec4(words, 0u, 0u)); }", "{}")
+    });
     let float64 = edited(&|s| {
         s.replace("float dnsr_read_depth(ivec2 p) { return texelFetch(dnsr_depth, p + dnsr_get_offset(), 0).r; }",
             "float dnsr_read_depth(ivec2 p) { return float(double(texelFetch(dnsr_depth, p + dnsr_get_offset(), 0).r) * 1.0lf); }")
@@ -164,6 +169,7 @@ fn mismatched_overrides_are_refused_before_anything_is_created() {
         ("normals at another binding", vec![moved_normals], "Normals is binding 30; dnsr binds it at"),
         ("the depth copy as r16ui", vec![narrow_depth_copy], "declares DepthCopy (binding 8) as r16ui; dnsr's variant declares r32ui"),
         ("an engine binding", vec![extra], "unknown binding 'engine_depth'"),
+        ("the moments not kept", vec![moments_not_kept], "does not declare KeptMoments (binding 65), which dnsr's variant writes"),
         ("header's reserved word", vec![with_word(4, 1)], "header word 4"),
         ("id bound 2^30", vec![with_word(3, 1 << 30)], "id bound"),
         ("image Sampled 3", vec![image_sampled_3], "is not valid SPIR-V for Vulkan 1.1"),

@@ -606,8 +606,13 @@ impl Context {
             tile_blocker: light.tile_blocker.view,
             spec: self.specialization(d.hit_distance.is_some(), d.hard_light),
             output: d.output.view,
-            tile_mask: if self.reads_mask_directly() { host(&d.hit_mask) } else { image(light.tile_mask.view, vk::ImageLayout::GENERAL) },
-            tile_dark: light.tile_dark.view,
+            // A hit mask is read as the host gives it; the other inputs' tile words are prepare's (their images
+            // exist with those inputs only).
+            tile_mask: match &light.tile_mask {
+                Some(m) if !self.reads_mask_directly() => image(m.view, vk::ImageLayout::GENERAL),
+                _ => host(&d.hit_mask),
+            },
+            tile_dark: light.tile_dark.as_ref().map_or(vk::ImageView::null(), |i| i.view),
             tile_meta: light.tile_meta.view,
             reprojection: light.reprojection.view,
             history: light.history.view,
@@ -967,6 +972,7 @@ fn transition_from_undefined<'a>(
 /// Internal images of one light, for tests that read dnsr's intermediate state.
 #[cfg(test)]
 pub(crate) struct Internals {
+    /// Null with a hit-mask input (no such image).
     pub tile_mask: vk::Image,
     pub tile_dark: vk::Image,
     pub tile_meta: vk::Image,
@@ -986,8 +992,8 @@ impl Context {
     pub(crate) fn internals(&self, light: usize) -> Internals {
         let l = &self.lights[light];
         Internals {
-            tile_mask: l.tile_mask.image,
-            tile_dark: l.tile_dark.image,
+            tile_mask: l.tile_mask.as_ref().map_or(vk::Image::null(), |i| i.image),
+            tile_dark: l.tile_dark.as_ref().map_or(vk::Image::null(), |i| i.image),
             tile_meta: l.tile_meta.image,
             tile_blocker: l.tile_blocker.image,
             reprojection: l.reprojection.image,

@@ -9,10 +9,11 @@ use crate::state::table::{Image, Needed, Scope, RESOURCES};
 use crate::state::{image_specs, specs_of_image, ImageSpec, Lifetime};
 
 pub(crate) struct LightState {
-    pub tile_mask: InternalImage,
-    /// The exactly shadowed pixels of each tile, written by prepare with a visibility input; 4 bytes per tile, so
-    /// always allocated.
-    pub tile_dark: InternalImage,
+    /// The lit pixels of each tile, written by prepare with a visibility or checkerboard input (None with a hit
+    /// mask, which classification reads as the host gives it).
+    pub tile_mask: Option<InternalImage>,
+    /// The exactly shadowed pixels of each tile, as `tile_mask`.
+    pub tile_dark: Option<InternalImage>,
     pub tile_meta: InternalImage,
     /// Written and read only with penumbra guidance; 4 bytes per tile, so always allocated.
     pub tile_blocker: InternalImage,
@@ -61,10 +62,11 @@ impl LightState {
             let at = made.iter().position(|(s, _)| s.image == image && s.copy == copy)?;
             Some(made.swap_remove(at).1)
         };
+        let (tile_mask, tile_dark) = (take(Image::TileMask, 0), take(Image::TileDark, 0));
         let mut always = |image: Image, copy: u32| take(image, copy).expect("a light image the table always allocates");
         Ok(LightState {
-            tile_mask: always(Image::TileMask, 0),
-            tile_dark: always(Image::TileDark, 0),
+            tile_mask,
+            tile_dark,
             tile_meta: always(Image::TileMeta, 0),
             tile_blocker: always(Image::TileBlocker, 0),
             reprojection: always(Image::Reprojection, 0),
@@ -84,8 +86,8 @@ impl LightState {
     /// The image of the state table's row `image` (the half `copy` of a pair), if this light has it.
     pub(crate) fn image(&self, image: Image, copy: u32) -> Option<&InternalImage> {
         let single = match image {
-            Image::TileMask => Some(&self.tile_mask),
-            Image::TileDark => Some(&self.tile_dark),
+            Image::TileMask => self.tile_mask.as_ref(),
+            Image::TileDark => self.tile_dark.as_ref(),
             Image::TileMeta => Some(&self.tile_meta),
             Image::TileBlocker => Some(&self.tile_blocker),
             Image::Reprojection => Some(&self.reprojection),
@@ -140,9 +142,11 @@ impl LightState {
     }
 
     pub(crate) fn destroy(&mut self, vk: &Vk) {
-        for img in [&mut self.tile_mask, &mut self.tile_dark, &mut self.tile_meta, &mut self.tile_blocker, &mut self.reprojection, &mut self.history, &mut self.depth_copy, &mut self.moments, &mut self.frame_moments]
+        for img in [&mut self.tile_meta, &mut self.tile_blocker, &mut self.reprojection, &mut self.history, &mut self.depth_copy, &mut self.moments, &mut self.frame_moments]
             .into_iter()
             .chain(self.tile_quiet.iter_mut())
+            .chain(self.tile_mask.iter_mut())
+            .chain(self.tile_dark.iter_mut())
             .chain(self.tmp.iter_mut())
             .chain(self.reconstructed.iter_mut())
         {

@@ -121,6 +121,8 @@ pub enum Needed {
     Passes(u32),
     /// With `ShadowInput::Checkerboard`.
     Checkerboard,
+    /// With a per-pixel visibility input, `ShadowInput::Visibility` or `Checkerboard` (prepare runs for them only).
+    FractionInput,
 }
 
 impl Needed {
@@ -130,6 +132,7 @@ impl Needed {
             Needed::Always => true,
             Needed::Passes(n) => filter_passes >= n,
             Needed::Checkerboard => input == ShadowInput::Checkerboard,
+            Needed::FractionInput => input != ShadowInput::HitMask,
         }
     }
 }
@@ -213,11 +216,10 @@ use Scope::Light;
 
 /// Every internal image, in `Image` order (which is the order a light creates them in).
 pub const RESOURCES: [Resource; 12] = [
-    // Written by prepare for a visibility or checkerboard input (a hit mask is read as the host gives it); 4 bytes
-    // per tile, so allocated whatever the input.
-    resource(Image::TileMask, "tile_mask", Formats::both(vk::Format::R32_UINT), Tile, Light, 1, Transient, Needed::Always),
-    // 4 bytes per tile, so allocated whatever the input.
-    resource(Image::TileDark, "tile_dark", Formats::both(vk::Format::R32_UINT), Tile, Light, 1, Transient, Needed::Always),
+    // Written by prepare for a visibility or checkerboard input; a hit mask is read as the host gives it, so a
+    // hit-mask context has neither (0.25 B/px).
+    resource(Image::TileMask, "tile_mask", Formats::both(vk::Format::R32_UINT), Tile, Light, 1, Transient, Needed::FractionInput),
+    resource(Image::TileDark, "tile_dark", Formats::both(vk::Format::R32_UINT), Tile, Light, 1, Transient, Needed::FractionInput),
     resource(Image::TileMeta, "tile_meta", Formats::both(vk::Format::R32_UINT), Tile, Light, 1, Transient, Needed::Always),
     // The blocker distance of penumbra guidance; 4 bytes per tile, so allocated with or without guidance.
     resource(Image::TileBlocker, "tile_blocker", Formats::both(vk::Format::R32_SFLOAT), Tile, Light, 1, Transient, Needed::Always),

@@ -36,8 +36,9 @@ fn memory_follows_the_table() {
         for precision in PRECISIONS {
             for passes in 1..=MAX_FILTER_PASSES {
                 for input in INPUTS {
-                    // Per light: tile mask, dark mask, metadata and blocker (4 B per tile each), the tiles' quiet
-                    // counts (4 B per tile, two of them); reprojection and
+                    // Per light: metadata and blocker (4 B per tile each), with a visibility or checkerboard input
+                    // the tile mask and dark mask too, the tiles' quiet counts (4 B per tile, two of them);
+                    // reprojection and
                     // history (4 B), the depth copy (4 B), the kept and this frame's moments (4 B each, 8 B with
                     // fractional samples); the
                     // fourth pass's intermediate (4 B); a checkerboard input's reconstructed visibility (4 B). Per
@@ -45,7 +46,8 @@ fn memory_follows_the_table() {
                     let tmp = if passes == 4 { 4 } else { 0 };
                     let reconstructed = if input == ShadowInput::Checkerboard { 4 } else { 0 };
                     let moments = if input == ShadowInput::HitMask { 4 } else { 8 };
-                    let light = 4 * 4 * tiles + 2 * 4 * tiles + px * (4 + 4 + 4 + 2 * moments + tmp + reconstructed);
+                    let tile_images = if input == ShadowInput::HitMask { 2 } else { 4 };
+                    let light = tile_images * 4 * tiles + 2 * 4 * tiles + px * (4 + 4 + 4 + 2 * moments + tmp + reconstructed);
                     assert_eq!(texel_bytes(Scope::Light, [w, h], precision, passes, input), light, "{precision:?} {passes} {input:?}");
                     assert_eq!(texel_bytes(Scope::Context, [w, h], precision, passes, input), 0, "{precision:?} {passes} {input:?}");
                 }

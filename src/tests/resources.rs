@@ -103,8 +103,8 @@ fn timestamps_and_memory_are_reported() {
     assert_eq!(t.filter_ms[2..], [0.0, 0.0], "passes beyond filter_passes report 0");
 
     // Per pixel: reprojection + history (RG16 unorm, 4 B each), the depth copy (R32_UINT, also the later filter
-    // passes' guide), the kept and this frame's moments (packed, 4 B each with a hit mask); per tile: mask + metadata (R32_UINT) and the two
-    // quiet counts (R32_UINT). Drivers may pad, never shrink.
+    // passes' guide), the kept and this frame's moments (packed, 4 B each with a hit mask); per tile: metadata and blocker and the two quiet
+    // counts (4 B each; a hit mask has no tile mask of dnsr's). Drivers may pad, never shrink.
     let px = (w * h) as u64;
     let tiles = (w.div_ceil(8) * h.div_ceil(4)) as u64;
     let minimum = px * (4 + 4 + 4 + 4 + 4) + 4 * 4 * tiles;

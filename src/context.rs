@@ -606,12 +606,9 @@ impl Context {
             tile_blocker: light.tile_blocker.view,
             spec: self.specialization(d.hit_distance.is_some(), d.hard_light),
             output: d.output.view,
-            // A hit mask is read as the host gives it; the other inputs' tile words are prepare's (their images
-            // exist with those inputs only).
-            tile_mask: match &light.tile_mask {
-                Some(m) if !self.reads_mask_directly() => image(m.view, vk::ImageLayout::GENERAL),
-                _ => host(&d.hit_mask),
-            },
+            // The other inputs' tile words are prepare's; a hit mask is read as the host gives it (its context has no
+            // tile mask: the state table's `Needed::FractionInput`).
+            tile_mask: light.tile_mask.as_ref().map_or(host(&d.hit_mask), |m| image(m.view, vk::ImageLayout::GENERAL)),
             tile_dark: light.tile_dark.as_ref().map_or(vk::ImageView::null(), |i| i.view),
             tile_meta: light.tile_meta.view,
             reprojection: light.reprojection.view,

@@ -295,15 +295,11 @@ pub(crate) struct FfxLight {
 /// Gives the live context at `context` the light of its later dispatches; false when `context` is NULL or holds
 /// no live context.
 pub(crate) fn set_light(context: *mut FfxDenoiserContext, light: FfxLight) -> bool {
-    // SAFETY: the C caller guarantees that a non-null pointer points at an FfxDenoiserContext.
-    let Some(context) = (unsafe { context.as_ref() }) else { return false };
-    match lock(&CONTEXTS).get_mut(&context_id(context)) {
-        Some(d) => {
-            d.light = light;
-            true
-        }
-        None => false,
-    }
+    with_context(context, |d| {
+        d.light = light;
+        Ok(())
+    })
+    .is_ok()
 }
 
 // SAFETY: the dnsr context is used behind the registry's lock only.

@@ -1681,8 +1681,9 @@ typedef struct DnsrDiagnosis {
  * The fraction of the pixel's rays that reached the light, in [0, 1] (DnsrShadowsDispatch::visibility): for
  * engines tracing several rays per pixel, sampling area lights, or mixing analytic and traced shadows. Only exact
  * 0 and 1 count as uniform or extend runs of identical samples; the temporal moments are those of the per-frame
- * values, so k rays per pixel give the variance of a mean of k samples. 8 B/px more device memory per light than
- * dnsr_get_memory_requirements says (the moments keep the samples' sum of squared deviations).
+ * values, so k rays per pixel give the variance of a mean of k samples. 12 B/px more device memory per light than
+ * dnsr_get_memory_requirements says (the moments keep the samples' sum of squared deviations, and the filter's
+ * signal between passes takes an image of its own).
  */
 #define DNSR_SHADOW_INPUT_VISIBILITY 1
 
@@ -1690,7 +1691,7 @@ typedef struct DnsrDiagnosis {
  * Half a ray per pixel: hitMask (in its hitMaskConvention) holds this frame's rays for the pixels with
  * (x + y) % 2 == DnsrShadowsDispatch::checkerboardPhase only (x, y in image pixels); alternate the phase every
  * frame. dnsr keeps each traced pixel's sample, gives every other pixel the mean of its four traced neighbours and
- * denoises that as a visibility input. 12 B/px more device memory per light than dnsr_get_memory_requirements says.
+ * denoises that as a visibility input. 16 B/px more device memory per light than dnsr_get_memory_requirements says.
  */
 #define DNSR_SHADOW_INPUT_CHECKERBOARD 2
 
@@ -1997,8 +1998,8 @@ DnsrResult dnsr_settings_init_preset(DnsrPreset preset, struct DnsrSettings *pSe
 DnsrResult dnsr_context_get_settings(DnsrContext context, struct DnsrSettings *pSettings);
 
 /**
- * Replaces the settings from the next recorded frame on; a refused change keeps the old settings. Going to 4
- * filter passes allocates an image per light (the GPU must have finished earlier frames).
+ * Replaces the settings from the next recorded frame on; a refused change keeps the old settings. Allocates
+ * nothing: every filter pass count uses the same images.
  */
 DnsrResult dnsr_context_set_settings(DnsrContext context,
                                      const struct DnsrSettings *pSettings);

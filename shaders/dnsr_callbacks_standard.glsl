@@ -212,6 +212,11 @@ layout(set = 0, binding = 64) uniform utexture2D dnsr_frame_moments;
 layout(set = 0, binding = 65, DNSR_MOMENTS_FORMAT) uniform writeonly uimage2D dnsr_kept_moments;
 uvec2 dnsr_read_frame_moments(ivec2 p) { return texelFetch(dnsr_frame_moments, p + dnsr_get_offset(), 0).xy; }
 void dnsr_write_kept_moments(ivec2 p, uvec2 words) { imageStore(dnsr_kept_moments, p + dnsr_get_offset(), uvec4(words, 0u, 0u)); }
+// The next frame's history: this pass's mean alone (the next frame's classification blends nothing else). Its
+// variance reaches the later passes through the filter output, a transient image (with a hit mask, the frame
+// moments' memory, which this pass has read at the pixel by then).
+layout(set = 0, binding = 66, DNSR_HISTORY_FORMAT) uniform writeonly image2D dnsr_history_out;
+void dnsr_write_history(ivec2 p, float mean) { imageStore(dnsr_history_out, p + dnsr_get_offset(), vec4(mean)); }
 #endif
 
 int dnsr_get_filter_step() { return int(dnsr_push.pass.x); }

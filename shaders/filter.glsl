@@ -90,6 +90,9 @@ float dnsr_debug_value(int l, uint view, ivec2 p, bool receiver, uint meta, vec2
 #endif
 
 void dnsr_filter_write(int l, ivec2 p, vec2 result, bool receiver, uint meta) {
+#ifndef DNSR_LATER_PASS
+    dnsr_write_history(p, result.x);
+#endif
     if (dnsr_get_write_internal()) dnsr_pass_write_filter_output(l, p, result);
 #ifdef DNSR_FINAL_PASS
     uint view = dnsr_get_debug_view();
@@ -306,11 +309,11 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     ivec2 m = (lid / DNSR_GROUP_SIZE) * DNSR_BLOCK_TILES;
     uint meta = dnsr_meta[m.y + (lid.y % DNSR_GROUP_SIZE.y) / DNSR_TILE_SIZE.y][m.x];
     if (dnsr_block_cleared(m)) {
-        // Everywhere, cleared blocks included: the later passes tap them, and the next frame reads them.
+        // Everywhere, cleared blocks included: the later passes tap them, and the next frame reads them. So are the
+        // history and the signal (this pass never skips cleared blocks: the history is not in place, and writing
+        // the signal only where the second pass reads it, near tiles that are not cleared, measured slower on an
+        // H200, docs/performance.md).
         dnsr_write_depth_copy(p, receiver ? linear_depth : -1.0, receiver ? normal : vec3(0.0));
-        // Cleared values are already where this pass would write them (classification wrote the output and the
-        // reprojection image): nothing to do.
-        if (dnsr_get_skip_cleared()) return;
         dnsr_filter_write(0, p, dnsr_cleared_value(receiver, meta), receiver, meta);
         return;
     }

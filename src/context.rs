@@ -28,8 +28,10 @@ pub fn memory_requirements(width: u32, height: u32, precision: Precision, filter
     memory_requirements_for_input(width, height, precision, filter_passes, light_count, ShadowInput::HitMask)
 }
 
-/// `memory_requirements` for a context with shadow input `input` (a visibility input adds 8 B/px per light, the
-/// second word of its kept and of its frame's moments; a checkerboard input 12, with its reconstructed visibility).
+/// `memory_requirements` for a context with shadow input `input` (a visibility input adds 12 B/px per light: the
+/// second word of its kept and of its frame's moments, and the filter's signal between passes, which a hit mask
+/// keeps in its frame moments' memory; a checkerboard input 16, with its reconstructed visibility). The filter
+/// passes change nothing: every count uses the same images.
 pub fn memory_requirements_for_input(
     width: u32,
     height: u32,
@@ -42,8 +44,8 @@ pub fn memory_requirements_for_input(
     check_filter_passes(filter_passes)?;
     validate::light_count(light_count)?;
     use crate::state::{table::Scope, texel_bytes};
-    let per_light = texel_bytes(Scope::Light, [width, height], precision, filter_passes, input);
-    Ok(per_light * light_count as u64 + texel_bytes(Scope::Context, [width, height], precision, filter_passes, input) + constants_bytes(light_count))
+    let per_light = texel_bytes(Scope::Light, [width, height], precision, input);
+    Ok(per_light * light_count as u64 + texel_bytes(Scope::Context, [width, height], precision, input) + constants_bytes(light_count))
 }
 
 /// Bytes of the part of `memory_requirements` whose contents must survive from one record of a light to the next
@@ -393,8 +395,7 @@ impl Context {
 
     fn allocate_lights(&mut self) -> Result<()> {
         for index in 0..self.light_count {
-            let (passes, input) = (self.settings.filter_passes, self.shadow_input);
-            let light = LightState::new(&self.vk, index, self.size, self.precision, passes, input, self.alias_transient)?;
+            let light = LightState::new(&self.vk, index, self.size, self.precision, self.shadow_input, self.alias_transient)?;
             self.lights.push(light);
         }
         Ok(())
@@ -440,15 +441,10 @@ impl Context {
         self.settings
     }
 
-    /// Replaces the settings from the next recorded frame on. Going to four filter passes allocates one more
-    /// intermediate image per light; in that case the GPU must have finished earlier frames.
+    /// Replaces the settings from the next recorded frame on. Allocates nothing: every filter pass count uses the
+    /// same images.
     pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
         settings.validate()?;
-        for (index, light) in self.lights.iter_mut().enumerate() {
-            if light.allocate_optional(&self.vk, index as u32, self.size, self.precision, settings.filter_passes, self.alias_transient)? {
-                light.initialized = false;
-            }
-        }
         self.settings = settings;
         Ok(())
     }
@@ -613,7 +609,7 @@ impl Context {
             tile_meta: light.tile_meta.view,
             reprojection: light.reprojection.view,
             history: light.history.view,
-            tmp: light.tmp.as_ref().map_or(vk::ImageView::null(), |t| t.view),
+            signal: light.signal_view(),
             depth_copy: light.depth_copy.view,
             kept_moments: light.moments.view,
             frame_moments: light.frame_moments.view,
@@ -975,13 +971,18 @@ pub(crate) struct Internals {
     pub tile_meta: vk::Image,
     pub tile_blocker: vk::Image,
     pub reprojection: vk::Image,
+    /// The mean alone (`history_format`).
     pub history: vk::Image,
+    /// The image whose memory holds the filter's signal between passes (the frame moments' with a hit mask),
+    /// in `intermediate_format`'s texels.
+    pub signal: vk::Image,
     /// Written by the last recorded frame.
     pub moments: vk::Image,
     /// Written by the last recorded frame.
     pub tile_quiet: vk::Image,
     pub depth: vk::Image,
     pub intermediate_format: vk::Format,
+    pub history_format: vk::Format,
 }
 
 #[cfg(test)]
@@ -995,10 +996,12 @@ impl Context {
             tile_blocker: l.tile_blocker.image,
             reprojection: l.reprojection.image,
             history: l.history.image,
+            signal: l.signal.as_ref().map_or(l.frame_moments.image, |s| s.image),
             moments: l.moments.image,
             tile_quiet: l.tile_quiet[l.parity ^ 1].image,
             depth: l.depth_copy.image,
             intermediate_format: crate::state::intermediate_format(self.precision),
+            history_format: crate::state::history_format(self.precision),
         }
     }
 

@@ -43,14 +43,15 @@ pub enum ShadowInput {
     /// The fraction of the pixel's rays that reached the light, in [0, 1] (`ShadowsDispatch::visibility`): for
     /// engines tracing several rays per pixel, sampling area lights, or mixing analytic and traced shadows. Only
     /// exact 0 and 1 count as uniform (cleared tiles) or extend runs of identical samples; the temporal moments
-    /// are those of the per-frame values, so k rays per pixel give the variance of a mean of k samples. Costs 8
-    /// B/px more per light (the moments keep the samples' sum of squared deviations, which 0/1 samples imply).
+    /// are those of the per-frame values, so k rays per pixel give the variance of a mean of k samples. Costs 12
+    /// B/px more per light (the moments keep the samples' sum of squared deviations, which 0/1 samples imply, and
+    /// the filter's signal between passes needs an image of its own instead of the frame moments' memory).
     Visibility,
     /// Half a ray per pixel: the hit mask (`ShadowsDispatch::hit_mask`, in its `hit_mask_convention`) holds this
     /// frame's rays for the pixels with (x + y) % 2 == `ShadowsDispatch::checkerboard_phase` only (x, y in image
     /// pixels); the host alternates the phase every frame. dnsr keeps each traced pixel's sample and gives every
-    /// other pixel the mean of its four traced neighbours, then denoises that as a visibility input. Costs 12 B/px
-    /// more per light (the reconstructed visibility, the visibility input's moments).
+    /// other pixel the mean of its four traced neighbours, then denoises that as a visibility input. Costs 16 B/px
+    /// more per light (the reconstructed visibility, and what a visibility input costs).
     Checkerboard,
 }
 

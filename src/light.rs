@@ -5,8 +5,9 @@ use crate::create_info::{Precision, ShadowInput};
 use crate::error::Result;
 use crate::gpu::image::InternalImage;
 use crate::gpu::loader::Vk;
-use crate::state::table::{Image, Needed, Scope, RESOURCES};
-use crate::state::{image_specs, specs_of_image, ImageSpec, Lifetime};
+use crate::state::table::{Image, Scope, RESOURCES};
+use crate::state::{image_specs, ImageSpec, Lifetime};
+use ash::vk;
 
 pub(crate) struct LightState {
     /// The lit pixels of each tile, written by prepare with a visibility or checkerboard input (None with a hit
@@ -18,9 +19,11 @@ pub(crate) struct LightState {
     /// Written and read only with penumbra guidance; 4 bytes per tile, so always allocated.
     pub tile_blocker: InternalImage,
     pub reprojection: InternalImage,
+    /// The filter's mean alone.
     pub history: InternalImage,
-    /// None until four passes are configured.
-    pub tmp: Option<InternalImage>,
+    /// The filter's signal between passes, an image of its own with a visibility or checkerboard input; None with
+    /// a hit mask, whose frame moments' memory holds it (`frame_moments.shared_view`).
+    pub signal: Option<InternalImage>,
     /// The visibility prepare reconstructs from a checkerboard input (None for other inputs).
     pub reconstructed: Option<InternalImage>,
     /// Linear depth: last frame's until the first filter pass writes this frame's.
@@ -41,15 +44,16 @@ pub(crate) struct LightState {
 }
 
 fn create(vk: &Vk, light: u32, spec: &ImageSpec, alias: bool) -> Result<InternalImage> {
-    InternalImage::new(vk, spec.format, spec.extent, &format!("dnsr.light{light}.{}", spec.name()), spec.lifetime == Lifetime::Persistent, alias)
+    let name = format!("dnsr.light{light}.{}", spec.name());
+    InternalImage::new(vk, spec.format, spec.extent, &name, spec.lifetime == Lifetime::Persistent, alias, spec.shared_format)
 }
 
 impl LightState {
-    /// A light's images: every light image of the state table that `filter_passes` passes and shadow input `input`
-    /// need. `alias`: the host aliases the transient ones (`ResourceKind::TransientImage`).
-    pub(crate) fn new(vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32, input: ShadowInput, alias: bool) -> Result<LightState> {
+    /// A light's images: every light image of the state table that shadow input `input` needs. `alias`: the host
+    /// aliases the transient ones (`ResourceKind::TransientImage`).
+    pub(crate) fn new(vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, input: ShadowInput, alias: bool) -> Result<LightState> {
         let mut made: Vec<(ImageSpec, InternalImage)> = Vec::new();
-        for spec in image_specs(Scope::Light, extent, precision, filter_passes, input) {
+        for spec in image_specs(Scope::Light, extent, precision, input) {
             match create(vk, light, &spec, alias) {
                 Ok(img) => made.push((spec, img)),
                 Err(e) => {
@@ -75,7 +79,7 @@ impl LightState {
             moments: always(Image::Moments, 0),
             frame_moments: always(Image::FrameMoments, 0),
             tile_quiet: [always(Image::TileQuiet, 0), always(Image::TileQuiet, 1)],
-            tmp: take(Image::Tmp, 0),
+            signal: take(Image::Signal, 0),
             reconstructed: take(Image::Reconstructed, 0),
             parity: 0,
             initialized: false,
@@ -96,30 +100,15 @@ impl LightState {
             Image::Moments => Some(&self.moments),
             Image::FrameMoments => Some(&self.frame_moments),
             Image::TileQuiet => return self.tile_quiet.get(copy as usize),
-            Image::Tmp => self.tmp.as_ref(),
+            Image::Signal => self.signal.as_ref(),
             Image::Reconstructed => self.reconstructed.as_ref(),
         };
         single.filter(|_| copy == 0)
     }
 
-    /// Allocates the images `filter_passes` passes need (the table's `Needed::Passes` light images) and this light
-    /// lacks; true if it made any (their first frame initialises them, like a new light's).
-    pub(crate) fn allocate_optional(&mut self, vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, filter_passes: u32, alias: bool) -> Result<bool> {
-        let mut made = false;
-        let optional = RESOURCES.iter().filter(|r| r.scope == Scope::Light && matches!(r.needed, Needed::Passes(_)));
-        for r in optional.filter(|r| r.needed.holds(filter_passes, ShadowInput::HitMask)) {
-            let slot = match r.image {
-                Image::Tmp => &mut self.tmp,
-                other => unreachable!("{other:?}: a light image allocated with the filter passes has a slot here"),
-            };
-            if slot.is_none() {
-                for spec in specs_of_image(r.image, extent, precision) {
-                    *slot = Some(create(vk, light, &spec, alias)?);
-                }
-                made = true;
-            }
-        }
-        Ok(made)
+    /// The view of the filter's signal between passes: its own image's, or the one of the frame moments' memory.
+    pub(crate) fn signal_view(&self) -> vk::ImageView {
+        self.signal.as_ref().map_or(self.frame_moments.shared_view, |s| s.view)
     }
 
     /// Every image this light has, in table order.
@@ -147,7 +136,7 @@ impl LightState {
             .chain(self.tile_quiet.iter_mut())
             .chain(self.tile_mask.iter_mut())
             .chain(self.tile_dark.iter_mut())
-            .chain(self.tmp.iter_mut())
+            .chain(self.signal.iter_mut())
             .chain(self.reconstructed.iter_mut())
         {
             img.destroy(vk);

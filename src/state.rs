@@ -18,10 +18,16 @@ pub(crate) fn moments_format(input: ShadowInput) -> vk::Format {
     resource_of(Image::Moments).format_for(Precision::Fp32, input)
 }
 
-/// The filter's signal (mean, variance) between passes and as history (`table::Image::History`'s format: every
-/// intermediate of the filter has it), for tests that read it.
+/// The filter's signal (mean, variance) between passes (`table::Image::Signal`'s format: every intermediate of the
+/// filter has it), for tests that read it.
 #[cfg(test)]
 pub(crate) fn intermediate_format(precision: Precision) -> vk::Format {
+    resource_of(Image::Signal).format.get(precision)
+}
+
+/// The history's format (the signal's mean alone), for tests that read it.
+#[cfg(test)]
+pub(crate) fn history_format(precision: Precision) -> vk::Format {
     resource_of(Image::History).format.get(precision)
 }
 
@@ -118,6 +124,8 @@ pub(crate) struct ImageSpec {
     pub format: vk::Format,
     pub extent: [u32; 2],
     pub lifetime: Lifetime,
+    /// The format of a second view of its memory: the row that shares it (`Resource::shares`), or None.
+    pub shared_format: Option<vk::Format>,
 }
 
 impl ImageSpec {
@@ -138,47 +146,40 @@ pub(crate) fn image_extent(per: Per, extent: [u32; 2]) -> [u32; 2] {
 }
 
 fn specs_of(r: &'static Resource, extent: [u32; 2], precision: Precision, input: ShadowInput) -> impl Iterator<Item = ImageSpec> {
+    // A row that shares this one's memory (needed whenever this one is: a shared row's other image is always
+    // allocated) gives it a second view.
+    let shared_format = RESOURCES
+        .iter()
+        .find(|s| s.needed.holds(input) && s.shared_with(precision, input) == Some(r.image))
+        .map(|s| s.format_for(precision, input));
     (0..r.copies).map(move |copy| ImageSpec {
         image: r.image,
         copy,
         format: r.format_for(precision, input),
         extent: image_extent(r.per, extent),
         lifetime: r.lifetime,
+        shared_format,
     })
 }
 
-/// Every image of `scope` that a context with `filter_passes` passes and shadow input `input` holds (each light
-/// its own for `Scope::Light`), in table order.
-pub(crate) fn image_specs(
-    scope: Scope,
-    extent: [u32; 2],
-    precision: Precision,
-    filter_passes: u32,
-    input: ShadowInput,
-) -> impl Iterator<Item = ImageSpec> {
+/// Every image of `scope` that a context with shadow input `input` creates (each light its own for
+/// `Scope::Light`), in table order: the rows it needs, less those that are views of another row's memory.
+pub(crate) fn image_specs(scope: Scope, extent: [u32; 2], precision: Precision, input: ShadowInput) -> impl Iterator<Item = ImageSpec> {
     RESOURCES
         .iter()
-        .filter(move |r| r.scope == scope && r.needed.holds(filter_passes, input))
+        .filter(move |r| r.scope == scope && r.needed.holds(input) && r.shared_with(precision, input).is_none())
         .flat_map(move |r| specs_of(r, extent, precision, input))
 }
 
-/// The images of `image`'s row (both halves of a pair), needed or not: a row whose format is the same for every
-/// shadow input.
-pub(crate) fn specs_of_image(image: Image, extent: [u32; 2], precision: Precision) -> impl Iterator<Item = ImageSpec> {
-    let r = resource_of(image);
-    debug_assert!(r.fraction_format.is_none(), "{image:?}: its format depends on the input");
-    specs_of(r, extent, precision, ShadowInput::HitMask)
-}
-
 /// Texel bytes of the images of `scope` (of one light for `Scope::Light`), before any driver padding or alignment.
-pub(crate) fn texel_bytes(scope: Scope, extent: [u32; 2], precision: Precision, filter_passes: u32, input: ShadowInput) -> u64 {
-    image_specs(scope, extent, precision, filter_passes, input).map(spec_bytes).sum()
+pub(crate) fn texel_bytes(scope: Scope, extent: [u32; 2], precision: Precision, input: ShadowInput) -> u64 {
+    image_specs(scope, extent, precision, input).map(spec_bytes).sum()
 }
 
 /// Texel bytes of one light's persistent images (`Lifetime::Persistent`) with shadow input `input`; an image of a
 /// context would be transient.
 pub(crate) fn persistent_texel_bytes(extent: [u32; 2], precision: Precision, input: ShadowInput) -> u64 {
-    image_specs(Scope::Light, extent, precision, 1, input).filter(|s| s.lifetime == Lifetime::Persistent).map(spec_bytes).sum()
+    image_specs(Scope::Light, extent, precision, input).filter(|s| s.lifetime == Lifetime::Persistent).map(spec_bytes).sum()
 }
 
 fn spec_bytes(s: ImageSpec) -> u64 {

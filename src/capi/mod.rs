@@ -235,8 +235,8 @@ fn query<T>(context: DnsrContext, p_out: *mut T, name: &str, value: impl FnOnce(
     })
 }
 
-/// Replaces the settings from the next recorded frame on; a refused change keeps the old settings. Going to 4
-/// filter passes allocates an image per light (the GPU must have finished earlier frames).
+/// Replaces the settings from the next recorded frame on; a refused change keeps the old settings. Allocates
+/// nothing: every filter pass count uses the same images.
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_context_set_settings(context: DnsrContext, p_settings: *const DnsrSettings) -> DnsrResult {
     guard(|sink| {

@@ -182,13 +182,14 @@ pub const DNSR_SHADOW_INPUT_HIT_MASK: DnsrShadowInput = 0;
 /// The fraction of the pixel's rays that reached the light, in [0, 1] (DnsrShadowsDispatch::visibility): for
 /// engines tracing several rays per pixel, sampling area lights, or mixing analytic and traced shadows. Only exact
 /// 0 and 1 count as uniform or extend runs of identical samples; the temporal moments are those of the per-frame
-/// values, so k rays per pixel give the variance of a mean of k samples. 8 B/px more device memory per light than
-/// dnsr_get_memory_requirements says (the moments keep the samples' sum of squared deviations).
+/// values, so k rays per pixel give the variance of a mean of k samples. 12 B/px more device memory per light than
+/// dnsr_get_memory_requirements says (the moments keep the samples' sum of squared deviations, and the filter's
+/// signal between passes takes an image of its own).
 pub const DNSR_SHADOW_INPUT_VISIBILITY: DnsrShadowInput = 1;
 /// Half a ray per pixel: hitMask (in its hitMaskConvention) holds this frame's rays for the pixels with
 /// (x + y) % 2 == DnsrShadowsDispatch::checkerboardPhase only (x, y in image pixels); alternate the phase every
 /// frame. dnsr keeps each traced pixel's sample, gives every other pixel the mean of its four traced neighbours and
-/// denoises that as a visibility input. 12 B/px more device memory per light than dnsr_get_memory_requirements says.
+/// denoises that as a visibility input. 16 B/px more device memory per light than dnsr_get_memory_requirements says.
 pub const DNSR_SHADOW_INPUT_CHECKERBOARD: DnsrShadowInput = 2;
 /// Forces 32 bits.
 pub const DNSR_SHADOW_INPUT_MAX_ENUM: DnsrShadowInput = 0x7FFF_FFFF;

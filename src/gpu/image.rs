@@ -16,6 +16,9 @@ pub(crate) const INTERNAL_USAGE: vk::ImageUsageFlags = vk::ImageUsageFlags::from
 pub(crate) struct InternalImage {
     pub image: vk::Image,
     pub view: vk::ImageView,
+    /// A second view of the same memory in another format of the same texel size (the state table's
+    /// `Resource::shares`), or null.
+    pub shared_view: vk::ImageView,
     pub memory: Memory,
     /// Bytes of device memory bound to the image.
     pub bytes: u64,
@@ -38,10 +41,21 @@ pub(crate) fn check_internal_format(vk: &Vk, format: vk::Format) -> Result<()> {
 impl InternalImage {
     /// `persistent`: its contents survive from one record to the next. The others are allocated as
     /// `ResourceKind::TransientImage` where `alias_transient` (the host aliases them), else as `Image`.
-    pub(crate) fn new(vk: &Vk, format: vk::Format, extent: [u32; 2], name: &str, persistent: bool, alias_transient: bool) -> Result<InternalImage> {
+    /// `shared_format`: the format of a second view (`shared_view`; the image is then created mutable-format).
+    pub(crate) fn new(
+        vk: &Vk,
+        format: vk::Format,
+        extent: [u32; 2],
+        name: &str,
+        persistent: bool,
+        alias_transient: bool,
+        shared_format: Option<vk::Format>,
+    ) -> Result<InternalImage> {
         let kind = if !persistent && alias_transient { ResourceKind::TransientImage } else { ResourceKind::Image };
         let d = &vk.device;
+        let flags = if shared_format.is_some() { vk::ImageCreateFlags::MUTABLE_FORMAT } else { vk::ImageCreateFlags::empty() };
         let info = vk::ImageCreateInfo::default()
+            .flags(flags)
             .image_type(vk::ImageType::TYPE_2D)
             .format(format)
             .extent(vk::Extent3D { width: extent[0], height: extent[1], depth: 1 })
@@ -53,23 +67,40 @@ impl InternalImage {
             .initial_layout(vk::ImageLayout::UNDEFINED);
         let image = vk_check("vkCreateImage", unsafe { d.create_image(&info, vk.alloc()) })?;
         let req = unsafe { d.get_image_memory_requirements(image) };
-        let mut out =
-            InternalImage { image, view: vk::ImageView::null(), memory: Memory::default(), bytes: req.size, format, extent, persistent };
+        let mut out = InternalImage {
+            image,
+            view: vk::ImageView::null(),
+            shared_view: vk::ImageView::null(),
+            memory: Memory::default(),
+            bytes: req.size,
+            format,
+            extent,
+            persistent,
+        };
         let result = (|| {
             out.memory = memory::allocate(vk, req, kind)?;
             vk_check("vkBindImageMemory", unsafe { d.bind_image_memory(image, out.memory.memory, out.memory.offset) })?;
-            let view_info = vk::ImageViewCreateInfo::default()
-                .image(image)
-                .view_type(vk::ImageViewType::TYPE_2D)
-                .format(format)
-                .subresource_range(color_range());
-            out.view = vk_check("vkCreateImageView", unsafe { d.create_image_view(&view_info, vk.alloc()) })?;
+            let view = |format| {
+                let info = vk::ImageViewCreateInfo::default()
+                    .image(image)
+                    .view_type(vk::ImageViewType::TYPE_2D)
+                    .format(format)
+                    .subresource_range(color_range());
+                vk_check("vkCreateImageView", unsafe { d.create_image_view(&info, vk.alloc()) })
+            };
+            out.view = view(format)?;
+            if let Some(f) = shared_format {
+                out.shared_view = view(f)?;
+            }
             Ok(())
         })();
         match result {
             Ok(()) => {
                 vk.name(out.image, name);
                 vk.name(out.view, name);
+                if out.shared_view != vk::ImageView::null() {
+                    vk.name(out.shared_view, &format!("{name}.shared"));
+                }
                 Ok(out)
             }
             Err(e) => {
@@ -81,11 +112,13 @@ impl InternalImage {
 
     pub(crate) fn destroy(&mut self, vk: &Vk) {
         unsafe {
+            vk.device.destroy_image_view(self.shared_view, vk.alloc());
             vk.device.destroy_image_view(self.view, vk.alloc());
             vk.device.destroy_image(self.image, vk.alloc());
         }
         memory::free(vk, &mut self.memory);
         self.view = vk::ImageView::null();
+        self.shared_view = vk::ImageView::null();
         self.image = vk::Image::null();
     }
 }

@@ -38,6 +38,8 @@ pub(crate) enum Resource {
     /// Filter pass 0's copy of this frame's moments into the kept ones.
     FrameMoments,
     KeptMoments,
+    /// Filter pass 0's mean, the next frame's history.
+    HistoryOut,
     /// Slots 1..LIGHT_SLOTS of the filter's light-slot variants (slot 0 is the resource without a number).
     TileMeta1,
     TileMeta2,
@@ -144,6 +146,7 @@ const TABLE: [(&str, Resource, vk::DescriptorType); NAMED_COUNT] = [
     ("dnsr_tile_quiet", Resource::TileQuiet, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_frame_moments", Resource::FrameMoments, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_kept_moments", Resource::KeptMoments, vk::DescriptorType::STORAGE_IMAGE),
+    ("dnsr_history_out", Resource::HistoryOut, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_tile_meta_1", Resource::TileMeta1, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_tile_meta_2", Resource::TileMeta2, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_tile_meta_3", Resource::TileMeta3, vk::DescriptorType::SAMPLED_IMAGE),

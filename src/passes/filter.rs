@@ -1,13 +1,14 @@
 //! filter: edge-avoiding a-trous passes with steps 1, 2, 4, 8. Shader: shaders/filter.comp (core in
 //! shaders/filter.glsl) in two variants: the first pass (step 1 from a shared-memory apron; writes the depth copy
 //! of linear depth and normals) and the later passes (DNSR_LATER_PASS; read the depth copy per tap as their guide).
-//! Pass 0 writes the history of the next frame; the final pass writes the host output.
+//! Pass 0 writes the history (its mean) of the next frame; the final pass writes the host output.
 //!
 //! Intermediates (the state table's `FILTER_INPUT` and `FILTER_OUTPUT`, src/state/table.rs): pass 0 reprojection
-//! -> history, pass 1 history -> reprojection, pass 2 reprojection -> tmp, pass 3 tmp -> (output only). The
-//! reprojection image is free once pass 0 consumed it, so three passes need no extra image. Tile classification
-//! already wrote the cleared tiles' values into the reprojection image and the output, so a pass that writes only
-//! there skips groups whose two tiles are cleared.
+//! -> signal, pass 1 signal -> reprojection, pass 2 reprojection -> signal, pass 3 signal -> (output only). The
+//! reprojection image is free once pass 0 consumed it, and the signal (with a hit mask, a view of the frame
+//! moments' memory, which pass 0 has read by then) once pass 1 did. Tile classification already wrote the cleared
+//! tiles' values into the reprojection image and the output, so a later pass that writes only there skips groups
+//! whose two tiles are cleared.
 
 use super::bindings::Resource;
 use super::{internal, FrameViews, Grid, Pass, Role, LIGHT_SLOTS, SPEC_PENUMBRA_GUIDED, WIDE_GROUP};
@@ -66,8 +67,7 @@ pub(crate) fn lights_shader(precision: Precision, final_output: Option<vk::Forma
 fn signal(v: &FrameViews, image: Image) -> vk::ImageView {
     match image {
         Image::Reprojection => v.reprojection,
-        Image::History => v.history,
-        Image::Tmp => v.tmp,
+        Image::Signal => v.signal,
         other => unreachable!("{other:?} is not an image of the filter's signal"),
     }
 }
@@ -77,9 +77,7 @@ fn input(v: &FrameViews, pass: u32) -> vk::ImageView {
 }
 
 fn output(v: &FrameViews, pass: u32) -> vk::ImageView {
-    let natural = signal(v, FILTER_OUTPUT[pass as usize]);
-    // A final third pass writes no intermediate; bind something that is not its input.
-    if natural == vk::ImageView::null() { v.history } else { natural }
+    signal(v, FILTER_OUTPUT[pass as usize])
 }
 
 pub(crate) fn is_final(pass: u32, passes: u32) -> bool {
@@ -100,10 +98,12 @@ pub(crate) fn pass(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView
         t[Resource::DepthCopy as usize] = internal(v.depth_copy);
         t[Resource::FrameMoments as usize] = internal(v.frame_moments);
         t[Resource::KeptMoments as usize] = internal(v.kept_moments);
+        t[Resource::HistoryOut as usize] = internal(v.history);
     }
     if is_final(pass, passes) {
         t[Resource::Output as usize] = internal(v.output);
-        t[Resource::DebugMoments as usize] = internal(v.frame_moments);
+        // After pass 0 the frame moments' memory holds the signal: the kept moments are the same words by then.
+        t[Resource::DebugMoments as usize] = internal(if pass == 0 { v.frame_moments } else { v.kept_moments });
     }
     let role = match (is_final(pass, passes), pass) {
         (true, 0) => Role::FilterOnly,
@@ -149,10 +149,11 @@ pub(crate) fn lights_pass(lights: &[&FrameViews], pass: u32, passes: u32, debug_
 
 fn push_constants(v: &FrameViews, pass: u32, passes: u32, debug_view: DebugView) -> FilterPush {
     let last = is_final(pass, passes);
-    let write_internal = pass == 0 || !last;
+    let write_internal = !last;
     // Groups of two cleared tiles can be skipped when everything the pass writes there already holds the cleared
-    // value: tile classification wrote it into the reprojection image and (without a debug view) the output.
-    let internal_in_place = !write_internal || output(v, pass) == v.reprojection;
+    // value: tile classification wrote it into the reprojection image and (without a debug view) the output. Pass
+    // 0 never skips them: it writes the history and the depth copy everywhere.
+    let internal_in_place = pass > 0 && (!write_internal || output(v, pass) == v.reprojection);
     let output_in_place = !last || debug_view == DebugView::None;
     let flags = (if write_internal { PASS_WRITE_INTERNAL } else { 0 })
         | (if internal_in_place && output_in_place { PASS_SKIP_CLEARED } else { 0 });

@@ -272,8 +272,9 @@ pub(crate) struct FrameViews {
     pub tile_meta: vk::ImageView,
     pub reprojection: vk::ImageView,
     pub history: vk::ImageView,
-    /// Fourth-pass intermediate; null unless four filter passes are configured.
-    pub tmp: vk::ImageView,
+    /// The filter's signal between passes (filter pass 0's and pass 2's output): a view of the frame moments'
+    /// memory with a hit mask.
+    pub signal: vk::ImageView,
     /// Linear depth and normal: classification reads last frame's, the first filter pass writes this frame's, the
     /// later filter passes read it as their guide.
     pub depth_copy: vk::ImageView,

@@ -30,7 +30,8 @@ pub enum Image {
     TileBlocker,
     /// The temporal result of tile classification: filter pass 0's input, later reused as an intermediate.
     Reprojection,
-    /// Filter pass 0's output, which the next frame's classification reads.
+    /// The mean of filter pass 0's output, which the next frame's classification reads (its variance goes to the
+    /// later passes only, through `Signal`).
     History,
     /// Each frame's linear depth and normal: the later filter passes' guide, and the next frame's previous depth and
     /// normal.
@@ -38,8 +39,10 @@ pub enum Image {
     /// Each pixel's temporal moments as the last record left them: the next frame's classification reads them (at
     /// its pixels' history positions), filter pass 0 then copies this frame's (`FrameMoments`) over them.
     Moments,
-    /// The fourth pass's input (four filter passes only).
-    Tmp,
+    /// The filter's signal between passes: filter pass 0's output (pass 1's input) and pass 2's (pass 3's). A view
+    /// of the frame moments' memory where their texels have its size (`Resource::shares`): filter pass 0 reads
+    /// each pixel's frame moments before it writes that pixel's signal, and nothing reads them after it.
+    Signal,
     /// The visibility prepare reconstructs from a checkerboard input.
     Reconstructed,
     /// Per tile, the frames since one of its receivers' samples contradicted last frame's (`Settings::
@@ -116,9 +119,6 @@ pub enum Lifetime {
 pub enum Needed {
     /// Always.
     Always,
-    /// With at least this many filter passes (allocated when the settings first need it, kept when they no longer
-    /// do).
-    Passes(u32),
     /// With `ShadowInput::Checkerboard`.
     Checkerboard,
     /// With a per-pixel visibility input, `ShadowInput::Visibility` or `Checkerboard` (prepare runs for them only).
@@ -126,11 +126,11 @@ pub enum Needed {
 }
 
 impl Needed {
-    /// Whether a context with `filter_passes` passes and shadow input `input` has the image.
-    pub fn holds(self, filter_passes: u32, input: ShadowInput) -> bool {
+    /// Whether a context with shadow input `input` has the image (whatever its filter passes: since the fourth
+    /// pass's intermediate went, every pass count needs the same images).
+    pub fn holds(self, input: ShadowInput) -> bool {
         match self {
             Needed::Always => true,
-            Needed::Passes(n) => filter_passes >= n,
             Needed::Checkerboard => input == ShadowInput::Checkerboard,
             Needed::FractionInput => input != ShadowInput::HitMask,
         }
@@ -152,6 +152,10 @@ pub struct Resource {
     pub fraction_format: Option<vk::Format>,
     /// Its words pack several values (shaders/dnsr_storage.glsl, src/reference/storage.rs).
     pub packed: bool,
+    /// Another image whose memory this one reuses, as a view in its own format, where the two formats' texels have
+    /// one size (the other image is then created with `VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT`); an image of its own
+    /// otherwise. The two are never live at once. None: always its own.
+    pub shares: Option<Image>,
     /// What a texel covers.
     pub per: Per,
     /// Per light or per context.
@@ -187,11 +191,19 @@ impl Resource {
     pub fn format_for(&self, precision: Precision, input: ShadowInput) -> vk::Format {
         self.formats_for(input).get(precision)
     }
+
+    /// The image whose memory it is a view of with `precision` and shadow input `input` (`shares`, where the texel
+    /// sizes match), or None: an image of its own.
+    pub fn shared_with(&self, precision: Precision, input: ShadowInput) -> Option<Image> {
+        self.shares.filter(|&s| format_bytes(resource_of(s).format_for(precision, input)) == format_bytes(self.format_for(precision, input)))
+    }
 }
 
-/// The filter's signal (mean and variance) between passes and as history: R16G16_UNORM in the fp32 path (the mean,
-/// and the standard deviation over `state::signal_scale`: shaders/dnsr_storage.glsl), float16 in the fp16 path.
+/// The filter's signal (mean and variance) between passes: R16G16_UNORM in the fp32 path (the mean, and the
+/// standard deviation over `state::signal_scale`: shaders/dnsr_storage.glsl), float16 in the fp16 path.
 const SIGNAL: Formats = Formats { fp32: vk::Format::R16G16_UNORM, fp16: vk::Format::R16G16_SFLOAT };
+/// The history: the signal's mean alone, in the signal's number format.
+const HISTORY: Formats = Formats { fp32: vk::Format::R16_UNORM, fp16: vk::Format::R16_SFLOAT };
 
 const fn resource(
     image: Image,
@@ -203,7 +215,7 @@ const fn resource(
     lifetime: Lifetime,
     needed: Needed,
 ) -> Resource {
-    Resource { image, name, format, fraction_format: None, packed: false, per, scope, copies, lifetime, needed }
+    Resource { image, name, format, fraction_format: None, packed: false, shares: None, per, scope, copies, lifetime, needed }
 }
 
 const fn packed(r: Resource) -> Resource {
@@ -224,7 +236,8 @@ pub const RESOURCES: [Resource; 12] = [
     // The blocker distance of penumbra guidance; 4 bytes per tile, so allocated with or without guidance.
     resource(Image::TileBlocker, "tile_blocker", Formats::both(vk::Format::R32_SFLOAT), Tile, Light, 1, Transient, Needed::Always),
     resource(Image::Reprojection, "reprojection", SIGNAL, Pixel, Light, 1, Transient, Needed::Always),
-    resource(Image::History, "history", SIGNAL, Pixel, Light, 1, Persistent, Needed::Always),
+    // The mean alone: the next frame's classification blends nothing else (2 B/px kept instead of 4).
+    resource(Image::History, "history", HISTORY, Pixel, Light, 1, Persistent, Needed::Always),
     // Linear depth (16-bit code) and normal (8+8 bits) in one word. One image: classification reads last frame's
     // values before the first filter pass writes this frame's, which the later passes read as their guide.
     resource(Image::DepthCopy, "depth_copy", Formats::both(vk::Format::R32_UINT), Pixel, Light, 1, Persistent, Needed::Always),
@@ -235,7 +248,12 @@ pub const RESOURCES: [Resource; 12] = [
         fraction_format: Some(vk::Format::R32G32_UINT),
         ..packed(resource(Image::Moments, "moments", Formats::both(vk::Format::R32_UINT), Pixel, Light, 1, Persistent, Needed::Always))
     },
-    resource(Image::Tmp, "filter_tmp", SIGNAL, Pixel, Light, 1, Transient, Needed::Passes(MAX_FILTER_PASSES)),
+    // In the frame moments' memory with a hit mask (4 B texels both); an image of its own with fractional samples
+    // (8 B moments), allocated whatever the passes.
+    Resource {
+        shares: Some(Image::FrameMoments),
+        ..resource(Image::Signal, "filter_signal", SIGNAL, Pixel, Light, 1, Transient, Needed::Always)
+    },
     resource(Image::Reconstructed, "reconstructed_visibility", Formats::both(vk::Format::R32_SFLOAT), Pixel, Light, 1, Transient, Needed::Checkerboard),
     // 4 bytes per tile and frame (0.25 B/px for the pair), so allocated whatever the settings.
     resource(Image::TileQuiet, "tile_quiet", Formats::both(vk::Format::R32_UINT), Tile, Light, 2, Persistent, Needed::Always),
@@ -261,12 +279,12 @@ const _: () = {
 };
 
 /// The image filter pass k reads (`FILTER_INPUT[k]`) and writes when it writes an intermediate
-/// (`FILTER_OUTPUT[k]`; `When::WritesIntermediate`): the reprojection is free once pass 0 consumed it, so three
-/// passes need no image beyond it and the history. (A fourth pass is always the last: its output entry is only
-/// bound, never written.)
-pub const FILTER_INPUT: [Image; MAX_FILTER_PASSES as usize] = [Image::Reprojection, Image::History, Image::Reprojection, Image::Tmp];
+/// (`FILTER_OUTPUT[k]`; `When::WritesIntermediate`): the reprojection is free once pass 0 consumed it and the
+/// signal once pass 1 did, so four passes need no image beyond them. (A fourth pass is always the last: its output
+/// entry is only bound, never written.) Pass 0 also writes the history's mean (`Image::History`).
+pub const FILTER_INPUT: [Image; MAX_FILTER_PASSES as usize] = [Image::Reprojection, Image::Signal, Image::Reprojection, Image::Signal];
 /// See `FILTER_INPUT`.
-pub const FILTER_OUTPUT: [Image; MAX_FILTER_PASSES as usize] = [Image::History, Image::Reprojection, Image::Tmp, Image::Reprojection];
+pub const FILTER_OUTPUT: [Image; MAX_FILTER_PASSES as usize] = [Image::Signal, Image::Reprojection, Image::Signal, Image::Reprojection];
 
 /// Bytes of one texel of the internal formats.
 ///
@@ -275,7 +293,7 @@ pub const FILTER_OUTPUT: [Image; MAX_FILTER_PASSES as usize] = [Image::History, 
 pub fn format_bytes(format: vk::Format) -> u64 {
     match format {
         vk::Format::R32G32_UINT => 8,
-        vk::Format::R16_UINT => 2,
+        vk::Format::R16_UINT | vk::Format::R16_UNORM | vk::Format::R16_SFLOAT => 2,
         vk::Format::R32_UINT | vk::Format::R32_SFLOAT | vk::Format::R16G16_UNORM | vk::Format::R16G16_SFLOAT => 4,
         _ => panic!("state table: no texel size for {format:?} (add it to format_bytes)"),
     }
@@ -332,7 +350,7 @@ pub enum Pixels {
 pub enum When {
     /// Every pass.
     Always,
-    /// Pass 0 (it writes the next frame's history) and every pass but the last.
+    /// Every pass but the last (pass 0 writes the next frame's history whatever the passes: `FirstPass`).
     WritesIntermediate,
     /// The last pass (it writes the host output).
     FinalPass,
@@ -347,7 +365,7 @@ impl When {
     pub fn applies(self, pass: u32, passes: u32) -> bool {
         match self {
             When::Always => true,
-            When::WritesIntermediate => pass == 0 || pass + 1 < passes,
+            When::WritesIntermediate => pass + 1 < passes,
             When::FinalPass => pass + 1 == passes,
             When::FirstPass => pass == 0,
             When::LaterPasses => pass > 0,
@@ -379,6 +397,9 @@ pub enum Target {
     Image(Image),
     /// The half of a ping-pong pair that the previous frame wrote.
     Previous(Image),
+    /// The moments that the final filter pass's debug views read: this frame's (`FrameMoments`) when it is pass 0,
+    /// else the kept ones that pass 0 copied them into (the frame moments' memory then holds the signal).
+    DebugMoments,
     /// The filter pass's input: pass k reads `FILTER_INPUT[k]`.
     FilterInput,
     /// The filter pass's intermediate output: pass k writes `FILTER_OUTPUT[k]`.
@@ -392,6 +413,7 @@ impl Target {
             Target::Image(i) | Target::Previous(i) => i,
             Target::FilterInput => FILTER_INPUT[pass as usize],
             Target::FilterOutput => FILTER_OUTPUT[pass as usize],
+            Target::DebugMoments => if pass == 0 { Image::FrameMoments } else { Image::Moments },
         }
     }
 
@@ -404,6 +426,7 @@ impl Target {
             Target::Previous(_) => format!("previous {}", r.display_name()),
             Target::FilterInput => "filter input".into(),
             Target::FilterOutput => "filter output".into(),
+            Target::DebugMoments => "debug moments".into(),
         };
         let packed = r.packed && matches!(self, Target::Image(_) | Target::Previous(_));
         format!("{name} ({})", r.formats_for(input).label(packed))
@@ -465,10 +488,11 @@ pub const ACCESSES: &[StateAccess] = {
         // Pass 0 keeps this frame's moments for the next.
         a(Filter, I(FrameMoments), Read, All, When::FirstPass, Config::Any),
         a(Filter, I(Moments), Write, All, When::FirstPass, Config::Any),
+        a(Filter, I(History), Write, All, When::FirstPass, Config::Any),
         a(Filter, I(DepthCopy), Read, ActiveGroups, When::LaterPasses, Config::Any),
         a(Filter, FilterInput, Read, ActiveGroups, When::Always, Config::Any),
         a(Filter, FilterOutput, Write, All, When::WritesIntermediate, Config::Any),
         // The moments debug views.
-        a(Filter, I(FrameMoments), Read, All, When::FinalPass, Config::DebugView),
+        a(Filter, Target::DebugMoments, Read, All, When::FinalPass, Config::DebugView),
     ]
 };

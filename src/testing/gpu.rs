@@ -119,7 +119,7 @@ impl TestImage {
 fn texel_bytes(format: vk::Format) -> u32 {
     match format {
         vk::Format::R8_UNORM => 1,
-        vk::Format::R16_SFLOAT | vk::Format::R16_UINT => 2,
+        vk::Format::R16_SFLOAT | vk::Format::R16_UINT | vk::Format::R16_UNORM => 2,
         vk::Format::R32_UINT | vk::Format::R32_SFLOAT | vk::Format::R8G8B8A8_UNORM | vk::Format::D32_SFLOAT => 4,
         vk::Format::A2B10G10R10_UNORM_PACK32 => 4,
         vk::Format::R32G32_SFLOAT | vk::Format::R32G32_UINT | vk::Format::R16G16B16A16_SFLOAT => 8,

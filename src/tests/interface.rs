@@ -93,7 +93,7 @@ fn reflected_interfaces_match_what_the_host_binds() {
         ),
         (
             "filter",
-            &[Constants, Depth, DepthCopy, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide, FrameMoments, KeptMoments],
+            &[Constants, Depth, DepthCopy, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide, FrameMoments, KeptMoments, HistoryOut],
             48,
             (1 << GUIDED) | (1 << HARD),
         ),
@@ -107,7 +107,7 @@ fn reflected_interfaces_match_what_the_host_binds() {
             "filter_final_r16f_fp16",
             &[
                 Constants, Depth, DepthCopy, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Output, DebugMoments, Guide,
-                FrameMoments, KeptMoments,
+                FrameMoments, KeptMoments, HistoryOut,
             ],
             48,
             (1 << GUIDED) | (1 << HARD),

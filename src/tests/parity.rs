@@ -108,7 +108,19 @@ fn download<T: Copy + bytemuck::Pod>(g: &Gpu, image: vk::Image, format: vk::Form
     bytemuck::cast_slice(&raw).to_vec()
 }
 
-/// (mean, variance) pairs of an intermediate image in either precision.
+/// The history's means in either precision.
+fn download_history(g: &Gpu, image: vk::Image, format: vk::Format, w: u32, h: u32) -> Vec<f64> {
+    let raw: Vec<u16> = download(g, image, format, w, h);
+    if format == vk::Format::R16_UNORM {
+        raw.iter().map(|&v| v as f64 / 65535.0).collect()
+    } else {
+        assert_eq!(format, vk::Format::R16_SFLOAT);
+        raw.iter().map(|&v| f16_to_f32(v) as f64).collect()
+    }
+}
+
+/// (mean, variance) pairs of an intermediate image in either precision (`format`: the signal's, whatever the
+/// format of the image whose memory holds it).
 fn download_rg(g: &Gpu, image: vk::Image, format: vk::Format, w: u32, h: u32, settings: &Settings) -> Vec<DVec2> {
     if format == vk::Format::R16G16_UNORM {
         let raw: Vec<[u16; 2]> = download(g, image, format, w, h);
@@ -335,7 +347,7 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     let prev_depth: Vec<u32> = download(g, before.depth, vk::Format::R32_UINT, w, h);
     let (tw, th) = (w.div_ceil(8), h.div_ceil(4));
     let prev_tile_quiet: Vec<u32> = download(g, before.tile_quiet, vk::Format::R32_UINT, tw, th);
-    let history = download_rg(g, before.history, fmt, w, h, &info.settings);
+    let history = download_history(g, before.history, before.history_format, w, h);
 
     let f = random_frame(w, h, seed, frames);
     let d = r.dispatch(&f);
@@ -347,7 +359,12 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     let moments = crate::testing::download_moments(g, after.moments, w, h, info.shadow_input);
     let depth_copy: Vec<u32> = download(g, after.depth, vk::Format::R32_UINT, w, h);
     let reprojection = download_rg(g, after.reprojection, fmt, w, h, &info.settings);
-    let history_out = download_rg(g, after.history, fmt, w, h, &info.settings);
+    let history_out = download_history(g, after.history, after.history_format, w, h);
+    // The signal pass 1 read (pass 0's output; with four passes pass 3's input, pass 2's output), which pass 1
+    // overwrites in no configuration. With one pass (a light of no size runs one) none is written.
+    let ran = crate::passes::light_filter_passes(passes, d.hard_light);
+    let signal_pass = if ran == 4 { Some(2) } else { (ran > 1).then_some(0) };
+    let signal = download_rg(g, after.signal, fmt, w, h, &info.settings);
 
     let mut cpu = Frame::new(w as i32, h as i32, info.settings);
     cpu.projection_inverse = dmat(d.projection_inverse);
@@ -370,7 +387,7 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     cpu.previous_depth = prev_depth;
     cpu.previous_moments = prev_moments;
     cpu.previous_tile_quiet = prev_tile_quiet;
-    cpu.history = history.iter().map(|v| v.x).collect();
+    cpu.history = history;
     cpu.half_intermediates = precision == Precision::Fp16;
     reference::run_frame(&mut cpu, true);
     if seed == 8 || seed == 14 {
@@ -418,21 +435,27 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
         assert!(steps.iter().all(|&s| s <= 1), "depth copy at pixel {i}: {gpu:#010x}, reference {cpu:#010x} (steps {steps:?})");
     }
     if info.settings.converged_samples > 0.0 {
-        let signals: &[(&str, &[DVec2], &[DVec2])] =
-            &[("reprojection", &reprojection, &cpu.reprojection_out), ("history (filter 0)", &history_out, &cpu.filter_out[0])];
+        let mut signals: Vec<(&str, &[DVec2], &[DVec2])> = vec![("reprojection", &reprojection, &cpu.reprojection_out)];
+        if let Some(k) = signal_pass {
+            signals.push((if k == 0 { "signal (filter 0)" } else { "signal (filter 2)" }, &signal, &cpu.filter_out[k]));
+        }
         for (name, gpu_signal, cpu_signal) in signals {
             // Passes after the first reuse the reprojection image: its values are the temporal part's only with
             // one or two passes.
-            if *name == "reprojection" && passes > 2 {
+            if name == "reprojection" && passes > 2 {
                 continue;
             }
             assert_converged_flags_match(name, gpu_signal, cpu_signal, precision, &info.settings);
         }
     }
     let mut results = vec![
-        worst("history (filter 0)", history_out.iter().map(|v| v.x), cpu.filter_out[0].iter().map(|v| v.x)),
+        worst("history (filter 0)", history_out.iter().copied(), cpu.filter_out[0].iter().map(|v| v.x)),
         worst("output", out.iter().map(|&v| v as f64), cpu.output.iter().copied()),
     ];
+    if let Some(k) = signal_pass {
+        let name = if k == 0 { "signal (filter 0).mean" } else { "signal (filter 2).mean" };
+        results.push(worst(name, signal.iter().map(|v| v.x), cpu.filter_out[k].iter().map(|v| v.x)));
+    }
     if cpu.penumbra.is_some() {
         // The blocker estimate of the tiles the filter reads it for (relative: distances up to ~3).
         let mixed: Vec<usize> = (0..tile_meta.len()).filter(|&i| tile_meta[i] == 0).collect();

@@ -234,7 +234,7 @@ pub fn pixels_doc(p: Pixels) -> &'static str {
 fn when_doc(w: When) -> &'static str {
     match w {
         Always => "every pass",
-        WritesIntermediate => "pass 0 and every pass but the last",
+        WritesIntermediate => "every pass but the last",
         FinalPass => "last pass",
         FirstPass => "pass 0",
         LaterPasses => "every pass after the first",

@@ -328,7 +328,7 @@ typedef struct DnsrSettings {
    */
   const void *pNext;
   /**
-   * Filter passes (a-trous steps 1, 2, 4, 8 px). Range [1, 4]. Default 3.
+   * Filter passes (a-trous steps 1, 2, 4, 8 px). Range [1, 4]. Default 2 (the Balanced preset: 3).
    */
   uint32_t filterPasses;
   /**
@@ -1981,8 +1981,9 @@ DnsrResult dnsr_context_resize(DnsrContext context,
 DnsrResult dnsr_context_reset_history(DnsrContext context, uint32_t lightIndex);
 
 /**
- * Fills `*pSettings` with dnsr's default settings, the Quality preset (sType included). The FidelityFX values:
- * `dnsr_settings_init_preset(DNSR_PRESET_BALANCED, ...)`.
+ * Fills `*pSettings` with dnsr's default settings, the Quality preset (sType included; the struct's padding bytes
+ * zero, as with every call that writes a DnsrSettings, so equal settings compare equal with memcmp). The
+ * FidelityFX values: `dnsr_settings_init_preset(DNSR_PRESET_BALANCED, ...)`.
  */
 DnsrResult dnsr_settings_init_default(struct DnsrSettings *pSettings);
 

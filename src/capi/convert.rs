@@ -19,6 +19,21 @@ pub(crate) fn settings_from_c(s: &DnsrSettings, what: &str) -> Result<Settings, 
     Ok(crate::settings::for_each_setting!(from_c))
 }
 
+/// Writes `s` into `*out` field by field over zeroed bytes, so that the struct's padding (after sType) is zero too
+/// and two equal settings compare equal with memcmp, as a C host may compare them. (A whole-struct assignment
+/// copies whatever a temporary held in its padding.)
+pub(crate) fn write_settings(s: &Settings, out: &mut DnsrSettings) {
+    // SAFETY: `out` is a valid, exclusive DnsrSettings, whose fields are plain integers, floats and a pointer: all
+    // zero bytes is a valid value of each.
+    unsafe { std::ptr::write_bytes(out as *mut DnsrSettings, 0, 1) };
+    out.s_type = DNSR_STRUCTURE_TYPE_SETTINGS;
+    out.p_next = std::ptr::null();
+    macro_rules! to_c {
+        ($($f:ident),*) => {{ $(out.$f = s.$f;)* }};
+    }
+    crate::settings::for_each_setting!(to_c);
+}
+
 pub(crate) fn settings_to_c(s: &Settings) -> DnsrSettings {
     macro_rules! to_c {
         ($($f:ident),*) => {

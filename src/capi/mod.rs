@@ -12,7 +12,7 @@ pub mod reference;
 pub mod types;
 
 use boundary::{check_no_next, CallError, check_type, guard, last_error_ptr, out, required};
-use convert::{classify_from_c, create_info_from_c, dispatch_from_c, lights_from_c, precision_from_c, preset_from_c, settings_from_c, settings_to_c};
+use convert::{classify_from_c, create_info_from_c, dispatch_from_c, lights_from_c, precision_from_c, preset_from_c, settings_from_c, write_settings};
 use std::ffi::c_char;
 use types::*;
 
@@ -195,13 +195,13 @@ pub extern "C" fn dnsr_context_reset_history(context: DnsrContext, light_index: 
     })
 }
 
-/// Fills `*pSettings` with dnsr's default settings, the Quality preset (sType included). The FidelityFX values:
-/// `dnsr_settings_init_preset(DNSR_PRESET_BALANCED, ...)`.
+/// Fills `*pSettings` with dnsr's default settings, the Quality preset (sType included; the struct's padding bytes
+/// zero, as with every call that writes a DnsrSettings, so equal settings compare equal with memcmp). The
+/// FidelityFX values: `dnsr_settings_init_preset(DNSR_PRESET_BALANCED, ...)`.
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_settings_init_default(p_settings: *mut DnsrSettings) -> DnsrResult {
     guard(|_| {
-        let out = out(p_settings, "pSettings")?;
-        *out = settings_to_c(&crate::Settings::default());
+        write_settings(&crate::Settings::default(), out(p_settings, "pSettings")?);
         Ok(DnsrResult::DNSR_SUCCESS)
     })
 }
@@ -211,8 +211,8 @@ pub extern "C" fn dnsr_settings_init_default(p_settings: *mut DnsrSettings) -> D
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_settings_init_preset(preset: DnsrPreset, p_settings: *mut DnsrSettings) -> DnsrResult {
     guard(|_| {
-        let out = out(p_settings, "pSettings")?;
-        *out = settings_to_c(&crate::Settings::preset(preset_from_c(preset)?));
+        let settings = crate::Settings::preset(preset_from_c(preset)?);
+        write_settings(&settings, out(p_settings, "pSettings")?);
         Ok(DnsrResult::DNSR_SUCCESS)
     })
 }
@@ -220,17 +220,22 @@ pub extern "C" fn dnsr_settings_init_preset(preset: DnsrPreset, p_settings: *mut
 /// Writes the context's current settings to `*pSettings`.
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_context_get_settings(context: DnsrContext, p_settings: *mut DnsrSettings) -> DnsrResult {
-    query(context, p_settings, "pSettings", |c| settings_to_c(&c.settings()))
+    query_into(context, p_settings, "pSettings", |c, out| write_settings(&c.settings(), out))
 }
 
 /// A query of a live context written to an out-parameter: the handle's lookup (its log sink from then on), the
 /// NULL check and the lock in one place.
 fn query<T>(context: DnsrContext, p_out: *mut T, name: &str, value: impl FnOnce(&crate::Context) -> T) -> DnsrResult {
+    query_into(context, p_out, name, |c, out| *out = value(c))
+}
+
+/// `query` with a writer of its own (`write_settings`, which zeroes the padding).
+fn query_into<T>(context: DnsrContext, p_out: *mut T, name: &str, write: impl FnOnce(&crate::Context, &mut T)) -> DnsrResult {
     guard(|sink| {
         let entry = handles::get(context)?;
         *sink = entry.log;
         let out = out(p_out, name)?;
-        *out = value(&*entry.lock()?);
+        write(&*entry.lock()?, out);
         Ok(DnsrResult::DNSR_SUCCESS)
     })
 }

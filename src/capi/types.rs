@@ -361,7 +361,7 @@ pub struct DnsrSettings {
     pub s_type: DnsrStructureType,
     /// Must be NULL (reserved for extensions).
     pub p_next: *const c_void,
-    /// Filter passes (a-trous steps 1, 2, 4, 8 px). Range [1, 4]. Default 3.
+    /// Filter passes (a-trous steps 1, 2, 4, 8 px). Range [1, 4]. Default 2 (the Balanced preset: 3).
     pub filter_passes: u32,
     /// Relative depth change counted as disocclusion where the surface faces the camera, |prev - cur| / cur.
     /// Range [0, 10]. Default 0.01.

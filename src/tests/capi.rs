@@ -117,6 +117,44 @@ fn a_frame_through_the_c_api_equals_the_rust_api_bit_for_bit() {
     g.assert_clean();
 }
 
+/// Every call that writes a DnsrSettings leaves its padding (after sType) zero, whatever the memory held: a C host
+/// may compare settings with memcmp (capi-tests/header_c11.c does).
+#[test]
+fn written_settings_have_zero_padding() {
+    let padding = std::mem::offset_of!(DnsrSettings, p_next) - std::mem::size_of::<DnsrStructureType>();
+    assert!(padding > 0, "DnsrSettings has no padding to check");
+    let garbage = || {
+        let mut s = std::mem::MaybeUninit::<DnsrSettings>::uninit();
+        // SAFETY: every byte pattern is a valid DnsrSettings (integers, floats, a pointer that is never read).
+        unsafe {
+            std::ptr::write_bytes(s.as_mut_ptr(), 0xab, 1);
+            s.assume_init()
+        }
+    };
+    let bytes = |s: &DnsrSettings| -> Vec<u8> {
+        // SAFETY: reads the struct's bytes, which the calls below initialised (the padding included).
+        unsafe { std::slice::from_raw_parts(s as *const DnsrSettings as *const u8, std::mem::size_of::<DnsrSettings>()) }.to_vec()
+    };
+    let (mut default, mut quality, mut balanced) = (garbage(), garbage(), garbage());
+    assert_eq!(dnsr_settings_init_default(&mut default), DnsrResult::DNSR_SUCCESS);
+    assert_eq!(dnsr_settings_init_preset(DNSR_PRESET_QUALITY, &mut quality), DnsrResult::DNSR_SUCCESS);
+    assert_eq!(dnsr_settings_init_preset(DNSR_PRESET_BALANCED, &mut balanced), DnsrResult::DNSR_SUCCESS);
+    let at = std::mem::size_of::<DnsrStructureType>();
+    for s in [&default, &quality, &balanced] {
+        assert_eq!(bytes(s)[at..at + padding], vec![0u8; padding]);
+    }
+    assert_eq!(bytes(&default), bytes(&quality), "the default is the Quality preset, byte for byte");
+
+    let g = gpu();
+    let mut ctx: DnsrContext = std::ptr::null_mut();
+    assert_eq!(dnsr_context_create(&create_info(&g, 8, 8), &mut ctx), DnsrResult::DNSR_SUCCESS);
+    let mut got = garbage();
+    assert_eq!(dnsr_context_get_settings(ctx, &mut got), DnsrResult::DNSR_SUCCESS);
+    assert_eq!(bytes(&got), bytes(&default), "a new context's settings are the default, byte for byte");
+    assert_eq!(dnsr_context_destroy(ctx), DnsrResult::DNSR_SUCCESS);
+    g.assert_clean();
+}
+
 #[test]
 fn handles_codes_and_messages() {
     let g = gpu();

@@ -1038,7 +1038,11 @@ impl Context {
     }
 }
 
-/// Images the passes recorded since the last barrier read and wrote (fixed capacity: no allocation).
+/// Images the passes recorded since the last barrier read and wrote (fixed capacity: no allocation). Tracked by
+/// view: two views of one memory (a hit mask's frame moments and the filter's signal, `InternalImage::shared_view`)
+/// count as different images. That misses no barrier because classification, the only pass that writes the frame
+/// moments, runs first in every record, after the record's opening barrier, and filter pass 0, which reads them
+/// and writes the signal, waits for it (it reads what classification wrote).
 struct Hazards {
     read: [vk::ImageView; 2 * crate::gpu::descriptors::MAX_BINDINGS * MAX_LIGHTS_PER_RECORD],
     written: [vk::ImageView; 2 * crate::gpu::descriptors::MAX_BINDINGS * MAX_LIGHTS_PER_RECORD],

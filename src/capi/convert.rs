@@ -35,12 +35,10 @@ pub(crate) fn write_settings(s: &Settings, out: &mut DnsrSettings) {
 }
 
 pub(crate) fn settings_to_c(s: &Settings) -> DnsrSettings {
-    macro_rules! to_c {
-        ($($f:ident),*) => {
-            DnsrSettings { s_type: DNSR_STRUCTURE_TYPE_SETTINGS, p_next: std::ptr::null(), $($f: s.$f),* }
-        };
-    }
-    crate::settings::for_each_setting!(to_c)
+    // SAFETY: all zero bytes is a valid DnsrSettings (see write_settings), which then writes every field.
+    let mut out: DnsrSettings = unsafe { std::mem::zeroed() };
+    write_settings(s, &mut out);
+    out
 }
 
 pub(crate) fn preset_from_c(p: DnsrPreset) -> Result<crate::Preset, CallError> {

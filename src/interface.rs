@@ -194,23 +194,37 @@ pub(crate) fn check_override(name: &str, spirv: &[u8], offers: DeviceOffers) -> 
     Ok(())
 }
 
+/// The storage image formats dnsr's shaders declare: (Vulkan format, SPIR-V ImageFormat enumerant, GLSL layout
+/// qualifier). One table for the messages below and for the test that ties each declaration to the state table's
+/// format (src/state/tests.rs).
+const STORAGE_FORMATS: [(vk::Format, u32, &str); 12] = [
+    (vk::Format::R32G32B32A32_SFLOAT, 1, "rgba32f"),
+    (vk::Format::R16G16B16A16_SFLOAT, 2, "rgba16f"),
+    (vk::Format::R32_SFLOAT, 3, "r32f"),
+    (vk::Format::R8G8B8A8_UNORM, 4, "rgba8"),
+    (vk::Format::R16G16_SFLOAT, 7, "rg16f"),
+    (vk::Format::R16_SFLOAT, 9, "r16f"),
+    (vk::Format::R16G16_UNORM, 12, "rg16"),
+    (vk::Format::R16_UNORM, 14, "r16"),
+    (vk::Format::R8_UNORM, 15, "r8"),
+    (vk::Format::R32_UINT, 33, "r32ui"),
+    (vk::Format::R32G32_UINT, 35, "rg32ui"),
+    (vk::Format::R16_UINT, 38, "r16ui"),
+];
+
+/// The SPIR-V ImageFormat a storage image of Vulkan format `format` is declared with (None: not one dnsr declares).
+#[cfg(test)]
+pub(crate) fn spirv_image_format(format: vk::Format) -> Option<u32> {
+    STORAGE_FORMATS.iter().find(|(f, _, _)| *f == format).map(|&(_, code, _)| code)
+}
+
 /// A storage image format's GLSL layout qualifier, for messages (SPIR-V's ImageFormat enumerants).
 fn image_format_name(format: u32) -> String {
-    const NAMES: [(u32, &str); 12] = [
-        (0, "no format (Unknown)"),
-        (1, "rgba32f"),
-        (2, "rgba16f"),
-        (3, "r32f"),
-        (4, "rgba8"),
-        (7, "rg16f"),
-        (9, "r16f"),
-        (12, "rg16"),
-        (15, "r8"),
-        (33, "r32ui"),
-        (35, "rg32ui"),
-        (38, "r16ui"),
-    ];
-    NAMES.iter().find(|(f, _)| *f == format).map_or_else(|| format!("SPIR-V image format {format}"), |(_, n)| n.to_string())
+    match STORAGE_FORMATS.iter().find(|(_, code, _)| *code == format) {
+        Some((_, _, name)) => name.to_string(),
+        None if format == 0 => "no format (Unknown)".to_string(),
+        None => format!("SPIR-V image format {format}"),
+    }
 }
 
 /// Reflects a module and checks every binding against the interface dnsr knows.

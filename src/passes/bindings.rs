@@ -93,18 +93,13 @@ impl Resource {
     /// This per-light resource of the filter's light-slot variants in slot `slot` (0..LIGHT_SLOTS); None for a
     /// resource the slots do not repeat.
     pub(crate) fn in_slot(self, slot: usize) -> Option<Resource> {
-        use Resource::*;
-        let slots = match self {
-            TileMeta => [TileMeta, TileMeta1, TileMeta2, TileMeta3],
-            TileBlocker => [TileBlocker, TileBlocker1, TileBlocker2, TileBlocker3],
-            FilterInput => [FilterInput, FilterInput1, FilterInput2, FilterInput3],
-            FilterOutput => [FilterOutput, FilterOutput1, FilterOutput2, FilterOutput3],
-            Output => [Output, Output1, Output2, Output3],
-            DebugMoments => [DebugMoments, DebugMoments1, DebugMoments2, DebugMoments3],
-            _ => return None,
-        };
-        const _: () = assert!(crate::passes::LIGHT_SLOTS == 4);
-        slots.get(slot).copied()
+        SLOTTED.iter().find(|row| row[0] == self).and_then(|row| row.get(slot).copied())
+    }
+
+    /// The slot-0 resource whose light slot this is; itself for a resource the slots do not repeat.
+    #[cfg(test)]
+    pub(crate) fn slot_zero(self) -> Resource {
+        SLOTTED.iter().find(|row| row.contains(&self)).map_or(self, |row| row[0])
     }
 
     /// The engine slot of an engine resource.
@@ -112,6 +107,19 @@ impl Resource {
         (self as usize).checked_sub(Resource::Engine0 as usize)
     }
 }
+
+/// The per-light resources of the filter's light-slot variants, slot 0 (the resource without a number) first.
+const SLOTTED: [[Resource; crate::passes::LIGHT_SLOTS]; 6] = {
+    use Resource::*;
+    [
+        [TileMeta, TileMeta1, TileMeta2, TileMeta3],
+        [TileBlocker, TileBlocker1, TileBlocker2, TileBlocker3],
+        [FilterInput, FilterInput1, FilterInput2, FilterInput3],
+        [FilterOutput, FilterOutput1, FilterOutput2, FilterOutput3],
+        [Output, Output1, Output2, Output3],
+        [DebugMoments, DebugMoments1, DebugMoments2, DebugMoments3],
+    ]
+};
 
 /// (GLSL name, resource, descriptor type the shader must declare it as).
 const TABLE: [(&str, Resource, vk::DescriptorType); NAMED_COUNT] = [

@@ -31,7 +31,8 @@
 #error "DNSR_SPV_DIR: the folder of dnsr's compiled variants (shaders/spv)"
 #endif
 
-/* The variants a default context (FP32, R32_SFLOAT output, hit-mask input) runs. */
+/* The variants a default context (FP32, R32_SFLOAT output, hit-mask input) runs, and prepare, whose override is
+ * checked though a hit-mask context creates no prepare pipeline. */
 static const char *const VARIANTS[] = {"prepare", "tile_classification_r32f", "filter", "filter_later",
                                        "filter_later_final_r32f", "filter_final_r32f"};
 #define VARIANT_COUNT (sizeof VARIANTS / sizeof VARIANTS[0])

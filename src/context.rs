@@ -71,7 +71,8 @@ fn constants_bytes(light_count: u32) -> u64 {
 pub const MIN_API_VERSION: u32 = vk::API_VERSION_1_1;
 
 struct Pipelines {
-    prepare: PassPipeline,
+    /// None in a hit-mask context: classification reads the host's mask (`Context::reads_mask_directly`).
+    prepare: Option<PassPipeline>,
     classification: PassPipeline,
     filter_first: PassPipeline,
     filter_later: PassPipeline,
@@ -85,7 +86,6 @@ struct Pipelines {
 impl Pipelines {
     fn all_mut(&mut self) -> impl Iterator<Item = &mut PassPipeline> {
         [
-            &mut self.prepare,
             &mut self.classification,
             &mut self.filter_first,
             &mut self.filter_later,
@@ -93,12 +93,15 @@ impl Pipelines {
             &mut self.filter_only,
         ]
         .into_iter()
+        .chain(self.prepare.as_mut())
         .chain(self.filter_lights.iter_mut().flatten())
     }
 
     fn for_role(&self, role: Role) -> &PassPipeline {
         match role {
-            Role::Prepare => &self.prepare,
+            // A context without prepare never records it; its descriptor ring's sets for it take classification's
+            // layout.
+            Role::Prepare => self.prepare.as_ref().unwrap_or(&self.classification),
             Role::Classification => &self.classification,
             Role::Filter(0) => &self.filter_first,
             Role::Filter(_) => &self.filter_later,
@@ -308,16 +311,16 @@ impl Context {
         Ok(ctx)
     }
 
-    /// The variants of the context's pipelines, in `Pipelines` order (prepare first).
-    fn pipeline_names(&self) -> [&'static str; 6] {
-        [
-            prepare::shader(self.shadow_input),
+    /// The variants of the context's pipelines, in `Pipelines` order (prepare first, where the context has it).
+    fn pipeline_names(&self) -> impl Iterator<Item = &'static str> {
+        let prepare = (!self.reads_mask_directly()).then(|| prepare::shader(self.shadow_input));
+        prepare.into_iter().chain([
             tile_classification::shader(self.precision, self.output_format, self.shadow_input).expect("output format checked"),
             filter::shader(self.precision, None, false, self.shadow_input).expect("non-final variant exists"),
             filter::shader(self.precision, None, true, self.shadow_input).expect("non-final variant exists"),
             filter::shader(self.precision, Some(self.output_format), true, self.shadow_input).expect("output format checked"),
             filter::shader(self.precision, Some(self.output_format), false, self.shadow_input).expect("output format checked"),
-        ]
+        ])
     }
 
     /// Whether only engine-compiled variants decode the G-buffer, so that its formats are the engine's to choose:
@@ -325,14 +328,15 @@ impl Context {
     /// decode runs there and the G-buffer must be in dnsr's formats (an override set compiled for a hit-mask
     /// context leaves a checkerboard context's classification variant, say, to dnsr).
     fn engine_decodes(&self, overrides: &[crate::create_info::ShaderOverride]) -> bool {
-        self.pipeline_names()[1..].iter().all(|name| overrides.iter().any(|o| o.variant == *name))
+        let prepare = prepare::shader(self.shadow_input);
+        self.pipeline_names().filter(|&name| name != prepare).all(|name| overrides.iter().any(|o| o.variant == name))
     }
 
     fn create_pipelines(&self, push: bool, overrides: &[crate::create_info::ShaderOverride]) -> Result<Pipelines> {
         // Several lights per dispatch only with dnsr's own variants: an engine's override of the later pass would
         // not be the one that runs for several lights (and light-slot variants are never overridden).
         let light_slots = if self.light_count > 1 && overrides.is_empty() { &self.light_slot_names()[..] } else { &[] };
-        let names = self.pipeline_names().into_iter().chain(light_slots.iter().copied());
+        let names = self.pipeline_names().chain(light_slots.iter().copied());
         let mut made: Vec<PassPipeline> = Vec::with_capacity(8);
         for name in names {
             let spirv = overrides.iter().find(|o| o.variant == name).map_or(variant(name).spirv, |o| &o.spirv[..]);
@@ -347,7 +351,7 @@ impl Context {
         let mut it = made.into_iter();
         let mut next = || it.next().expect("one pipeline per name");
         let mut pipelines = Pipelines {
-            prepare: next(),
+            prepare: (!self.reads_mask_directly()).then(&mut next),
             classification: next(),
             filter_first: next(),
             filter_later: next(),
@@ -564,7 +568,6 @@ impl Context {
     ) -> Result<Vec<(&'static str, Vec<(String, String)>)>> {
         let spec = self.specialization(guided, false);
         self.pipeline_names()
-            .into_iter()
             .map(|name| {
                 let spirv = overrides.iter().find(|o| o.variant == name).map_or(variant(name).spirv, |o| &o.spirv[..]);
                 Ok((name, PassPipeline::statistics(&self.vk, name, spirv, spec)?))

@@ -1,7 +1,7 @@
 //! prepare: with a visibility input the tile words of exactly lit and exactly shadowed pixels (a checkerboard
 //! input: the reconstructed visibility too). Shader: shaders/prepare.comp. Not run for a hit mask, which
-//! classification reads as the host gives it in either convention; a hit-mask context's prepare pipeline (FidelityFX
-//! hit mask -> lit-bit tile mask, what the CPU reference's prepare models) is created but never dispatched.
+//! classification reads as the host gives it in either convention; a hit-mask context creates no prepare pipeline
+//! (the `prepare` variant, FidelityFX hit mask -> lit-bit tile mask, is what the CPU reference's prepare models).
 
 use super::bindings::Resource;
 use super::{internal, FrameViews, Grid, Pass, Role};

@@ -94,6 +94,14 @@ bench-smoke:
 		assert all(0 < x["persistent_memory_bytes"] < x["memory_bytes"] for x in r); \
 		assert d["copy_bandwidth"]["gbps_median"] > 0; \
 		open("out/bench-smoke/bench.md").read(); print(f"bench smoke: {len(r)} configurations, valid bench.json")'
+	@# BENCHMARKS.md's byte model is the one the bench runs (derived from the state table): a format or an access
+	@# changed there changes the documented table too.
+	python3 -c 'import sys; \
+		table = lambda t: [l for l in t[t.index("| pass | resource |"):].split("\n\n")[0].splitlines()]; \
+		doc = open("BENCHMARKS.md").read(); doc = doc[doc.index("## Byte model"):]; \
+		sys.exit(0 if table(doc) == table(open("out/bench-smoke/bench.md").read()) else \
+			"BENCHMARKS.md: the byte model table differs from the one dnsr-bench prints (out/bench-smoke/bench.md): copy it over")'
+	@echo "bench smoke: BENCHMARKS.md's byte model is the bench's"
 	@# --shader-override with dnsr's own SPIR-V for two variants: the override path under validation, and a bad
 	@# variant name refused with the context's error.
 	env -u VK_LOADER_DEBUG DNSR_DEVICE="$(DNSR_DEVICE)" target/release/dnsr-bench --sizes 64x32 --scenes typical \

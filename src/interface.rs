@@ -196,7 +196,7 @@ pub(crate) fn check_override(name: &str, spirv: &[u8], offers: DeviceOffers) -> 
 
 /// The storage image formats dnsr's shaders declare: (Vulkan format, SPIR-V ImageFormat enumerant, GLSL layout
 /// qualifier). One table for the messages below and for the test that ties each declaration to the state table's
-/// format (src/state/tests.rs).
+/// format (src/tests/interface.rs).
 const STORAGE_FORMATS: [(vk::Format, u32, &str); 12] = [
     (vk::Format::R32G32B32A32_SFLOAT, 1, "rgba32f"),
     (vk::Format::R16G16B16A16_SFLOAT, 2, "rgba16f"),

@@ -4,7 +4,7 @@
 
 pub mod table;
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 
 use crate::create_info::{Precision, ShadowInput};
 use ash::vk;

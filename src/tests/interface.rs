@@ -440,3 +440,30 @@ fn header_documents_every_setting_range() {
         assert!(doc.contains("Default "), "DnsrSettings.{} does not document its default", c_field(name));
     }
 }
+
+/// Every storage image dnsr's own variants declare is declared in the state table's format for the variant's
+/// precision and input: the GLSL layout qualifiers (shaders/dnsr_precision.glsl's macros among them) and the formats
+/// the images are created in (the table's) cannot drift apart. A light slot's resource holds what its slot 0 holds.
+#[test]
+fn variants_declare_the_state_table_formats() {
+    use crate::interface::spirv_image_format;
+    use crate::state::table::{resource_of, RESOURCES};
+    use crate::{Precision, ShadowInput};
+    let holds = crate::state::tests::images_per_binding();
+    let mut checked = Vec::new();
+    for variant in VARIANTS {
+        let precision = if variant.defines.contains(&"DNSR_FP16") { Precision::Fp16 } else { Precision::Fp32 };
+        let fractions = variant.defines.iter().any(|d| matches!(*d, "DNSR_VISIBILITY_INPUT" | "DNSR_CHECKERBOARD_INPUT"));
+        let input = if fractions { ShadowInput::Visibility } else { ShadowInput::HitMask };
+        for b in reflect(variant.spirv).unwrap().bindings.iter().filter(|b| b.descriptor_type == ash::vk::DescriptorType::STORAGE_IMAGE) {
+            for &image in &holds[b.resource.slot_zero() as usize] {
+                let want = resource_of(image).format_for(precision, input);
+                assert_eq!(Some(b.format), spirv_image_format(want), "{}: {:?} holds {image:?}, created as {want:?}", variant.name, b.resource);
+                checked.push(image);
+            }
+        }
+    }
+    for r in &RESOURCES {
+        assert!(checked.contains(&r.image), "{:?}: no variant writes it as a storage image", r.image);
+    }
+}

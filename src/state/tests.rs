@@ -111,11 +111,15 @@ fn view(image: Image, copy: u32) -> vk::ImageView {
     vk::ImageView::from_raw(1 + 2 * image as u64 + copy as u64)
 }
 
+/// The internal image a view of `view` is of.
+fn image_of(v: vk::ImageView) -> Image {
+    let raw = v.as_raw() - 1;
+    RESOURCES.iter().map(|r| r.image).find(|&i| i as u64 == raw / 2).expect("an internal view")
+}
+
 /// The image (and half) of a view of `view`, for messages.
 fn named(v: vk::ImageView) -> String {
-    let raw = v.as_raw() - 1;
-    let image = RESOURCES.iter().map(|r| r.image).find(|&i| i as u64 == raw / 2).expect("an internal view");
-    format!("{image:?} copy {}", raw % 2)
+    format!("{:?} copy {}", image_of(v), (v.as_raw() - 1) % 2)
 }
 
 fn host(n: u64) -> Binding {
@@ -280,7 +284,7 @@ pub(crate) fn images_per_binding() -> Vec<Vec<Image>> {
                 if raw == 0 || raw >= 1000 {
                     continue;
                 }
-                let image = RESOURCES.iter().map(|r| r.image).find(|&i| i as u64 == (raw - 1) / 2).unwrap();
+                let image = image_of(b.view);
                 if !holds[index].contains(&image) {
                     holds[index].push(image);
                 }

@@ -75,6 +75,14 @@ vec3 dnsr_pass_debug_moments(int l, ivec2 p) { return dnsr_read_debug_moments(p)
 #endif
 #endif
 
+// The moments of a pixel whose value is known exactly (a cleared tile's receiver: its value, no deviation, a full
+// history, the longest run of that value; vec4(0): no receiver's). Filter pass 0 keeps them for the next frame;
+// tile classification stores no frame moments for such pixels (4 B/px fewer where tiles are cleared or sky).
+vec4 dnsr_cleared_moments(bool receiver, bool lit) {
+    float run = lit ? float(DNSR_MAX_SAMPLE_RUN) : -float(DNSR_MAX_SAMPLE_RUN);
+    return receiver ? vec4(lit ? 1.0 : 0.0, 0.0, dnsr_get_temporal_settings().z, run) : vec4(0.0);
+}
+
 #ifdef DNSR_FINAL_PASS
 // The debug views: what the output shows instead of the shadow (see DebugView in src/dispatch.rs).
 float dnsr_debug_value(int l, uint view, ivec2 p, bool receiver, uint meta, vec2 result) {
@@ -83,7 +91,11 @@ float dnsr_debug_value(int l, uint view, ivec2 p, bool receiver, uint meta, vec2
         return !receiver ? 0.75 : (!cleared ? 0.5 : ((meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0));
     }
     if (view == DNSR_DEBUG_VIEW_VARIANCE) return clamp(sqrt(max(result.y, 0.0)), 0.0, 1.0);
-    float n = receiver ? dnsr_pass_debug_moments(l, p).z : 0.0;
+    // A cleared tile's receivers hold a full history (dnsr_cleared_moments): with one filter pass their frame
+    // moments, which this view would read, were not stored.
+    float n = !receiver ? 0.0
+                            : (cleared ? dnsr_unpack_moments(dnsr_pack_moments(dnsr_cleared_moments(true, false))).z
+                                       : dnsr_pass_debug_moments(l, p).z);
     if (view == DNSR_DEBUG_VIEW_SAMPLE_COUNT) return clamp(n / dnsr_get_temporal_settings().z, 0.0, 1.0);
     return receiver && !cleared && n <= 1.0 ? 1.0 : 0.0; // DNSR_DEBUG_VIEW_DISOCCLUSION
 }
@@ -280,7 +292,11 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     ivec2 fetched = min(p, dnsr_get_extent() - 1);
     float depth = dnsr_read_depth(fetched);
     vec3 normal = dnsr_read_normal(fetched);
-    uvec2 moments = dnsr_read_frame_moments(fetched);
+    // This frame's moments: classification stored them for receivers in tiles it did not clear only, the others'
+    // are known (dnsr_cleared_moments). Fetched whatever the pixel, with its depth: a fetch that waits for the
+    // depth or the tile's metadata made this pass 0.017 ms slower at 4K on an H200 where every tile is active
+    // (docs/bench/h200-2026-11-30-cleared-moments).
+    uvec2 stored = dnsr_read_frame_moments(fetched);
     barrier();
 
     // The apron is loaded when any block of the group is not cleared (the whole group decides alike, so the
@@ -297,17 +313,19 @@ void dnsr_filter(ivec2 gid, ivec2 lid) {
     }
 
     if (!dnsr_inside(p)) return;
+    ivec2 m = (lid / DNSR_GROUP_SIZE) * DNSR_BLOCK_TILES;
+    uint meta = dnsr_meta[m.y + (lid.y % DNSR_GROUP_SIZE.y) / DNSR_TILE_SIZE.y][m.x];
+    bool receiver = dnsr_is_receiver(depth);
     // This frame's moments, kept for the next frame's classification (which reads them at other pixels than its
     // own, so classification cannot update them in place).
-    dnsr_write_kept_moments(p, moments);
+    vec4 known = dnsr_cleared_moments(receiver, (meta & DNSR_TILE_LIT) != 0u);
+    dnsr_write_kept_moments(p, receiver && (meta & DNSR_TILE_CLEARED) == 0u ? stored
+                                                                            : uvec2(dnsr_pack_moments(known), floatBitsToUint(known.y)));
     // The later passes weigh their taps by these, and next frame's classification compares its reprojected depth
     // and its normal with them (the depth copy): kept as a linear depth, which a 16-bit float code holds finely
     // enough at any scale (the device depth needs 32 bits), and a normal in 8+8 bits. Written here, not in
     // classification, which reads last frame's from the same image.
     float linear_depth = dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), depth);
-    bool receiver = dnsr_is_receiver(depth);
-    ivec2 m = (lid / DNSR_GROUP_SIZE) * DNSR_BLOCK_TILES;
-    uint meta = dnsr_meta[m.y + (lid.y % DNSR_GROUP_SIZE.y) / DNSR_TILE_SIZE.y][m.x];
     if (dnsr_block_cleared(m)) {
         // Everywhere, cleared blocks included: the later passes tap them, and the next frame reads them. So are the
         // history and the signal (this pass never skips cleared blocks: the history is not in place, and writing

@@ -456,13 +456,13 @@ bool dnsr_shadow_moved(ivec2 own_tile) {
     return sigmas > 0.0 && !dnsr_get_is_reset() && change > sigmas * sqrt(variance) + float(DNSR_MOVING_MARGIN_SAMPLES);
 }
 
-// A pixel of a cleared tile: its value is known exactly; keep the state of the next frame consistent with it.
+// A pixel of a cleared tile: its value is known exactly; keep the state of the next frame consistent with it. Its
+// moments are known from the tile's metadata too: filter pass 0 keeps them (dnsr_cleared_moments), so this frame's
+// are not written.
 void dnsr_write_cleared(ivec2 p, bool receiver, uint state, bool tile_writer) {
     float value = state == 1u ? 1.0 : 0.0;
     if (tile_writer) dnsr_write_tile_meta(p / DNSR_TILE_SIZE, DNSR_TILE_CLEARED | (state == 1u ? DNSR_TILE_LIT : 0u));
     dnsr_write_reprojection(p, receiver ? vec2(value, 0.0) : DNSR_SKY_SIGNAL);
-    float run = state == 1u ? float(DNSR_MAX_SAMPLE_RUN) : -float(DNSR_MAX_SAMPLE_RUN);
-    dnsr_write_moments(p, receiver ? vec4(value, 0.0, dnsr_get_temporal_settings().z, run) : vec4(0.0));
     dnsr_write_output(p, receiver ? value : 1.0);
 }
 
@@ -737,8 +737,8 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         if (guided) dnsr_write_tile_blocker(p / DNSR_TILE_SIZE, blocker);
     }
     if (!receiver) {
+        // No moments either: a sky pixel's are empty, which filter pass 0 keeps (dnsr_cleared_moments).
         dnsr_write_reprojection(p, DNSR_SKY_SIGNAL);
-        dnsr_write_moments(p, vec4(0.0));
         return;
     }
 

@@ -50,7 +50,8 @@ pub enum Image {
     TileQuiet,
     /// This frame's moments, which classification writes while it reads last frame's (`Moments`, at other pixels
     /// than its own too, so not in place) and filter pass 0 copies into `Moments`: a transient image instead of
-    /// the second half of a persistent pair.
+    /// the second half of a persistent pair. Written for the receivers of tiles not cleared only: the other
+    /// pixels' moments follow from their tile's metadata, and pass 0 keeps those instead.
     FrameMoments,
 }
 
@@ -475,7 +476,8 @@ pub const ACCESSES: &[StateAccess] = {
         // Last frame's moments, at the history positions.
         a(TileClassification, I(Moments), Read, Pixels::History, When::Always, Config::Any),
         a(TileClassification, I(History), Read, Pixels::History, When::Always, Config::Any),
-        a(TileClassification, I(FrameMoments), Write, All, When::Always, Config::Any),
+        // The other pixels' are known (a cleared tile's receivers, the sky): pass 0 keeps them without them.
+        a(TileClassification, I(FrameMoments), Write, Active, When::Always, Config::Any),
         a(TileClassification, I(Reprojection), Write, All, When::Always, Config::Any),
         a(TileClassification, I(TileMeta), Write, Tiles, When::Always, Config::Any),
         a(TileClassification, I(TileBlocker), Write, Tiles, When::Always, Config::PenumbraGuidance),
@@ -486,6 +488,7 @@ pub const ACCESSES: &[StateAccess] = {
         a(Filter, I(TileBlocker), Read, Tiles, When::Always, Config::PenumbraGuidance),
         a(Filter, I(DepthCopy), Write, All, When::FirstPass, Config::Any),
         // Pass 0 keeps this frame's moments for the next.
+        // Fetched for every pixel, beside its depth (one that waited for the depth or the tile was slower).
         a(Filter, I(FrameMoments), Read, All, When::FirstPass, Config::Any),
         a(Filter, I(Moments), Write, All, When::FirstPass, Config::Any),
         a(Filter, I(History), Write, All, When::FirstPass, Config::Any),

@@ -1,0 +1,11 @@
+#!/bin/bash
+# Classification stores no frame moments for pixels whose moments are known (cleared tiles' receivers, the sky), and
+# filter pass 0 reads none there (new) against main before it (old, 4fc84c9), alternating twice, 4K fp32; then the
+# parity, transient-state and debug-view tests of the new build (its unit-test binary, validation layer on).
+for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig; for z in .gl/*.gz; do gunzip -f $z; chmod +x ${z%.gz}; done
+export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json DNSR_DEVICE=NVIDIA
+nvidia-smi --query-gpu=name,driver_version --format=csv,noheader > $OUT/device.txt 2>&1
+A="--sizes 3840x2160 --scenes penumbra-heavy,typical,all-lit,sky-90 --presets balanced,quality --precisions fp32 --frames 200 --copy-runs 3 --warmup-ms 500"
+for r in 1 2; do for b in old new; do DNSR_COMMIT=$b timeout 170 .gl/bench-$b $A --out $OUT/$b-$r > $OUT/$b-$r.log 2>&1; done; done
+timeout 200 .gl/dnsr-tests parity transient debug_views > $OUT/tests.txt 2>&1; echo "tests exit $?" >> $OUT/tests.txt
+cd $OUT && for d in old-1 new-1 old-2 new-2; do echo "## $d"; cat $d/bench.md; done > bench-all.md && for d in old-1 new-1 old-2 new-2; do cat $d.log; done > logs.txt && rm -rf old-? new-? *-?.log && cat device.txt; grep -hE "test result|exit" tests.txt; grep -E '^## |^\| 3840x2160' bench-all.md | cut -c1-200 | awk '/^## /{n=0} {if (n++ < 14) print}'

@@ -476,7 +476,7 @@ pub const ACCESSES: &[StateAccess] = {
         // Last frame's moments, at the history positions.
         a(TileClassification, I(Moments), Read, Pixels::History, When::Always, Config::Any),
         a(TileClassification, I(History), Read, Pixels::History, When::Always, Config::Any),
-        // The other pixels' are known (a cleared tile's receivers, the sky): pass 0 keeps them without them.
+        // Not for the other pixels (a cleared tile's receivers, the sky): pass 0 derives theirs from the tile metadata.
         a(TileClassification, I(FrameMoments), Write, Active, When::Always, Config::Any),
         a(TileClassification, I(Reprojection), Write, All, When::Always, Config::Any),
         a(TileClassification, I(TileMeta), Write, Tiles, When::Always, Config::Any),
@@ -487,8 +487,8 @@ pub const ACCESSES: &[StateAccess] = {
         a(Filter, I(TileMeta), Read, Tiles, When::Always, Config::Any),
         a(Filter, I(TileBlocker), Read, Tiles, When::Always, Config::PenumbraGuidance),
         a(Filter, I(DepthCopy), Write, All, When::FirstPass, Config::Any),
-        // Pass 0 keeps this frame's moments for the next.
-        // Fetched for every pixel, beside its depth (one that waited for the depth or the tile was slower).
+        // Pass 0 keeps this frame's moments for the next: fetched for every pixel, beside its depth (a fetch that
+        // waited for the depth or the tile metadata was slower).
         a(Filter, I(FrameMoments), Read, All, When::FirstPass, Config::Any),
         a(Filter, I(Moments), Write, All, When::FirstPass, Config::Any),
         a(Filter, I(History), Write, All, When::FirstPass, Config::Any),

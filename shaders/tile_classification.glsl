@@ -1022,8 +1022,8 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     // moving camera's pixels: they reach other surface points, where a still shadow's samples differ from the
     // texels' means too.)
     float sigma = sqrt(local.y);
-    float clamp_sigmas = DNSR_SPEC_MOVING_SHADOWS && still && s_moved[own_tile.y][own_tile.x] != 0u ? dnsr_get_moving_settings().y
-                                                                                                  : disocc.w;
+    bool shadow_moved_here = DNSR_SPEC_MOVING_SHADOWS && still && s_moved[own_tile.y][own_tile.x] != 0u;
+    float clamp_sigmas = shadow_moved_here ? dnsr_get_moving_settings().y : disocc.w;
     float history = disoccluded ? local.x
                   : (run_history.y > 0.0 ? run_history.x / run_history.y
                                         : (DNSR_SPEC_STABLE_HISTORY ? dnsr_read_history(history_uv) : dnsr_bilinear(texel_history, t)));
@@ -1047,9 +1047,12 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     // resolve this pixel; the filter decides from its neighbours (dnsr_passes_through). The value stays the
     // temporal one: a penumbra pixel of visibility 0.95 shows 8 lit samples in a row two times in three, and its
     // run's value would bias it. Behind the run features' specialization: as a runtime branch alone it slowed
-    // Balanced's classification, which never takes it, by 9% on an H100 at 4K.
+    // Balanced's classification, which never takes it, by 9% on an H100 at 4K. Not where the shadow moved over this
+    // still pixel: its run restarted when the shadow passed (the flip rule), and a short run there is as often a
+    // penumbra's few identical samples as a resolved edge (make accuracy's moving family: 0.327 -> 0.301 of the
+    // input's error; docs/do-no-harm.md, "No converged pixels where the shadow moved").
     if (DNSR_SPEC_STABLE_HISTORY) {
-        variance = stable && !flipped && dnsr_pure(m) && dnsr_converged(m.w, x, dnsr_get_run_settings().z) ? 0.0
+        variance = stable && !flipped && !shadow_moved_here && dnsr_pure(m) && dnsr_converged(m.w, x, dnsr_get_run_settings().z) ? 0.0
                  : dnsr_unconverged_variance(variance);
     }
 

@@ -81,7 +81,8 @@ declare_settings! {
     /// converged too, the filter passes it through as its run's value. The 1-spp input then resolves it (a hard
     /// shadow, a face turned from the light, a crease, a thin stripe), and the 17x17 moments and the filter taps,
     /// which straddle its edges, silhouettes and the sky, could only move it away; a lone run in a penumbra is
-    /// filtered as before. Under a moving camera, a receiver beside the sky whose footprint's texels of the other
+    /// filtered as before. Not where `moving_shadow_sigmas` finds that the shadow moved over a still pixel: its run
+    /// restarted when the shadow passed, and a short run there is as often a penumbra's. Under a moving camera, a receiver beside the sky whose footprint's texels of the other
     /// value held it for this many samples or more, and two of whose 8 neighbours share its sample, takes its
     /// sample as it is (a resolved silhouette, docs/do-no-harm.md). 0 turns this off (the FidelityFX behaviour);
     /// converged pixels need `stable_history_samples` > 0, resolved silhouettes do not.

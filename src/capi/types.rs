@@ -406,9 +406,10 @@ pub struct DnsrSettings {
     /// A stable pixel whose last n >= this-many samples were identical (each exactly 0 or 1), with no other sample
     /// in its history, is converged; where at least half of its 3x3 receivers are converged too, the filter passes
     /// it through as its run's value (its 1-spp input resolves it: hard shadows, faces turned from the light,
-    /// creases, thin stripes). Under a moving camera, a receiver beside the sky whose neighbours of last frame
-    /// held the other value for this many samples or more, and two of whose 8 neighbours share its sample, takes
-    /// its sample as it is (a resolved silhouette; this part needs no stable history). Range [0, 127]; 0
+    /// creases, thin stripes); not where movingShadowSigmas finds that the shadow moved over a still pixel (a
+    /// short run there is as often a penumbra's). Under a moving camera, a receiver beside the sky whose neighbours
+    /// of last frame held the other value for this many samples or more, and two of whose 8 neighbours share its
+    /// sample, takes its sample as it is (a resolved silhouette; this part needs no stable history). Range [0, 127]; 0
     /// disables; converged pixels need stableHistorySamples > 0. Default 8 (FidelityFX 0).
     pub converged_samples: f32,
     /// With penumbra guidance (DNSR_DISPATCH_USE_HIT_DISTANCE) only: where the blockers near a tile cast a penumbra

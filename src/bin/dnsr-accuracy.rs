@@ -385,7 +385,13 @@ const FAMILY_COUNT: u64 = 12;
 
 /// Every preset on the sequence families, as distributions: the output's RMSE over its 1-spp input's, how many
 /// members the output is worse on, and for moving occluders the RMSE over the static twin's.
-fn family_section(gpu: &Gpu, md: &mut String, img_dir: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
+/// What the family section runs: which presets, and settings changed in each (`--presets`, `--set`).
+struct FamilyRuns {
+    presets: Vec<Preset>,
+    set: Option<String>,
+}
+
+fn family_section(gpu: &Gpu, md: &mut String, img_dir: &std::path::Path, runs: &FamilyRuns) -> Result<(), Box<dyn std::error::Error>> {
     let members = family::members(FAMILY_SEED, FAMILY_COUNT);
     let input: Vec<f64> = members.iter().map(|m| m.input_rmse(false)).collect();
     let _ = writeln!(
@@ -405,6 +411,9 @@ fn family_section(gpu: &Gpu, md: &mut String, img_dir: &std::path::Path) -> Resu
          input.\n",
         FAMILY_SEED + FAMILY_COUNT - 1
     );
+    if let Some(set) = &runs.set {
+        let _ = writeln!(md, "Settings changed in every preset below (`--set`): `{set}`.\n");
+    }
     let names: Vec<String> = Kind::ALL.iter().map(|k| format!("{}: ratio", k.name())).collect();
     let _ = writeln!(md, "| preset | {} | motion: moving / static |", names.join(" | "));
     let _ = writeln!(md, "|---|{}---|", "---|".repeat(Kind::ALL.len()));
@@ -414,8 +423,10 @@ fn family_section(gpu: &Gpu, md: &mut String, img_dir: &std::path::Path) -> Resu
     };
     // The first member of each family, last frame, per preset.
     let mut shown: Vec<Vec<Run>> = Vec::new();
-    for preset in [Preset::Fast, Preset::Balanced, Preset::Quality] {
-        let mode = Mode { settings: Settings::preset(preset), precision: Precision::Fp32, guidance: None, rays: None, checkerboard: false };
+    for &preset in &runs.presets {
+        let mut settings = Settings::preset(preset);
+        dnsr::testing::settings::apply(&mut settings, runs.set.as_deref().unwrap_or(""))?;
+        let mode = Mode { settings, precision: Precision::Fp32, guidance: None, rays: None, checkerboard: false };
         let runs: Vec<Run> = members.iter().map(|m| run_frames(gpu, &|t| m.frame(t, false), false, mode)).collect();
         let out: Vec<f64> = runs.iter().map(|r| r.metrics.rmse).collect();
         shown.push(runs.into_iter().take(Kind::ALL.len()).collect());
@@ -435,12 +446,21 @@ fn family_section(gpu: &Gpu, md: &mut String, img_dir: &std::path::Path) -> Resu
         let _ = writeln!(md, "| {preset:?} | {} | {} |", cells.join(" | "), q(motion));
         let each: Vec<String> = members.iter().zip(&out).map(|(m, o)| format!("{} {o:.4}", m.name)).collect();
         eprintln!("families, {preset:?}: {}", each.join(", "));
+        let twins: Vec<String> = members.iter().zip(&still).filter_map(|(m, s)| s.map(|s| format!("{} {s:.4}", m.name))).collect();
+        eprintln!("families, {preset:?}, the moving members' still twins: {}", twins.join(", "));
     }
     let worst: Vec<String> = members.iter().zip(&input).map(|(m, e)| format!("{} {e:.3}", m.name)).collect();
     let _ = writeln!(md, "\n1-spp input RMSE per member: {}.", worst.join(", "));
-    let _ = writeln!(md, "\nImages (the first member of each family, last frame: 1-spp input | Fast | Balanced | Quality | truth):\n");
-    for (i, kind) in Kind::ALL.iter().enumerate() {
-        let images: [&[f32]; 5] = [&shown[0][i].last_noisy, &shown[0][i].last, &shown[1][i].last, &shown[2][i].last, &shown[0][i].last_truth];
+    let columns: Vec<String> = runs.presets.iter().map(|p| format!("{p:?}")).collect();
+    let _ = writeln!(
+        md,
+        "\nImages (the first member of each family, last frame: 1-spp input | {} | truth):\n",
+        columns.join(" | ")
+    );
+    for (i, kind) in Kind::ALL.iter().enumerate().filter(|_| !shown.is_empty()) {
+        let mut images: Vec<&[f32]> = vec![&shown[0][i].last_noisy];
+        images.extend(shown.iter().map(|runs| &runs[i].last[..]));
+        images.push(&shown[0][i].last_truth);
         let (w, strip) = side_by_side(W, H, &images);
         let file = format!("family-{}.png", kind.name());
         write_png(&img_dir.join(&file), w, H, &strip)?;
@@ -669,6 +689,14 @@ fn trace_pixel(cpu: &mut dnsr::reference::memory::Frame, d: &dnsr::ShadowsDispat
     cpu.advance();
 }
 
+/// A preset by its name in any case: fast, balanced, quality.
+fn parse_preset(name: &str) -> Result<Preset, String> {
+    [Preset::Fast, Preset::Balanced, Preset::Quality]
+        .into_iter()
+        .find(|p| format!("{p:?}").eq_ignore_ascii_case(name.trim()))
+        .ok_or_else(|| format!("--presets: {name} is not a preset (fast, balanced, quality)"))
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut out_dir = PathBuf::from("docs");
     let mut guided_only = false;
@@ -678,6 +706,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut presets_only = false;
     let mut dump = None;
     let mut trace = None;
+    let mut family_runs = FamilyRuns { presets: vec![Preset::Fast, Preset::Balanced, Preset::Quality], set: None };
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         match a.as_str() {
@@ -693,8 +722,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 trace = Some([x.parse::<i32>()?, y.parse::<i32>()?]);
             }
             "--dump" => dump = Some(args.next().ok_or("--dump needs a family member's name, e.g. \"shells 2003\"")?),
+            // The sequence families' presets and settings: a change measured against the same build.
+            "--presets" => {
+                let list = args.next().ok_or("--presets needs a list, e.g. quality,fast")?;
+                family_runs.presets = list.split(',').map(parse_preset).collect::<Result<_, _>>()?;
+            }
+            "--set" => {
+                let list = args.next().ok_or("--set needs NAME=VALUE[,...], by Settings field names")?;
+                dnsr::testing::settings::apply(&mut Settings::default(), &list)?;
+                family_runs.set = Some(list);
+            }
             _ => {
-                let usage = "usage: dnsr-accuracy [--out DIR] [--guided-only] [--rays-only] [--checkerboard-only] [--family-only] [--presets-only] [--dump MEMBER]";
+                let usage = "usage: dnsr-accuracy [--out DIR] [--guided-only] [--rays-only] [--checkerboard-only] [--family-only] \
+                             [--presets-only] [--dump MEMBER] [--presets fast,balanced,quality] [--set NAME=VALUE,...]; \
+                             --presets and --set apply to the sequence families (--family-only): the presets they run, \
+                             and settings (Settings field names) changed in each";
                 return Err(format!("unknown argument {a}; {usage}").into());
             }
         }
@@ -737,7 +779,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     if guided_only || rays_only || checkerboard_only || family_only {
         if family_only {
-            family_section(&gpu, &mut md, &img_dir)?;
+            family_section(&gpu, &mut md, &img_dir, &family_runs)?;
         }
         if guided_only {
             guided_section(&gpu, &mut md, &img_dir)?;
@@ -782,7 +824,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         kept.join(", ")
     );
 
-    family_section(&gpu, &mut md, &img_dir)?;
+    family_section(&gpu, &mut md, &img_dir, &family_runs)?;
     guided_section(&gpu, &mut md, &img_dir)?;
     rays_section(&gpu, &mut md);
     checkerboard_section(&gpu, &mut md);

@@ -6,6 +6,7 @@ pub mod flip;
 pub mod gpu;
 pub mod images;
 pub mod scene;
+pub mod settings;
 pub mod typical;
 
 use crate::{Context, ContextCreateInfo, HostSync, ShadowsDispatch};

@@ -1050,7 +1050,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     // Balanced's classification, which never takes it, by 9% on an H100 at 4K. Not where the shadow moved over this
     // still pixel: its run restarted when the shadow passed (the flip rule), and a short run there is as often a
     // penumbra's few identical samples as a resolved edge (make accuracy's moving family: 0.327 -> 0.301 of the
-    // input's error; docs/do-no-harm.md, "No converged pixels where the shadow moved").
+    // input's error; docs/do-no-harm.md, "Quality's run rules taken apart").
     if (DNSR_SPEC_STABLE_HISTORY) {
         variance = stable && !flipped && !shadow_moved_here && dnsr_pure(m) && dnsr_converged(m.w, x, dnsr_get_run_settings().z) ? 0.0
                  : dnsr_unconverged_variance(variance);

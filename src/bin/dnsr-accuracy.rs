@@ -383,14 +383,14 @@ fn header(sequences: &[Sequence]) -> String {
 const FAMILY_SEED: u64 = 2000;
 const FAMILY_COUNT: u64 = 12;
 
-/// Every preset on the sequence families, as distributions: the output's RMSE over its 1-spp input's, how many
-/// members the output is worse on, and for moving occluders the RMSE over the static twin's.
 /// What the family section runs: which presets, and settings changed in each (`--presets`, `--set`).
 struct FamilyRuns {
     presets: Vec<Preset>,
     set: Option<String>,
 }
 
+/// Every preset on the sequence families, as distributions: the output's RMSE over its 1-spp input's, how many
+/// members the output is worse on, and for moving occluders the RMSE over the static twin's.
 fn family_section(gpu: &Gpu, md: &mut String, img_dir: &std::path::Path, runs: &FamilyRuns) -> Result<(), Box<dyn std::error::Error>> {
     let members = family::members(FAMILY_SEED, FAMILY_COUNT);
     let input: Vec<f64> = members.iter().map(|m| m.input_rmse(false)).collect();

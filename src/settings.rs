@@ -82,9 +82,10 @@ declare_settings! {
     /// shadow, a face turned from the light, a crease, a thin stripe), and the 17x17 moments and the filter taps,
     /// which straddle its edges, silhouettes and the sky, could only move it away; a lone run in a penumbra is
     /// filtered as before. Not where `moving_shadow_sigmas` finds that the shadow moved over a still pixel: its run
-    /// restarted when the shadow passed, and a short run there is as often a penumbra's. Under a moving camera, a receiver beside the sky whose footprint's texels of the other
-    /// value held it for this many samples or more, and two of whose 8 neighbours share its sample, takes its
-    /// sample as it is (a resolved silhouette, docs/do-no-harm.md). 0 turns this off (the FidelityFX behaviour);
+    /// restarted when the shadow passed, and a short run there is as often a penumbra's. Under a moving camera, a
+    /// receiver beside the sky whose footprint's texels of the other value held it for this many samples or more,
+    /// and two of whose 8 neighbours share its sample, takes its sample as it is (a resolved silhouette,
+    /// docs/do-no-harm.md). 0 turns this off (the FidelityFX behaviour);
     /// converged pixels need `stable_history_samples` > 0, resolved silhouettes do not.
     converged_samples: f32 = 8.0, [0.0, MAX_SAMPLE_RUN as f32] "[0, 127]";
     /// A shadow that moved over a still surface (an occluder moving without motion vectors on the receiver): where a

@@ -396,8 +396,8 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, q
     // Where the shadow moved over this still pixel, its history holds where the shadow was: a tighter clamp (a
     // pixel that moves under 1 / `passes::STILL_MOTION_INV_PIXELS` px; shaders/tile_classification.glsl says why).
     let motion = velocity * DVec2::new(e[0] as f64, e[1] as f64) * crate::passes::STILL_MOTION_INV_PIXELS as f64;
-    let moved_here = moved && motion.dot(motion) < 1.0;
-    let clamp_k = if moved_here { s.moving_history_clamp_sigmas as f64 } else { clamp_k };
+    let shadow_moved_here = moved && motion.dot(motion) < 1.0;
+    let clamp_k = if shadow_moved_here { s.moving_history_clamp_sigmas as f64 } else { clamp_k };
 
     let prev_clip = io.reprojection_matrix() * DVec4::new(ndc.x, ndc.y, depth, 1.0);
     let prev_ndc = prev_clip.truncate() / prev_clip.w;
@@ -630,7 +630,8 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, q
     // Converged (Settings::converged_samples, on a stable pixel): variance 0 tells the filter that the input may
     // resolve this pixel; the value stays the temporal one; not where the shadow moved over this still pixel
     // (shaders/tile_classification.glsl says why).
-    let variance = if stable && !flipped && !moved_here && pure_moments(m) && converged(m.w, x, s.converged_samples as f64) {
+    let converged_here = stable && !flipped && !shadow_moved_here && pure_moments(m);
+    let variance = if converged_here && converged(m.w, x, s.converged_samples as f64) {
         0.0
     } else {
         super::filter::unconverged_variance(io, variance)

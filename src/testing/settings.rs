@@ -39,7 +39,7 @@ mod tests {
         let before = s;
         for bad in ["no_such_setting=1", "filter_passes=2.5", "filter_passes=9", "converged_samples=nan", "converged_samples"] {
             let e = apply(&mut s, &format!("min_current_weight=0.5,{bad}")).unwrap_err();
-            assert!(e.contains(bad.split('=').next().unwrap()) || e.contains("range"), "{bad}: {e}");
+            assert!(e.contains(bad.split('=').next().unwrap()), "{bad}: {e}");
             assert_eq!(s, before, "{bad} left the settings changed");
         }
     }

@@ -79,7 +79,9 @@ fn host_rows(fed: Fed) -> Vec<Row> {
         row(TileClassification, "output (host, R16_SFLOAT)", 2.0, 2.0, Write, ClearedGroups, Always),
         row(Filter, &depth_name, depth, depth, Read, All, FirstPass),
         row(Filter, &depth_name, depth, depth, Read, ClearedGroups, LaterPasses),
-        row(Filter, &normals_name, normals, normals, Read, ActiveGroups, FirstPass),
+        // Every pixel's, cleared groups' too: pass 0 fetches them with the depth, before it knows, and writes them into
+        // the depth copy.
+        row(Filter, &normals_name, normals, normals, Read, All, FirstPass),
         row(Filter, "output (host, R16_SFLOAT)", 2.0, 2.0, Write, All, FinalPass),
     ]);
     rows

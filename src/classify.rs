@@ -29,7 +29,7 @@ const CLASSIFY_CONSTANTS_OFFSET: vk::DeviceSize = (std::mem::size_of::<FrameCons
 const UNIFORM_BYTES: vk::DeviceSize = CLASSIFY_CONSTANTS_OFFSET + std::mem::size_of::<ClassifyConstants>() as vk::DeviceSize;
 
 fn tile_capacity(size: [u32; 2]) -> u32 {
-    size[0].div_ceil(crate::passes::TILE[0]) * size[1].div_ceil(crate::passes::TILE[1])
+    size[0].div_ceil(crate::packing::TILE[0]) * size[1].div_ceil(crate::packing::TILE[1])
 }
 
 /// One buffer, its memory and (for the texel-buffer bindings) a view.

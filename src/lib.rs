@@ -7,20 +7,27 @@
 //!
 //! # Layers
 //!
-//! The modules import one way, down (`cargo test layers` fails on an import upward; no cycle between them):
+//! The modules import one way, down (`cargo test layers` fails on an import upward, and on any cycle):
 //!
-//! - API, on top: `capi` (the C ABI) and `ffx` (the FidelityFX API over it).
+//! - API, on top: `capi` (the C ABI) and `ffx` (the FidelityFX API over it; `capi` reaches it only through the
+//!   setter that `ffx` registers, `capi::FFX_SET_LIGHT`).
 //! - Contexts: `context` (the denoiser: pipelines, recording), `light` (a light's images), `classify` (the
 //!   classifier's buffers and recording), `pipeline` and `interface` (a pass's pipeline and its reflected
 //!   interface), `validate`, `timestamps`. They may import everything below.
 //! - Vulkan plumbing: `gpu` (loading, memory, images, barriers, descriptors, pipelines, SPIR-V checks). Of the
 //!   data it knows `error` and `host` only; binding numbers and types, descriptors and formats come as parameters.
 //! - The CPU reference, `reference`: the data layer only.
-//! - Data, at the bottom: `error`, `host`, `settings`, `dispatch`, `create_info`, `glsl` (blocks with a GLSL twin),
-//!   `state` (the state table: every internal image and the passes' accesses to it), `passes` (each pass's
-//!   bindings, roles, group sizes and variants; `passes::classify` the classifier's tables and dispatch), `constants`
-//!   (the frame's constants and the generated GLSL, from every table). No Vulkan object is made there; they use
-//!   `ash::vk` types and one another.
+//! - Data, at the bottom: `error`, `host`, `dispatch`, `glsl` (blocks with a GLSL twin), `packing` (the hit-mask
+//!   tile and the moments' word, which settings bound their knobs by), `settings`, `create_info`, `state` (the state
+//!   table: every internal image and the passes' accesses to it), `passes` (each pass's bindings, roles, group sizes
+//!   and variants; `passes::classify` the classifier's tables and dispatch), `constants` (the frame's constants and
+//!   the generated GLSL, from every table). No Vulkan object is made there; they use `ash::vk` types and one
+//!   another, in this order.
+//!
+//! In full, bottom first, each module imports only those before it, so no cycle can form (the test reads this list):
+//! `error`, `host`, `dispatch`, `glsl`, `packing`, `settings`, `create_info`, `state`, `passes`, `constants`, `gpu`,
+//! `reference`, `interface`, `validate`, `timestamps`, `light`, `pipeline`, `classify`, `context`, `capi`, `ffx`,
+//! `testing`, `tests`.
 #![deny(missing_docs)]
 
 pub mod capi;
@@ -36,6 +43,7 @@ mod gpu;
 mod host;
 mod interface;
 mod light;
+mod packing;
 mod passes;
 mod pipeline;
 pub mod reference;

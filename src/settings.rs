@@ -111,7 +111,7 @@ declare_settings! {
     /// the filter would blur under a moving camera). Where a penumbra shows no contradiction the output is its input,
     /// never worse than it. 0 turns this off (the FidelityFX behaviour); it needs the run features
     /// (`stable_history_samples` or `converged_samples` > 0). docs/do-no-harm.md, "Hard tiles told by time".
-    hard_tile_frames: f32 = 6.0, [0.0, crate::passes::MAX_QUIET_FRAMES] "[0, 255]";
+    hard_tile_frames: f32 = 6.0, [0.0, MAX_QUIET_FRAMES] "[0, 255]";
     /// Penumbra guidance only (a dispatch with hit distances): where the blockers near a tile cast a penumbra
     /// narrower than this many pixels either side of its edge (from their mean hit distance, the light's angular
     /// size and the receiver's depth) and lie at least two pixel footprints away (under a light of angular size 0:
@@ -212,15 +212,18 @@ impl Settings {
 /// Largest number of filter passes. The last one's step (8 px) stays within a block (`GROUP`).
 pub const MAX_FILTER_PASSES: u32 = 4;
 
+/// A tile's count of quiet frames stops here (`Settings::hard_tile_frames`' upper bound).
+pub(crate) const MAX_QUIET_FRAMES: u32 = 255;
+
 /// Longest run of identical samples a pixel's moments record (moments.w: +n lit, -n shadowed); a cleared tile
 /// records the longest run. Bounds the run settings. Generated into GLSL. The moments store twice the run in 9
 /// bits (shaders/dnsr_storage.glsl).
-pub(crate) const MAX_SAMPLE_RUN: u32 = ((1 << (crate::state::MOMENTS_RUN_BITS - 1)) - 1) / 2;
+pub(crate) const MAX_SAMPLE_RUN: u32 = ((1 << (crate::packing::MOMENTS_RUN_BITS - 1)) - 1) / 2;
 const _: () = assert!(MAX_SAMPLE_RUN == 127);
 
-/// Largest `max_history_samples`: the moments' count (`state::COUNT_MANTISSA_BITS`) holds whole counts up to 64,
+/// Largest `max_history_samples`: the moments' count (`packing::COUNT_MANTISSA_BITS`) holds whole counts up to 64,
 /// steps by 2 up to 128 and by 4 from there, where adding a sample would no longer change it.
-const MAX_HISTORY_SAMPLES: f32 = (1u32 << (crate::state::COUNT_MANTISSA_BITS + 2)) as f32;
+const MAX_HISTORY_SAMPLES: f32 = (1u32 << (crate::packing::COUNT_MANTISSA_BITS + 2)) as f32;
 
 /// Checks a filter pass count (outside a `Settings`, e.g. for `memory_requirements`).
 pub(crate) fn check_filter_passes(passes: u32) -> Result<()> {

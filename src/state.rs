@@ -64,41 +64,6 @@ pub(crate) const DEPTH_COPY_NORMAL_BITS: u32 = 8;
 /// footprint": 37 and 60 degrees measured alike; faces meet at creases near 90). Generated into GLSL.
 pub(crate) const TURNED_NORMAL_COS_PERCENT: u32 = 80;
 
-/// The moments' word (docs/performance.md, "moments in one word"): the mean as unorm of this many bits (bit 0 on),
-/// the count as a float of `MOMENTS_COUNT_BITS` (above the mean), twice the run as a signed integer in the rest.
-/// Generated into GLSL with the values derived from them, which shaders/dnsr_storage.glsl and
-/// src/reference/storage.rs use alike.
-pub(crate) const MOMENTS_MEAN_BITS: u32 = 14;
-/// See `MOMENTS_MEAN_BITS`.
-pub(crate) const MOMENTS_COUNT_BITS: u32 = 9;
-/// The run's bits: the rest of the word.
-pub(crate) const MOMENTS_RUN_BITS: u32 = 32 - MOMENTS_MEAN_BITS - MOMENTS_COUNT_BITS;
-/// The run's first bit. (This and `COUNT_SHIFT`, `COUNT_SUBNORMAL_CODES` follow from the generated constants;
-/// shaders/dnsr_storage.glsl derives the same three from them.)
-pub(crate) const MOMENTS_RUN_SHIFT: u32 = MOMENTS_MEAN_BITS + MOMENTS_COUNT_BITS;
-/// The mean's largest code (1.0).
-pub(crate) const MOMENTS_MEAN_MAX: u32 = (1 << MOMENTS_MEAN_BITS) - 1;
-/// The count's mantissa bits; the rest of `MOMENTS_COUNT_BITS` is its exponent.
-pub(crate) const COUNT_MANTISSA_BITS: u32 = 5;
-/// The count's smallest normal value is 2^-COUNT_MIN_NORMAL_BELOW_ONE; below it, subnormal steps of
-/// 1 / COUNT_SUBNORMAL_SCALE.
-pub(crate) const COUNT_MIN_NORMAL_BELOW_ONE: u32 = 7;
-/// The float32 mantissa bits a normal count drops.
-pub(crate) const COUNT_SHIFT: u32 = 23 - COUNT_MANTISSA_BITS;
-/// The subnormal counts' codes: 0 up to this.
-pub(crate) const COUNT_SUBNORMAL_CODES: u32 = 1 << COUNT_MANTISSA_BITS;
-/// See `COUNT_MIN_NORMAL_BELOW_ONE`.
-pub(crate) const COUNT_SUBNORMAL_SCALE: u32 = 1 << (COUNT_MIN_NORMAL_BELOW_ONE + COUNT_MANTISSA_BITS);
-/// A normal count's code is its float32 bits' exponent and top mantissa bits less this (the float32 exponent of
-/// the count's smallest normal value, less one, in code units).
-pub(crate) const COUNT_CODE_OFFSET: u32 = (127 - COUNT_MIN_NORMAL_BELOW_ONE - 1) << COUNT_MANTISSA_BITS;
-/// The largest count: every code bit set.
-pub(crate) const COUNT_MAX: u32 = {
-    let max_exponent = (1 << (MOMENTS_COUNT_BITS - COUNT_MANTISSA_BITS)) - 2 - COUNT_MIN_NORMAL_BELOW_ONE as i32;
-    ((1 << (COUNT_MANTISSA_BITS + 1)) - 1) << (max_exponent - COUNT_MANTISSA_BITS as i32)
-};
-const _: () = assert!(COUNT_MAX == 252 && COUNT_CODE_OFFSET == 3808 && COUNT_SUBNORMAL_SCALE == 4096);
-
 /// The standard deviation a stored signal's code 1.0 stands for: the variance boost multiplies a variance of at
 /// most 0.5 (an unbiased estimate of 0/1 samples) by up to `variance_boost_samples`.
 pub(crate) fn signal_scale(variance_boost_samples: f32) -> f32 {
@@ -138,7 +103,7 @@ impl ImageSpec {
 
 /// The size of an image of `per` for a render size `extent`.
 pub(crate) fn image_extent(per: Per, extent: [u32; 2]) -> [u32; 2] {
-    let tile = crate::passes::TILE;
+    let tile = crate::packing::TILE;
     match per {
         Per::Pixel => extent,
         Per::Tile => [extent[0].div_ceil(tile[0]), extent[1].div_ceil(tile[1])],

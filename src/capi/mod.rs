@@ -292,6 +292,12 @@ pub extern "C" fn dnsr_context_get_classifier_timings(context: DnsrContext, p_ti
     })
 }
 
+/// What `dnsr_ffx_context_set_light` calls: the FidelityFX layer's setter of a context's light (flags and position,
+/// checked here; false where no live FFX context is). ffx builds on this module, so it registers the setter when it
+/// creates a context instead of this module importing ffx; unset, no FFX context was ever created.
+pub(crate) static FFX_SET_LIGHT: std::sync::OnceLock<FfxSetLight> = std::sync::OnceLock::new();
+type FfxSetLight = fn(*mut std::ffi::c_void, DnsrDispatchFlags, [f32; 4]) -> bool;
+
 /// Tells dnsr's FidelityFX layer (include/ffx) about the light of a shadow denoiser context's later dispatches,
 /// which the FFX interface has no field for: `pFfxContext` is the `FfxDenoiserContext*` that
 /// ffxDenoiserContextCreate filled. `flags` holds DNSR_DISPATCH_HARD_LIGHT (the light has no size: every receiver's
@@ -322,13 +328,13 @@ pub extern "C" fn dnsr_ffx_context_set_light(p_ffx_context: *mut std::ffi::c_voi
                 "flags 0x{flags:x}: a FidelityFX context's light takes DNSR_DISPATCH_HARD_LIGHT and DNSR_DISPATCH_USE_LIGHT_POSITION only"
             )));
         }
-        let mut light = crate::ffx::FfxLight { flags, position: [0.0; 4] };
+        let mut position = [0.0; 4];
         if flags & DNSR_DISPATCH_USE_LIGHT_POSITION != 0 {
             let p: &[f32; 4] = required(p_light_position.cast(), "pLightPosition")?;
             crate::validate::light_position(glam::Vec4::from_array(*p))?;
-            light.position = *p;
+            position = *p;
         }
-        if !crate::ffx::set_light(p_ffx_context.cast(), light) {
+        if !FFX_SET_LIGHT.get().is_some_and(|set_light| set_light(p_ffx_context, flags, position)) {
             return Err(CallError::InvalidArgument("pFfxContext is not a live FfxDenoiserContext (never created, or destroyed)".into()));
         }
         Ok(DnsrResult::DNSR_SUCCESS)

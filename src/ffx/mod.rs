@@ -287,16 +287,16 @@ struct Denoiser {
 /// The light of a context's dispatches (`dnsr_ffx_context_set_light`): DNSR_DISPATCH_HARD_LIGHT and
 /// DNSR_DISPATCH_USE_LIGHT_POSITION bits, and the position that the second reads. Checked by the caller.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct FfxLight {
-    pub flags: u32,
-    pub position: [f32; 4],
+struct FfxLight {
+    flags: u32,
+    position: [f32; 4],
 }
 
 /// Gives the live context at `context` the light of its later dispatches; false when `context` is NULL or holds
-/// no live context.
-pub(crate) fn set_light(context: *mut FfxDenoiserContext, light: FfxLight) -> bool {
-    with_context(context, |d| {
-        d.light = light;
+/// no live context. `capi::FFX_SET_LIGHT` for `dnsr_ffx_context_set_light`.
+fn set_light(context: *mut std::ffi::c_void, flags: DnsrDispatchFlags, position: [f32; 4]) -> bool {
+    with_context(context.cast(), |d| {
+        d.light = FfxLight { flags, position };
         Ok(())
     })
     .is_ok()
@@ -405,6 +405,7 @@ pub extern "C" fn ffxDenoiserContextCreate(context: *mut FfxDenoiserContext, des
         let dnsr = new_dnsr_context(&device, width, height, depth_inverted, fidelityfx, vk::Format::R8_UNORM)?;
         let id = NEXT_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         let denoiser = Denoiser { context: dnsr, device, output_format: None, depth_inverted, fidelityfx, width, height, views: ViewRing::default(), dispatches: 0, light: FfxLight::default() };
+        crate::capi::FFX_SET_LIGHT.get_or_init(|| set_light);
         lock(&CONTEXTS).insert(id, denoiser);
         out.data[1] = id as u32;
         out.data[2] = (id >> 32) as u32;

@@ -8,18 +8,19 @@ pub(crate) mod classify;
 pub(crate) mod filter;
 pub(crate) mod prepare;
 mod roles;
+#[cfg(test)]
+pub(crate) mod state_tests;
 pub(crate) mod tile_classification;
 pub(crate) mod variants;
 
 use crate::dispatch::DebugView;
+use crate::packing::TILE;
 use crate::settings::MAX_FILTER_PASSES;
 use ash::vk;
 use bindings::{image, Binding, BindingTable, Resource};
 use filter::FilterPush;
 pub(crate) use roles::{roles, Role};
 
-/// Pixels of one hit-mask tile (one uint32): 8 x 4. Generated into GLSL as DNSR_TILE_SIZE.
-pub(crate) const TILE: [u32; 2] = [8, 4];
 /// Invocations of every pass's workgroup, x by y: one invocation per pixel of two stacked tiles (per tile in
 /// prepare). Generated into GLSL as the shaders' local size.
 pub(crate) const GROUP: [u32; 2] = [8, 8];
@@ -68,7 +69,7 @@ const MOVING_PIXELS: u32 = WINDOW_TILE_COUNT * TILE[0] * TILE[1] / (WIDE_GROUP[0
 /// A moving shadow's test counts samples and moment means in fixed point: this many units are one sample
 /// (the moments' unorm14 mean code over 16). Generated into GLSL; the CPU reference counts the same.
 pub(crate) const MOVING_SAMPLE_UNIT: u32 = 1024;
-const _: () = assert!((crate::state::MOMENTS_MEAN_MAX + 8) >> 4 == MOVING_SAMPLE_UNIT);
+const _: () = assert!((crate::packing::MOMENTS_MEAN_MAX + 8) >> 4 == MOVING_SAMPLE_UNIT);
 /// The test's margin, in samples, beyond the Bernoulli spread (a few samples' difference is no motion).
 pub(crate) const MOVING_MARGIN_SAMPLES: u32 = 2;
 /// A pixel counts as still for the test where its motion vector is under 1 / this many pixels.
@@ -76,8 +77,6 @@ pub(crate) const STILL_MOTION_INV_PIXELS: u32 = 100;
 
 // Hard tiles told by time (`Settings::hard_tile_frames`, `dnsr_quiet_tiles` and `dnsr_contradicts` in
 // shaders/tile_classification.glsl, `reference::tile_classification::contradicts`).
-/// A tile's count of quiet frames stops here (`Settings::hard_tile_frames`' upper bound).
-pub(crate) const MAX_QUIET_FRAMES: u32 = 255;
 /// A footprint texel held both values when its moments count at least this many samples...
 pub(crate) const MIXED_TEXEL_SAMPLES: u32 = 8;
 /// ...and their mean lies within this many percent of 0.5 (between 0.25 and 0.75).

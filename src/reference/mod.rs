@@ -137,7 +137,7 @@ pub trait Write {
 pub const SKY_SIGNAL: glam::DVec2 = glam::DVec2::new(1.0, -1.0);
 
 /// Tile size in pixels.
-pub const TILE: Coord = [crate::passes::TILE[0] as i32, crate::passes::TILE[1] as i32];
+pub const TILE: Coord = [crate::packing::TILE[0] as i32, crate::packing::TILE[1] as i32];
 
 /// Bit of pixel `p` within its tile word.
 pub fn tile_bit(p: Coord) -> u32 {

@@ -3,8 +3,8 @@
 //! its f64 value (through float32, as the GPU holds it), so a stored value can differ by one step of its format
 //! where the two land on either side of a rounding boundary.
 
-use crate::state::{COUNT_CODE_OFFSET, COUNT_MAX, COUNT_SHIFT, COUNT_SUBNORMAL_CODES, COUNT_SUBNORMAL_SCALE};
-use crate::state::{MOMENTS_COUNT_BITS, MOMENTS_MEAN_BITS, MOMENTS_MEAN_MAX, MOMENTS_RUN_BITS, MOMENTS_RUN_SHIFT};
+use crate::packing::{COUNT_CODE_OFFSET, COUNT_MAX, COUNT_SHIFT, COUNT_SUBNORMAL_CODES, COUNT_SUBNORMAL_SCALE};
+use crate::packing::{MOMENTS_COUNT_BITS, MOMENTS_MEAN_BITS, MOMENTS_MEAN_MAX, MOMENTS_RUN_BITS, MOMENTS_RUN_SHIFT};
 use glam::{DVec2, DVec3, DVec4};
 
 /// `v` >= 0 rounded to the nearest float16 value, ties to even, as float32 bits are rounded

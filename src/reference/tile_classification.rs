@@ -282,7 +282,7 @@ fn stable_agreeing(run: f64, x: f64, stable_after: f64) -> bool {
 /// its Bernoulli variance mean * (1 - mean) (code * (max - code) over 2^16) in the high 16; integers, summed alike in
 /// any order.
 pub fn moment_terms(word: u32) -> u32 {
-    let max = crate::state::MOMENTS_MEAN_MAX;
+    let max = crate::packing::MOMENTS_MEAN_MAX;
     let code = word & max;
     ((code + 8) >> 4) | (((code * (max - code)) >> 16) << 16)
 }
@@ -312,7 +312,7 @@ pub fn shadow_moved<Io: Read + ?Sized>(io: &Io, tile: Coord) -> bool {
         }
     }
     let change = (samples as f64 - means as f64).abs() / unit;
-    let max = crate::state::MOMENTS_MEAN_MAX as f64;
+    let max = crate::packing::MOMENTS_MEAN_MAX as f64;
     sigmas > 0.0 && !io.is_reset() && change > sigmas * (variances as f64 * 65536.0 / (max * max)).sqrt() + MOVING_MARGIN_SAMPLES as f64
 }
 
@@ -329,9 +329,9 @@ pub fn quiet_tiles<Io: Read + ?Sized>(io: &Io, tile: Coord) -> bool {
 }
 
 /// A tile's count of quiet frames before its receivers' contradictions clear it: last frame's plus one (at most
-/// `passes::MAX_QUIET_FRAMES`), 0 on a reset.
+/// `settings::MAX_QUIET_FRAMES`), 0 on a reset.
 fn quiet_count<Io: Read + ?Sized>(io: &Io, tile: Coord) -> u32 {
-    if io.is_reset() { 0 } else { (io.read_previous_tile_quiet(tile) + 1).min(crate::passes::MAX_QUIET_FRAMES) }
+    if io.is_reset() { 0 } else { (io.read_previous_tile_quiet(tile) + 1).min(crate::settings::MAX_QUIET_FRAMES) }
 }
 
 /// A footprint texel's moments that held both values (`passes::MIXED_TEXEL_SAMPLES`,

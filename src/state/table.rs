@@ -90,7 +90,7 @@ impl Formats {
 pub enum Per {
     /// A pixel of the render size.
     Pixel,
-    /// An 8x4 tile (`passes::TILE`), the render size rounded up.
+    /// An 8x4 tile (`packing::TILE`), the render size rounded up.
     Tile,
 }
 

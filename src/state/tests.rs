@@ -1,15 +1,12 @@
-//! The state table against what it is used for: the byte counts, the passes' bindings, the filter's ping-pong and
-//! docs/performance.md. (src/tests/resources.rs checks it against the images a context creates.)
+//! The state table against what it is used for: the byte counts, the filter's ping-pong and docs/performance.md.
+//! (src/tests/resources.rs checks it against the images a context creates, src/passes/state_tests.rs against the
+//! passes' bindings.)
 
 use super::table::*;
 use super::{formats, image_specs, persistent_texel_bytes, texel_bytes, Lifetime};
 use crate::create_info::{Precision, ShadowInput};
-use crate::dispatch::DebugView;
-use crate::passes::bindings::{image, Binding, Resource as Bound};
-use crate::passes::{frame, FrameViews};
 use crate::settings::MAX_FILTER_PASSES;
 use ash::vk;
-use ash::vk::Handle;
 
 const PRECISIONS: [Precision; 2] = [Precision::Fp32, Precision::Fp16];
 const INPUTS: [ShadowInput; 3] = [ShadowInput::HitMask, ShadowInput::Visibility, ShadowInput::Checkerboard];
@@ -105,108 +102,6 @@ fn accesses_touch_allocated_images() {
     }
 }
 
-/// A distinct view per internal image (and half of a pair: copy 0 is the current frame's, copy 1 the previous
-/// frame's) and per host image.
-fn view(image: Image, copy: u32) -> vk::ImageView {
-    vk::ImageView::from_raw(1 + 2 * image as u64 + copy as u64)
-}
-
-/// The internal image a view of `view` is of.
-fn image_of(v: vk::ImageView) -> Image {
-    let raw = v.as_raw() - 1;
-    RESOURCES.iter().map(|r| r.image).find(|&i| i as u64 == raw / 2).expect("an internal view")
-}
-
-/// The image (and half) of a view of `view`, for messages.
-fn named(v: vk::ImageView) -> String {
-    format!("{:?} copy {}", image_of(v), (v.as_raw() - 1) % 2)
-}
-
-fn host(n: u64) -> Binding {
-    image(vk::ImageView::from_raw(1000 + n), vk::ImageLayout::GENERAL)
-}
-
-fn views() -> FrameViews {
-    let internal = |i: Image| image(view(i, 0), vk::ImageLayout::GENERAL);
-    FrameViews {
-        constants: Binding::default(),
-        hit_mask: host(0),
-        // A checkerboard input: classification reads the reconstructed visibility.
-        visibility: internal(Image::Reconstructed),
-        visibility_out: view(Image::Reconstructed, 0),
-        depth: host(1),
-        velocity: host(2),
-        normals: host(3),
-        hit_distance: host(4),
-        tile_blocker: view(Image::TileBlocker, 0),
-        spec: 0,
-        output: vk::ImageView::from_raw(1005),
-        tile_mask: internal(Image::TileMask),
-        tile_dark: view(Image::TileDark, 0),
-        tile_meta: view(Image::TileMeta, 0),
-        reprojection: view(Image::Reprojection, 0),
-        history: view(Image::History, 0),
-        signal: view(Image::Signal, 0),
-        depth_copy: view(Image::DepthCopy, 0),
-        kept_moments: view(Image::Moments, 0),
-        frame_moments: view(Image::FrameMoments, 0),
-        previous_tile_quiet: view(Image::TileQuiet, 1),
-        tile_quiet: view(Image::TileQuiet, 0),
-        engine: [Binding::default(); crate::dispatch::MAX_ENGINE_IMAGES],
-        penumbra_tan_half_angle: 0.0,
-    }
-}
-
-/// (view, access) of every internal image one pass binds, read (sampled) or written (storage).
-fn bound(bindings: &crate::passes::bindings::BindingTable) -> Vec<(vk::ImageView, Access)> {
-    let mut out = Vec::new();
-    for (i, b) in bindings.iter().enumerate() {
-        let raw = b.view.as_raw();
-        if raw == 0 || raw >= 1000 {
-            continue;
-        }
-        let storage = Bound::descriptor_type_at(i) == Some(vk::DescriptorType::STORAGE_IMAGE);
-        out.push((b.view, if storage { Access::Write } else { Access::Read }));
-    }
-    out
-}
-
-/// The accesses are the passes' bindings (src/passes/): every access a pass of a frame of 1-4 filter passes makes
-/// is to an image it binds as the access needs (storage to write, sampled to read), and every internal image a pass
-/// binds is in an access of that pass (the prepare pass binds the reconstructed visibility as the input of the
-/// visibility variant, which a checkerboard's variant does not declare).
-#[test]
-fn accesses_are_what_the_passes_bind() {
-    let v = views();
-    for passes in 1..=MAX_FILTER_PASSES {
-        let frame = frame(&v, passes, true, DebugView::None);
-        for (index, p) in frame.iter().enumerate() {
-            let (pass, k) = match index {
-                0 => (Pass::Prepare, 0),
-                1 => (Pass::TileClassification, 0),
-                _ => (Pass::Filter, index as u32 - 2),
-            };
-            let bound = bound(&p.bindings);
-            let mine = || ACCESSES.iter().filter(|a| a.pass == pass);
-            for a in mine().filter(|a| pass != Pass::Filter || a.when.applies(k, passes)) {
-                assert!(bound.contains(&(target_view(a.target, k), a.access)), "{a:?}: pass {k} of {passes} does not bind it so");
-            }
-            for &(bound_view, access) in &bound {
-                let declared = mine().any(|a| {
-                    a.access == access && (0..passes).any(|any| target_view(a.target, if pass == Pass::Filter { any } else { 0 }) == bound_view)
-                });
-                let exempt = pass == Pass::Prepare && bound_view == view(Image::Reconstructed, 0) && access == Access::Read;
-                assert!(declared || exempt, "{pass:?} {k} of {passes} binds {} ({access:?}) that no access declares", named(bound_view));
-            }
-        }
-    }
-}
-
-/// The view of what `t` touches in filter pass `k` (any pass for the other targets).
-fn target_view(t: Target, k: u32) -> vk::ImageView {
-    view(t.image(k), if matches!(t, Target::Previous(_)) { 1 } else { 0 })
-}
-
 /// docs/performance.md's "State model" table is the table's: one row per image (or several images of one format
 /// size), its per-pixel or per-tile size, its bytes, its lifetime, the format it names (or "as filter signal"), a pair as
 /// "(x2, ping-pong)" and the context's images as "(one per context)".
@@ -270,26 +165,4 @@ fn specs_are_in_table_order() {
             "filter_signal", "reconstructed_visibility", "tile_quiet_0", "tile_quiet_1", "frame_moments"
         ]
     );
-}
-
-/// The state images each entry of a pass's binding table holds (indexed as `BindingTable`), over the passes of every
-/// filter pass count: what src/tests/interface.rs checks the shader variants' declared formats against.
-pub(crate) fn images_per_binding() -> Vec<Vec<Image>> {
-    let v = views();
-    let mut holds: Vec<Vec<Image>> = vec![Vec::new(); crate::passes::bindings::RESOURCE_COUNT];
-    for passes in 1..=MAX_FILTER_PASSES {
-        for p in frame(&v, passes, true, DebugView::None).iter() {
-            for (index, b) in p.bindings.iter().enumerate() {
-                let raw = b.view.as_raw();
-                if raw == 0 || raw >= 1000 {
-                    continue;
-                }
-                let image = image_of(b.view);
-                if !holds[index].contains(&image) {
-                    holds[index].push(image);
-                }
-            }
-        }
-    }
-    holds
 }

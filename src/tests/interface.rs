@@ -449,7 +449,7 @@ fn variants_declare_the_state_table_formats() {
     use crate::interface::spirv_image_format;
     use crate::state::table::{resource_of, RESOURCES};
     use crate::{Precision, ShadowInput};
-    let holds = crate::state::tests::images_per_binding();
+    let holds = crate::passes::state_tests::images_per_binding();
     let mut checked = Vec::new();
     for variant in VARIANTS {
         let precision = if variant.defines.contains(&"DNSR_FP16") { Precision::Fp16 } else { Precision::Fp32 };

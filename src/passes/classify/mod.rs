@@ -11,7 +11,7 @@
 
 mod dispatch;
 
-use super::TILE;
+use crate::packing::TILE;
 use crate::error::{Error, Result};
 use crate::glsl::gpu_block;
 use glam::{Mat3, Vec3, Vec4Swizzles};

@@ -53,7 +53,7 @@ float dnsr_unpack_linear_depth(uint code) {
 // The count's code from its float32 bits: the exponent and the top 5 mantissa bits, rounded half up by adding half
 // of the dropped bits' weight (a carry moves into the exponent, the next binade's first code); the binade of 2^-7
 // is code 32 onwards (exponent field 1). Below 2^-7, whole steps of 2^-12.
-// The layout's numbers come from src/state.rs (generated/dnsr_constants.glsl).
+// The layout's numbers come from src/packing.rs (generated/dnsr_constants.glsl).
 const uint DNSR_COUNT_SHIFT = 23u - DNSR_COUNT_MANTISSA_BITS; // float32 mantissa bits dropped
 const uint DNSR_COUNT_SUBNORMAL_CODES = 1u << DNSR_COUNT_MANTISSA_BITS;
 const uint DNSR_MOMENTS_RUN_SHIFT = DNSR_MOMENTS_MEAN_BITS + DNSR_MOMENTS_COUNT_BITS;

@@ -36,7 +36,7 @@
 #include <string.h>
 #include <time.h>
 
-/* CMakeLists.txt runs each seed as a test of its own: keep its list the same. */
+/* CMakeLists.txt reads this line and runs each seed as a test of its own. */
 #define DEFAULT_SEEDS {0x00c0ffeeu, 0x5eed0002u, 0xfa11b4c3u}
 #define DEFAULT_RECORDS_PER_SEED 1200u
 #define MIN_SUCCESS_PERCENT 20u

@@ -195,6 +195,7 @@ static void run_batch(int fd, uint64_t seed, uint32_t first, uint32_t end)
 int main(int argc, char **argv)
 {
     uint64_t seed = 0x0dd5eedu;
+    /* CMakeLists.txt reads the default `cases` below and runs it as two tests of half each. */
     uint32_t cases = 2000, batch = 250, first = 0;
     for (int i = 1; i + 1 < argc; i += 2) {
         uint64_t v = strtoull(argv[i + 1], NULL, 0);

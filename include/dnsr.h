@@ -1654,6 +1654,20 @@ typedef struct DnsrDiagnosis {
 #define DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY (1 << 4)
 
 /**
+ * Each light keeps its own transient images instead of every light sharing one set. Shared (the default), a
+ * record of several lights records each light's passes in a row and only the persistent images grow with the light
+ * count (dnsr_get_persistent_memory_requirements: 10.4 B/px per light after the first with a hit mask instead of
+ * 18.7; 4 lights 49.8 instead of 74.9 B/px). With this flag dnsr_lights_record records pass by pass for every light
+ * and runs the later filter passes four lights per dispatch, which measured faster where every tile is active (4
+ * lights at 3840x2160 on an H200: Quality 4.97 instead of 5.17 ms, Balanced 3.75 instead of 4.21; the typical scene's
+ * Quality the same; BENCHMARKS.md, "Several lights"). dnsr_get_memory_requirements does
+ * not count it: each light after the first adds the difference between a one-light context's
+ * dnsr_get_memory_requirements and its dnsr_get_persistent_memory_requirements, the constants aside. No effect
+ * with one light.
+ */
+#define DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT (1 << 5)
+
+/**
  * Forces 32 bits.
  */
 #define DNSR_CONTEXT_CREATE_MAX_ENUM 2147483647
@@ -1942,10 +1956,11 @@ DnsrResult dnsr_shadows_record(DnsrContext context,
  * camera into `pDispatch->commandBuffer`: `pDispatch` holds what they share and leaves its per-light fields
  * (lightIndex, hitMask, visibility, output, hitDistance, lightAngularSize, DNSR_DISPATCH_RESET and
  * DNSR_DISPATCH_USE_HIT_DISTANCE) zero; `pLights` gives each light's. Each light's output equals what
- * `dnsr_shadows_record` gives for it alone; the lights' work of each pass runs together on the GPU, and the
- * filter passes after the first filter up to four lights per dispatch, fetching what the lights share once (not
- * in a context with shader overrides, which runs a dispatch per light). On error (the message names the refused
- * entry of pLights) nothing is recorded and no light's state changes.
+ * `dnsr_shadows_record` gives for it alone. The lights share their transient images, so each light's passes are
+ * recorded in a row; with DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT the lights' work of each pass runs
+ * together on the GPU instead, and the filter passes after the first filter up to four lights per dispatch,
+ * fetching what the lights share once (not in a context with shader overrides, which runs a dispatch per light).
+ * On error (the message names the refused entry of pLights) nothing is recorded and no light's state changes.
  */
 DnsrResult dnsr_lights_record(DnsrContext context,
                               const struct DnsrShadowsDispatch *pDispatch,

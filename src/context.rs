@@ -10,7 +10,7 @@ use crate::gpu::image::{check_internal_format, color_range};
 use crate::gpu::loader::{HostDevice, Vk};
 use crate::gpu::memory::{self, Memory};
 use crate::host::ResourceKind;
-use crate::light::LightState;
+use crate::light::{LightState, TransientImages};
 use crate::passes::bindings::{image, Binding};
 use crate::passes::variants::{is_light_slot_variant, variant};
 use crate::passes::{filter, prepare, tile_classification};
@@ -40,12 +40,34 @@ pub fn memory_requirements_for_input(
     light_count: u32,
     input: ShadowInput,
 ) -> Result<u64> {
+    memory_requirements_with(width, height, precision, filter_passes, light_count, input, false)
+}
+
+/// `memory_requirements_for_input` with each light's own transient images where `transient_per_light`
+/// (`ContextCreateInfo::transient_memory_per_light`); without it the lights share one set.
+fn memory_requirements_with(
+    width: u32,
+    height: u32,
+    precision: Precision,
+    filter_passes: u32,
+    light_count: u32,
+    input: ShadowInput,
+    transient_per_light: bool,
+) -> Result<u64> {
     validate::extent("render size", width, height, u32::MAX)?;
     check_filter_passes(filter_passes)?;
     validate::light_count(light_count)?;
-    use crate::state::{table::Scope, texel_bytes};
-    let per_light = texel_bytes(Scope::Light, [width, height], precision, input);
-    Ok(per_light * light_count as u64 + texel_bytes(Scope::Context, [width, height], precision, input) + constants_bytes(light_count))
+    use crate::state::{persistent_texel_bytes, table::Scope, texel_bytes};
+    let extent = [width, height];
+    let persistent = persistent_texel_bytes(extent, precision, input);
+    let transient = texel_bytes(Scope::Light, extent, precision, input) - persistent;
+    let sets = transient_sets(light_count, transient_per_light) as u64;
+    Ok(persistent * light_count as u64 + transient * sets + texel_bytes(Scope::Context, extent, precision, input) + constants_bytes(light_count))
+}
+
+/// How many transient image sets a context of `light_count` lights holds.
+fn transient_sets(light_count: u32, transient_per_light: bool) -> u32 {
+    if transient_per_light { light_count } else { 1 }
 }
 
 /// Bytes of the part of `memory_requirements` whose contents must survive from one record of a light to the next
@@ -134,6 +156,11 @@ pub struct Context {
     constants_buffer: vk::Buffer,
     constants_memory: Memory,
     lights: Vec<LightState>,
+    /// The lights' transient images: one set that every light uses in turn, or one per light
+    /// (`ContextCreateInfo::transient_memory_per_light`); `LightState::transient` indexes it.
+    transients: Vec<TransientImages>,
+    /// `ContextCreateInfo::transient_memory_per_light`.
+    transient_per_light: bool,
     light_count: u32,
     /// The host aliases the transient images (`ContextCreateInfo::alias_transient_memory`): they are allocated as
     /// `ResourceKind::TransientImage`, and every record moves them out of UNDEFINED.
@@ -254,13 +281,14 @@ impl Context {
         check_shader_overrides(&vk, info)?;
         let family = validate::queue_family(&vk, info.queue_family_index)?;
         let supported_stages = validate::supported_stages(&vk, &family);
-        let needed = memory_requirements_for_input(
+        let needed = memory_requirements_with(
             info.width,
             info.height,
             info.precision,
             info.settings.filter_passes,
             info.light_count,
             info.shadow_input,
+            info.transient_memory_per_light,
         )?;
         memory::check_available(&vk, needed)?;
 
@@ -280,6 +308,8 @@ impl Context {
             constants_buffer: vk::Buffer::null(),
             constants_memory: Memory::default(),
             lights: Vec::new(),
+            transients: Vec::new(),
+            transient_per_light: info.transient_memory_per_light,
             light_count: info.light_count,
             alias_transient: info.alias_transient_memory,
             timestamps: None,
@@ -334,8 +364,10 @@ impl Context {
 
     fn create_pipelines(&self, push: bool, overrides: &[crate::create_info::ShaderOverride]) -> Result<Pipelines> {
         // Several lights per dispatch only with dnsr's own variants: an engine's override of the later pass would
-        // not be the one that runs for several lights (and light-slot variants are never overridden).
-        let light_slots = if self.light_count > 1 && overrides.is_empty() { &self.light_slot_names()[..] } else { &[] };
+        // not be the one that runs for several lights (and light-slot variants are never overridden); and only
+        // where each light has its own transient images, which one dispatch of four lights holds at once.
+        let slots = self.light_count > 1 && self.transient_per_light && overrides.is_empty();
+        let light_slots = if slots { &self.light_slot_names()[..] } else { &[] };
         let names = self.pipeline_names().chain(light_slots.iter().copied());
         let mut made: Vec<PassPipeline> = Vec::with_capacity(8);
         for name in names {
@@ -397,9 +429,17 @@ impl Context {
         vk_check("vkBindBufferMemory", unsafe { d.bind_buffer_memory(self.constants_buffer, m.memory, m.offset) })
     }
 
+    /// Every light's persistent images and the transient sets. On an error what was made stays in `lights` and
+    /// `transients` (the caller destroys them).
     fn allocate_lights(&mut self) -> Result<()> {
+        let sets = transient_sets(self.light_count, self.transient_per_light);
+        for set in 0..sets {
+            let owner = if sets == 1 { "lights".to_string() } else { format!("light{set}") };
+            let t = TransientImages::new(&self.vk, &owner, self.size, self.precision, self.shadow_input, self.alias_transient)?;
+            self.transients.push(t);
+        }
         for index in 0..self.light_count {
-            let light = LightState::new(&self.vk, index, self.size, self.precision, self.shadow_input, self.alias_transient)?;
+            let light = LightState::new(&self.vk, index, self.size, self.precision, self.shadow_input, (index % sets) as usize)?;
             self.lights.push(light);
         }
         Ok(())
@@ -409,6 +449,8 @@ impl Context {
         let vk = &self.vk;
         self.lights.iter_mut().for_each(|l| l.destroy(vk));
         self.lights.clear();
+        self.transients.iter_mut().for_each(|t| t.destroy(vk));
+        self.transients.clear();
     }
 
     /// Reallocates internal state for a new render size; histories restart. The GPU must have finished every
@@ -416,7 +458,15 @@ impl Context {
     pub fn resize(&mut self, width: u32, height: u32) -> Result<()> {
         let props = unsafe { self.vk.instance.get_physical_device_properties(self.vk.physical_device) };
         validate::extent("render size", width, height, props.limits.max_image_dimension2_d)?;
-        let needed = memory_requirements_for_input(width, height, self.precision, self.settings.filter_passes, self.light_count, self.shadow_input)?;
+        let needed = memory_requirements_with(
+            width,
+            height,
+            self.precision,
+            self.settings.filter_passes,
+            self.light_count,
+            self.shadow_input,
+            self.transient_per_light,
+        )?;
         memory::check_available(&self.vk, needed.saturating_sub(self.memory_bytes()))?;
         self.destroy_lights();
         self.size = [width, height];
@@ -464,7 +514,8 @@ impl Context {
     /// Bytes of device memory dnsr allocated (internal images and the constants buffer).
     pub fn memory_bytes(&self) -> u64 {
         let classifier = self.classifier.as_ref().map_or(0, |c| c.bytes());
-        self.lights.iter().map(LightState::bytes).sum::<u64>() + constants_bytes(self.light_count) + classifier
+        let images = self.lights.iter().flat_map(LightState::images).chain(self.transients.iter().flat_map(TransientImages::images));
+        images.map(|i| i.bytes).sum::<u64>() + constants_bytes(self.light_count) + classifier
     }
 
     /// The part of `memory_bytes` whose contents must survive from one record of a light to the next (each light's
@@ -472,7 +523,7 @@ impl Context {
     /// filter's intermediates, the constants, the classifier's buffers) is written and read within one
     /// record.
     pub fn persistent_memory_bytes(&self) -> u64 {
-        self.lights.iter().flat_map(LightState::persistent_images).map(|i| i.bytes).sum()
+        self.lights.iter().flat_map(LightState::images).map(|i| i.bytes).sum()
     }
 
     /// The classifier's tile list and counts (`ContextCreateInfo::enable_classifier`), which the engine's trace
@@ -586,6 +637,7 @@ impl Context {
     /// The bindings of light `d.light_index`, whose constants are in slot `slot` of the constants buffer.
     fn frame_views(&self, d: &ShadowsDispatch, slot: usize, cur: usize) -> FrameViews {
         let light = &self.lights[d.light_index as usize];
+        let t = &self.transients[light.transient];
         let host = |h: &crate::dispatch::HostImage| image(h.view, h.layout);
         FrameViews {
             constants: Binding {
@@ -595,27 +647,27 @@ impl Context {
                 ..Default::default()
             },
             hit_mask: host(&d.hit_mask),
-            visibility: light.reconstructed.as_ref().map_or(host(&d.visibility), |r| image(r.view, vk::ImageLayout::GENERAL)),
-            visibility_out: light.reconstructed.as_ref().map_or(vk::ImageView::null(), |r| r.view),
+            visibility: t.reconstructed.as_ref().map_or(host(&d.visibility), |r| image(r.view, vk::ImageLayout::GENERAL)),
+            visibility_out: t.reconstructed.as_ref().map_or(vk::ImageView::null(), |r| r.view),
             depth: host(&d.depth),
             velocity: host(&d.velocity),
             normals: host(&d.normals),
             // Without hit distances the binding takes an image of a float format that the pass only samples.
             hit_distance: d.hit_distance.as_ref().map_or(image(light.history.view, vk::ImageLayout::GENERAL), host),
-            tile_blocker: light.tile_blocker.view,
+            tile_blocker: t.tile_blocker.view,
             spec: self.specialization(d.hit_distance.is_some(), d.hard_light),
             output: d.output.view,
             // The other inputs' tile words are prepare's; a hit mask is read as the host gives it (its context has no
             // tile mask: the state table's `Needed::FractionInput`).
-            tile_mask: light.tile_mask.as_ref().map_or(host(&d.hit_mask), |m| image(m.view, vk::ImageLayout::GENERAL)),
-            tile_dark: light.tile_dark.as_ref().map_or(vk::ImageView::null(), |i| i.view),
-            tile_meta: light.tile_meta.view,
-            reprojection: light.reprojection.view,
+            tile_mask: t.tile_mask.as_ref().map_or(host(&d.hit_mask), |m| image(m.view, vk::ImageLayout::GENERAL)),
+            tile_dark: t.tile_dark.as_ref().map_or(vk::ImageView::null(), |i| i.view),
+            tile_meta: t.tile_meta.view,
+            reprojection: t.reprojection.view,
             history: light.history.view,
-            signal: light.signal_view(),
+            signal: t.signal_view(),
             depth_copy: light.depth_copy.view,
             kept_moments: light.moments.view,
-            frame_moments: light.frame_moments.view,
+            frame_moments: t.frame_moments.view,
             previous_tile_quiet: light.tile_quiet[cur ^ 1].view,
             tile_quiet: light.tile_quiet[cur].view,
             engine: d.engine_images.map(|e| e.map_or(Binding::default(), |e| image(e.view, e.layout))),
@@ -757,20 +809,37 @@ impl Context {
             }
         }
 
+        // Lights that share one transient set run in turn, each light's passes in a row (a round each): the next
+        // light's classification writes the images the last one's filter passes read. Otherwise one round holds
+        // every light's dispatches of each pass.
+        let in_turn = ds.len() > 1 && !self.transient_per_light;
+        let rounds = if in_turn { ds.len() } else { 1 };
         let dev = &self.vk.device;
         self.frames_recorded += 1;
-        let first_query = self.timestamps.as_mut().map(|t| t.begin(dev, cmd, self.frames_recorded, self.settings.filter_passes));
+        let first_query = self.timestamps.as_mut().map(|t| t.begin(dev, cmd, self.frames_recorded, filter_passes, rounds as u32));
         let timestamps = self.timestamps.as_ref();
-        let stamp = |index: u32| {
+        let stamp = |query: u32| {
             if let (Some(t), Some(first)) = (timestamps, first_query) {
-                t.stamp(dev, cmd, first + index);
+                t.stamp(dev, cmd, first + query);
             }
         };
+        // The transient sets of this record's lights, each once.
+        let mut transient_sets = [usize::MAX; MAX_LIGHTS_PER_RECORD];
+        let mut set_count = 0;
+        for d in ds {
+            let set = self.lights[d.light_index as usize].transient;
+            if !transient_sets[..set_count].contains(&set) {
+                transient_sets[set_count] = set;
+                set_count += 1;
+            }
+        }
+        let transient_sets = &transient_sets[..set_count];
 
         // Internal images this frame uses for the first time: moved out of UNDEFINED and cleared.
         let new_images = || {
             let lights = ds.iter().map(|d| &self.lights[d.light_index as usize]).filter(|l| !l.initialized);
-            lights.flat_map(LightState::images)
+            let transients = transient_sets.iter().map(|&t| &self.transients[t]).filter(|t| !t.initialized);
+            lights.flat_map(LightState::images).chain(transients.flat_map(TransientImages::images))
         };
         // Layout transitions into GENERAL: the outputs not in it yet here, with the first barrier; the internal
         // images a frame uses for the first time in barriers of their own, in chunks, on those frames alone (an
@@ -803,8 +872,8 @@ impl Context {
         // record, so each record moves them out of UNDEFINED (their contents are lost, which they may be:
         // tests/transient.rs). Before the first-use clears below, which then keep their effect.
         if self.alias_transient {
-            let lights = ds.iter().flat_map(|d| self.lights[d.light_index as usize].transient_images());
-            transition_from_undefined(dev, cmd, lights, [src_stages, dst_stages], [src_access, dst_access]);
+            let transients = transient_sets.iter().flat_map(|&t| self.transients[t].images());
+            transition_from_undefined(dev, cmd, transients, [src_stages, dst_stages], [src_access, dst_access]);
         }
         if new_images().next().is_some() {
             transition_from_undefined(dev, cmd, new_images(), [src_stages, dst_stages], [src_access, dst_access]);
@@ -822,35 +891,45 @@ impl Context {
         }
         barrier::transfer_to_compute(dev, cmd);
 
-        // The frame's passes in order, each for every light; a barrier wherever a dispatch touches what an earlier
-        // one wrote, or writes what an earlier one read, since the last barrier. The lights' dispatches of one pass
-        // touch only their own images and run together.
+        // The frame's passes in order, each for every light of the round; a barrier wherever a dispatch touches what
+        // an earlier one wrote, or writes what an earlier one read, since the last barrier. The lights' dispatches
+        // of one pass in one round touch only their own images and run together.
         let binder = binder_ref(&self.binder);
-        let hazards = &mut self.hazards;
-        hazards.clear();
-        stamp(0);
-        for index in 0..pass_count {
-            for k in 0..dispatch_count(index) {
-                let pass = &build(index, k);
-                if !pass.enabled {
-                    continue;
-                }
-                let pipeline = pipelines.for_role(pass.role);
-                if hazards.needs_barrier(pipeline, pass) {
-                    barrier::compute_to_compute(dev, cmd);
-                }
-                let groups = pass.group_count(extent);
-                unsafe {
-                    dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.vulkan.for_frame(pass.spec));
-                    if let Some(push) = &pass.push {
-                        dev.cmd_push_constants(cmd, pipeline.vulkan.layout, vk::ShaderStageFlags::COMPUTE, 0, bytemuck::bytes_of(push));
-                    }
-                }
-                let set = binder.set(sets[first_light(index, k)].expect("one per dispatch"), pass.role.set_index());
-                binder.bind(dev, cmd, &pipeline.vulkan, || pipeline.descriptors(&pass.bindings, self.sampler), set);
-                unsafe { dev.cmd_dispatch(cmd, groups[0], groups[1], groups[2]) };
+        let record_dispatch = |index: usize, k: usize, hazards: &mut Hazards| {
+            let pass = &build(index, k);
+            if !pass.enabled {
+                return;
             }
-            stamp(index as u32 + 1);
+            let pipeline = pipelines.for_role(pass.role);
+            if hazards.needs_barrier(pipeline, pass) {
+                barrier::compute_to_compute(dev, cmd);
+            }
+            let groups = pass.group_count(extent);
+            unsafe {
+                dev.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.vulkan.for_frame(pass.spec));
+                if let Some(push) = &pass.push {
+                    dev.cmd_push_constants(cmd, pipeline.vulkan.layout, vk::ShaderStageFlags::COMPUTE, 0, bytemuck::bytes_of(push));
+                }
+            }
+            let set = binder.set(sets[first_light(index, k)].expect("one per dispatch"), pass.role.set_index());
+            binder.bind(dev, cmd, &pipeline.vulkan, || pipeline.descriptors(&pass.bindings, self.sampler), set);
+            unsafe { dev.cmd_dispatch(cmd, groups[0], groups[1], groups[2]) };
+        };
+        let hazards = &mut self.hazards;
+        hazards.begin(transient_sets.iter().map(|&t| &self.transients[t]));
+        stamp(0);
+        for round in 0..rounds {
+            for index in 0..pass_count {
+                // In turn: the round's light alone (its dispatch k of the pass, where it has one).
+                let dispatches = match in_turn {
+                    true => members_of(index).iter().position(|&l| l == round).map_or(0..0, |k| k..k + 1),
+                    false => 0..dispatch_count(index),
+                };
+                for k in dispatches {
+                    record_dispatch(index, k, hazards);
+                }
+                stamp(Timestamps::query(filter_passes, round as u32, index as u32));
+            }
         }
 
         let mut back = [vk::ImageMemoryBarrier::default(); MAX_LIGHTS_PER_RECORD];
@@ -882,6 +961,9 @@ impl Context {
             light.parity ^= 1;
             light.initialized = true;
             light.pending_reset = false;
+        }
+        for &t in transient_sets {
+            self.transients[t].initialized = true;
         }
         Ok(())
     }
@@ -992,14 +1074,15 @@ pub(crate) struct Internals {
 impl Context {
     pub(crate) fn internals(&self, light: usize) -> Internals {
         let l = &self.lights[light];
+        let t = &self.transients[l.transient];
         Internals {
-            tile_mask: l.tile_mask.as_ref().map_or(vk::Image::null(), |i| i.image),
-            tile_dark: l.tile_dark.as_ref().map_or(vk::Image::null(), |i| i.image),
-            tile_meta: l.tile_meta.image,
-            tile_blocker: l.tile_blocker.image,
-            reprojection: l.reprojection.image,
+            tile_mask: t.tile_mask.as_ref().map_or(vk::Image::null(), |i| i.image),
+            tile_dark: t.tile_dark.as_ref().map_or(vk::Image::null(), |i| i.image),
+            tile_meta: t.tile_meta.image,
+            tile_blocker: t.tile_blocker.image,
+            reprojection: t.reprojection.image,
             history: l.history.image,
-            signal: l.signal.as_ref().map_or(l.frame_moments.image, |s| s.image),
+            signal: t.signal.as_ref().map_or(t.frame_moments.image, |s| s.image),
             moments: l.moments.image,
             tile_quiet: l.tile_quiet[l.parity ^ 1].image,
             depth: l.depth_copy.image,
@@ -1018,20 +1101,24 @@ impl Context {
         self.lights[light].moments.image
     }
 
-    /// The image of the state table's row `image` (half `copy` of a pair) of `light`, or the context's own for
-    /// `light` None (it holds none today: `Scope::Context`), if it has one: a test compares them with the table.
+    /// The image of the state table's row `image` (half `copy` of a pair) that `light`'s passes use (its own, or
+    /// its transient set's), or the context's own for `light` None (it holds none today: `Scope::Context`), if it
+    /// has one: a test compares them with the table.
     pub(crate) fn state_image(&self, light: Option<usize>, image: crate::state::table::Image, copy: u32) -> Option<&crate::gpu::image::InternalImage> {
-        light.and_then(|l| self.lights[l].image(image, copy))
+        let l = &self.lights[light?];
+        l.image(image, copy).or_else(|| self.transients[l.transient].image(image, copy))
     }
 
-    /// Every transient image (`state::Lifetime::Transient`, each light's) with its format, and the
-    /// count of persistent ones: a test fills the transient ones with garbage between records.
+    /// Every transient image (`state::Lifetime::Transient`, of every transient set) with its format, and the count
+    /// of persistent ones: a test fills the transient ones with garbage between records.
     pub(crate) fn transient_images(&self) -> (Vec<(vk::Image, vk::Format)>, usize) {
-        let mut images: Vec<(vk::Image, vk::Format)> = Vec::new();
-        for l in &self.lights {
-            images.extend(l.transient_images().map(|i| (i.image, i.format)));
-        }
-        (images, self.lights.iter().map(|l| l.persistent_images().count()).sum())
+        let images = self.transients.iter().flat_map(TransientImages::images).map(|i| (i.image, i.format)).collect();
+        (images, self.lights.iter().map(|l| l.images().count()).sum())
+    }
+
+    /// How many transient image sets the context holds (one, or one per light).
+    pub(crate) fn transient_set_count(&self) -> usize {
+        self.transients.len()
     }
 
     /// Frames recorded so far and the parity of `light`: changes exactly when something was recorded.
@@ -1042,21 +1129,25 @@ impl Context {
 }
 
 /// Images the passes recorded since the last barrier read and wrote (fixed capacity: no allocation). Tracked by
-/// view: two views of one memory (a hit mask's frame moments and the filter's signal, `InternalImage::shared_view`)
-/// count as different images. That misses no barrier because classification, the only pass that writes the frame
-/// moments, runs first in every record, after the record's opening barrier, and filter pass 0, which reads them
-/// and writes the signal, waits for it (it reads what classification wrote).
+/// view, a second view of one memory (a hit mask's frame moments and the filter's signal,
+/// `InternalImage::shared_view`) counted as its image's first (`same_memory`): where the lights take turns with one
+/// transient set, the next light's classification writes the frame moments whose memory the last light's filter
+/// passes read as the signal.
 struct Hazards {
     read: [vk::ImageView; 2 * crate::gpu::descriptors::MAX_BINDINGS * MAX_LIGHTS_PER_RECORD],
     written: [vk::ImageView; 2 * crate::gpu::descriptors::MAX_BINDINGS * MAX_LIGHTS_PER_RECORD],
     reads: usize,
     writes: usize,
+    /// (second view, first view) of each transient set of the record whose frame moments have a second view.
+    same_memory: [(vk::ImageView, vk::ImageView); MAX_LIGHTS_PER_RECORD],
+    same_memory_count: usize,
 }
 
 impl Default for Hazards {
     fn default() -> Self {
         let none = [vk::ImageView::null(); 2 * crate::gpu::descriptors::MAX_BINDINGS * MAX_LIGHTS_PER_RECORD];
-        Hazards { read: none, written: none, reads: 0, writes: 0 }
+        let no_pairs = [(vk::ImageView::null(), vk::ImageView::null()); MAX_LIGHTS_PER_RECORD];
+        Hazards { read: none, written: none, reads: 0, writes: 0, same_memory: no_pairs, same_memory_count: 0 }
     }
 }
 
@@ -1066,13 +1157,31 @@ impl Hazards {
         (self.reads, self.writes) = (0, 0);
     }
 
+    /// Starts a record whose transient sets are `sets`: no access yet, and their second views known.
+    fn begin<'a>(&mut self, sets: impl Iterator<Item = &'a TransientImages>) {
+        self.clear();
+        self.same_memory_count = 0;
+        for t in sets.filter(|t| t.frame_moments.shared_view != vk::ImageView::null()) {
+            self.same_memory[self.same_memory_count] = (t.frame_moments.shared_view, t.frame_moments.view);
+            self.same_memory_count += 1;
+        }
+    }
+
+    /// The view that stands for `view`'s memory, of the pairs `same_memory`.
+    fn memory_of(same_memory: &[(vk::ImageView, vk::ImageView)], view: vk::ImageView) -> vk::ImageView {
+        same_memory.iter().find(|p| p.0 == view).map_or(view, |p| p.1)
+    }
+
     /// Whether `pass` must wait for the passes since the last barrier (read-after-write, write-after-write or
     /// write-after-read on one of its images); records its own accesses either way.
     fn needs_barrier(&mut self, pipeline: &PassPipeline, pass: &Pass) -> bool {
+        let same_memory = self.same_memory;
+        let same_memory = &same_memory[..self.same_memory_count];
         let accesses = || {
             pipeline.interface.bindings.iter().filter_map(|b| {
                 let view = pass.bindings[b.resource as usize].view;
-                (view != vk::ImageView::null()).then_some((view, b.descriptor_type == vk::DescriptorType::STORAGE_IMAGE))
+                let write = b.descriptor_type == vk::DescriptorType::STORAGE_IMAGE;
+                (view != vk::ImageView::null()).then(|| (Self::memory_of(same_memory, view), write))
             })
         };
         let (new_reads, new_writes) = accesses().fold((0, 0), |(r, w), (_, write)| if write { (r, w + 1) } else { (r + 1, w) });

@@ -120,6 +120,18 @@ pub struct ContextCreateInfo {
     /// `input_src_*`, and for earlier compute and transfer work) and starts after it ends (order it after the
     /// stages named as `output_dst_*`). Costs one layout transition per transient image on every record.
     pub alias_transient_memory: bool,
+    /// Each light keeps its own transient images (tile state, the temporal result, the filter's intermediates) instead
+    /// of every light sharing one set. Sharing records each light's passes in a row (its transient images are free
+    /// again once its last filter pass read them), so only the persistent images (moments, depth copy, history,
+    /// quiet counts: `persistent_memory_requirements`) grow with the light count: 10.4 B/px per light after the first
+    /// with a hit mask instead of 18.7 (4 lights 49.8 instead of 74.9 B/px). With this flag a `record_lights` call
+    /// records pass by pass for every light and runs the later filter passes four lights per dispatch, which measured
+    /// faster where every tile is active (4 lights at 3840x2160 on an H200: Quality 4.97 instead of 5.17 ms, Balanced
+    /// 3.75 instead of 4.21; the typical scene's Quality the same; BENCHMARKS.md, "Several lights");
+    /// `memory_requirements` does not count it: each light after the first adds the difference between a
+    /// one-light context's `memory_requirements` and its `persistent_memory_requirements`, the constants aside.
+    /// No effect with one light.
+    pub transient_memory_per_light: bool,
     /// Host allocators and debug names (all optional).
     pub hooks: HostHooks,
     /// Pass variants the engine compiled itself, against its own callbacks file (docs/callbacks.md); the
@@ -173,6 +185,7 @@ impl ContextCreateInfo {
             enable_classifier: false,
             settings: Settings::default(),
             alias_transient_memory: false,
+            transient_memory_per_light: false,
             hooks: HostHooks::default(),
             shader_overrides: Vec::new(),
         }

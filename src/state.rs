@@ -94,7 +94,8 @@ pub(crate) struct ImageSpec {
 }
 
 impl ImageSpec {
-    /// Its debug name after `dnsr.light{n}.` (or `dnsr.` for a context's): `history`, `depth_copy_1`.
+    /// Its debug name after `dnsr.light{n}.` (a transient image: `dnsr.lights.` where the lights share one set;
+    /// `dnsr.` for a context's): `history`, `depth_copy_1`.
     pub(crate) fn name(&self) -> String {
         let r = resource_of(self.image);
         if r.copies > 1 { format!("{}_{}", r.name, self.copy) } else { r.name.to_string() }

@@ -5,15 +5,21 @@ use crate::gpu::loader::Vk;
 use crate::settings::MAX_FILTER_PASSES;
 use ash::vk;
 
-/// Start, after prepare, after tile classification, after each filter pass.
-pub(crate) const QUERIES_PER_FRAME: u32 = 3 + MAX_FILTER_PASSES;
+/// Passes of a frame whose time is reported: prepare, tile classification, each filter pass.
+const PASSES: u32 = 2 + MAX_FILTER_PASSES;
+/// Most rounds of a frame: a record whose lights share their transient images runs each light's passes in a
+/// round of its own; otherwise one round holds every light's dispatches of each pass.
+const MAX_ROUNDS: u32 = crate::dispatch::MAX_LIGHTS_PER_RECORD as u32;
+/// The start, then the end of each pass of each round (a round's start is the end of the round before).
+pub(crate) const QUERIES_PER_FRAME: u32 = 1 + MAX_ROUNDS * PASSES;
 /// Frames whose timestamps are kept; timings stay readable while fewer frames than this are in flight.
 pub(crate) const FRAME_SLOTS: u32 = 4;
 /// Before and after one classifier dispatch (`Context::record_classify`), in FRAME_SLOTS slots after the frames'.
 const CLASSIFY_QUERIES: u32 = 2;
 const CLASSIFY_BASE: u32 = QUERIES_PER_FRAME * FRAME_SLOTS;
 
-/// GPU time of each pass of one recorded frame, in milliseconds.
+/// GPU time of each pass of one recorded frame, in milliseconds. Where a record's lights run in turn (they share
+/// their transient images), each pass's time is the sum of its lights'.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PassTimings {
     /// Which recorded frame these are from (counts `record_shadows` calls from 1).
@@ -44,8 +50,8 @@ pub(crate) struct Timestamps {
     pub pool: vk::QueryPool,
     period_ns: f64,
     valid_mask: u64,
-    /// Frame number and filter pass count recorded into each slot (frame 0: never used).
-    slots: [(u64, u32); FRAME_SLOTS as usize],
+    /// Frame number, filter pass count and rounds recorded into each slot (frame 0: never used).
+    slots: [(u64, u32, u32); FRAME_SLOTS as usize],
     /// Classifier dispatch recorded into each classifier slot (0: never used).
     classify_slots: [u64; FRAME_SLOTS as usize],
 }
@@ -66,7 +72,7 @@ impl Timestamps {
             pool,
             period_ns: props.limits.timestamp_period as f64,
             valid_mask: if bits >= 64 { u64::MAX } else { (1u64 << bits) - 1 },
-            slots: [(0, 0); FRAME_SLOTS as usize],
+            slots: [(0, 0, 0); FRAME_SLOTS as usize],
             classify_slots: [0; FRAME_SLOTS as usize],
         })
     }
@@ -110,35 +116,47 @@ impl Timestamps {
         (data[b][0] & self.valid_mask).wrapping_sub(data[a][0] & self.valid_mask) as f64 * self.period_ns * 1e-6
     }
 
-    /// Claims the slot for `frame` and records the reset of its queries. Returns the slot's first query.
-    pub(crate) fn begin(&mut self, d: &ash::Device, cmd: vk::CommandBuffer, frame: u64, filter_passes: u32) -> u32 {
+    /// Claims the slot for `frame`, whose `rounds` (1..=MAX_ROUNDS) each run `2 + filter_passes` passes, and
+    /// records the reset of its queries. Returns the slot's first query; `query` numbers the others.
+    pub(crate) fn begin(&mut self, d: &ash::Device, cmd: vk::CommandBuffer, frame: u64, filter_passes: u32, rounds: u32) -> u32 {
+        debug_assert!((1..=MAX_ROUNDS).contains(&rounds));
         let slot = (frame % FRAME_SLOTS as u64) as usize;
-        self.slots[slot] = (frame, filter_passes);
+        self.slots[slot] = (frame, filter_passes, rounds);
         let first = slot as u32 * QUERIES_PER_FRAME;
         unsafe { d.cmd_reset_query_pool(cmd, self.pool, first, QUERIES_PER_FRAME) };
         first
     }
 
+    /// The query after pass `pass` (0 prepare, 1 classification, 2.. the filter passes) of round `round` of a frame
+    /// of `filter_passes`, counted from its first (the start).
+    pub(crate) fn query(filter_passes: u32, round: u32, pass: u32) -> u32 {
+        1 + round * (2 + filter_passes) + pass
+    }
+
     /// Timings of the most recent frame whose queries are all available.
     pub(crate) fn latest(&self, d: &ash::Device) -> Result<Option<PassTimings>> {
         for slot in newest_first(&self.slots.map(|s| s.0)) {
-            let (frame, passes) = self.slots[slot];
+            let (frame, passes, rounds) = self.slots[slot];
             let mut data = [[0u64; 2]; QUERIES_PER_FRAME as usize];
-            let used = 3 + passes as usize;
+            let used = Self::query(passes, rounds - 1, passes + 1) as usize + 1;
             if !self.read(d, slot as u32 * QUERIES_PER_FRAME, &mut data[..used])? {
                 continue;
             }
-            let ms = |a: usize, b: usize| self.ms(&data, a, b);
+            // Each pass's time summed over the rounds.
+            let pass_ms = |pass: u32| -> f64 {
+                let end = |round| Self::query(passes, round, pass) as usize;
+                (0..rounds).map(|round| self.ms(&data, end(round) - 1, end(round))).sum()
+            };
             let mut t = PassTimings {
                 frame,
-                prepare_ms: ms(0, 1),
-                tile_classification_ms: ms(1, 2),
+                prepare_ms: pass_ms(0),
+                tile_classification_ms: pass_ms(1),
                 filter_passes: passes,
-                total_ms: ms(0, used - 1),
+                total_ms: self.ms(&data, 0, used - 1),
                 ..Default::default()
             };
-            for p in 0..passes as usize {
-                t.filter_ms[p] = ms(2 + p, 3 + p);
+            for p in 0..passes {
+                t.filter_ms[p as usize] = pass_ms(2 + p);
             }
             return Ok(Some(t));
         }

@@ -48,6 +48,10 @@ const USAGE: &str = "usage: dnsr-bench [options]
   --alias-transient           the contexts let the host alias their transient memory (ContextCreateInfo::
                               alias_transient_memory, with a host allocator): every record moves the transient
                               images out of UNDEFINED
+  --transient-per-light       each light keeps its own transient images (ContextCreateInfo::
+                              transient_memory_per_light): several lights record pass by pass, the later filter
+                              passes four lights per dispatch (default: the lights share one set, each light's
+                              passes in a row)
   --hard-light                every light has no size (ShadowsDispatch::hard_light): the output is each pixel's
                               ray, and one filter pass runs (not with a non-zero --light-angle)
   --shader-override V=FILE    run the SPIR-V in FILE for shader variant V (ContextCreateInfo::shader_overrides;
@@ -118,6 +122,7 @@ struct Options {
     push_descriptors: bool,
     host: HostFormats,
     alias_transient: bool,
+    transient_per_light: bool,
     hard_light: bool,
     shader_overrides: Vec<dnsr::ShaderOverride>,
 }
@@ -154,6 +159,7 @@ fn parse_args() -> Options {
         push_descriptors: true,
         host: HostFormats::Engine,
         alias_transient: false,
+        transient_per_light: false,
         hard_light: false,
         shader_overrides: Vec::new(),
     };
@@ -176,6 +182,7 @@ fn parse_args() -> Options {
             "--no-push-descriptors" => o.push_descriptors = false,
             "--float-gbuffer" => o.host = HostFormats::Float,
             "--alias-transient" => o.alias_transient = true,
+            "--transient-per-light" => o.transient_per_light = true,
             "--hard-light" => o.hard_light = true,
             "--shader-override" => {
                 let value = args.next().unwrap_or_else(|| usage("--shader-override needs VARIANT=FILE"));
@@ -243,6 +250,7 @@ fn main() {
             let mut gpu_scene = build(&gpu, scene, size.0, size.1, opts.rays, opts.host);
             gpu_scene.checkerboard = opts.checkerboard;
             gpu_scene.alias_transient = opts.alias_transient;
+            gpu_scene.transient_per_light = opts.transient_per_light;
             gpu_scene.hard_light = opts.hard_light;
             gpu_scene.shader_overrides = opts.shader_overrides.clone();
             eprintln!("dnsr-bench: {}x{} {}: {} frames generated in {:.1} s", size.0, size.1, scene.id(), gpu_scene.frames.len(), t.elapsed().as_secs_f64());

@@ -118,10 +118,11 @@ pub extern "C" fn dnsr_shadows_record(context: DnsrContext, p_dispatch: *const D
 /// camera into `pDispatch->commandBuffer`: `pDispatch` holds what they share and leaves its per-light fields
 /// (lightIndex, hitMask, visibility, output, hitDistance, lightAngularSize, DNSR_DISPATCH_RESET and
 /// DNSR_DISPATCH_USE_HIT_DISTANCE) zero; `pLights` gives each light's. Each light's output equals what
-/// `dnsr_shadows_record` gives for it alone; the lights' work of each pass runs together on the GPU, and the
-/// filter passes after the first filter up to four lights per dispatch, fetching what the lights share once (not
-/// in a context with shader overrides, which runs a dispatch per light). On error (the message names the refused
-/// entry of pLights) nothing is recorded and no light's state changes.
+/// `dnsr_shadows_record` gives for it alone. The lights share their transient images, so each light's passes are
+/// recorded in a row; with DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT the lights' work of each pass runs
+/// together on the GPU instead, and the filter passes after the first filter up to four lights per dispatch,
+/// fetching what the lights share once (not in a context with shader overrides, which runs a dispatch per light).
+/// On error (the message names the refused entry of pLights) nothing is recorded and no light's state changes.
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_lights_record(
     context: DnsrContext,

@@ -28,7 +28,9 @@ pub(crate) struct InternalImage {
     /// Width and height (a test compares them with the state table).
     #[cfg_attr(not(test), allow(dead_code))]
     pub extent: [u32; 2],
-    /// Its contents must survive from one record to the next (state::Lifetime).
+    /// Its contents must survive from one record to the next (state::Lifetime); a test compares it with the state
+    /// table.
+    #[cfg_attr(not(test), allow(dead_code))]
     pub persistent: bool,
 }
 

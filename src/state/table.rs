@@ -143,8 +143,8 @@ impl Needed {
 pub struct Resource {
     /// Which image (`RESOURCES[image as usize]`).
     pub image: Image,
-    /// Its debug-name stem (`dnsr.light{n}.{name}`, `_{copy}` after it for a pair; `dnsr.{name}` per context); with
-    /// spaces for underscores, its name in the byte model and docs/performance.md.
+    /// Its debug-name stem (`dnsr.light{n}.{name}`, `dnsr.lights.{name}` for a transient image the lights share,
+    /// `_{copy}` after it for a pair; `dnsr.{name}` per context); with spaces for underscores, its name in the byte model and docs/performance.md.
     pub name: &'static str,
     /// Its format per precision.
     pub format: Formats,

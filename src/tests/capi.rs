@@ -180,6 +180,24 @@ fn handles_codes_and_messages() {
     assert_eq!(dnsr_context_get_persistent_memory_usage(ctx, &mut kept), DnsrResult::DNSR_SUCCESS);
     assert!(kept > 0 && kept < bytes, "persistent {kept} of {bytes}");
     assert_eq!(dnsr_context_get_persistent_memory_usage(ctx, std::ptr::null_mut()), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);
+    // Three lights: one transient set, or one per light with DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT (two
+    // more sets, the same persistent images).
+    let usage = |flags: DnsrContextCreateFlags| {
+        let (mut lights, mut three) = (create_info(&g, 8, 8), std::ptr::null_mut());
+        (lights.light_count, lights.flags) = (3, flags);
+        assert_eq!(dnsr_context_create(&lights, &mut three), DnsrResult::DNSR_SUCCESS, "{}", last_error());
+        let (mut all, mut persistent) = (0u64, 0u64);
+        assert_eq!(dnsr_context_get_memory_usage(three, &mut all), DnsrResult::DNSR_SUCCESS);
+        assert_eq!(dnsr_context_get_persistent_memory_usage(three, &mut persistent), DnsrResult::DNSR_SUCCESS);
+        assert_eq!(dnsr_context_destroy(three), DnsrResult::DNSR_SUCCESS);
+        (all, persistent)
+    };
+    let (shared, own) = (usage(0), usage(DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT));
+    assert_eq!(shared.1, 3 * kept, "each light its own persistent images");
+    assert_eq!(own.1, shared.1);
+    // Each set holds what a one-light context holds beyond its persistent images, less its constants.
+    let (set, one_light_transient) = ((own.0 - shared.0) / 2, bytes - kept);
+    assert!(set > 0 && set <= one_light_transient && one_light_transient - set <= 4096, "a transient set {set}, {one_light_transient}");
     let mut timings = DnsrPassTimings {
         s_type: DNSR_STRUCTURE_TYPE_PASS_TIMINGS,
         p_next: std::ptr::null_mut(),

@@ -42,8 +42,11 @@ fn light_frame(light: usize, frame: u32) -> FrameInputs {
     render_with_blockers(W, H, &cam(frame), &cam(frame.saturating_sub(1)), 7.0, fields[light], &|x, _| 0.5 + x.abs(), seed)
 }
 
-fn runner(g: &Gpu, input: ShadowInput) -> Runner<'_> {
+/// `transient_per_light`: `ContextCreateInfo::transient_memory_per_light` (the light-slot variants) instead of one
+/// transient set that the lights use in turn.
+fn runner(g: &Gpu, input: ShadowInput, transient_per_light: bool) -> Runner<'_> {
     let mut info = g.create_info(W, H);
+    info.transient_memory_per_light = transient_per_light;
     info.output_format = vk::Format::R32_SFLOAT;
     info.light_count = LIGHTS as u32;
     info.shadow_input = input;
@@ -88,25 +91,30 @@ fn shared(d: &ShadowsDispatch) -> ShadowsDispatch {
 }
 
 /// With push descriptors and with the descriptor-set ring (one ring per light), for a hit mask and for a
-/// checkerboard input (prepare always runs, each light reconstructs into its own image).
+/// checkerboard input (prepare always runs, each light reconstructs into its own image); with the lights sharing
+/// their transient images (each light's passes in a row), and with a set each (the light-slot variants) on two of
+/// the four.
 #[test]
 fn several_lights_in_one_record_equal_one_record_per_light() {
     for push_descriptor in [true, false] {
         for input in [ShadowInput::HitMask, ShadowInput::Checkerboard] {
             let g = Gpu::new(GpuOptions { push_descriptor, ..Default::default() });
             assert_eq!(g.features.push_descriptor, push_descriptor, "device lacks VK_KHR_push_descriptor");
-            eprintln!("push descriptors {push_descriptor}, {input:?}");
-            equal_to_one_record_per_light(&g, input);
+            let per_light_too = push_descriptor == (input == ShadowInput::HitMask);
+            for transient_per_light in [false, true].into_iter().filter(|&p| !p || per_light_too) {
+                eprintln!("push descriptors {push_descriptor}, {input:?}, transient images per light {transient_per_light}");
+                equal_to_one_record_per_light(&g, input, transient_per_light);
+            }
             g.assert_clean();
         }
     }
 }
 
-fn equal_to_one_record_per_light(g: &Gpu, input: ShadowInput) {
+fn equal_to_one_record_per_light(g: &Gpu, input: ShadowInput, transient_per_light: bool) {
     let phase = |frame: u32| if input == ShadowInput::Checkerboard { frame % 2 } else { 0 };
-    let mut single = runner(g, input);
-    let mut batched = runner(g, input);
-    assert!(batched.ctx.has_light_slot_pipelines(), "the later passes would run a dispatch per light");
+    let mut single = runner(g, input, transient_per_light);
+    let mut batched = runner(g, input, transient_per_light);
+    assert_eq!(batched.ctx.has_light_slot_pipelines(), transient_per_light, "the later passes of several lights per dispatch");
     // The batched runner's lights but the last read and write these; the last uses the runner's own images (its
     // frame is the one the runner uploads, hit distances included).
     let last = LIGHTS - 1;
@@ -147,7 +155,7 @@ fn equal_to_one_record_per_light(g: &Gpu, input: ShadowInput) {
         }
         if frame == RESET_FRAME {
             // The reset must show: light 1 run up to here without one (its own context) ends elsewhere.
-            let mut unreset = runner(g, input);
+            let mut unreset = runner(g, input, transient_per_light);
             let mut out = Vec::new();
             for k in 0..=frame {
                 unreset.checkerboard_phase = phase(k);
@@ -159,11 +167,15 @@ fn equal_to_one_record_per_light(g: &Gpu, input: ShadowInput) {
         }
     }
     assert!(reset_changed, "resetting light 1 changed nothing: the test cannot tell a reset from none");
-    // Every light holds its own state and nothing more: the later filter passes' guide is each light's depth copy.
+    // Every light holds its own persistent state and nothing more (the later filter passes' guide is each light's
+    // depth copy); the transient images are one set, or one per light.
     let bytes = |lights| crate::memory_requirements(W, H, crate::Precision::Fp32, 3, lights).unwrap();
     let (one, added) = (bytes(1), bytes(2) - bytes(1));
     assert_eq!(bytes(LIGHTS as u32) - bytes(1), (LIGHTS as u64 - 1) * added, "memory grows linearly with the light count");
-    assert_eq!(one, added, "the first light holds what each other one does");
+    let kept = crate::persistent_memory_requirements(W, H, crate::Precision::Fp32, 1).unwrap();
+    assert!(added > kept && added - kept <= 1024, "each light after the first adds its persistent images ({kept}) and its constants: {added}");
+    assert!(one > added, "the first light also holds the transient images");
+    assert_eq!(batched.ctx.transient_set_count(), if transient_per_light { LIGHTS } else { 1 }, "transient image sets");
     for img in masks.iter().chain(&outputs).chain(&hit_distances) {
         g.destroy_image(img);
     }
@@ -172,7 +184,7 @@ fn equal_to_one_record_per_light(g: &Gpu, input: ShadowInput) {
 #[test]
 fn a_bad_light_refuses_the_whole_record() {
     let g = gpu();
-    let mut r = runner(&g, ShadowInput::HitMask);
+    let mut r = runner(&g, ShadowInput::HitMask, false);
     let other = g.image(vk::Format::R32_SFLOAT, W, H, vk::ImageLayout::GENERAL);
     let f = light_frame(0, 0);
     let d = shared(&r.dispatch(&f));

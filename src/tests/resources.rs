@@ -262,7 +262,7 @@ mod hooks {
         assert!(log.iter().any(|(k, _)| *k == ResourceKind::Buffer));
         assert_eq!(gpu_alloc.live.load(Ordering::SeqCst), 0, "GPU allocations leaked");
         let names = names.lock().unwrap();
-        for expect in ["dnsr.light0.history", "dnsr.light0.moments", "dnsr.light0.frame_moments", "dnsr.tile_classification_r32f", "dnsr.constants"] {
+        for expect in ["dnsr.light0.history", "dnsr.light0.moments", "dnsr.lights.frame_moments", "dnsr.tile_classification_r32f", "dnsr.constants"] {
             assert!(names.iter().any(|(_, n)| n == expect), "no object named {expect}: {names:?}");
         }
         assert!(names.iter().any(|(t, _)| *t == vk::ObjectType::PIPELINE));
@@ -273,7 +273,8 @@ mod hooks {
 /// The state table (src/state/table.rs) is what the images are created with: every row's images exist exactly where
 /// its `Needed` says (a row that shares another's memory as a view of it), per light or per context, with its format
 /// for the precision, its size (per pixel or per tile) and its lifetime; also after the settings add passes to a
-/// context, which allocates nothing.
+/// context, which allocates nothing. The lights' transient images are one set that they share, or one set each
+/// with `transient_memory_per_light`; their persistent images are always their own.
 #[test]
 fn state_table_is_what_the_images_are_created_with() {
     use crate::state::table::{Scope, RESOURCES};
@@ -281,7 +282,7 @@ fn state_table_is_what_the_images_are_created_with() {
     let g = super::gpu();
     let (w, h) = (44u32, 26u32);
     let check = |ctx: &crate::Context, what: &str, lights: usize, precision: Precision, input: ShadowInput| {
-        let mut count = 0;
+        let mut seen: Vec<(ash::vk::Image, bool)> = Vec::new();
         for r in RESOURCES {
             let owners: Vec<Option<usize>> = if r.scope == Scope::Light { (0..lights).map(Some).collect() } else { vec![None] };
             for owner in owners {
@@ -291,7 +292,9 @@ fn state_table_is_what_the_images_are_created_with() {
                     let wanted = copy < r.copies && r.needed.holds(input) && shared.is_none();
                     assert_eq!(made.is_some(), wanted, "{what}: {:?} {owner:?} copy {copy}", r.image);
                     let Some(img) = made else { continue };
-                    count += 1;
+                    if !seen.contains(&(img.image, img.persistent)) {
+                        seen.push((img.image, img.persistent));
+                    }
                     assert_eq!(img.format, r.format_for(precision, input), "{what}: {:?}", r.image);
                     assert_eq!(img.extent, crate::state::image_extent(r.per, [w, h]), "{what}: {:?}", r.image);
                     assert_eq!(img.persistent, r.lifetime == crate::state::Lifetime::Persistent, "{what}: {:?}", r.image);
@@ -301,9 +304,14 @@ fn state_table_is_what_the_images_are_created_with() {
                 }
             }
         }
-        // The table lists every image the context has (its transient and persistent images, counted apart).
+        // The table lists every image the context has (its transient and persistent images, counted apart), each
+        // light's persistent ones its own and the transient ones in the context's sets.
         let (transient, persistent) = ctx.transient_images();
-        assert_eq!(transient.len() + persistent, count, "{what}");
+        assert_eq!(transient.len() + persistent, seen.len(), "{what}");
+        let rows = |persistent: bool| seen.iter().filter(|s| s.1 == persistent).count();
+        assert_eq!(rows(true) % lights, 0, "{what}: every light has its own persistent images");
+        assert_eq!(rows(false), transient.len(), "{what}");
+        assert_eq!(rows(false) % ctx.transient_set_count(), 0, "{what}");
     };
     let mut precisions = vec![Precision::Fp32];
     if g.features.float16 {
@@ -319,6 +327,18 @@ fn state_table_is_what_the_images_are_created_with() {
             let mut ctx = crate::Context::new(&info).unwrap();
             let what = format!("{precision:?}, {input:?}, {passes} passes");
             check(&ctx, &what, 2, precision, input);
+            assert_eq!(ctx.transient_set_count(), 1, "{what}: the lights share their transient images");
+            let shared = ctx.memory_bytes();
+            // Each light its own transient set: 2 sets, the same persistent images.
+            info.transient_memory_per_light = true;
+            let own = crate::Context::new(&info).unwrap();
+            check(&own, &format!("{what}, a set per light"), 2, precision, input);
+            assert_eq!(own.transient_set_count(), 2, "{what}");
+            assert_eq!(own.persistent_memory_bytes(), ctx.persistent_memory_bytes(), "{what}");
+            // The second set is what the shared context holds beyond its persistent images, less its constants.
+            let (added, one_set) = (own.memory_bytes() - shared, shared - ctx.persistent_memory_bytes());
+            assert!(added > 0 && added <= one_set && one_set - added <= 8192, "{what}: {added} more, a set and the constants {one_set}");
+            drop(own);
             if passes == 1 {
                 // More passes need no image more.
                 let bytes = ctx.memory_bytes();

@@ -188,6 +188,7 @@ pub fn run(
         info.shadow_input = dnsr::ShadowInput::Checkerboard;
     }
     info.light_count = lights as u32;
+    info.transient_memory_per_light = scene.transient_per_light;
     info.shader_overrides = scene.shader_overrides.clone();
     if scene.alias_transient {
         info.alias_transient_memory = true;

@@ -143,6 +143,8 @@ pub struct GpuScene {
     /// `--alias-transient`: the context hands its transient images to a host allocator and moves them out of
     /// UNDEFINED on every record (`ContextCreateInfo::alias_transient_memory`).
     pub alias_transient: bool,
+    /// `--transient-per-light`: each light its own transient images (`ContextCreateInfo::transient_memory_per_light`).
+    pub transient_per_light: bool,
     /// SPIR-V that replaces dnsr's own for the named variants (`ContextCreateInfo::shader_overrides`): a shader
     /// change timed against the unchanged library in one run.
     pub shader_overrides: Vec<dnsr::ShaderOverride>,
@@ -245,7 +247,7 @@ pub fn build(gpu: &Gpu, scene: SceneId, w: u32, h: u32, rays: Option<u32>, host:
             .collect();
         let frames = (0..STATIC_CYCLE).map(|k| frame_of(&f, k, 0)).collect();
         let gbuffers = vec![upload_gbuffer(gpu, &f, host)];
-        GpuScene { masks, visibility_input: rays.is_some(), checkerboard: false, alias_transient: false, hard_light: false, shader_overrides: Vec::new(), gbuffers, host, frames, coverage: coverage(&f) }
+        GpuScene { masks, visibility_input: rays.is_some(), checkerboard: false, alias_transient: false, transient_per_light: false, hard_light: false, shader_overrides: Vec::new(), gbuffers, host, frames, coverage: coverage(&f) }
     };
     match scene {
         SceneId::PenumbraHeavy => static_scene(1e9, &penumbra),
@@ -256,7 +258,7 @@ pub fn build(gpu: &Gpu, scene: SceneId, w: u32, h: u32, rays: Option<u32>, host:
                 masks: Vec::new(),
                 visibility_input: rays.is_some(),
                 checkerboard: false,
-                alias_transient: false, hard_light: false, shader_overrides: Vec::new(),
+                alias_transient: false, transient_per_light: false, hard_light: false, shader_overrides: Vec::new(),
                 gbuffers: Vec::new(),
                 host,
                 frames: Vec::new(),

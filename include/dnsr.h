@@ -1668,6 +1668,17 @@ typedef struct DnsrDiagnosis {
 #define DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT (1 << 5)
 
 /**
+ * Every record holds every light of the context (one dnsr_lights_record call with all lightCount lights;
+ * dnsr_shadows_record only where the context has one light; a record with fewer is refused with
+ * DNSR_ERROR_INVALID_ARGUMENT): the lights then share one depth copy (this frame's depth and normal, kept for the next
+ * frame's reprojection), which only the record's last light writes; the others write theirs to a transient image,
+ * for their own later filter passes. Each light after the first keeps 4 B/px less (with a hit mask 6.25 B/px
+ * instead of 10.25; dnsr_get_memory_requirements and dnsr_get_persistent_memory_requirements do not count it), with
+ * outputs bit for bit the same. No effect with one light.
+ */
+#define DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER (1 << 6)
+
+/**
  * Forces 32 bits.
  */
 #define DNSR_CONTEXT_CREATE_MAX_ENUM 2147483647

@@ -40,11 +40,13 @@ pub fn memory_requirements_for_input(
     light_count: u32,
     input: ShadowInput,
 ) -> Result<u64> {
-    memory_requirements_with(width, height, precision, filter_passes, light_count, input, false)
+    memory_requirements_with(width, height, precision, filter_passes, light_count, input, false, false)
 }
 
 /// `memory_requirements_for_input` with each light's own transient images where `transient_per_light`
-/// (`ContextCreateInfo::transient_memory_per_light`); without it the lights share one set.
+/// (`ContextCreateInfo::transient_memory_per_light`; without it the lights share one set), and one depth copy for
+/// all lights where `together` (`ContextCreateInfo::lights_recorded_together`).
+#[allow(clippy::too_many_arguments)]
 fn memory_requirements_with(
     width: u32,
     height: u32,
@@ -53,16 +55,22 @@ fn memory_requirements_with(
     light_count: u32,
     input: ShadowInput,
     transient_per_light: bool,
+    together: bool,
 ) -> Result<u64> {
     validate::extent("render size", width, height, u32::MAX)?;
     check_filter_passes(filter_passes)?;
     validate::light_count(light_count)?;
-    use crate::state::{persistent_texel_bytes, table::Scope, texel_bytes};
+    use crate::state::{persistent_texel_bytes, table::Scope, texel_bytes, together_bytes};
     let extent = [width, height];
     let persistent = persistent_texel_bytes(extent, precision, input);
     let transient = texel_bytes(Scope::Light, extent, precision, input) - persistent;
     let sets = transient_sets(light_count, transient_per_light) as u64;
-    Ok(persistent * light_count as u64 + transient * sets + texel_bytes(Scope::Context, extent, precision, input) + constants_bytes(light_count))
+    let lights = light_count as u64;
+    // Lights recorded together: a frame depth image in each set, and no depth copy of their own after the first
+    // (the frame depth is the depth copy's size).
+    let together = if together && light_count > 1 { together_bytes(extent, precision, input) } else { 0 };
+    let images = persistent * lights + transient * sets + together * sets - together * (lights - 1);
+    Ok(images + texel_bytes(Scope::Context, extent, precision, input) + constants_bytes(light_count))
 }
 
 /// How many transient image sets a context of `light_count` lights holds.
@@ -161,6 +169,9 @@ pub struct Context {
     transients: Vec<TransientImages>,
     /// `ContextCreateInfo::transient_memory_per_light`.
     transient_per_light: bool,
+    /// `ContextCreateInfo::lights_recorded_together`, with more than one light: the lights share the first light's
+    /// depth copy, and every record holds all of them.
+    together: bool,
     light_count: u32,
     /// The host aliases the transient images (`ContextCreateInfo::alias_transient_memory`): they are allocated as
     /// `ResourceKind::TransientImage`, and every record moves them out of UNDEFINED.
@@ -289,6 +300,7 @@ impl Context {
             info.light_count,
             info.shadow_input,
             info.transient_memory_per_light,
+            info.lights_recorded_together,
         )?;
         memory::check_available(&vk, needed)?;
 
@@ -310,6 +322,7 @@ impl Context {
             lights: Vec::new(),
             transients: Vec::new(),
             transient_per_light: info.transient_memory_per_light,
+            together: info.lights_recorded_together && info.light_count > 1,
             light_count: info.light_count,
             alias_transient: info.alias_transient_memory,
             timestamps: None,
@@ -433,14 +446,13 @@ impl Context {
     /// `transients` (the caller destroys them).
     fn allocate_lights(&mut self) -> Result<()> {
         let sets = transient_sets(self.light_count, self.transient_per_light);
+        let c = crate::light::Config { extent: self.size, precision: self.precision, input: self.shadow_input, together: self.together };
         for set in 0..sets {
             let owner = if sets == 1 { "lights".to_string() } else { format!("light{set}") };
-            let t = TransientImages::new(&self.vk, &owner, self.size, self.precision, self.shadow_input, self.alias_transient)?;
-            self.transients.push(t);
+            self.transients.push(TransientImages::new(&self.vk, &owner, c, self.alias_transient)?);
         }
         for index in 0..self.light_count {
-            let light = LightState::new(&self.vk, index, self.size, self.precision, self.shadow_input, (index % sets) as usize)?;
-            self.lights.push(light);
+            self.lights.push(LightState::new(&self.vk, index, c, (index % sets) as usize)?);
         }
         Ok(())
     }
@@ -466,6 +478,7 @@ impl Context {
             self.light_count,
             self.shadow_input,
             self.transient_per_light,
+            self.together,
         )?;
         memory::check_available(&self.vk, needed.saturating_sub(self.memory_bytes()))?;
         self.destroy_lights();
@@ -635,9 +648,17 @@ impl Context {
     }
 
     /// The bindings of light `d.light_index`, whose constants are in slot `slot` of the constants buffer.
-    fn frame_views(&self, d: &ShadowsDispatch, slot: usize, cur: usize) -> FrameViews {
+    /// `writes_depth`: the light writes the depth copy that the lights recorded together share (the record's last
+    /// light); the others write this frame's depth into their transient set.
+    fn frame_views(&self, d: &ShadowsDispatch, slot: usize, cur: usize, writes_depth: bool) -> FrameViews {
         let light = &self.lights[d.light_index as usize];
         let t = &self.transients[light.transient];
+        let kept_depth = self.lights[0].depth_copy.as_ref().filter(|_| self.together).or(light.depth_copy.as_ref());
+        let kept_depth = kept_depth.expect("a light's own depth copy, or the first light's").view;
+        let depth_copy = match (self.together, writes_depth) {
+            (true, false) => t.frame_depth.as_ref().expect("lights recorded together have a frame depth").view,
+            _ => kept_depth,
+        };
         let host = |h: &crate::dispatch::HostImage| image(h.view, h.layout);
         FrameViews {
             constants: Binding {
@@ -665,7 +686,8 @@ impl Context {
             reprojection: t.reprojection.view,
             history: light.history.view,
             signal: t.signal_view(),
-            depth_copy: light.depth_copy.view,
+            depth_copy,
+            previous_depth: kept_depth,
             kept_moments: light.moments.view,
             frame_moments: t.frame_moments.view,
             previous_tile_quiet: light.tile_quiet[cur ^ 1].view,
@@ -743,6 +765,13 @@ impl Context {
         let in_light = |position: usize| {
             move |error: Error| if listed { Error::Light { position: position as u32, error: Box::new(error) } } else { error }
         };
+        if self.together && ds.len() != self.light_count as usize {
+            return Err(Error::InvalidValue {
+                field: "the record's light count",
+                value: format!("{} of the context's {}", ds.len(), self.light_count),
+                allowed: "a context created with lights_recorded_together (DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER) records every light in each record: they share one depth copy",
+            });
+        }
         let mut rect = Default::default();
         for (i, d) in ds.iter().enumerate() {
             rect = validate::dispatch(&self.vk, d, &rules).map_err(in_light(i))?;
@@ -753,8 +782,12 @@ impl Context {
         let run_prepare = !self.reads_mask_directly();
         // Each light's views; its passes are built from them one at a time (a frame of passes is several KB, and
         // a record must not need eight of them on the host's stack).
-        let views: [Option<FrameViews>; MAX_LIGHTS_PER_RECORD] =
-            std::array::from_fn(|i| ds.get(i).map(|d| self.frame_views(d, i, self.lights[d.light_index as usize].parity)));
+        // The last light writes the depth copy that lights recorded together share: after every light's
+        // classification read last frame's (in turn, it is the last round; pass by pass, every classification
+        // runs before the first filter pass).
+        let views: [Option<FrameViews>; MAX_LIGHTS_PER_RECORD] = std::array::from_fn(|i| {
+            ds.get(i).map(|d| self.frame_views(d, i, self.lights[d.light_index as usize].parity, i + 1 == ds.len()))
+        });
         let views = &views[..ds.len()];
         let (filter_passes, debug_view) = (self.settings.filter_passes, shared.debug_view);
         let light_views = |light: usize| views[light].as_ref().expect("one per dispatch");
@@ -1085,7 +1118,7 @@ impl Context {
             signal: t.signal.as_ref().map_or(t.frame_moments.image, |s| s.image),
             moments: l.moments.image,
             tile_quiet: l.tile_quiet[l.parity ^ 1].image,
-            depth: l.depth_copy.image,
+            depth: self.lights[0].depth_copy.as_ref().filter(|_| self.together).or(l.depth_copy.as_ref()).expect("a depth copy").image,
             intermediate_format: crate::state::intermediate_format(self.precision),
             history_format: crate::state::history_format(self.precision),
         }

@@ -132,6 +132,14 @@ pub struct ContextCreateInfo {
     /// one-light context's `memory_requirements` and its `persistent_memory_requirements`, the constants aside.
     /// No effect with one light.
     pub transient_memory_per_light: bool,
+    /// Every record holds every light of the context (one `record_lights` call with all `light_count` lights;
+    /// `record_shadows` only where the context has one light): the lights then share one depth copy (this frame's
+    /// depth and normal, kept for the next frame's reprojection), which only the record's last light writes; the
+    /// others write theirs to a transient image of their set, for their own later filter passes. Each light after the
+    /// first keeps 4 B/px less (with a hit mask 6.25 B/px instead of 10.25: `persistent_memory_requirements` and
+    /// `memory_requirements` do not count it) and its outputs are bit for bit the same. A record with fewer lights is
+    /// refused. No effect with one light.
+    pub lights_recorded_together: bool,
     /// Host allocators and debug names (all optional).
     pub hooks: HostHooks,
     /// Pass variants the engine compiled itself, against its own callbacks file (docs/callbacks.md); the
@@ -186,6 +194,7 @@ impl ContextCreateInfo {
             settings: Settings::default(),
             alias_transient_memory: false,
             transient_memory_per_light: false,
+            lights_recorded_together: false,
             hooks: HostHooks::default(),
             shader_overrides: Vec::new(),
         }

@@ -7,7 +7,7 @@ use crate::error::Result;
 use crate::gpu::image::InternalImage;
 use crate::gpu::loader::Vk;
 use crate::state::table::{Image, Scope, RESOURCES};
-use crate::state::{image_specs, ImageSpec, Lifetime};
+use crate::state::{image_specs, together_specs, ImageSpec, Lifetime};
 use ash::vk;
 
 /// What one light keeps from frame to frame: its persistent images (`Lifetime::Persistent` in the state table) and
@@ -16,8 +16,9 @@ use ash::vk;
 pub(crate) struct LightState {
     /// The filter's mean alone.
     pub history: InternalImage,
-    /// Linear depth: last frame's until the first filter pass writes this frame's.
-    pub depth_copy: InternalImage,
+    /// Linear depth: last frame's until the first filter pass writes this frame's. None for a light after the first
+    /// where the lights are recorded together: they share the first light's (`Image::FrameDepth`).
+    pub depth_copy: Option<InternalImage>,
     /// Last frame's moments until filter pass 0 copies this frame's over them.
     pub moments: InternalImage,
     /// Each tile's frames without a contradiction (`Settings::hard_tile_frames`): a ping-pong pair indexed by
@@ -52,6 +53,8 @@ pub(crate) struct TransientImages {
     pub reconstructed: Option<InternalImage>,
     /// This frame's moments: classification writes them, filter pass 0 copies them into the light's `moments`.
     pub frame_moments: InternalImage,
+    /// This frame's depth copy for a light that does not write the shared one (lights recorded together only).
+    pub frame_depth: Option<InternalImage>,
     /// False until a record has moved the set out of UNDEFINED and cleared it.
     pub initialized: bool,
 }
@@ -61,20 +64,31 @@ fn create(vk: &Vk, owner: &str, spec: &ImageSpec, alias: bool) -> Result<Interna
     InternalImage::new(vk, spec.format, spec.extent, &name, spec.lifetime == Lifetime::Persistent, alias, spec.shared_format)
 }
 
-/// Creates the state table's light images of `lifetime` (every one or none: what was made is destroyed on an
-/// error) and hands them to `build`, which takes each by its row and copy.
+/// What a light or transient set is created for.
+#[derive(Clone, Copy)]
+pub(crate) struct Config {
+    pub extent: [u32; 2],
+    pub precision: Precision,
+    pub input: ShadowInput,
+    /// `ContextCreateInfo::lights_recorded_together`, with more than one light.
+    pub together: bool,
+}
+
+/// Creates the state table's light images of `lifetime` that `keep` keeps (every one or none: what was made is
+/// destroyed on an error) and hands them to `build`, which takes each by its row and copy.
 fn create_all<T>(
     vk: &Vk,
     owner: &str,
     lifetime: Lifetime,
-    extent: [u32; 2],
-    precision: Precision,
-    input: ShadowInput,
+    c: Config,
     alias: bool,
+    keep: impl Fn(Image) -> bool,
     build: impl FnOnce(&mut dyn FnMut(Image, u32) -> Option<InternalImage>) -> T,
 ) -> Result<T> {
     let mut made: Vec<(ImageSpec, InternalImage)> = Vec::new();
-    for spec in image_specs(Scope::Light, extent, precision, input).filter(|s| s.lifetime == lifetime) {
+    let together = c.together.then(|| together_specs(c.extent, c.precision, c.input)).into_iter().flatten();
+    let specs = image_specs(Scope::Light, c.extent, c.precision, c.input).chain(together);
+    for spec in specs.filter(|s| s.lifetime == lifetime && keep(s.image)) {
         match create(vk, owner, &spec, alias) {
             Ok(img) => made.push((spec, img)),
             Err(e) => {
@@ -95,12 +109,14 @@ fn create_all<T>(
 const ALWAYS: &str = "an image the state table always allocates";
 
 impl LightState {
-    /// A light's persistent images, every one the state table gives a light; its passes use the context's transient
-    /// set `transient`.
-    pub(crate) fn new(vk: &Vk, light: u32, extent: [u32; 2], precision: Precision, input: ShadowInput, transient: usize) -> Result<LightState> {
-        create_all(vk, &format!("light{light}"), Lifetime::Persistent, extent, precision, input, false, |take| LightState {
+    /// A light's persistent images, every one the state table gives a light (but the depth copy of a light after
+    /// the first recorded together with it); its passes use the context's transient set `transient`.
+    pub(crate) fn new(vk: &Vk, light: u32, c: Config, transient: usize) -> Result<LightState> {
+        let own_depth = !c.together || light == 0;
+        let keep = |image| own_depth || image != Image::DepthCopy;
+        create_all(vk, &format!("light{light}"), Lifetime::Persistent, c, false, keep, |take| LightState {
             history: take(Image::History, 0).expect(ALWAYS),
-            depth_copy: take(Image::DepthCopy, 0).expect(ALWAYS),
+            depth_copy: take(Image::DepthCopy, 0),
             moments: take(Image::Moments, 0).expect(ALWAYS),
             tile_quiet: [take(Image::TileQuiet, 0).expect(ALWAYS), take(Image::TileQuiet, 1).expect(ALWAYS)],
             transient,
@@ -114,7 +130,7 @@ impl LightState {
     pub(crate) fn image(&self, image: Image, copy: u32) -> Option<&InternalImage> {
         let single = match image {
             Image::History => Some(&self.history),
-            Image::DepthCopy => Some(&self.depth_copy),
+            Image::DepthCopy => self.depth_copy.as_ref(),
             Image::Moments => Some(&self.moments),
             Image::TileQuiet => return self.tile_quiet.get(copy as usize),
             _ => None,
@@ -128,7 +144,7 @@ impl LightState {
     }
 
     pub(crate) fn destroy(&mut self, vk: &Vk) {
-        for img in [&mut self.history, &mut self.depth_copy, &mut self.moments].into_iter().chain(self.tile_quiet.iter_mut()) {
+        for img in [&mut self.history, &mut self.moments].into_iter().chain(self.tile_quiet.iter_mut()).chain(self.depth_copy.iter_mut()) {
             img.destroy(vk);
         }
     }
@@ -138,8 +154,8 @@ impl TransientImages {
     /// A transient set: every transient light image of the state table that shadow input `input` needs. `owner`
     /// names it (`light3`, or `lights` for the shared set); `alias`: the host aliases them
     /// (`ResourceKind::TransientImage`).
-    pub(crate) fn new(vk: &Vk, owner: &str, extent: [u32; 2], precision: Precision, input: ShadowInput, alias: bool) -> Result<TransientImages> {
-        create_all(vk, owner, Lifetime::Transient, extent, precision, input, alias, |take| TransientImages {
+    pub(crate) fn new(vk: &Vk, owner: &str, c: Config, alias: bool) -> Result<TransientImages> {
+        create_all(vk, owner, Lifetime::Transient, c, alias, |_| true, |take| TransientImages {
             tile_mask: take(Image::TileMask, 0),
             tile_dark: take(Image::TileDark, 0),
             tile_meta: take(Image::TileMeta, 0).expect(ALWAYS),
@@ -148,6 +164,7 @@ impl TransientImages {
             frame_moments: take(Image::FrameMoments, 0).expect(ALWAYS),
             signal: take(Image::Signal, 0),
             reconstructed: take(Image::Reconstructed, 0),
+            frame_depth: take(Image::FrameDepth, 0),
             initialized: false,
         })
     }
@@ -163,6 +180,7 @@ impl TransientImages {
             Image::FrameMoments => Some(&self.frame_moments),
             Image::Signal => self.signal.as_ref(),
             Image::Reconstructed => self.reconstructed.as_ref(),
+            Image::FrameDepth => self.frame_depth.as_ref(),
             _ => None,
         };
         single.filter(|_| copy == 0)
@@ -185,6 +203,7 @@ impl TransientImages {
             .chain(self.tile_dark.iter_mut())
             .chain(self.signal.iter_mut())
             .chain(self.reconstructed.iter_mut())
+            .chain(self.frame_depth.iter_mut())
         {
             img.destroy(vk);
         }

@@ -137,6 +137,16 @@ pub(crate) fn image_specs(scope: Scope, extent: [u32; 2], precision: Precision, 
         .flat_map(move |r| specs_of(r, extent, precision, input))
 }
 
+/// The light images that only lights recorded together have (`Needed::LightsTogether`), in table order.
+pub(crate) fn together_specs(extent: [u32; 2], precision: Precision, input: ShadowInput) -> impl Iterator<Item = ImageSpec> {
+    RESOURCES.iter().filter(|r| r.needed == table::Needed::LightsTogether).flat_map(move |r| specs_of(r, extent, precision, input))
+}
+
+/// Texel bytes of `together_specs`.
+pub(crate) fn together_bytes(extent: [u32; 2], precision: Precision, input: ShadowInput) -> u64 {
+    together_specs(extent, precision, input).map(spec_bytes).sum()
+}
+
 /// Texel bytes of the images of `scope` (of one light for `Scope::Light`), before any driver padding or alignment.
 pub(crate) fn texel_bytes(scope: Scope, extent: [u32; 2], precision: Precision, input: ShadowInput) -> u64 {
     image_specs(scope, extent, precision, input).map(spec_bytes).sum()

@@ -52,6 +52,8 @@ const USAGE: &str = "usage: dnsr-bench [options]
                               transient_memory_per_light): several lights record pass by pass, the later filter
                               passes four lights per dispatch (default: the lights share one set, each light's
                               passes in a row)
+  --lights-together           every record holds every light (ContextCreateInfo::lights_recorded_together): the
+                              lights share one depth copy
   --hard-light                every light has no size (ShadowsDispatch::hard_light): the output is each pixel's
                               ray, and one filter pass runs (not with a non-zero --light-angle)
   --shader-override V=FILE    run the SPIR-V in FILE for shader variant V (ContextCreateInfo::shader_overrides;
@@ -123,6 +125,7 @@ struct Options {
     host: HostFormats,
     alias_transient: bool,
     transient_per_light: bool,
+    lights_together: bool,
     hard_light: bool,
     shader_overrides: Vec<dnsr::ShaderOverride>,
 }
@@ -160,6 +163,7 @@ fn parse_args() -> Options {
         host: HostFormats::Engine,
         alias_transient: false,
         transient_per_light: false,
+        lights_together: false,
         hard_light: false,
         shader_overrides: Vec::new(),
     };
@@ -183,6 +187,7 @@ fn parse_args() -> Options {
             "--float-gbuffer" => o.host = HostFormats::Float,
             "--alias-transient" => o.alias_transient = true,
             "--transient-per-light" => o.transient_per_light = true,
+            "--lights-together" => o.lights_together = true,
             "--hard-light" => o.hard_light = true,
             "--shader-override" => {
                 let value = args.next().unwrap_or_else(|| usage("--shader-override needs VARIANT=FILE"));
@@ -251,6 +256,7 @@ fn main() {
             gpu_scene.checkerboard = opts.checkerboard;
             gpu_scene.alias_transient = opts.alias_transient;
             gpu_scene.transient_per_light = opts.transient_per_light;
+            gpu_scene.lights_together = opts.lights_together;
             gpu_scene.hard_light = opts.hard_light;
             gpu_scene.shader_overrides = opts.shader_overrides.clone();
             eprintln!("dnsr-bench: {}x{} {}: {} frames generated in {:.1} s", size.0, size.1, scene.id(), gpu_scene.frames.len(), t.elapsed().as_secs_f64());

@@ -122,7 +122,8 @@ pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo, sink: &mut Option<Lo
         | DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS
         | DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER
         | DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY
-        | DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT;
+        | DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT
+        | DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER;
     if c.flags & !known_flags != 0 {
         let unknown = c.flags & !known_flags;
         return Err(CallError::InvalidArgument(format!("pCreateInfo->flags has unknown bits {unknown:#x}")));
@@ -187,6 +188,7 @@ pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo, sink: &mut Option<Lo
         enable_classifier: c.flags & DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER != 0,
         alias_transient_memory: c.flags & DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY != 0,
         transient_memory_per_light: c.flags & DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT != 0,
+        lights_recorded_together: c.flags & DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER != 0,
         settings,
         hooks,
         shader_overrides: shader_overrides_from_c(c)?,

@@ -274,9 +274,13 @@ pub(crate) struct FrameViews {
     /// The filter's signal between passes (filter pass 0's and pass 2's output): a view of the frame moments'
     /// memory with a hit mask.
     pub signal: vk::ImageView,
-    /// Linear depth and normal: classification reads last frame's, the first filter pass writes this frame's, the
-    /// later filter passes read it as their guide.
+    /// Linear depth and normal: the first filter pass writes this frame's, the later filter passes read it as their
+    /// guide. The light's depth copy, or where another light of the record writes that one (lights recorded
+    /// together), its transient set's frame depth.
     pub depth_copy: vk::ImageView,
+    /// Last frame's linear depth and normal, which classification reads: the light's depth copy, or the one the
+    /// lights recorded together share (the same view as `depth_copy` otherwise).
+    pub previous_depth: vk::ImageView,
     /// Last frame's moments (classification reads them), then this frame's (filter pass 0 copies them in).
     pub kept_moments: vk::ImageView,
     /// This frame's moments, written by classification (transient).

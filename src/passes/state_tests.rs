@@ -52,6 +52,7 @@ fn views() -> FrameViews {
         history: view(Image::History, 0),
         signal: view(Image::Signal, 0),
         depth_copy: view(Image::DepthCopy, 0),
+        previous_depth: view(Image::DepthCopy, 0),
         kept_moments: view(Image::Moments, 0),
         frame_moments: view(Image::FrameMoments, 0),
         previous_tile_quiet: view(Image::TileQuiet, 1),
@@ -112,7 +113,8 @@ fn target_view(t: Target, k: u32) -> vk::ImageView {
 }
 
 /// The state images each entry of a pass's binding table holds (indexed as `BindingTable`), over the passes of every
-/// filter pass count: what src/tests/interface.rs checks the shader variants' declared formats against.
+/// filter pass count: what src/tests/interface.rs checks the shader variants' declared formats against. The frame
+/// depth of lights recorded together is bound where the depth copy is written and read as the guide.
 pub(crate) fn images_per_binding() -> Vec<Vec<Image>> {
     let v = views();
     let mut holds: Vec<Vec<Image>> = vec![Vec::new(); RESOURCE_COUNT];
@@ -124,8 +126,11 @@ pub(crate) fn images_per_binding() -> Vec<Vec<Image>> {
                     continue;
                 }
                 let image = image_of(b.view);
-                if !holds[index].contains(&image) {
-                    holds[index].push(image);
+                let in_place = [Bound::DepthCopy as usize, Bound::Guide as usize].contains(&index) && image == Image::DepthCopy;
+                for image in [Some(image), in_place.then_some(Image::FrameDepth)].into_iter().flatten() {
+                    if !holds[index].contains(&image) {
+                        holds[index].push(image);
+                    }
                 }
             }
         }

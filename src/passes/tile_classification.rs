@@ -24,7 +24,7 @@ pub(crate) fn pass(v: &FrameViews) -> Pass {
     t[Resource::Visibility as usize] = v.visibility;
     t[Resource::TileDark as usize] = internal(v.tile_dark);
     t[Resource::Velocity as usize] = v.velocity;
-    t[Resource::PreviousDepth as usize] = internal(v.depth_copy);
+    t[Resource::PreviousDepth as usize] = internal(v.previous_depth);
     t[Resource::PreviousMoments as usize] = internal(v.kept_moments);
     t[Resource::Moments as usize] = internal(v.frame_moments);
     t[Resource::PreviousTileQuiet as usize] = internal(v.previous_tile_quiet);

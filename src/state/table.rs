@@ -53,6 +53,12 @@ pub enum Image {
     /// the second half of a persistent pair. Written for the receivers of tiles not cleared only: the other
     /// pixels' moments follow from their tile's metadata, and pass 0 keeps those instead.
     FrameMoments,
+    /// This frame's linear depth and normal, as the depth copy, for a light that does not write the depth copy:
+    /// where the lights are recorded together (`ContextCreateInfo::lights_recorded_together`) they share the first
+    /// light's depth copy, which every light's classification reads as last frame's and only the record's last light
+    /// writes; the others' first filter pass writes this frame's here instead, for their later passes' guide. Bound
+    /// in the depth copy's place, so it has no accesses of its own.
+    FrameDepth,
 }
 
 /// The formats of an image: the fp32 path's and the fp16 path's (`Precision`).
@@ -124,6 +130,9 @@ pub enum Needed {
     Checkerboard,
     /// With a per-pixel visibility input, `ShadowInput::Visibility` or `Checkerboard` (prepare runs for them only).
     FractionInput,
+    /// With several lights recorded together (`ContextCreateInfo::lights_recorded_together`): not in `holds`, which
+    /// the byte counts and `memory_requirements` follow.
+    LightsTogether,
 }
 
 impl Needed {
@@ -134,6 +143,7 @@ impl Needed {
             Needed::Always => true,
             Needed::Checkerboard => input == ShadowInput::Checkerboard,
             Needed::FractionInput => input != ShadowInput::HitMask,
+            Needed::LightsTogether => false,
         }
     }
 }
@@ -228,7 +238,7 @@ use Per::{Pixel, Tile};
 use Scope::Light;
 
 /// Every internal image, in `Image` order (which is the order a light creates them in).
-pub const RESOURCES: [Resource; 12] = [
+pub const RESOURCES: [Resource; 13] = [
     // Written by prepare for a visibility or checkerboard input; a hit mask is read as the host gives it, so a
     // hit-mask context has neither (0.25 B/px).
     resource(Image::TileMask, "tile_mask", Formats::both(vk::Format::R32_UINT), Tile, Light, 1, Transient, Needed::FractionInput),
@@ -263,6 +273,8 @@ pub const RESOURCES: [Resource; 12] = [
         fraction_format: Some(vk::Format::R32G32_UINT),
         ..packed(resource(Image::FrameMoments, "frame_moments", Formats::both(vk::Format::R32_UINT), Pixel, Light, 1, Transient, Needed::Always))
     },
+    // As the depth copy; one in each transient set.
+    resource(Image::FrameDepth, "frame_depth", Formats::both(vk::Format::R32_UINT), Pixel, Light, 1, Transient, Needed::LightsTogether),
 ];
 
 /// The row of `image`.

@@ -194,6 +194,9 @@ fn handles_codes_and_messages() {
     };
     let (shared, own) = (usage(0), usage(DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT));
     assert_eq!(shared.1, 3 * kept, "each light its own persistent images");
+    // Recorded together: one depth copy (at least 4 B/px) for the three.
+    let together = usage(DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER);
+    assert!(together.1 + 2 * 8 * 8 * 4 <= shared.1, "one depth copy for three lights: {} of {}", together.1, shared.1);
     assert_eq!(own.1, shared.1);
     // Each set holds what a one-light context holds beyond its persistent images, less its constants.
     let (set, one_light_transient) = ((own.0 - shared.0) / 2, bytes - kept);

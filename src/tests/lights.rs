@@ -43,10 +43,12 @@ fn light_frame(light: usize, frame: u32) -> FrameInputs {
 }
 
 /// `transient_per_light`: `ContextCreateInfo::transient_memory_per_light` (the light-slot variants) instead of one
-/// transient set that the lights use in turn.
-fn runner(g: &Gpu, input: ShadowInput, transient_per_light: bool) -> Runner<'_> {
+/// transient set that the lights use in turn; `together`: `ContextCreateInfo::lights_recorded_together` (one depth
+/// copy for all lights).
+fn runner(g: &Gpu, input: ShadowInput, transient_per_light: bool, together: bool) -> Runner<'_> {
     let mut info = g.create_info(W, H);
     info.transient_memory_per_light = transient_per_light;
+    info.lights_recorded_together = together;
     info.output_format = vk::Format::R32_SFLOAT;
     info.light_count = LIGHTS as u32;
     info.shadow_input = input;
@@ -93,7 +95,7 @@ fn shared(d: &ShadowsDispatch) -> ShadowsDispatch {
 /// With push descriptors and with the descriptor-set ring (one ring per light), for a hit mask and for a
 /// checkerboard input (prepare always runs, each light reconstructs into its own image); with the lights sharing
 /// their transient images (each light's passes in a row), and with a set each (the light-slot variants) on two of
-/// the four.
+/// the four; the batched lights recorded together (one depth copy for all) on two of them, one each way.
 #[test]
 fn several_lights_in_one_record_equal_one_record_per_light() {
     for push_descriptor in [true, false] {
@@ -102,18 +104,20 @@ fn several_lights_in_one_record_equal_one_record_per_light() {
             assert_eq!(g.features.push_descriptor, push_descriptor, "device lacks VK_KHR_push_descriptor");
             let per_light_too = push_descriptor == (input == ShadowInput::HitMask);
             for transient_per_light in [false, true].into_iter().filter(|&p| !p || per_light_too) {
-                eprintln!("push descriptors {push_descriptor}, {input:?}, transient images per light {transient_per_light}");
-                equal_to_one_record_per_light(&g, input, transient_per_light);
+                // Together: with a shared transient set on the hit mask, with a set each on the checkerboard.
+                let together = per_light_too && transient_per_light == (input == ShadowInput::Checkerboard);
+                eprintln!("push descriptors {push_descriptor}, {input:?}, transient images per light {transient_per_light}, together {together}");
+                equal_to_one_record_per_light(&g, input, transient_per_light, together);
             }
             g.assert_clean();
         }
     }
 }
 
-fn equal_to_one_record_per_light(g: &Gpu, input: ShadowInput, transient_per_light: bool) {
+fn equal_to_one_record_per_light(g: &Gpu, input: ShadowInput, transient_per_light: bool, together: bool) {
     let phase = |frame: u32| if input == ShadowInput::Checkerboard { frame % 2 } else { 0 };
-    let mut single = runner(g, input, transient_per_light);
-    let mut batched = runner(g, input, transient_per_light);
+    let mut single = runner(g, input, transient_per_light, false);
+    let mut batched = runner(g, input, transient_per_light, together);
     assert_eq!(batched.ctx.has_light_slot_pipelines(), transient_per_light, "the later passes of several lights per dispatch");
     // The batched runner's lights but the last read and write these; the last uses the runner's own images (its
     // frame is the one the runner uploads, hit distances included).
@@ -155,7 +159,7 @@ fn equal_to_one_record_per_light(g: &Gpu, input: ShadowInput, transient_per_ligh
         }
         if frame == RESET_FRAME {
             // The reset must show: light 1 run up to here without one (its own context) ends elsewhere.
-            let mut unreset = runner(g, input, transient_per_light);
+            let mut unreset = runner(g, input, transient_per_light, false);
             let mut out = Vec::new();
             for k in 0..=frame {
                 unreset.checkerboard_phase = phase(k);
@@ -176,6 +180,28 @@ fn equal_to_one_record_per_light(g: &Gpu, input: ShadowInput, transient_per_ligh
     assert!(added > kept && added - kept <= 1024, "each light after the first adds its persistent images ({kept}) and its constants: {added}");
     assert!(one > added, "the first light also holds the transient images");
     assert_eq!(batched.ctx.transient_set_count(), if transient_per_light { LIGHTS } else { 1 }, "transient image sets");
+    // Together: one depth copy (4 B/px) for all lights, a frame depth (4 B/px) in each transient set.
+    let (kept_single, kept_batched) = (single.ctx.persistent_memory_bytes(), batched.ctx.persistent_memory_bytes());
+    let depth = (W * H * 4) as u64;
+    match together {
+        true => assert!(kept_batched + (LIGHTS as u64 - 1) * depth <= kept_single && kept_batched < kept_single, "{kept_batched} of {kept_single}"),
+        false => assert_eq!(kept_batched, kept_single),
+    }
+    if together {
+        // Every record holds every light: fewer lights, or one record_shadows, are refused and record nothing.
+        let f = light_frame(0, 0);
+        let d = shared(&batched.dispatch(&f));
+        let before: Vec<_> = (0..LIGHTS).map(|l| batched.ctx.recording_state(l)).collect();
+        let some = [light(0, &batched.mask, &batched.output, &batched.hit_distance, 0)];
+        let (result, _) = batched.run_with(&f, |ctx, cmd| ctx.record_lights(cmd, &d, &some));
+        let e = result.expect_err("one light of seven");
+        assert!(e.to_string().contains("records every light"), "{e}");
+        let single_dispatch = ShadowsDispatch { output: batched.output.host(), hit_mask: batched.mask.host(), ..d };
+        let (result, _) = batched.run_with(&f, |ctx, cmd| ctx.record_shadows(cmd, &single_dispatch));
+        assert!(matches!(result, Err(Error::InvalidValue { field: "the record's light count", .. })), "{result:?}");
+        let after: Vec<_> = (0..LIGHTS).map(|l| batched.ctx.recording_state(l)).collect();
+        assert_eq!(before, after, "a refused record changed the state");
+    }
     for img in masks.iter().chain(&outputs).chain(&hit_distances) {
         g.destroy_image(img);
     }
@@ -184,7 +210,7 @@ fn equal_to_one_record_per_light(g: &Gpu, input: ShadowInput, transient_per_ligh
 #[test]
 fn a_bad_light_refuses_the_whole_record() {
     let g = gpu();
-    let mut r = runner(&g, ShadowInput::HitMask, false);
+    let mut r = runner(&g, ShadowInput::HitMask, false, false);
     let other = g.image(vk::Format::R32_SFLOAT, W, H, vk::ImageLayout::GENERAL);
     let f = light_frame(0, 0);
     let d = shared(&r.dispatch(&f));

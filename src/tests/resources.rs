@@ -274,14 +274,15 @@ mod hooks {
 /// its `Needed` says (a row that shares another's memory as a view of it), per light or per context, with its format
 /// for the precision, its size (per pixel or per tile) and its lifetime; also after the settings add passes to a
 /// context, which allocates nothing. The lights' transient images are one set that they share, or one set each
-/// with `transient_memory_per_light`; their persistent images are always their own.
+/// with `transient_memory_per_light`; their persistent images are always their own, but the depth copy of lights
+/// recorded together (`lights_recorded_together`: the first light's, and a frame depth in each transient set).
 #[test]
 fn state_table_is_what_the_images_are_created_with() {
-    use crate::state::table::{Scope, RESOURCES};
+    use crate::state::table::{Image, Needed, Scope, RESOURCES};
     use crate::{Precision, Settings, ShadowInput};
     let g = super::gpu();
     let (w, h) = (44u32, 26u32);
-    let check = |ctx: &crate::Context, what: &str, lights: usize, precision: Precision, input: ShadowInput| {
+    let check = |ctx: &crate::Context, what: &str, lights: usize, precision: Precision, input: ShadowInput, together: bool| {
         let mut seen: Vec<(ash::vk::Image, bool)> = Vec::new();
         for r in RESOURCES {
             let owners: Vec<Option<usize>> = if r.scope == Scope::Light { (0..lights).map(Some).collect() } else { vec![None] };
@@ -289,7 +290,9 @@ fn state_table_is_what_the_images_are_created_with() {
                 for copy in 0..=r.copies {
                     let made = ctx.state_image(owner, r.image, copy);
                     let shared = r.shared_with(precision, input);
-                    let wanted = copy < r.copies && r.needed.holds(input) && shared.is_none();
+                    let needed = r.needed.holds(input) || (together && r.needed == Needed::LightsTogether);
+                    let own = !(together && r.image == Image::DepthCopy && owner != Some(0));
+                    let wanted = copy < r.copies && needed && own && shared.is_none();
                     assert_eq!(made.is_some(), wanted, "{what}: {:?} {owner:?} copy {copy}", r.image);
                     let Some(img) = made else { continue };
                     if !seen.contains(&(img.image, img.persistent)) {
@@ -309,7 +312,7 @@ fn state_table_is_what_the_images_are_created_with() {
         let (transient, persistent) = ctx.transient_images();
         assert_eq!(transient.len() + persistent, seen.len(), "{what}");
         let rows = |persistent: bool| seen.iter().filter(|s| s.1 == persistent).count();
-        assert_eq!(rows(true) % lights, 0, "{what}: every light has its own persistent images");
+        assert_eq!((rows(true) + if together { lights - 1 } else { 0 }) % lights, 0, "{what}: every light has its own persistent images");
         assert_eq!(rows(false), transient.len(), "{what}");
         assert_eq!(rows(false) % ctx.transient_set_count(), 0, "{what}");
     };
@@ -326,24 +329,33 @@ fn state_table_is_what_the_images_are_created_with() {
             info.settings.filter_passes = passes;
             let mut ctx = crate::Context::new(&info).unwrap();
             let what = format!("{precision:?}, {input:?}, {passes} passes");
-            check(&ctx, &what, 2, precision, input);
+            check(&ctx, &what, 2, precision, input, false);
             assert_eq!(ctx.transient_set_count(), 1, "{what}: the lights share their transient images");
             let shared = ctx.memory_bytes();
             // Each light its own transient set: 2 sets, the same persistent images.
             info.transient_memory_per_light = true;
             let own = crate::Context::new(&info).unwrap();
-            check(&own, &format!("{what}, a set per light"), 2, precision, input);
+            check(&own, &format!("{what}, a set per light"), 2, precision, input, false);
             assert_eq!(own.transient_set_count(), 2, "{what}");
             assert_eq!(own.persistent_memory_bytes(), ctx.persistent_memory_bytes(), "{what}");
             // The second set is what the shared context holds beyond its persistent images, less its constants.
             let (added, one_set) = (own.memory_bytes() - shared, shared - ctx.persistent_memory_bytes());
             assert!(added > 0 && added <= one_set && one_set - added <= 8192, "{what}: {added} more, a set and the constants {one_set}");
             drop(own);
+            // Recorded together, with a shared set and with a set each (a hit mask, three passes).
+            info.lights_recorded_together = true;
+            for per_light in [true, false].into_iter().filter(|_| input == ShadowInput::HitMask && passes == 3) {
+                info.transient_memory_per_light = per_light;
+                let together = crate::Context::new(&info).unwrap();
+                check(&together, &format!("{what}, together, a set per light {per_light}"), 2, precision, input, true);
+                drop(together);
+            }
+            (info.lights_recorded_together, info.transient_memory_per_light) = (false, false);
             if passes == 1 {
                 // More passes need no image more.
                 let bytes = ctx.memory_bytes();
                 ctx.set_settings(Settings { filter_passes: 4, ..ctx.settings() }).unwrap();
-                check(&ctx, &format!("{what}, then 4"), 2, precision, input);
+                check(&ctx, &format!("{what}, then 4"), 2, precision, input, false);
                 assert_eq!(ctx.memory_bytes(), bytes, "{what}");
             }
         }

@@ -189,6 +189,7 @@ pub fn run(
     }
     info.light_count = lights as u32;
     info.transient_memory_per_light = scene.transient_per_light;
+    info.lights_recorded_together = scene.lights_together;
     info.shader_overrides = scene.shader_overrides.clone();
     if scene.alias_transient {
         info.alias_transient_memory = true;

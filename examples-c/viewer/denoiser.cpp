@@ -147,6 +147,8 @@ void Denoiser::create(const VulkanContext &ctx, const DenoiserSettings &settings
     info.height = settings.height;
     info.flags = DNSR_CONTEXT_CREATE_ENABLE_TIMESTAMPS;  // standard depth (sky = 1), finite far plane
     if (settings.classifier) info.flags |= DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER;
+    // Every frame records every light in one call (recordDenoise): the lights then share one depth copy.
+    info.flags |= DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER;
     info.precision = DNSR_PRECISION_FP32;
     info.outputFormat = VK_FORMAT_R32_SFLOAT;
     info.lightCount = settings.lights;
@@ -234,8 +236,9 @@ void Denoiser::recordDenoise(const DenoiserFrame &frame, const std::vector<Denoi
         DnsrResult r = dnsr_shadows_record(context_, &d);
         if (r != DNSR_SUCCESS) dnsrFail("dnsr_shadows_record", r);
     } else {
-        // Several lights in one call: each pass is recorded for every light behind one barrier, instead of a
-        // barrier per pass and light. The dispatch keeps its per-light fields zero.
+        // Several lights in one call, all of them (the context was created with
+        // DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER): they share their transient images and the depth copy. The
+        // dispatch keeps its per-light fields zero.
         DnsrResult r = dnsr_lights_record(context_, &d, uint32_t(perLight.size()), perLight.data());
         if (r != DNSR_SUCCESS) dnsrFail("dnsr_lights_record", r);
     }

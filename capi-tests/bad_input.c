@@ -501,6 +501,17 @@ static void dispatch_calls(void)
                     d.visibility = d.depth; d.visibility.format = VK_FORMAT_R32_UINT; d.hitMask = (DnsrHostImage){0});
         dnsr_context_destroy(vctx);
     }
+    /* Lights recorded together share one depth copy: every record holds every light of the context. */
+    {
+        DnsrContextCreateInfo tinfo = good_info;
+        tinfo.lightCount = 2;
+        tinfo.flags |= DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER;
+        DnsrContext tctx = NULL;
+        DNSR_CHECK(dnsr_context_create(&tinfo, &tctx));
+        RECORD_CASE("record: one of two lights recorded together", tctx, DNSR_ERROR_INVALID_ARGUMENT,
+                    "records every light in each record", (void)0);
+        dnsr_context_destroy(tctx);
+    }
     /* A checkerboard phase is 0 or 1, and only a checkerboard context takes a nonzero one. */
     DISPATCH_CASE("record: checkerboardPhase for a hit-mask context", DNSR_ERROR_INVALID_ARGUMENT,
                   "checkerboardPhase is 1", d.checkerboardPhase = 1);

@@ -725,19 +725,22 @@ impl Context {
     /// Expectations on the host: the input images are in their declared layouts and their writes are available
     /// to compute-shader reads (pass `HostSync` to have dnsr emit that barrier); the output is not in use by
     /// the GPU; command buffers are submitted in the order they were recorded; and the context outlives them.
-    /// On error nothing is recorded and no state changes.
+    /// A context of several lights created with `lights_recorded_together` refuses it (`record_lights` with all of
+    /// them). On error nothing is recorded and no state changes.
     pub fn record_shadows(&mut self, cmd: vk::CommandBuffer, d: &ShadowsDispatch) -> Result<()> {
         self.record(cmd, std::slice::from_ref(d), false)
     }
 
     /// Records the denoiser for several lights that share one G-buffer and camera (`shared`; its per-light fields
     /// stay at their defaults) into `cmd`: each light reads its own hit mask (or visibility) and writes its own
-    /// output, with its own history. The lights' dispatches of each pass are recorded together, with one barrier
-    /// between passes for all of them, and the filter passes after the first filter up to `LIGHT_SLOTS` (four)
-    /// lights per dispatch, fetching the guide (the first light's depth copy) and computing the geometric weights once per tap for all of them
-    /// (a context with shader overrides runs a dispatch per light). The result for every light is the result of a
-    /// `record_shadows` call for it alone. Expectations on the host as for `record_shadows`; on error
-    /// (`Error::Light` names the light) nothing is recorded and no state changes.
+    /// output, with its own history. The lights share their transient images, so each light's passes are recorded
+    /// in a row. With `ContextCreateInfo::transient_memory_per_light` the lights' dispatches of each pass are
+    /// recorded together instead, with one barrier between passes for all of them, and the filter passes after the
+    /// first up to `LIGHT_SLOTS` (four) lights per dispatch, computing the geometric weights once per tap for all of
+    /// them (a context with shader overrides runs a dispatch per light). The result for every light is the result
+    /// of a `record_shadows` call for it alone. A context created with `lights_recorded_together` takes every one of
+    /// its lights here and nowhere else. Expectations on the host as for `record_shadows`; on error (`Error::Light`
+    /// names the light) nothing is recorded and no state changes.
     pub fn record_lights(&mut self, cmd: vk::CommandBuffer, shared: &ShadowsDispatch, lights: &[LightDispatch]) -> Result<()> {
         validate::light_list(shared, lights)?;
         let dispatches: [ShadowsDispatch; MAX_LIGHTS_PER_RECORD] =
@@ -745,8 +748,9 @@ impl Context {
         self.record(cmd, &dispatches[..lights.len()], true)
     }
 
-    /// Records the frame of every light in `ds` (1..=MAX_LIGHTS_PER_RECORD, distinct lights and outputs), pass
-    /// by pass. `listed`: errors name the light's position (a `record_lights` call).
+    /// Records the frame of every light in `ds` (1..=MAX_LIGHTS_PER_RECORD, distinct lights and outputs): light by
+    /// light where they share a transient set, pass by pass otherwise. `listed`: errors name the light's position
+    /// (a `record_lights` call).
     fn record(&mut self, cmd: vk::CommandBuffer, ds: &[ShadowsDispatch], listed: bool) -> Result<()> {
         if cmd == vk::CommandBuffer::null() {
             return Err(Error::NullHandle("command_buffer"));

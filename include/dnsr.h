@@ -1674,7 +1674,7 @@ typedef struct DnsrDiagnosis {
  * frame's reprojection), which only the record's last light writes; the others write theirs to a transient image,
  * for their own later filter passes. Each light after the first keeps 4 B/px less (with a hit mask 6.25 B/px
  * instead of 10.25; dnsr_get_memory_requirements and dnsr_get_persistent_memory_requirements do not count it), with
- * outputs bit for bit the same. No effect with one light.
+ * outputs bit for bit the same. At most DNSR_MAX_LIGHTS_PER_RECORD lights. No effect with one light.
  */
 #define DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER (1 << 6)
 

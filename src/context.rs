@@ -278,6 +278,13 @@ impl Context {
         let props = unsafe { vk.instance.get_physical_device_properties(vk.physical_device) };
         validate::extent("render size", info.width, info.height, props.limits.max_image_dimension2_d)?;
         validate::light_count(info.light_count)?;
+        if info.lights_recorded_together && info.light_count as usize > MAX_LIGHTS_PER_RECORD {
+            return Err(Error::InvalidValue {
+                field: "lights_recorded_together",
+                value: format!("true with light_count {}", info.light_count),
+                allowed: "a record holds at most 8 lights (MAX_LIGHTS_PER_RECORD), and lights recorded together are all in each record",
+            });
+        }
         validate::frames_in_flight(info.max_frames_in_flight)?;
         if info.alias_transient_memory && info.hooks.gpu_memory.is_none() {
             return Err(Error::InvalidValue {

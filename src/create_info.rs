@@ -138,7 +138,8 @@ pub struct ContextCreateInfo {
     /// others write theirs to a transient image of their set, for their own later filter passes. Each light after the
     /// first keeps 4 B/px less (with a hit mask 6.25 B/px instead of 10.25: `persistent_memory_requirements` and
     /// `memory_requirements` do not count it) and its outputs are bit for bit the same. A record with fewer lights is
-    /// refused. No effect with one light.
+    /// refused, and so is a context of more lights than a record holds (`MAX_LIGHTS_PER_RECORD`). No effect with one
+    /// light.
     pub lights_recorded_together: bool,
     /// Host allocators and debug names (all optional).
     pub hooks: HostHooks,

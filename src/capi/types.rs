@@ -180,7 +180,7 @@ pub const DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT: DnsrContextCreateFlags
 /// frame's reprojection), which only the record's last light writes; the others write theirs to a transient image,
 /// for their own later filter passes. Each light after the first keeps 4 B/px less (with a hit mask 6.25 B/px
 /// instead of 10.25; dnsr_get_memory_requirements and dnsr_get_persistent_memory_requirements do not count it), with
-/// outputs bit for bit the same. No effect with one light.
+/// outputs bit for bit the same. At most DNSR_MAX_LIGHTS_PER_RECORD lights. No effect with one light.
 pub const DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER: DnsrContextCreateFlags = 1 << 6;
 /// Forces 32 bits.
 pub const DNSR_CONTEXT_CREATE_MAX_ENUM: DnsrContextCreateFlags = 0x7FFF_FFFF;

@@ -40,6 +40,14 @@ fn bad_create_infos_are_refused_with_specific_errors() {
         ("65 lights", |i| i.light_count = 65, |e| matches!(e, Error::InvalidValue { field: "light_count", .. })),
         ("u32::MAX lights", |i| i.light_count = u32::MAX, |e| matches!(e, Error::InvalidValue { field: "light_count", .. })),
         (
+            "9 lights recorded together (a record holds 8)",
+            |i| {
+                i.light_count = 9;
+                i.lights_recorded_together = true;
+            },
+            |e| matches!(e, Error::InvalidValue { field: "lights_recorded_together", .. }),
+        ),
+        (
             "64 lights of 16384x16384 (more than any device has)",
             |i| {
                 i.light_count = 64;

@@ -22,8 +22,9 @@ use crate::validate;
 use ash::vk;
 
 /// Bytes of device memory a context with these parameters and a hit-mask input allocates, before driver padding and
-/// alignment (which `Context::memory_bytes` includes); other inputs: `memory_requirements_for_input`. Needs no
-/// device.
+/// alignment (which `Context::memory_bytes` includes), its lights sharing one set of transient images
+/// (`ContextCreateInfo::transient_memory_per_light` and `lights_recorded_together` say how they change it); other
+/// inputs: `memory_requirements_for_input`. Needs no device.
 pub fn memory_requirements(width: u32, height: u32, precision: Precision, filter_passes: u32, light_count: u32) -> Result<u64> {
     memory_requirements_for_input(width, height, precision, filter_passes, light_count, ShadowInput::HitMask)
 }

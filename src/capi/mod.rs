@@ -374,7 +374,9 @@ pub extern "C" fn dnsr_get_persistent_memory_requirements(
 }
 
 /// Bytes of device memory a context with a hit-mask input would allocate for this size, before driver padding (see
-/// DNSR_SHADOW_INPUT_VISIBILITY and DNSR_SHADOW_INPUT_CHECKERBOARD for theirs). Needs no device.
+/// DNSR_SHADOW_INPUT_VISIBILITY and DNSR_SHADOW_INPUT_CHECKERBOARD for theirs), its lights sharing one set of
+/// transient images (DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT and DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER
+/// say how they change it). Needs no device.
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_get_memory_requirements(
     width: u32,

@@ -8,7 +8,8 @@
  *   - dnsr_context_get_timings: DNSR_NOT_READY before any frame completed, then DNSR_SUCCESS with finite,
  *     non-negative times of the most recent frame;
  *   - dnsr_context_get_memory_usage >= dnsr_get_memory_requirements for the same parameters, and likewise their
- *     persistent parts (dnsr_context_get_persistent_memory_usage, dnsr_get_persistent_memory_requirements);
+ *     persistent parts (dnsr_context_get_persistent_memory_usage, dnsr_get_persistent_memory_requirements), and
+ *     dnsr_get_context_memory_requirements of the create info equal to those two;
  *   - pGpuMemoryCallbacks: a tiny allocator (vkAllocateMemory per request) whose live allocations return to 0 at
  *     destroy, with DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY: the persistent images come as
  *     DNSR_RESOURCE_KIND_IMAGE (their bytes are dnsr_context_get_persistent_memory_usage's), the others as
@@ -191,6 +192,9 @@ static Names names;
 /* The CPU callbacks must outlive the context (the header says so); the other callback structs are copied. */
 static VkAllocationCallbacks cpu_callbacks;
 
+/* What dnsr_get_context_memory_requirements said of the create info, before the context existed. */
+static uint64_t create_info_required, create_info_kept;
+
 static DnsrContext create_context(void)
 {
     cpu_callbacks = (VkAllocationCallbacks){
@@ -211,6 +215,7 @@ static DnsrContext create_context(void)
     info.pLogCallback = &log;
     info.pDebugNameCallback = &namer;
 
+    DNSR_CHECK(dnsr_get_context_memory_requirements(&info, &create_info_required, &create_info_kept));
     DnsrContext ctx = NULL;
     DNSR_CHECK(dnsr_context_create(&info, &ctx));
     CHECK(ctx != NULL, "dnsr_context_create succeeded with a NULL context");
@@ -372,6 +377,11 @@ int main(void)
            (unsigned long long)keptRequired);
     CHECK(kept >= keptRequired && kept < usage, "persistent %llu (requirements %llu) of %llu", (unsigned long long)kept,
           (unsigned long long)keptRequired, (unsigned long long)usage);
+    /* One light, a hit mask: the create info's requirements are the size's. */
+    CHECK(create_info_required == required && create_info_kept == keptRequired,
+          "dnsr_get_context_memory_requirements: %llu and %llu kept, the size's %llu and %llu",
+          (unsigned long long)create_info_required, (unsigned long long)create_info_kept, (unsigned long long)required,
+          (unsigned long long)keptRequired);
     CHECK(gpu_allocator.imageBytes == kept && gpu_allocator.transientImages > 0,
           "the allocator saw %llu bytes of persistent images (dnsr keeps %llu) and %u transient images",
           (unsigned long long)gpu_allocator.imageBytes, (unsigned long long)kept, gpu_allocator.transientImages);

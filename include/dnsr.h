@@ -2108,6 +2108,17 @@ DnsrResult dnsr_get_memory_requirements(uint32_t width,
                                         uint64_t *pBytes);
 
 /**
+ * Bytes of device memory a context created with `pCreateInfo` would allocate, before driver padding, every option
+ * counted (its shadow input, DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT, DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER);
+ * `pPersistentBytes` (optional, NULL allowed) receives the part of them that persists between records. Reads no
+ * Vulkan handle of `pCreateInfo`; refuses what dnsr_context_create would refuse of its size, light count, settings
+ * and flags.
+ */
+DnsrResult dnsr_get_context_memory_requirements(const struct DnsrContextCreateInfo *pCreateInfo,
+                                                uint64_t *pBytes,
+                                                uint64_t *pPersistentBytes);
+
+/**
  * What the host must create its instance and device with (see DnsrDeviceRequirements).
  */
 DnsrResult dnsr_get_device_requirements(struct DnsrDeviceRequirements *pRequirements);

@@ -61,6 +61,13 @@ fn memory_requirements_with(
     validate::extent("render size", width, height, u32::MAX)?;
     check_filter_passes(filter_passes)?;
     validate::light_count(light_count)?;
+    if together && light_count as usize > MAX_LIGHTS_PER_RECORD {
+        return Err(Error::InvalidValue {
+            field: "lights_recorded_together",
+            value: format!("true with light_count {light_count}"),
+            allowed: "a record holds at most 8 lights (MAX_LIGHTS_PER_RECORD), and lights recorded together are all in each record",
+        });
+    }
     use crate::state::{persistent_texel_bytes, table::Scope, texel_bytes, together_bytes};
     let extent = [width, height];
     let persistent = persistent_texel_bytes(extent, precision, input);
@@ -77,6 +84,28 @@ fn memory_requirements_with(
 /// How many transient image sets a context of `light_count` lights holds.
 fn transient_sets(light_count: u32, transient_per_light: bool) -> u32 {
     if transient_per_light { light_count } else { 1 }
+}
+
+/// Bytes of device memory a context created with `info` allocates, before driver padding and alignment, and the part
+/// of them that persists between records: what `Context::memory_bytes` and `Context::persistent_memory_bytes` report
+/// less the padding, with every option of `info` counted (its shadow input, `transient_memory_per_light`,
+/// `lights_recorded_together`). Reads no Vulkan handle of `info`; refuses what `Context::new` would refuse of its
+/// size, light count, filter passes and these options.
+pub fn context_memory_requirements(info: &ContextCreateInfo) -> Result<(u64, u64)> {
+    let (size, lights, input) = ([info.width, info.height], info.light_count, info.shadow_input);
+    let bytes = memory_requirements_with(
+        size[0],
+        size[1],
+        info.precision,
+        info.settings.filter_passes,
+        lights,
+        input,
+        info.transient_memory_per_light,
+        info.lights_recorded_together,
+    )?;
+    let shared_depth = if info.lights_recorded_together { crate::state::together_bytes(size, info.precision, input) } else { 0 };
+    let persistent = crate::state::persistent_texel_bytes(size, info.precision, input) * lights as u64 - shared_depth * (lights as u64 - 1);
+    Ok((bytes, persistent))
 }
 
 /// Bytes of the part of `memory_requirements` whose contents must survive from one record of a light to the next
@@ -279,13 +308,6 @@ impl Context {
         let props = unsafe { vk.instance.get_physical_device_properties(vk.physical_device) };
         validate::extent("render size", info.width, info.height, props.limits.max_image_dimension2_d)?;
         validate::light_count(info.light_count)?;
-        if info.lights_recorded_together && info.light_count as usize > MAX_LIGHTS_PER_RECORD {
-            return Err(Error::InvalidValue {
-                field: "lights_recorded_together",
-                value: format!("true with light_count {}", info.light_count),
-                allowed: "a record holds at most 8 lights (MAX_LIGHTS_PER_RECORD), and lights recorded together are all in each record",
-            });
-        }
         validate::frames_in_flight(info.max_frames_in_flight)?;
         if info.alias_transient_memory && info.hooks.gpu_memory.is_none() {
             return Err(Error::InvalidValue {

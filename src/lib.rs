@@ -56,7 +56,9 @@ pub use ash;
 pub use passes::classify::{
     ClassifierBuffers, ClassifyDispatch, ShadowCascade, CLASSIFY_COUNTS_BYTES, CLASSIFY_TAP_COUNTS, CLASSIFY_TILE_BYTES, MAX_CASCADES,
 };
-pub use context::{memory_requirements, memory_requirements_for_input, persistent_memory_requirements, Context, MIN_API_VERSION};
+pub use context::{
+    context_memory_requirements, memory_requirements, memory_requirements_for_input, persistent_memory_requirements, Context, MIN_API_VERSION,
+};
 pub use create_info::{
     ContextCreateInfo, DepthFlags, EnabledFeatures, Precision, ShaderOverride, ShadowInput, DEFAULT_MAX_FRAMES_IN_FLIGHT, MAX_FRAMES_IN_FLIGHT,
     MAX_LIGHT_COUNT,

@@ -190,8 +190,13 @@ pub(crate) fn required<'a, T>(p: *const T, name: &str) -> Result<&'a T, CallErro
 
 /// An out-parameter: `name` is NULL is an invalid argument.
 pub(crate) fn out<'a, T>(p: *mut T, name: &str) -> Result<&'a mut T, CallError> {
+    optional_out(p).ok_or_else(|| CallError::InvalidArgument(format!("{name} is NULL")))
+}
+
+/// An optional out-parameter: None where it is NULL.
+pub(crate) fn optional_out<'a, T>(p: *mut T) -> Option<&'a mut T> {
     // SAFETY: the C caller guarantees a non-null pointer points at a valid, aligned, writable object for the call.
-    unsafe { p.as_mut() }.ok_or_else(|| CallError::InvalidArgument(format!("{name} is NULL")))
+    unsafe { p.as_mut() }
 }
 
 /// Checks a structure's sType.

@@ -11,7 +11,7 @@ mod handles;
 pub mod reference;
 pub mod types;
 
-use boundary::{check_no_next, CallError, check_type, guard, last_error_ptr, out, required};
+use boundary::{check_no_next, CallError, check_type, guard, last_error_ptr, optional_out, out, required};
 use convert::{classify_from_c, create_info_from_c, dispatch_from_c, lights_from_c, precision_from_c, preset_from_c, settings_from_c, write_settings};
 use std::ffi::c_char;
 use types::*;
@@ -389,6 +389,29 @@ pub extern "C" fn dnsr_get_memory_requirements(
     guard(|_| {
         let out = out(p_bytes, "pBytes")?;
         *out = crate::memory_requirements(width, height, precision_from_c(precision)?, filter_passes, light_count)?;
+        Ok(DnsrResult::DNSR_SUCCESS)
+    })
+}
+
+/// Bytes of device memory a context created with `pCreateInfo` would allocate, before driver padding, every option
+/// counted (its shadow input, DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT, DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER);
+/// `pPersistentBytes` (optional, NULL allowed) receives the part of them that persists between records. Reads no
+/// Vulkan handle of `pCreateInfo`; refuses what dnsr_context_create would refuse of its size, light count, settings
+/// and flags.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_get_context_memory_requirements(
+    p_create_info: *const DnsrContextCreateInfo,
+    p_bytes: *mut u64,
+    p_persistent_bytes: *mut u64,
+) -> DnsrResult {
+    guard(|sink| {
+        let out = out(p_bytes, "pBytes")?;
+        let c = required(p_create_info, "pCreateInfo")?;
+        let (bytes, persistent) = crate::context_memory_requirements(&create_info_from_c(c, sink)?)?;
+        *out = bytes;
+        if let Some(p) = optional_out(p_persistent_bytes) {
+            *p = persistent;
+        }
         Ok(DnsrResult::DNSR_SUCCESS)
     })
 }

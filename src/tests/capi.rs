@@ -190,9 +190,21 @@ fn handles_codes_and_messages() {
         assert_eq!(dnsr_context_get_memory_usage(three, &mut all), DnsrResult::DNSR_SUCCESS);
         assert_eq!(dnsr_context_get_persistent_memory_usage(three, &mut persistent), DnsrResult::DNSR_SUCCESS);
         assert_eq!(dnsr_context_destroy(three), DnsrResult::DNSR_SUCCESS);
+        // What dnsr_get_context_memory_requirements says of the same create info: the same, less driver padding.
+        let (mut bytes, mut kept) = (0u64, 0u64);
+        assert_eq!(dnsr_get_context_memory_requirements(&lights, &mut bytes, &mut kept), DnsrResult::DNSR_SUCCESS);
+        assert!(bytes <= all && all - bytes < 65536 && kept <= persistent && persistent - kept < 32768, "{bytes} {all} {kept} {persistent}");
+        assert_eq!(dnsr_get_context_memory_requirements(&lights, &mut bytes, std::ptr::null_mut()), DnsrResult::DNSR_SUCCESS);
         (all, persistent)
     };
     let (shared, own) = (usage(0), usage(DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT));
+    let mut estimate = 0u64;
+    assert_eq!(dnsr_get_context_memory_requirements(std::ptr::null(), &mut estimate, std::ptr::null_mut()), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);
+    assert_eq!(dnsr_get_context_memory_requirements(&create_info(&g, 8, 8), std::ptr::null_mut(), std::ptr::null_mut()), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);
+    let mut nine = create_info(&g, 8, 8);
+    (nine.light_count, nine.flags) = (9, DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER);
+    assert_eq!(dnsr_get_context_memory_requirements(&nine, &mut estimate, std::ptr::null_mut()), DnsrResult::DNSR_ERROR_INVALID_ARGUMENT);
+    assert!(last_error().contains("lights_recorded_together") || last_error().contains("lightsRecordedTogether"), "{}", last_error());
     assert_eq!(shared.1, 3 * kept, "each light its own persistent images");
     // Recorded together: one depth copy (at least 4 B/px) for the three.
     let together = usage(DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER);

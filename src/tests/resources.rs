@@ -331,11 +331,22 @@ fn state_table_is_what_the_images_are_created_with() {
             let what = format!("{precision:?}, {input:?}, {passes} passes");
             check(&ctx, &what, 2, precision, input, false);
             assert_eq!(ctx.transient_set_count(), 1, "{what}: the lights share their transient images");
+            // context_memory_requirements: what the context holds, less driver padding (a few KB at this size).
+            let estimated = |ctx: &crate::Context, info: &crate::ContextCreateInfo, what: &str| {
+                let (bytes, persistent) = crate::context_memory_requirements(info).unwrap();
+                let (held, kept) = (ctx.memory_bytes(), ctx.persistent_memory_bytes());
+                assert!(bytes <= held && held - bytes < 65536, "{what}: estimated {bytes}, holds {held}");
+                assert!(persistent <= kept && kept - persistent < 32768, "{what}: estimated {persistent} kept, keeps {kept}");
+                (bytes, persistent)
+            };
+            let default_estimate = estimated(&ctx, &info, &what);
             let shared = ctx.memory_bytes();
             // Each light its own transient set: 2 sets, the same persistent images.
             info.transient_memory_per_light = true;
             let own = crate::Context::new(&info).unwrap();
             check(&own, &format!("{what}, a set per light"), 2, precision, input, false);
+            let own_estimate = estimated(&own, &info, &format!("{what}, a set per light"));
+            assert!(own_estimate.0 > default_estimate.0 && own_estimate.1 == default_estimate.1, "{what}");
             assert_eq!(own.transient_set_count(), 2, "{what}");
             assert_eq!(own.persistent_memory_bytes(), ctx.persistent_memory_bytes(), "{what}");
             // The second set is what the shared context holds beyond its persistent images, less its constants.
@@ -348,6 +359,8 @@ fn state_table_is_what_the_images_are_created_with() {
                 info.transient_memory_per_light = per_light;
                 let together = crate::Context::new(&info).unwrap();
                 check(&together, &format!("{what}, together, a set per light {per_light}"), 2, precision, input, true);
+                let together_estimate = estimated(&together, &info, &format!("{what}, together"));
+                assert!(together_estimate.1 < default_estimate.1, "{what}: one depth copy for both lights");
                 drop(together);
             }
             (info.lights_recorded_together, info.transient_memory_per_light) = (false, false);

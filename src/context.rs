@@ -322,16 +322,7 @@ impl Context {
         check_shader_overrides(&vk, info)?;
         let family = validate::queue_family(&vk, info.queue_family_index)?;
         let supported_stages = validate::supported_stages(&vk, &family);
-        let needed = memory_requirements_with(
-            info.width,
-            info.height,
-            info.precision,
-            info.settings.filter_passes,
-            info.light_count,
-            info.shadow_input,
-            info.transient_memory_per_light,
-            info.lights_recorded_together,
-        )?;
+        let (needed, _) = context_memory_requirements(info)?;
         memory::check_available(&vk, needed)?;
 
         let push = vk.push_descriptor.clone();

@@ -4,7 +4,10 @@
 // every tap, guide and signal, straight from the images through the texture cache. Why two variants, on an H100 at
 // 4K (BENCHMARKS.md change log): one shader holding both paths slowed the later passes from 0.383 / 0.371 to
 // 0.454 / 0.477 ms although they never touch the apron, and an apron for their variance blur alone slowed them too
-// (their taps cannot wait for a barrier). An apron sized for the widest step was 3-5x slower still.
+// (their taps cannot wait for a barrier). An apron sized for the widest step was 3-5x slower still, and in 16x16
+// groups an apron of one step, every tap from shared memory, took Quality's pass 1 from 0.256 to 0.346 ms on an H200
+// (docs/bench/h200-2026-11-30-later-apron: the taps' fetches are most of the pass, but the texture cache serves them
+// faster than a load and a barrier do).
 //
 // The later passes' light-slot variant (DNSR_LIGHT_SLOTS_VARIANT, which a record of several lights runs) filters up
 // to DNSR_LIGHT_SLOTS lights per dispatch: per tap the guide fetch and the depth, normal and kernel factors once,

@@ -31,6 +31,14 @@ pub(crate) fn get(handle: DnsrContext) -> Result<Arc<Entry>, CallError> {
     live().get(&(handle as usize as u64)).cloned().ok_or(CallError::InvalidHandle("context"))
 }
 
+/// The live context of `handle` for a call that reports its errors to the context's log sink too: the sink is
+/// named in `sink` (the panic boundary's) before anything else can fail.
+pub(crate) fn get_logged(handle: DnsrContext, sink: &mut Option<LogSink>) -> Result<Arc<Entry>, CallError> {
+    let entry = get(handle)?;
+    *sink = entry.log;
+    Ok(entry)
+}
+
 /// Removes a handle; the context is dropped once no call still uses it.
 pub(crate) fn remove(handle: DnsrContext) -> Result<Arc<Entry>, CallError> {
     live().remove(&(handle as usize as u64)).ok_or(CallError::InvalidHandle("context"))

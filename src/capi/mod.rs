@@ -106,8 +106,7 @@ pub extern "C" fn dnsr_context_destroy(context: DnsrContext) -> DnsrResult {
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_shadows_record(context: DnsrContext, p_dispatch: *const DnsrShadowsDispatch) -> DnsrResult {
     guard(|sink| {
-        let entry = handles::get(context)?;
-        *sink = entry.log;
+        let entry = handles::get_logged(context, sink)?;
         let (cmd, dispatch) = dispatch_from_c(required(p_dispatch, "pDispatch")?)?;
         entry.lock()?.record_shadows(cmd, &dispatch)?;
         Ok(DnsrResult::DNSR_SUCCESS)
@@ -131,8 +130,7 @@ pub extern "C" fn dnsr_lights_record(
     p_lights: *const DnsrLightDispatch,
 ) -> DnsrResult {
     guard(|sink| {
-        let entry = handles::get(context)?;
-        *sink = entry.log;
+        let entry = handles::get_logged(context, sink)?;
         let (cmd, shared) = dispatch_from_c(required(p_dispatch, "pDispatch")?)?;
         let (lights, count) = lights_from_c(light_count, p_lights)?;
         entry.lock()?.record_lights(cmd, &shared, &lights[..count])?;
@@ -148,8 +146,7 @@ pub extern "C" fn dnsr_lights_record(
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_classify_record(context: DnsrContext, p_dispatch: *const DnsrClassifyDispatch) -> DnsrResult {
     guard(|sink| {
-        let entry = handles::get(context)?;
-        *sink = entry.log;
+        let entry = handles::get_logged(context, sink)?;
         let (cmd, dispatch) = classify_from_c(required(p_dispatch, "pDispatch")?)?;
         entry.lock()?.record_classify(cmd, &dispatch)?;
         Ok(DnsrResult::DNSR_SUCCESS)
@@ -160,8 +157,7 @@ pub extern "C" fn dnsr_classify_record(context: DnsrContext, p_dispatch: *const 
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_context_get_classifier_buffers(context: DnsrContext, p_buffers: *mut DnsrClassifierBuffers) -> DnsrResult {
     guard(|sink| {
-        let entry = handles::get(context)?;
-        *sink = entry.log;
+        let entry = handles::get_logged(context, sink)?;
         let out = out(p_buffers, "pBuffers")?;
         check_type(out.s_type, DNSR_STRUCTURE_TYPE_CLASSIFIER_BUFFERS, "DNSR_STRUCTURE_TYPE_CLASSIFIER_BUFFERS", "pBuffers")?;
         check_no_next(out.p_next, "pBuffers")?;
@@ -178,8 +174,7 @@ pub extern "C" fn dnsr_context_get_classifier_buffers(context: DnsrContext, p_bu
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_context_resize(context: DnsrContext, width: u32, height: u32) -> DnsrResult {
     guard(|sink| {
-        let entry = handles::get(context)?;
-        *sink = entry.log;
+        let entry = handles::get_logged(context, sink)?;
         entry.lock()?.resize(width, height)?;
         Ok(DnsrResult::DNSR_SUCCESS)
     })
@@ -189,8 +184,7 @@ pub extern "C" fn dnsr_context_resize(context: DnsrContext, width: u32, height: 
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_context_reset_history(context: DnsrContext, light_index: u32) -> DnsrResult {
     guard(|sink| {
-        let entry = handles::get(context)?;
-        *sink = entry.log;
+        let entry = handles::get_logged(context, sink)?;
         entry.lock()?.reset_history(light_index)?;
         Ok(DnsrResult::DNSR_SUCCESS)
     })
@@ -233,8 +227,7 @@ fn query<T>(context: DnsrContext, p_out: *mut T, name: &str, value: impl FnOnce(
 /// `query` with a writer of its own (`write_settings`, which zeroes the padding).
 fn query_into<T>(context: DnsrContext, p_out: *mut T, name: &str, write: impl FnOnce(&crate::Context, &mut T)) -> DnsrResult {
     guard(|sink| {
-        let entry = handles::get(context)?;
-        *sink = entry.log;
+        let entry = handles::get_logged(context, sink)?;
         let out = out(p_out, name)?;
         write(&*entry.lock()?, out);
         Ok(DnsrResult::DNSR_SUCCESS)
@@ -246,8 +239,7 @@ fn query_into<T>(context: DnsrContext, p_out: *mut T, name: &str, write: impl Fn
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_context_set_settings(context: DnsrContext, p_settings: *const DnsrSettings) -> DnsrResult {
     guard(|sink| {
-        let entry = handles::get(context)?;
-        *sink = entry.log;
+        let entry = handles::get_logged(context, sink)?;
         let settings = settings_from_c(required(p_settings, "pSettings")?, "pSettings")?;
         entry.lock()?.set_settings(settings)?;
         Ok(DnsrResult::DNSR_SUCCESS)
@@ -259,8 +251,7 @@ pub extern "C" fn dnsr_context_set_settings(context: DnsrContext, p_settings: *c
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_context_get_timings(context: DnsrContext, p_timings: *mut DnsrPassTimings) -> DnsrResult {
     guard(|sink| {
-        let entry = handles::get(context)?;
-        *sink = entry.log;
+        let entry = handles::get_logged(context, sink)?;
         let out = out(p_timings, "pTimings")?;
         check_type(out.s_type, DNSR_STRUCTURE_TYPE_PASS_TIMINGS, "DNSR_STRUCTURE_TYPE_PASS_TIMINGS", "pTimings")?;
         check_no_next(out.p_next, "pTimings")?;
@@ -281,8 +272,7 @@ pub extern "C" fn dnsr_context_get_timings(context: DnsrContext, p_timings: *mut
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_context_get_classifier_timings(context: DnsrContext, p_timings: *mut DnsrClassifierTimings) -> DnsrResult {
     guard(|sink| {
-        let entry = handles::get(context)?;
-        *sink = entry.log;
+        let entry = handles::get_logged(context, sink)?;
         let out = out(p_timings, "pTimings")?;
         check_type(out.s_type, DNSR_STRUCTURE_TYPE_CLASSIFIER_TIMINGS, "DNSR_STRUCTURE_TYPE_CLASSIFIER_TIMINGS", "pTimings")?;
         check_no_next(out.p_next, "pTimings")?;

@@ -13,13 +13,16 @@
  *     DNSR_PRESET_BALANCED (the FidelityFX settings), and those frames differ from the default's; told the light
  *     through dnsr_ffx_context_set_light (its position behind the receivers, or that it has no size), the same
  *     against dnsr.h dispatches with those bits, after a refused call that must not change the context's light;
+ *     given hit distances and the light's size through dnsr_ffx_context_set_penumbra_guidance, the same against
+ *     dnsr.h dispatches with DNSR_DISPATCH_USE_HIT_DISTANCE, after a refused call that must not change them;
  *   - the depth buffer itself (D32_SFLOAT, reverse-Z, FFX_DENOISER_ENABLE_DEPTH_INVERTED) equals dnsr.h with
  *     DNSR_CONTEXT_CREATE_DEPTH_INVERTED on it;
  *   - misuse the SDK does not catch (NULL pointers, a destroyed or never-created context, a create into a live
  *     one, the reflections flag, an output format dnsr cannot write, a NULL image, a scratch buffer too small, an
  *     interface not from ffxGetInterfaceVK): each a specific FfxErrorCode with a message, nothing recorded;
  *     dnsr_ffx_context_set_light's (NULL, dead or destroyed context, unknown bits, a missing, zero, non-finite or
- *     non-homogeneous position): each a specific DnsrResult with a message;
+ *     non-homogeneous position) and dnsr_ffx_context_set_penumbra_guidance's (NULL, dead or destroyed context,
+ *     a null image or view, a non-finite or out-of-range angle): each a specific DnsrResult with a message;
  *   - no validation message from any of it.
  */
 #include <FidelityFX/host/backends/vk/ffx_vk.h>
@@ -89,7 +92,7 @@ static_assert(FFX_SDK_MAKE_VERSION(1, 1, 4) == 0x401004, "");
 #define TILES_Y ((H + 3u) / 4u)
 
 static Host host;
-static HostImage mask, depth, depthBuffer, velocity, velocityVarying, normals, outFfx, outFfx8, outNative;
+static HostImage mask, depth, depthBuffer, velocity, velocityVarying, normals, outFfx, outFfx8, outNative, hitDistance;
 static HostBuffer readback;
 
 // FFX_OK, or fail the test with the call, the code and dnsr's message.
@@ -237,8 +240,11 @@ static void integrate(Integration &in, uint32_t flags)
 // Returns the last noisy frame's output. fidelityfx: the FFX contexts get DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS and
 // the dnsr.h context DNSR_PRESET_BALANCED; else both run dnsr's default settings. lightFlags (DNSR_DISPATCH_HARD_LIGHT,
 // DNSR_DISPATCH_USE_LIGHT_POSITION) and lightPosition: told to the FFX contexts by dnsr_ffx_context_set_light (after
-// which a refused call must leave them as they were), to the dnsr.h context in each dispatch.
-static std::vector<float> frames_match_native(bool fidelityfx, uint32_t lightFlags = 0, const float *lightPosition = nullptr)
+// which a refused call must leave them as they were), to the dnsr.h context in each dispatch. guided: the hit
+// distances and lightAngle, told to the FFX contexts by dnsr_ffx_context_set_penumbra_guidance (after which a
+// refused call must leave them as they were), to the dnsr.h context in each dispatch.
+static std::vector<float> frames_match_native(bool fidelityfx, uint32_t lightFlags = 0, const float *lightPosition = nullptr,
+                                              bool guided = false, float lightAngle = 0.0f)
 {
     Integration in, in8;
     uint32_t settings = fidelityfx ? DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS : 0u;
@@ -258,6 +264,13 @@ static std::vector<float> frames_match_native(bool fidelityfx, uint32_t lightFla
             EXPECT_DNSR(DNSR_ERROR_NON_FINITE, dnsr_ffx_context_set_light(i->context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, behind));
         }
     }
+    const DnsrHostImage hits = host_image_desc(&hitDistance);
+    if (guided) {
+        for (Integration *i : {&in, &in8}) {
+            DNSR_CHECK(dnsr_ffx_context_set_penumbra_guidance(i->context.get(), &hits, lightAngle));
+            EXPECT_DNSR(DNSR_ERROR_NON_FINITE, dnsr_ffx_context_set_penumbra_guidance(i->context.get(), &hits, NAN));
+        }
+    }
 
     std::vector<float> a, b, c, lastNoisy;
     for (uint32_t frame = 0; frame < 6; frame++) {
@@ -272,6 +285,11 @@ static std::vector<float> frames_match_native(bool fidelityfx, uint32_t lightFla
         DnsrShadowsDispatch nd = native_dispatch(cmd, frame);
         nd.flags |= lightFlags;
         if (lightPosition) std::memcpy(nd.lightPosition, lightPosition, sizeof nd.lightPosition);
+        if (guided) {
+            nd.flags |= DNSR_DISPATCH_USE_HIT_DISTANCE;
+            nd.hitDistance = hits;
+            nd.lightAngularSize = lightAngle;
+        }
         DNSR_CHECK(dnsr_shadows_record(native, &nd));
         host_submit(&host, cmd);
         read_output(outFfx, a);
@@ -284,8 +302,8 @@ static std::vector<float> frames_match_native(bool fidelityfx, uint32_t lightFla
         }
         float lo = a[0], hi = a[0];
         for (float v : a) lo = v < lo ? v : lo, hi = v > hi ? v : hi;
-        std::printf("frame %u (%s settings, light flags 0x%x): FFX API == dnsr.h on all %u pixels, output in [%g, %g]\n",
-                    frame, fidelityfx ? "FidelityFX" : "default", lightFlags, W * H, lo, hi);
+        std::printf("frame %u (%s settings, light flags 0x%x%s): FFX API == dnsr.h on all %u pixels, output in [%g, %g]\n",
+                    frame, fidelityfx ? "FidelityFX" : "default", lightFlags, guided ? ", hit distances" : "", W * H, lo, hi);
         if (frame < 4) CHECK(hi > lo, "frame %u: a noisy mask gave a flat output", frame);
         if (frame == 3) lastNoisy = a;
     }
@@ -541,8 +559,23 @@ static void misuse(void)
     DNSR_CHECK(dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION | DNSR_DISPATCH_HARD_LIGHT, sun));
     DNSR_CHECK(dnsr_ffx_context_set_light(in.context.get(), 0, nullptr));
 
+    // dnsr_ffx_context_set_penumbra_guidance: the context, the image's handles and the angle.
+    DnsrHostImage hits = host_image_desc(&hitDistance), noImage = hits, noView = hits;
+    noImage.image = VK_NULL_HANDLE;
+    noView.view = VK_NULL_HANDLE;
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_penumbra_guidance(nullptr, &hits, 0.01f));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_penumbra_guidance(other, &hits, 0.01f)); /* never created */
+    EXPECT_DNSR(DNSR_ERROR_NULL_HANDLE, dnsr_ffx_context_set_penumbra_guidance(in.context.get(), &noImage, 0.01f));
+    EXPECT_DNSR(DNSR_ERROR_NULL_HANDLE, dnsr_ffx_context_set_penumbra_guidance(in.context.get(), &noView, 0.01f));
+    EXPECT_DNSR(DNSR_ERROR_NON_FINITE, dnsr_ffx_context_set_penumbra_guidance(in.context.get(), &hits, INFINITY));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_penumbra_guidance(in.context.get(), &hits, -0.01f));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_penumbra_guidance(in.context.get(), &hits, 3.5f));
+    DNSR_CHECK(dnsr_ffx_context_set_penumbra_guidance(in.context.get(), &hits, 0.01f));
+    DNSR_CHECK(dnsr_ffx_context_set_penumbra_guidance(in.context.get(), nullptr, NAN)); /* off: the angle is not read */
+
     FFX_CHECK(ffxDenoiserContextDestroy(in.context.get()));
     EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_HARD_LIGHT, nullptr)); /* destroyed */
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_penumbra_guidance(in.context.get(), nullptr, 0.0f)); /* destroyed */
     EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDestroy(in.context.get())); /* twice */
     cmd = host_begin(&host);
     d = ffx_dispatch(cmd, 1);
@@ -566,6 +599,7 @@ int main(void)
     host_image_create(&host, &outFfx, VK_FORMAT_R32_SFLOAT, W, H, VK_IMAGE_LAYOUT_GENERAL);
     host_image_create(&host, &outNative, VK_FORMAT_R32_SFLOAT, W, H, VK_IMAGE_LAYOUT_GENERAL);
     host_image_create(&host, &outFfx8, VK_FORMAT_R8G8B8A8_UNORM, W, H, VK_IMAGE_LAYOUT_GENERAL);
+    host_image_create(&host, &hitDistance, VK_FORMAT_R32_SFLOAT, W, H, read);
     host_buffer_create(&host, &readback, W * H * sizeof(float));
     std::vector<float> depthData(W * H);
     std::vector<uint16_t> velocityData(W * H * 2, 0);
@@ -583,6 +617,10 @@ int main(void)
     host_upload(&host, &depthBuffer, depthData.data(), depthData.size() * sizeof(float));
     host_upload(&host, &velocity, velocityData.data(), velocityData.size() * sizeof(uint16_t));
     host_upload(&host, &normals, normalData.data(), normalData.size());
+    // Hit distances from contact (a penumbra far under a pixel: the ray is the output) to far blockers.
+    std::vector<float> hitData(W * H);
+    for (uint32_t i = 0; i < W * H; i++) hitData[i] = 0.001f + 2.0f * float(i % W) / W;
+    host_upload(&host, &hitDistance, hitData.data(), hitData.size() * sizeof(float));
 
     {
         std::vector<float> quality = frames_match_native(false), fidelityfx = frames_match_native(true);
@@ -602,15 +640,22 @@ int main(void)
             std::printf("dnsr_ffx_context_set_light(0x%x): %zu of %u pixels of frame 3 differ from the untold default's\n",
                         flags, differ, W * H);
         }
+        // Hit distances through dnsr_ffx_context_set_penumbra_guidance, a light of about 3 degrees.
+        std::vector<float> guided = frames_match_native(false, 0, nullptr, true, 0.05f);
+        differ = 0;
+        for (size_t i = 0; i < quality.size(); i++) differ += quality[i] != guided[i];
+        CHECK(differ > 0, "dnsr_ffx_context_set_penumbra_guidance changed no pixel of frame 3");
+        std::printf("dnsr_ffx_context_set_penumbra_guidance: %zu of %u pixels of frame 3 differ from the unguided default's\n",
+                    differ, W * H);
     }
     depth_buffer_reverse_z();
     misuse();
     pitching_camera();
 
     host_buffer_destroy(&host, &readback);
-    for (HostImage *img : {&mask, &depth, &depthBuffer, &velocity, &velocityVarying, &normals, &outFfx, &outFfx8, &outNative}) host_image_destroy(&host, img);
+    for (HostImage *img : {&mask, &depth, &depthBuffer, &velocity, &velocityVarying, &normals, &outFfx, &outFfx8, &outNative, &hitDistance}) host_image_destroy(&host, img);
     host_destroy(&host);
     std::printf("ffx_dropin: layout, versions, 6 frames equal to dnsr.h (R32F and RGBA8 outputs; untold, told the light's "
-                "position, told it has no size), %d misuse cases refused\n", cases);
+                "position, told it has no size, given hit distances), %d misuse cases refused\n", cases);
     return 0;
 }

@@ -10,7 +10,7 @@
 //! The modules import one way, down (`cargo test layers` fails on an import upward, and on any cycle):
 //!
 //! - API, on top: `capi` (the C ABI) and `ffx` (the FidelityFX API over it; `capi` reaches it only through the
-//!   setter that `ffx` registers, `capi::FFX_SET_LIGHT`).
+//!   setter that `ffx` registers, `capi::FFX_SET`).
 //! - Contexts: `context` (the denoiser: pipelines, recording), `light` (a light's images), `classify` (the
 //!   classifier's buffers and recording), `pipeline` and `interface` (a pass's pipeline and its reflected
 //!   interface), `validate`, `timestamps`. They may import everything below.

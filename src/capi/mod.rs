@@ -283,11 +283,33 @@ pub extern "C" fn dnsr_context_get_classifier_timings(context: DnsrContext, p_ti
     })
 }
 
-/// What `dnsr_ffx_context_set_light` calls: the FidelityFX layer's setter of a context's light (flags and position,
-/// checked here; false where no live FFX context is). ffx builds on this module, so it registers the setter when it
-/// creates a context instead of this module importing ffx; unset, no FFX context was ever created.
-pub(crate) static FFX_SET_LIGHT: std::sync::OnceLock<FfxSetLight> = std::sync::OnceLock::new();
-type FfxSetLight = fn(*mut std::ffi::c_void, DnsrDispatchFlags, [f32; 4]) -> bool;
+/// What a FidelityFX context's later dispatches take that the FFX interface has no field for (checked here).
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum FfxContextSetting {
+    /// `dnsr_ffx_context_set_light`: DNSR_DISPATCH_HARD_LIGHT and DNSR_DISPATCH_USE_LIGHT_POSITION bits, and the
+    /// position that the second reads.
+    Light { flags: DnsrDispatchFlags, position: [f32; 4] },
+    /// `dnsr_ffx_context_set_penumbra_guidance`: the hit-distance image and the light's angular diameter; None
+    /// turns guidance off.
+    Guidance(Option<(DnsrHostImage, f32)>),
+}
+
+/// What the `dnsr_ffx_context_set_*` functions call: the FidelityFX layer's setter of a context's setting (false
+/// where no live FFX context is). ffx builds on this module, so it registers the setter when it creates a context
+/// instead of this module importing ffx; unset, no FFX context was ever created.
+pub(crate) static FFX_SET: std::sync::OnceLock<FfxSet> = std::sync::OnceLock::new();
+type FfxSet = fn(*mut std::ffi::c_void, FfxContextSetting) -> bool;
+
+/// Gives the FFX context at `p_ffx_context` a checked setting, or says why not.
+fn set_ffx(p_ffx_context: *mut std::ffi::c_void, setting: FfxContextSetting) -> Result<DnsrResult, CallError> {
+    if p_ffx_context.is_null() {
+        return Err(CallError::InvalidArgument("pFfxContext is NULL".into()));
+    }
+    if !FFX_SET.get().is_some_and(|set| set(p_ffx_context, setting)) {
+        return Err(CallError::InvalidArgument("pFfxContext is not a live FfxDenoiserContext (never created, or destroyed)".into()));
+    }
+    Ok(DnsrResult::DNSR_SUCCESS)
+}
 
 /// Tells dnsr's FidelityFX layer (include/ffx) about the light of a shadow denoiser context's later dispatches,
 /// which the FFX interface has no field for: `pFfxContext` is the `FfxDenoiserContext*` that
@@ -325,10 +347,56 @@ pub extern "C" fn dnsr_ffx_context_set_light(p_ffx_context: *mut std::ffi::c_voi
             crate::validate::light_position(glam::Vec4::from_array(*p))?;
             position = *p;
         }
-        if !FFX_SET_LIGHT.get().is_some_and(|set_light| set_light(p_ffx_context, flags, position)) {
-            return Err(CallError::InvalidArgument("pFfxContext is not a live FfxDenoiserContext (never created, or destroyed)".into()));
-        }
-        Ok(DnsrResult::DNSR_SUCCESS)
+        set_ffx(p_ffx_context, FfxContextSetting::Light { flags, position })
+    })
+}
+
+/// Gives dnsr's FidelityFX layer penumbra guidance for a shadow denoiser context's later dispatches, which the FFX
+/// interface has no field for: `pFfxContext` is the `FfxDenoiserContext*` that ffxDenoiserContextCreate filled,
+/// `pHitDistance` the engine's hit distances (read as DnsrShadowsDispatch::hitDistance: per pixel the distance along
+/// the shadow ray to the first occluder it hit, R16_SFLOAT or R32_SFLOAT, in a sampled layout, the size of the
+/// dispatches' images) and `lightAngularSize` the light's angular diameter in radians, in [0, pi) (the sun: about
+/// 0.0093; 0 is a point light, as DnsrShadowsDispatch::lightAngularSize). Each later ffxDenoiserContextDispatchShadows
+/// records as dnsr_shadows_record does with DNSR_DISPATCH_USE_HIT_DISTANCE and these values; the description is
+/// copied, the image is borrowed by each dispatch, so an engine whose hit-distance image changes from frame to frame
+/// calls this before each dispatch. NULL `pHitDistance` turns guidance off again (`lightAngularSize` is not read).
+/// The image itself (its format, layout and size) is checked by each dispatch, which refuses one that does not fit
+/// with FFX_ERROR_INVALID_ARGUMENT and a message; so is the pair with `dnsr_ffx_context_set_light`'s
+/// DNSR_DISPATCH_HARD_LIGHT, which needs `lightAngularSize` 0.
+///
+/// What it changes (docs/do-no-harm.md): on the 100 scenes of `make viewer-accuracy`, dnsr's default settings are
+/// worse than their 1-spp input on 25 scenes told nothing of the light, on 11 told where it is and whether it has a
+/// size (`dnsr_ffx_context_set_light`), and on 6 given hit distances and the light's size as well: five of them
+/// within 0.4% of their input's error, and one whose input is exact at RMSE 0.0039 (docs/viewer-family.md,
+/// quality+guided). Where the engine's tracer can write the hit distance
+/// beside its hit mask, this is the closest dnsr comes to never making a shadow worse. The SDK's own denoiser has
+/// no such function: call it only where dnsr's FidelityFX layer is linked.
+///
+/// Errors: DNSR_ERROR_INVALID_ARGUMENT for a NULL `pFfxContext`, a context that is not live (never created, or
+/// destroyed) or an angle outside [0, pi); DNSR_ERROR_NULL_HANDLE for a hit-distance image or view that is
+/// VK_NULL_HANDLE; DNSR_ERROR_NON_FINITE for a NaN or infinite angle. On error the context keeps the guidance it
+/// had.
+#[unsafe(no_mangle)]
+pub extern "C" fn dnsr_ffx_context_set_penumbra_guidance(
+    p_ffx_context: *mut std::ffi::c_void,
+    p_hit_distance: *const DnsrHostImage,
+    light_angular_size: f32,
+) -> DnsrResult {
+    guard(|_| {
+        let guidance = match unsafe { p_hit_distance.as_ref() } {
+            None => None,
+            Some(image) => {
+                if image.image == VkImage::null() {
+                    return Err(crate::error::Error::NullHandle("pHitDistance->image").into());
+                }
+                if image.view == VkImageView::null() {
+                    return Err(crate::error::Error::NullHandle("pHitDistance->view").into());
+                }
+                crate::validate::light_angular_size(light_angular_size)?;
+                Some((*image, light_angular_size))
+            }
+        };
+        set_ffx(p_ffx_context, FfxContextSetting::Guidance(guidance))
     })
 }
 

@@ -15,7 +15,7 @@ pub mod types;
 
 use crate::capi::boundary::set_last_error;
 use crate::capi::types::*;
-use crate::capi::{dnsr_context_create, dnsr_context_destroy, dnsr_shadows_record};
+use crate::capi::{dnsr_context_create, dnsr_context_destroy, dnsr_shadows_record, FfxContextSetting};
 use ash::vk;
 use resources::{host_image, ViewRing};
 use std::collections::BTreeMap;
@@ -282,6 +282,9 @@ struct Denoiser {
     dispatches: u64,
     /// What `dnsr_ffx_context_set_light` last told of the light (none by default: the FFX dispatch has no light).
     light: FfxLight,
+    /// What `dnsr_ffx_context_set_penumbra_guidance` last gave: the hit-distance image and the light's angular
+    /// diameter (none by default: the FFX dispatch has no hit distances).
+    guidance: Option<(DnsrHostImage, f32)>,
 }
 
 /// The light of a context's dispatches (`dnsr_ffx_context_set_light`): DNSR_DISPATCH_HARD_LIGHT and
@@ -292,11 +295,14 @@ struct FfxLight {
     position: [f32; 4],
 }
 
-/// Gives the live context at `context` the light of its later dispatches; false when `context` is NULL or holds
-/// no live context. `capi::FFX_SET_LIGHT` for `dnsr_ffx_context_set_light`.
-fn set_light(context: *mut std::ffi::c_void, flags: DnsrDispatchFlags, position: [f32; 4]) -> bool {
+/// Gives the live context at `context` a setting of its later dispatches; false when `context` is NULL or holds
+/// no live context. `capi::FFX_SET` for the `dnsr_ffx_context_set_*` functions, which check the setting.
+fn set(context: *mut std::ffi::c_void, setting: FfxContextSetting) -> bool {
     with_context(context.cast(), |d| {
-        d.light = FfxLight { flags, position };
+        match setting {
+            FfxContextSetting::Light { flags, position } => d.light = FfxLight { flags, position },
+            FfxContextSetting::Guidance(guidance) => d.guidance = guidance,
+        }
         Ok(())
     })
     .is_ok()
@@ -404,8 +410,8 @@ pub extern "C" fn ffxDenoiserContextCreate(context: *mut FfxDenoiserContext, des
         let fidelityfx = d.flags & DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS != 0;
         let dnsr = new_dnsr_context(&device, width, height, depth_inverted, fidelityfx, vk::Format::R8_UNORM)?;
         let id = NEXT_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let denoiser = Denoiser { context: dnsr, device, output_format: None, depth_inverted, fidelityfx, width, height, views: ViewRing::default(), dispatches: 0, light: FfxLight::default() };
-        crate::capi::FFX_SET_LIGHT.get_or_init(|| set_light);
+        let denoiser = Denoiser { context: dnsr, device, output_format: None, depth_inverted, fidelityfx, width, height, views: ViewRing::default(), dispatches: 0, light: FfxLight::default(), guidance: None };
+        crate::capi::FFX_SET.get_or_init(|| set);
         lock(&CONTEXTS).insert(id, denoiser);
         out.data[1] = id as u32;
         out.data[2] = (id >> 32) as u32;
@@ -491,7 +497,9 @@ impl Denoiser {
             p_next: std::ptr::null(),
             command_buffer: command_buffer(d.commandList),
             light_index: 0,
-            flags: (if self.dispatches == 0 { DNSR_DISPATCH_RESET } else { 0 }) | self.light.flags,
+            flags: (if self.dispatches == 0 { DNSR_DISPATCH_RESET } else { 0 })
+                | self.light.flags
+                | (if self.guidance.is_some() { DNSR_DISPATCH_USE_HIT_DISTANCE } else { 0 }),
             hit_mask_convention: DNSR_HIT_MASK_OCCLUDED_BITS,
             hit_mask,
             depth,
@@ -516,8 +524,9 @@ impl Denoiser {
                 output_dst_access: vk::AccessFlags::MEMORY_READ | vk::AccessFlags::MEMORY_WRITE,
             },
             debug_view: DNSR_DEBUG_VIEW_NONE,
-            hit_distance: DnsrHostImage::default(),
-            light_angular_size: 0.0,
+            // Nor hit distances: only what dnsr_ffx_context_set_penumbra_guidance gave.
+            hit_distance: self.guidance.map_or(DnsrHostImage::default(), |(image, _)| image),
+            light_angular_size: self.guidance.map_or(0.0, |(_, angle)| angle),
             engine_image_count: 0,
             p_engine_images: std::ptr::null(),
             visibility: DnsrHostImage::default(),

@@ -300,11 +300,16 @@ pub(crate) enum FfxContextSetting {
 pub(crate) static FFX_SET: std::sync::OnceLock<FfxSet> = std::sync::OnceLock::new();
 type FfxSet = fn(*mut std::ffi::c_void, FfxContextSetting) -> bool;
 
-/// Gives the FFX context at `p_ffx_context` a checked setting, or says why not.
-fn set_ffx(p_ffx_context: *mut std::ffi::c_void, setting: FfxContextSetting) -> Result<DnsrResult, CallError> {
+/// Gives the FFX context at `p_ffx_context` the setting that `checked` makes of the call's other arguments, or says
+/// why not: a NULL context first, then what `checked` refuses, then a context that is not live.
+fn set_ffx(
+    p_ffx_context: *mut std::ffi::c_void,
+    checked: impl FnOnce() -> Result<FfxContextSetting, CallError>,
+) -> Result<DnsrResult, CallError> {
     if p_ffx_context.is_null() {
         return Err(CallError::InvalidArgument("pFfxContext is NULL".into()));
     }
+    let setting = checked()?;
     if !FFX_SET.get().is_some_and(|set| set(p_ffx_context, setting)) {
         return Err(CallError::InvalidArgument("pFfxContext is not a live FfxDenoiserContext (never created, or destroyed)".into()));
     }
@@ -331,10 +336,7 @@ fn set_ffx(p_ffx_context: *mut std::ffi::c_void, setting: FfxContextSetting) -> 
 /// coordinate. On error the context keeps the light it had.
 #[unsafe(no_mangle)]
 pub extern "C" fn dnsr_ffx_context_set_light(p_ffx_context: *mut std::ffi::c_void, flags: DnsrDispatchFlags, p_light_position: *const f32) -> DnsrResult {
-    guard(|_| {
-        if p_ffx_context.is_null() {
-            return Err(CallError::InvalidArgument("pFfxContext is NULL".into()));
-        }
+    guard(|_| set_ffx(p_ffx_context, || {
         const KNOWN: DnsrDispatchFlags = DNSR_DISPATCH_HARD_LIGHT | DNSR_DISPATCH_USE_LIGHT_POSITION;
         if flags & !KNOWN != 0 {
             return Err(CallError::InvalidArgument(format!(
@@ -347,8 +349,8 @@ pub extern "C" fn dnsr_ffx_context_set_light(p_ffx_context: *mut std::ffi::c_voi
             crate::validate::light_position(glam::Vec4::from_array(*p))?;
             position = *p;
         }
-        set_ffx(p_ffx_context, FfxContextSetting::Light { flags, position })
-    })
+        Ok(FfxContextSetting::Light { flags, position })
+    }))
 }
 
 /// Gives dnsr's FidelityFX layer penumbra guidance for a shadow denoiser context's later dispatches, which the FFX
@@ -382,7 +384,7 @@ pub extern "C" fn dnsr_ffx_context_set_penumbra_guidance(
     p_hit_distance: *const DnsrHostImage,
     light_angular_size: f32,
 ) -> DnsrResult {
-    guard(|_| {
+    guard(|_| set_ffx(p_ffx_context, || {
         let guidance = match unsafe { p_hit_distance.as_ref() } {
             None => None,
             Some(image) => {
@@ -396,8 +398,8 @@ pub extern "C" fn dnsr_ffx_context_set_penumbra_guidance(
                 Some((*image, light_angular_size))
             }
         };
-        set_ffx(p_ffx_context, FfxContextSetting::Guidance(guidance))
-    })
+        Ok(FfxContextSetting::Guidance(guidance))
+    }))
 }
 
 /// Bytes of device memory the context allocated (driver padding included).

@@ -962,6 +962,17 @@ typedef struct DnsrShadowsDispatch {
    * DNSR_ERROR_INVALID_ARGUMENT.
    */
   float lightPosition[4];
+  /**
+   * Required with DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER, all zero otherwise: the image the host gave as depth
+   * last frame (its previous depth buffer, which engines keep for temporal anti-aliasing), in one of depth's
+   * formats and layouts, W x H. Linearised with this frame's projectionInverse; not read after a reset.
+   */
+  struct DnsrHostImage previousDepth;
+  /**
+   * Required with DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER, all zero otherwise: last frame's normals, in one of
+   * normals' formats, W x H, decoded with this frame's normalsUnpackMul and normalsUnpackAdd.
+   */
+  struct DnsrHostImage previousNormals;
 } DnsrShadowsDispatch;
 
 /**
@@ -1679,6 +1690,17 @@ typedef struct DnsrDiagnosis {
 #define DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER (1 << 6)
 
 /**
+ * The host gives dnsr its previous frame's depth and normals with every dispatch (DnsrShadowsDispatch::previousDepth
+ * and previousNormals, required then), so that dnsr keeps no depth copy of its own: 4 B/px less persistent memory
+ * per light (6.25 B/px kept instead of 10.25 with a hit mask; dnsr_get_memory_requirements counts the same bytes,
+ * moved to the transient part, which DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY hands to the host). Where the
+ * previous images hold exactly what the host gave as depth and normals last frame (and the projection's depth
+ * mapping did not change), every output is bit for bit the one without this flag. Hit-mask input only
+ * (DNSR_ERROR_INVALID_ARGUMENT otherwise).
+ */
+#define DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER (1 << 7)
+
+/**
  * Forces 32 bits.
  */
 #define DNSR_CONTEXT_CREATE_MAX_ENUM 2147483647
@@ -2140,7 +2162,8 @@ DnsrResult dnsr_get_memory_requirements(uint32_t width,
 
 /**
  * Bytes of device memory a context created with `pCreateInfo` would allocate, before driver padding, every option
- * counted (its shadow input, DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT, DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER);
+ * counted (its shadow input, DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT, DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER,
+ * DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER);
  * `pPersistentBytes` (optional, NULL allowed) receives the part of them that persists between records. Reads no
  * Vulkan handle of `pCreateInfo`; refuses what dnsr_context_create would refuse of its size, light count, settings
  * and flags.

@@ -109,7 +109,25 @@ void dnsr_write_visibility(ivec2 p, float v) { imageStore(dnsr_visibility_out, p
 #ifdef DNSR_PASS_TILE_CLASSIFICATION
 layout(set = 0, binding = 3) uniform utexture2D dnsr_tile_mask;
 layout(set = 0, binding = 5) uniform texture2D dnsr_velocity;
+#ifdef DNSR_HOST_PREVIOUS_GBUFFER
+// The host's own previous frame (ContextCreateInfo::host_previous_gbuffer): its depth and normals as it gave them
+// last frame, in the formats of this frame's (dnsr_read_previous_depth and dnsr_read_previous_normal turn them into
+// what a depth copy would hold, in tile_classification.glsl). An engine that reads its G-buffer itself
+// (DNSR_ENGINE_DEPTH_NORMALS) declares these two and their reads as well.
+#ifndef DNSR_ENGINE_DEPTH_NORMALS
+layout(set = 0, binding = 7) uniform texture2D dnsr_previous_depth;
+layout(set = 0, binding = 67) uniform texture2D dnsr_previous_normals;
+float dnsr_read_host_previous_depth(ivec2 p) { return texelFetch(dnsr_previous_depth, p + dnsr_get_offset(), 0).r; }
+vec3 dnsr_read_host_previous_normal(ivec2 p) {
+    vec3 n = texelFetch(dnsr_previous_normals, p + dnsr_get_offset(), 0).xyz * dnsr_constants.motion_normals.z
+           + dnsr_constants.motion_normals.w;
+    float len2 = dot(n, n);
+    return (len2 > 1e-12 && len2 < 1e30) ? n * inversesqrt(len2) : vec3(0.0);
+}
+#endif
+#else
 layout(set = 0, binding = 7) uniform utexture2D dnsr_previous_depth;
+#endif
 layout(set = 0, binding = 9) uniform utexture2D dnsr_previous_moments;
 layout(set = 0, binding = 10, DNSR_MOMENTS_FORMAT) uniform writeonly uimage2D dnsr_moments;
 layout(set = 0, binding = 11) uniform texture2D dnsr_history;
@@ -130,10 +148,12 @@ uint dnsr_read_tile_dark(ivec2 tile) { return texelFetch(dnsr_tile_dark, tile + 
 vec2 dnsr_read_velocity(ivec2 p) {
     return texelFetch(dnsr_velocity, p + dnsr_get_offset(), 0).xy * dnsr_constants.motion_normals.xy;
 }
+#ifndef DNSR_HOST_PREVIOUS_GBUFFER
 // Last frame's linear depth and unit normal (vec3(0): none) at p, as its depth copy holds them
 // (dnsr_pack_depth_copy).
 float dnsr_read_previous_depth(ivec2 p) { return dnsr_depth_copy_depth(texelFetch(dnsr_previous_depth, p + dnsr_get_offset(), 0).r); }
 vec3 dnsr_read_previous_normal(ivec2 p) { return dnsr_depth_copy_normal(texelFetch(dnsr_previous_depth, p + dnsr_get_offset(), 0).r); }
+#endif
 // The first word of p's moments as stored (dnsr_pack_moments; 0: no receiver's).
 uint dnsr_read_previous_moments_word(ivec2 p) { return texelFetch(dnsr_previous_moments, p + dnsr_get_offset(), 0).x; }
 // (mean, sum of squared deviations, sample count, run of identical samples: +n lit, -n shadowed).

@@ -327,6 +327,22 @@ float dnsr_bilinear(float texels[4], vec2 t) {
     return mix(mix(texels[0], texels[1], f.x), mix(texels[2], texels[3], f.x), f.y);
 }
 
+#ifdef DNSR_HOST_PREVIOUS_GBUFFER
+// Last frame's linear depth and normal from the host's previous depth and normals, rounded as the depth copy would
+// have held them (dnsr_pack_depth_copy; no receiver: -1 and vec3(0)), so that a host whose previous images are last
+// frame's gets the depth copy's output bit for bit. Linearised with this frame's inverse projection, as the
+// reprojected depth they are compared with is (its jitter does not move a linear depth).
+float dnsr_read_previous_depth(ivec2 p) {
+    float d = dnsr_read_host_previous_depth(p);
+    float z = dnsr_is_receiver(d) ? dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), d) : -1.0;
+    return dnsr_depth_copy_depth(dnsr_pack_depth_copy(z, vec3(0.0)));
+}
+vec3 dnsr_read_previous_normal(ivec2 p) {
+    if (!dnsr_is_receiver(dnsr_read_host_previous_depth(p))) return vec3(0.0);
+    return dnsr_depth_copy_normal(dnsr_pack_depth_copy(-1.0, dnsr_read_host_previous_normal(p)));
+}
+#endif
+
 // Normals a and b (last frame's, this frame's) both known and more than acos(DNSR_TURNED_NORMAL_COS_PERCENT / 100)
 // apart.
 bool dnsr_normal_turned(vec3 a, vec3 b) {

@@ -41,7 +41,7 @@ pub fn memory_requirements_for_input(
     light_count: u32,
     input: ShadowInput,
 ) -> Result<u64> {
-    memory_requirements_with(width, height, precision, filter_passes, light_count, input, false, false)
+    memory_requirements_with(width, height, precision, filter_passes, light_count, input, false, false, false)
 }
 
 /// `memory_requirements_for_input` with each light's own transient images where `transient_per_light`
@@ -57,6 +57,7 @@ fn memory_requirements_with(
     input: ShadowInput,
     transient_per_light: bool,
     together: bool,
+    host_previous: bool,
 ) -> Result<u64> {
     validate::extent("render size", width, height, u32::MAX)?;
     check_filter_passes(filter_passes)?;
@@ -68,6 +69,13 @@ fn memory_requirements_with(
             allowed: "a record holds at most 8 lights (MAX_LIGHTS_PER_RECORD), and lights recorded together are all in each record",
         });
     }
+    if host_previous && input != ShadowInput::HitMask {
+        return Err(Error::InvalidValue {
+            field: "host_previous_gbuffer (DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER)",
+            value: format!("true with shadow input {input:?}"),
+            allowed: "a hit-mask input only: a visibility or checkerboard context keeps its own depth copy",
+        });
+    }
     use crate::state::{persistent_texel_bytes, table::Scope, texel_bytes, together_bytes};
     let extent = [width, height];
     let persistent = persistent_texel_bytes(extent, precision, input);
@@ -76,8 +84,11 @@ fn memory_requirements_with(
     let lights = light_count as u64;
     // Lights recorded together: a frame depth image in each set, and no depth copy of their own after the first
     // (the frame depth is the depth copy's size).
-    let together = if together && light_count > 1 { together_bytes(extent, precision, input) } else { 0 };
-    let images = persistent * lights + transient * sets + together * sets - together * (lights - 1);
+    // The host's previous depth and normals: no light keeps a depth copy, and each set has a frame depth.
+    let depth = together_bytes(extent, precision, input);
+    let kept_copies = if host_previous { 0 } else if together && light_count > 1 { 1 } else { lights };
+    let frame_depths = if host_previous || (together && light_count > 1) { sets } else { 0 };
+    let images = (persistent - depth) * lights + depth * kept_copies + transient * sets + depth * frame_depths;
     Ok(images + texel_bytes(Scope::Context, extent, precision, input) + constants_bytes(light_count))
 }
 
@@ -102,9 +113,11 @@ pub fn context_memory_requirements(info: &ContextCreateInfo) -> Result<(u64, u64
         input,
         info.transient_memory_per_light,
         info.lights_recorded_together,
+        info.host_previous_gbuffer,
     )?;
-    let shared_depth = if info.lights_recorded_together { crate::state::together_bytes(size, info.precision, input) } else { 0 };
-    let persistent = crate::state::persistent_texel_bytes(size, info.precision, input) * lights as u64 - shared_depth * (lights as u64 - 1);
+    let depth = crate::state::together_bytes(size, info.precision, input);
+    let kept_copies = if info.host_previous_gbuffer { 0 } else if info.lights_recorded_together { 1 } else { lights as u64 };
+    let persistent = (crate::state::persistent_texel_bytes(size, info.precision, input) - depth) * lights as u64 + depth * kept_copies;
     Ok((bytes, persistent))
 }
 
@@ -202,6 +215,9 @@ pub struct Context {
     /// `ContextCreateInfo::lights_recorded_together`, with more than one light: the lights share the first light's
     /// depth copy, and every record holds all of them.
     together: bool,
+    /// `ContextCreateInfo::host_previous_gbuffer`: classification reads last frame's depth and normals from the
+    /// host's images, and no light keeps a depth copy.
+    host_previous: bool,
     light_count: u32,
     /// The host aliases the transient images (`ContextCreateInfo::alias_transient_memory`): they are allocated as
     /// `ResourceKind::TransientImage`, and every record moves them out of UNDEFINED.
@@ -344,6 +360,7 @@ impl Context {
             transients: Vec::new(),
             transient_per_light: info.transient_memory_per_light,
             together: info.lights_recorded_together && info.light_count > 1,
+            host_previous: info.host_previous_gbuffer,
             light_count: info.light_count,
             alias_transient: info.alias_transient_memory,
             timestamps: None,
@@ -379,7 +396,7 @@ impl Context {
     fn pipeline_names(&self) -> impl Iterator<Item = &'static str> {
         let prepare = (!self.reads_mask_directly()).then(|| prepare::shader(self.shadow_input));
         prepare.into_iter().chain([
-            tile_classification::shader(self.precision, self.output_format, self.shadow_input).expect("output format checked"),
+            tile_classification::shader(self.precision, self.output_format, self.shadow_input, self.host_previous).expect("output format checked"),
             filter::shader(self.precision, None, false, self.shadow_input).expect("non-final variant exists"),
             filter::shader(self.precision, None, true, self.shadow_input).expect("non-final variant exists"),
             filter::shader(self.precision, Some(self.output_format), true, self.shadow_input).expect("output format checked"),
@@ -467,7 +484,13 @@ impl Context {
     /// `transients` (the caller destroys them).
     fn allocate_lights(&mut self) -> Result<()> {
         let sets = transient_sets(self.light_count, self.transient_per_light);
-        let c = crate::light::Config { extent: self.size, precision: self.precision, input: self.shadow_input, together: self.together };
+        let c = crate::light::Config {
+            extent: self.size,
+            precision: self.precision,
+            input: self.shadow_input,
+            together: self.together,
+            host_previous: self.host_previous,
+        };
         for set in 0..sets {
             let owner = if sets == 1 { "lights".to_string() } else { format!("light{set}") };
             self.transients.push(TransientImages::new(&self.vk, &owner, c, self.alias_transient)?);
@@ -500,6 +523,7 @@ impl Context {
             self.shadow_input,
             self.transient_per_light,
             self.together,
+            self.host_previous,
         )?;
         memory::check_available(&self.vk, needed.saturating_sub(self.memory_bytes()))?;
         self.destroy_lights();
@@ -674,13 +698,16 @@ impl Context {
     fn frame_views(&self, d: &ShadowsDispatch, slot: usize, cur: usize, writes_depth: bool) -> FrameViews {
         let light = &self.lights[d.light_index as usize];
         let t = &self.transients[light.transient];
-        let kept_depth = self.lights[0].depth_copy.as_ref().filter(|_| self.together).or(light.depth_copy.as_ref());
-        let kept_depth = kept_depth.expect("a light's own depth copy, or the first light's").view;
-        let depth_copy = match (self.together, writes_depth) {
-            (true, false) => t.frame_depth.as_ref().expect("lights recorded together have a frame depth").view,
-            _ => kept_depth,
-        };
         let host = |h: &crate::dispatch::HostImage| image(h.view, h.layout);
+        let frame_depth = || t.frame_depth.as_ref().expect("lights recorded together and host-previous contexts have a frame depth").view;
+        let (depth_copy, previous_depth) = if self.host_previous {
+            (frame_depth(), host(&d.previous_depth))
+        } else {
+            let kept_depth = self.lights[0].depth_copy.as_ref().filter(|_| self.together).or(light.depth_copy.as_ref());
+            let kept_depth = kept_depth.expect("a light's own depth copy, or the first light's").view;
+            let written = if self.together && !writes_depth { frame_depth() } else { kept_depth };
+            (written, image(kept_depth, vk::ImageLayout::GENERAL))
+        };
         FrameViews {
             constants: Binding {
                 buffer: self.constants_buffer,
@@ -708,7 +735,8 @@ impl Context {
             history: light.history.view,
             signal: t.signal_view(),
             depth_copy,
-            previous_depth: kept_depth,
+            previous_depth,
+            previous_normals: host(&d.previous_normals),
             kept_moments: light.moments.view,
             frame_moments: t.frame_moments.view,
             previous_tile_quiet: light.tile_quiet[cur ^ 1].view,
@@ -786,6 +814,7 @@ impl Context {
             supported_stages: self.supported_stages,
             engine_reads: self.engine_reads,
             shadow_input: self.shadow_input,
+            host_previous: self.host_previous,
         };
         let in_light = |position: usize| {
             move |error: Error| if listed { Error::Light { position: position as u32, error: Box::new(error) } } else { error }
@@ -1143,7 +1172,7 @@ impl Context {
             signal: t.signal.as_ref().map_or(t.frame_moments.image, |s| s.image),
             moments: l.moments.image,
             tile_quiet: l.tile_quiet[l.parity ^ 1].image,
-            depth: self.lights[0].depth_copy.as_ref().filter(|_| self.together).or(l.depth_copy.as_ref()).expect("a depth copy").image,
+            depth: self.lights[0].depth_copy.as_ref().filter(|_| self.together).or(l.depth_copy.as_ref()).or(t.frame_depth.as_ref()).expect("a depth copy").image,
             intermediate_format: crate::state::intermediate_format(self.precision),
             history_format: crate::state::history_format(self.precision),
         }

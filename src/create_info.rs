@@ -141,6 +141,15 @@ pub struct ContextCreateInfo {
     /// refused, and so is a context of more lights than a record holds (`MAX_LIGHTS_PER_RECORD`). No effect with one
     /// light.
     pub lights_recorded_together: bool,
+    /// The host gives dnsr its previous frame's depth and normals with every dispatch
+    /// (`ShadowsDispatch::previous_depth`, `previous_normals`: required then), so that dnsr keeps no depth copy of its
+    /// own: last frame's linear depth and normal come from those images, and this frame's, which the later filter
+    /// passes read as their guide, go to a transient image. 4 B/px less persistent memory per light with a hit mask
+    /// (6.25 B/px kept instead of 10.25; `memory_requirements` counts the same bytes, moved to the transient part).
+    /// Where the host's previous images hold exactly what it gave dnsr as `depth` and `normals` last frame, and
+    /// the projection's depth mapping did not change, every output is bit for bit the one without this option.
+    /// Hit-mask input only (a visibility or checkerboard context is refused).
+    pub host_previous_gbuffer: bool,
     /// Host allocators and debug names (all optional).
     pub hooks: HostHooks,
     /// Pass variants the engine compiled itself, against its own callbacks file (docs/callbacks.md); the
@@ -196,6 +205,7 @@ impl ContextCreateInfo {
             alias_transient_memory: false,
             transient_memory_per_light: false,
             lights_recorded_together: false,
+            host_previous_gbuffer: false,
             hooks: HostHooks::default(),
             shader_overrides: Vec::new(),
         }

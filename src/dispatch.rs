@@ -101,6 +101,14 @@ pub struct ShadowsDispatch {
     /// (view-space) depth `projection_inverse` gives lies within 2^-16 to 2^48 view units (any scene scale):
     /// dnsr keeps last frame's depth in that range, and a receiver outside it starts afresh every frame.
     pub depth: HostImage,
+    /// The depth the host gave as `depth` last frame (its previous depth buffer, which engines keep for temporal
+    /// anti-aliasing), in one of `depth`'s formats and at its size, sampled. Required where the context was
+    /// created with `ContextCreateInfo::host_previous_gbuffer`, and must be left null otherwise. Linearised with
+    /// this frame's `projection_inverse`. After a reset (or a light's first frame) it is not read.
+    pub previous_depth: HostImage,
+    /// Last frame's `normals`, as `previous_depth` (decoded with this frame's `normals_unpack_mul` and
+    /// `normals_unpack_add`).
+    pub previous_normals: HostImage,
     /// Motion vectors, W x H, two channels (R16G16_SFLOAT, R32G32_SFLOAT, R16G16_SNORM ...).
     /// `value * motion_vector_scale` is the uv offset from a pixel to where its surface was last frame:
     /// prev_uv = uv + value * scale (FidelityFX SDK convention). For "current minus previous" vectors in NDC
@@ -202,6 +210,8 @@ impl Default for ShadowsDispatch {
             depth: HostImage::default(),
             velocity: HostImage::default(),
             normals: HostImage::default(),
+            previous_depth: HostImage::default(),
+            previous_normals: HostImage::default(),
             output: HostImage::default(),
             hit_distance: None,
             light_angular_size: 0.0,

@@ -20,6 +20,10 @@ pub enum ImageRole {
     HitDistance,
     /// Per-pixel visibility (a context with `ShadowInput::Visibility`).
     Visibility,
+    /// The host's previous frame's depth (`ContextCreateInfo::host_previous_gbuffer`).
+    PreviousDepth,
+    /// The host's previous frame's normals (`ContextCreateInfo::host_previous_gbuffer`).
+    PreviousNormals,
     /// A shadow-map cascade of the classifier (`ClassifyDispatch::cascade_images` or `cascade_array`).
     Cascade,
 }
@@ -35,6 +39,8 @@ impl ImageRole {
             ImageRole::Output => "output",
             ImageRole::HitDistance => "hit_distance",
             ImageRole::Visibility => "visibility",
+            ImageRole::PreviousDepth => "previous_depth",
+            ImageRole::PreviousNormals => "previous_normals",
             ImageRole::Cascade => "cascade_images",
         }
     }

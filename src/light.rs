@@ -17,7 +17,8 @@ pub(crate) struct LightState {
     /// The filter's mean alone.
     pub history: InternalImage,
     /// Linear depth: last frame's until the first filter pass writes this frame's. None for a light after the first
-    /// where the lights are recorded together: they share the first light's (`Image::FrameDepth`).
+    /// where the lights are recorded together: they share the first light's (`Image::FrameDepth`); and for every
+    /// light where the host gives its previous depth and normals (`Config::host_previous`).
     pub depth_copy: Option<InternalImage>,
     /// Last frame's moments until filter pass 0 copies this frame's over them.
     pub moments: InternalImage,
@@ -53,7 +54,8 @@ pub(crate) struct TransientImages {
     pub reconstructed: Option<InternalImage>,
     /// This frame's moments: classification writes them, filter pass 0 copies them into the light's `moments`.
     pub frame_moments: InternalImage,
-    /// This frame's depth copy for a light that does not write the shared one (lights recorded together only).
+    /// This frame's depth copy for a light that does not write a kept one (lights recorded together, but the one
+    /// that writes the shared depth copy; every light where the host gives its previous depth and normals).
     pub frame_depth: Option<InternalImage>,
     /// False until a record has moved the set out of UNDEFINED and cleared it.
     pub initialized: bool,
@@ -72,6 +74,16 @@ pub(crate) struct Config {
     pub input: ShadowInput,
     /// `ContextCreateInfo::lights_recorded_together`, with more than one light.
     pub together: bool,
+    /// `ContextCreateInfo::host_previous_gbuffer`: no light keeps a depth copy, every transient set has a frame
+    /// depth.
+    pub host_previous: bool,
+}
+
+impl Config {
+    /// Whether each transient set has a frame depth (`Image::FrameDepth`).
+    pub(crate) fn frame_depth(&self) -> bool {
+        self.together || self.host_previous
+    }
 }
 
 /// Creates the state table's light images of `lifetime` that `keep` keeps (every one or none: what was made is
@@ -86,7 +98,7 @@ fn create_all<T>(
     build: impl FnOnce(&mut dyn FnMut(Image, u32) -> Option<InternalImage>) -> T,
 ) -> Result<T> {
     let mut made: Vec<(ImageSpec, InternalImage)> = Vec::new();
-    let together = c.together.then(|| together_specs(c.extent, c.precision, c.input)).into_iter().flatten();
+    let together = c.frame_depth().then(|| together_specs(c.extent, c.precision, c.input)).into_iter().flatten();
     let specs = image_specs(Scope::Light, c.extent, c.precision, c.input).chain(together);
     for spec in specs.filter(|s| s.lifetime == lifetime && keep(s.image)) {
         match create(vk, owner, &spec, alias) {
@@ -112,7 +124,7 @@ impl LightState {
     /// A light's persistent images, every one the state table gives a light (but the depth copy of a light after
     /// the first recorded together with it); its passes use the context's transient set `transient`.
     pub(crate) fn new(vk: &Vk, light: u32, c: Config, transient: usize) -> Result<LightState> {
-        let own_depth = !c.together || light == 0;
+        let own_depth = !c.host_previous && (!c.together || light == 0);
         let keep = |image| own_depth || image != Image::DepthCopy;
         create_all(vk, &format!("light{light}"), Lifetime::Persistent, c, false, keep, |take| LightState {
             history: take(Image::History, 0).expect(ALWAYS),

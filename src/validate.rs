@@ -89,6 +89,8 @@ fn host_image(
         ImageRole::Output => ("output.image", "output.view"),
         ImageRole::HitDistance => ("hit_distance.image", "hit_distance.view"),
         ImageRole::Visibility => ("visibility.image", "visibility.view"),
+        ImageRole::PreviousDepth => ("previous_depth.image", "previous_depth.view"),
+        ImageRole::PreviousNormals => ("previous_normals.image", "previous_normals.view"),
         ImageRole::Cascade => ("cascade_array.image", "cascade_array.view"),
     };
     if img.image == vk::Image::null() {
@@ -178,6 +180,8 @@ pub(crate) struct DispatchRules {
     /// normals and hit distances may have any format the device can sample.
     pub engine_reads: bool,
     pub shadow_input: ShadowInput,
+    /// `ContextCreateInfo::host_previous_gbuffer`: the dispatch gives last frame's depth and normals.
+    pub host_previous: bool,
 }
 
 /// The shadow input a context does not take is left null, so that a dispatch meant for another context (or a
@@ -197,7 +201,7 @@ fn decoded_formats(engine_decodes: bool, formats: &'static [F]) -> &'static [F] 
 
 /// Validates a dispatch for a context with `rules`; returns the effective render rect.
 pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, rules: &DispatchRules) -> Result<Rect> {
-    let DispatchRules { size, output_format, lights, supported_stages, engine_reads, shadow_input } = *rules;
+    let DispatchRules { size, output_format, lights, supported_stages, engine_reads, shadow_input, host_previous } = *rules;
     let decoded = |formats| decoded_formats(engine_reads, formats);
     if d.light_index >= lights {
         return Err(Error::InvalidLightIndex { index: d.light_index, count: lights });
@@ -229,6 +233,14 @@ pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, rules: &DispatchRules) -> R
     host_image(vk, ImageRole::Depth, &d.depth, decoded(DEPTH_FORMATS), DEPTH_LAYOUTS, size, sampled)?;
     host_image(vk, ImageRole::Velocity, &d.velocity, decoded(VELOCITY_FORMATS), SAMPLED_LAYOUTS, size, sampled)?;
     host_image(vk, ImageRole::Normals, &d.normals, decoded(NORMAL_FORMATS), SAMPLED_LAYOUTS, size, sampled)?;
+    if host_previous {
+        host_image(vk, ImageRole::PreviousDepth, &d.previous_depth, decoded(DEPTH_FORMATS), DEPTH_LAYOUTS, size, sampled)?;
+        host_image(vk, ImageRole::PreviousNormals, &d.previous_normals, decoded(NORMAL_FORMATS), SAMPLED_LAYOUTS, size, sampled)?;
+    } else {
+        let own = "leave it null: dnsr keeps last frame's depth and normals itself unless the context was created with host_previous_gbuffer (DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER)";
+        unused_input(&d.previous_depth, "previous_depth", own)?;
+        unused_input(&d.previous_normals, "previous_normals", own)?;
+    }
     if d.output.format != output_format && d.output.view != vk::ImageView::null() && d.output.image != vk::Image::null() {
         return Err(Error::OutputFormatMismatch { declared: d.output.format, context: output_format });
     }
@@ -379,6 +391,8 @@ fn input_images(d: &ShadowsDispatch) -> impl Iterator<Item = (ImageRole, vk::Ima
         (ImageRole::Depth, d.depth.image),
         (ImageRole::Velocity, d.velocity.image),
         (ImageRole::Normals, d.normals.image),
+        (ImageRole::PreviousDepth, d.previous_depth.image),
+        (ImageRole::PreviousNormals, d.previous_normals.image),
     ]
     .into_iter()
     .chain(d.hit_distance.map(|h| (ImageRole::HitDistance, h.image)))

@@ -128,7 +128,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrHostSync, inputSrcAccess) == 4, "offsetof(DnsrHo
 DNSR_STATIC_ASSERT(offsetof(DnsrHostSync, outputDstStages) == 8, "offsetof(DnsrHostSync, outputDstStages)");
 DNSR_STATIC_ASSERT(offsetof(DnsrHostSync, outputDstAccess) == 12, "offsetof(DnsrHostSync, outputDstAccess)");
 
-DNSR_STATIC_ASSERT(sizeof(DnsrShadowsDispatch) == 568, "sizeof(DnsrShadowsDispatch)");
+DNSR_STATIC_ASSERT(sizeof(DnsrShadowsDispatch) == 632, "sizeof(DnsrShadowsDispatch)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrShadowsDispatch) == 8, "alignof(DnsrShadowsDispatch)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, sType) == 0, "offsetof(DnsrShadowsDispatch, sType)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, pNext) == 8, "offsetof(DnsrShadowsDispatch, pNext)");
@@ -160,6 +160,8 @@ DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, pEngineImages) == 504, "offseto
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, visibility) == 512, "offsetof(DnsrShadowsDispatch, visibility)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, checkerboardPhase) == 544, "offsetof(DnsrShadowsDispatch, checkerboardPhase)");
 DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, lightPosition) == 548, "offsetof(DnsrShadowsDispatch, lightPosition)");
+DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, previousDepth) == 568, "offsetof(DnsrShadowsDispatch, previousDepth)");
+DNSR_STATIC_ASSERT(offsetof(DnsrShadowsDispatch, previousNormals) == 600, "offsetof(DnsrShadowsDispatch, previousNormals)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrEngineImage) == 24, "sizeof(DnsrEngineImage)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrEngineImage) == 8, "alignof(DnsrEngineImage)");

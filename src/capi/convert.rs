@@ -123,7 +123,8 @@ pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo, sink: &mut Option<Lo
         | DNSR_CONTEXT_CREATE_ENABLE_CLASSIFIER
         | DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY
         | DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT
-        | DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER;
+        | DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER
+        | DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER;
     if c.flags & !known_flags != 0 {
         let unknown = c.flags & !known_flags;
         return Err(CallError::InvalidArgument(format!("pCreateInfo->flags has unknown bits {unknown:#x}")));
@@ -189,6 +190,7 @@ pub(crate) fn create_info_from_c(c: &DnsrContextCreateInfo, sink: &mut Option<Lo
         alias_transient_memory: c.flags & DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY != 0,
         transient_memory_per_light: c.flags & DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT != 0,
         lights_recorded_together: c.flags & DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER != 0,
+        host_previous_gbuffer: c.flags & DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER != 0,
         settings,
         hooks,
         shader_overrides: shader_overrides_from_c(c)?,
@@ -279,6 +281,8 @@ pub(crate) fn dispatch_from_c(c: &DnsrShadowsDispatch) -> Result<(vk::CommandBuf
         depth: image(&c.depth),
         velocity: image(&c.velocity),
         normals: image(&c.normals),
+        previous_depth: image(&c.previous_depth),
+        previous_normals: image(&c.previous_normals),
         output: image(&c.output),
         hit_distance: (c.flags & DNSR_DISPATCH_USE_HIT_DISTANCE != 0).then(|| image(&c.hit_distance)),
         light_angular_size: c.light_angular_size,

@@ -454,7 +454,8 @@ pub extern "C" fn dnsr_get_memory_requirements(
 }
 
 /// Bytes of device memory a context created with `pCreateInfo` would allocate, before driver padding, every option
-/// counted (its shadow input, DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT, DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER);
+/// counted (its shadow input, DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT, DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER,
+/// DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER);
 /// `pPersistentBytes` (optional, NULL allowed) receives the part of them that persists between records. Reads no
 /// Vulkan handle of `pCreateInfo`; refuses what dnsr_context_create would refuse of its size, light count, settings
 /// and flags.

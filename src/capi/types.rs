@@ -182,6 +182,14 @@ pub const DNSR_CONTEXT_CREATE_TRANSIENT_MEMORY_PER_LIGHT: DnsrContextCreateFlags
 /// instead of 10.25; dnsr_get_memory_requirements and dnsr_get_persistent_memory_requirements do not count it), with
 /// outputs bit for bit the same. At most DNSR_MAX_LIGHTS_PER_RECORD lights. No effect with one light.
 pub const DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER: DnsrContextCreateFlags = 1 << 6;
+/// The host gives dnsr its previous frame's depth and normals with every dispatch (DnsrShadowsDispatch::previousDepth
+/// and previousNormals, required then), so that dnsr keeps no depth copy of its own: 4 B/px less persistent memory
+/// per light (6.25 B/px kept instead of 10.25 with a hit mask; dnsr_get_memory_requirements counts the same bytes,
+/// moved to the transient part, which DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY hands to the host). Where the
+/// previous images hold exactly what the host gave as depth and normals last frame (and the projection's depth
+/// mapping did not change), every output is bit for bit the one without this flag. Hit-mask input only
+/// (DNSR_ERROR_INVALID_ARGUMENT otherwise).
+pub const DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER: DnsrContextCreateFlags = 1 << 7;
 /// Forces 32 bits.
 pub const DNSR_CONTEXT_CREATE_MAX_ENUM: DnsrContextCreateFlags = 0x7FFF_FFFF;
 
@@ -724,6 +732,13 @@ pub struct DnsrShadowsDispatch {
     /// FidelityFX behaviour). NaN/Inf: DNSR_ERROR_NON_FINITE; w other than 0 or 1, or a direction of length 0:
     /// DNSR_ERROR_INVALID_ARGUMENT.
     pub light_position: [f32; 4],
+    /// Required with DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER, all zero otherwise: the image the host gave as depth
+    /// last frame (its previous depth buffer, which engines keep for temporal anti-aliasing), in one of depth's
+    /// formats and layouts, W x H. Linearised with this frame's projectionInverse; not read after a reset.
+    pub previous_depth: DnsrHostImage,
+    /// Required with DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER, all zero otherwise: last frame's normals, in one of
+    /// normals' formats, W x H, decoded with this frame's normalsUnpackMul and normalsUnpackAdd.
+    pub previous_normals: DnsrHostImage,
 }
 
 /// Per-light flags of `DnsrLightDispatch`.

@@ -533,6 +533,9 @@ impl Denoiser {
             checkerboard_phase: 0,
             // The FFX dispatch has no light: only what dnsr_ffx_context_set_light gave.
             light_position: self.light.position,
+            // The FFX dispatch has no previous depth: the FFX layer's context keeps its own depth copy.
+            previous_depth: DnsrHostImage::default(),
+            previous_normals: DnsrHostImage::default(),
         };
         check(dnsr_shadows_record(self.context, &dispatch))?;
         self.output_format = Some(output_format);

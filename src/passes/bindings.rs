@@ -14,6 +14,8 @@ pub(crate) enum Resource {
     Velocity,
     Normals,
     PreviousDepth,
+    /// The host's previous normals (`ContextCreateInfo::host_previous_gbuffer`).
+    PreviousNormals,
     DepthCopy,
     PreviousMoments,
     Moments,
@@ -131,6 +133,7 @@ const TABLE: [(&str, Resource, vk::DescriptorType); NAMED_COUNT] = [
     ("dnsr_velocity", Resource::Velocity, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_normals", Resource::Normals, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_previous_depth", Resource::PreviousDepth, vk::DescriptorType::SAMPLED_IMAGE),
+    ("dnsr_previous_normals", Resource::PreviousNormals, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_depth_copy", Resource::DepthCopy, vk::DescriptorType::STORAGE_IMAGE),
     ("dnsr_previous_moments", Resource::PreviousMoments, vk::DescriptorType::SAMPLED_IMAGE),
     ("dnsr_moments", Resource::Moments, vk::DescriptorType::STORAGE_IMAGE),

@@ -279,8 +279,12 @@ pub(crate) struct FrameViews {
     /// together), its transient set's frame depth.
     pub depth_copy: vk::ImageView,
     /// Last frame's linear depth and normal, which classification reads: the light's depth copy, or the one the
-    /// lights recorded together share (the same view as `depth_copy` otherwise).
-    pub previous_depth: vk::ImageView,
+    /// lights recorded together share (the same view as `depth_copy` otherwise); the host's previous depth where it
+    /// gives it (`ContextCreateInfo::host_previous_gbuffer`).
+    pub previous_depth: Binding,
+    /// The host's previous normals (`ContextCreateInfo::host_previous_gbuffer`; null otherwise, and not declared by
+    /// the variant that runs then).
+    pub previous_normals: Binding,
     /// Last frame's moments (classification reads them), then this frame's (filter pass 0 copies them in).
     pub kept_moments: vk::ImageView,
     /// This frame's moments, written by classification (transient).

@@ -6,13 +6,16 @@ use super::{internal, FrameViews, Grid, Pass, Role};
 use crate::create_info::{Precision, ShadowInput};
 use ash::vk;
 
-/// The variant for a precision, the context's output format (it writes the output of cleared tiles) and its
-/// shadow input (the visibility variant reads per-pixel visibility instead of the tile mask).
-pub(crate) fn shader(precision: Precision, output: vk::Format, input: ShadowInput) -> Option<&'static str> {
-    let stem = match input {
-        ShadowInput::HitMask => "tile_classification",
+/// The variant for a precision, the context's output format (it writes the output of cleared tiles), its shadow
+/// input (the visibility variant reads per-pixel visibility instead of the tile mask) and whether the host gives its
+/// previous depth and normals (`host_previous`: hit mask only; None for another input).
+pub(crate) fn shader(precision: Precision, output: vk::Format, input: ShadowInput, host_previous: bool) -> Option<&'static str> {
+    let stem = match (input, host_previous) {
+        (ShadowInput::HitMask, false) => "tile_classification",
+        (ShadowInput::HitMask, true) => "tile_classification_host_previous",
         // A checkerboard input reaches classification as the visibility prepare reconstructed.
-        ShadowInput::Visibility | ShadowInput::Checkerboard => "tile_classification_visibility",
+        (ShadowInput::Visibility | ShadowInput::Checkerboard, false) => "tile_classification_visibility",
+        (_, true) => return None,
     };
     super::variants::variant_name(stem, Some(output), precision)
 }
@@ -24,7 +27,8 @@ pub(crate) fn pass(v: &FrameViews) -> Pass {
     t[Resource::Visibility as usize] = v.visibility;
     t[Resource::TileDark as usize] = internal(v.tile_dark);
     t[Resource::Velocity as usize] = v.velocity;
-    t[Resource::PreviousDepth as usize] = internal(v.previous_depth);
+    t[Resource::PreviousDepth as usize] = v.previous_depth;
+    t[Resource::PreviousNormals as usize] = v.previous_normals;
     t[Resource::PreviousMoments as usize] = internal(v.kept_moments);
     t[Resource::Moments as usize] = internal(v.frame_moments);
     t[Resource::PreviousTileQuiet as usize] = internal(v.previous_tile_quiet);

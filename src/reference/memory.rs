@@ -156,6 +156,17 @@ impl Frame {
         }
     }
 
+    /// Takes last frame's depth and normal from the host's previous images (`ContextCreateInfo::
+    /// host_previous_gbuffer`: device depth and decoded normals per pixel) instead of the previous depth copy: each
+    /// pixel's word as a depth copy would hold it, linearised with this frame's `projection_inverse` (set it first).
+    pub fn set_host_previous(&mut self, depth: &[f64], normals: &[DVec3]) {
+        let w = self.extent[0];
+        let words: Vec<u32> = (0..self.previous_depth.len())
+            .map(|i| super::depth_copy(&*self, [i as i32 % w, i as i32 / w], depth[i], normals[i]))
+            .collect();
+        self.previous_depth = words;
+    }
+
     /// Moves this frame's outputs into the next frame's "previous" state (depth, moments, history).
     pub fn advance(&mut self) {
         self.previous_depth = self.depth_copy.clone();

@@ -84,6 +84,8 @@ fn c_dispatch(d: &crate::ShadowsDispatch, cmd: vk::CommandBuffer) -> DnsrShadows
         visibility: host(&d.visibility),
         checkerboard_phase: d.checkerboard_phase,
         light_position: d.light_position.unwrap_or_default().to_array(),
+        previous_depth: host(&d.previous_depth),
+        previous_normals: host(&d.previous_normals),
     }
 }
 

@@ -262,6 +262,7 @@ fn generated_layout_header() -> String {
         output, motion_vector_scale, normals_unpack_mul, normals_unpack_add, eye, frame_index, projection_inverse,
         reprojection_matrix, view_projection_inverse, depth_similarity_sigma, render_rect, sync, debug_view, hit_distance,
         light_angular_size, engine_image_count, p_engine_images, visibility, checkerboard_phase, light_position,
+        previous_depth, previous_normals,
     });
     check!(DnsrEngineImage { binding, view, layout });
     check!(DnsrLightDispatch { s_type, p_next, light_index, flags, hit_mask, visibility, output, hit_distance, light_angular_size, light_position });

@@ -11,6 +11,7 @@ mod extremes;
 mod parity;
 mod interface;
 mod layers;
+mod host_previous;
 mod lights;
 mod resources;
 mod shader_overrides;

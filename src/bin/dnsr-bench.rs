@@ -54,6 +54,8 @@ const USAGE: &str = "usage: dnsr-bench [options]
                               passes in a row)
   --lights-together           every record holds every light (ContextCreateInfo::lights_recorded_together): the
                               lights share one depth copy
+  --host-previous             the host gives last frame's depth and normals (ContextCreateInfo::
+                              host_previous_gbuffer): dnsr keeps no depth copy
   --hard-light                every light has no size (ShadowsDispatch::hard_light): the output is each pixel's
                               ray, and one filter pass runs (not with a non-zero --light-angle)
   --shader-override V=FILE    run the SPIR-V in FILE for shader variant V (ContextCreateInfo::shader_overrides;
@@ -126,6 +128,7 @@ struct Options {
     alias_transient: bool,
     transient_per_light: bool,
     lights_together: bool,
+    host_previous: bool,
     hard_light: bool,
     shader_overrides: Vec<dnsr::ShaderOverride>,
 }
@@ -164,6 +167,7 @@ fn parse_args() -> Options {
         alias_transient: false,
         transient_per_light: false,
         lights_together: false,
+        host_previous: false,
         hard_light: false,
         shader_overrides: Vec::new(),
     };
@@ -188,6 +192,7 @@ fn parse_args() -> Options {
             "--alias-transient" => o.alias_transient = true,
             "--transient-per-light" => o.transient_per_light = true,
             "--lights-together" => o.lights_together = true,
+            "--host-previous" => o.host_previous = true,
             "--hard-light" => o.hard_light = true,
             "--shader-override" => {
                 let value = args.next().unwrap_or_else(|| usage("--shader-override needs VARIANT=FILE"));
@@ -257,6 +262,7 @@ fn main() {
             gpu_scene.alias_transient = opts.alias_transient;
             gpu_scene.transient_per_light = opts.transient_per_light;
             gpu_scene.lights_together = opts.lights_together;
+            gpu_scene.host_previous = opts.host_previous;
             gpu_scene.hard_light = opts.hard_light;
             gpu_scene.shader_overrides = opts.shader_overrides.clone();
             eprintln!("dnsr-bench: {}x{} {}: {} frames generated in {:.1} s", size.0, size.1, scene.id(), gpu_scene.frames.len(), t.elapsed().as_secs_f64());

@@ -135,7 +135,14 @@ fn light(scene: &GpuScene, index: usize, k: usize, output: &TestImage, guidance:
 fn dispatch(scene: &GpuScene, index: usize, output: &TestImage, guidance: Option<Guidance>) -> ShadowsDispatch {
     let f = &scene.frames[index % scene.frames.len()];
     let g = &scene.gbuffers[f.gbuffer];
+    // Last frame's G-buffer: the previous cycle frame's (a static scene's one G-buffer is its own previous one).
+    let n = scene.frames.len();
+    let previous = &scene.gbuffers[scene.frames[(index + n - 1) % n].gbuffer];
+    let (previous_depth, previous_normals) =
+        if scene.host_previous { (previous.depth.host(), previous.normals.host()) } else { Default::default() };
     ShadowsDispatch {
+        previous_depth,
+        previous_normals,
         hit_distance: guidance.map(|g| g.hit_distance.host()),
         light_angular_size: guidance.map_or(0.0, |g| g.light_angular_size),
         hit_mask: shadow_input(scene, index).0,
@@ -190,6 +197,7 @@ pub fn run(
     info.light_count = lights as u32;
     info.transient_memory_per_light = scene.transient_per_light;
     info.lights_recorded_together = scene.lights_together;
+    info.host_previous_gbuffer = scene.host_previous;
     info.shader_overrides = scene.shader_overrides.clone();
     if scene.alias_transient {
         info.alias_transient_memory = true;

@@ -147,6 +147,9 @@ pub struct GpuScene {
     pub transient_per_light: bool,
     /// `--lights-together`: every record holds every light (`ContextCreateInfo::lights_recorded_together`).
     pub lights_together: bool,
+    /// `--host-previous`: each dispatch gives the previous cycle frame's depth and normals
+    /// (`ContextCreateInfo::host_previous_gbuffer`).
+    pub host_previous: bool,
     /// SPIR-V that replaces dnsr's own for the named variants (`ContextCreateInfo::shader_overrides`): a shader
     /// change timed against the unchanged library in one run.
     pub shader_overrides: Vec<dnsr::ShaderOverride>,
@@ -249,7 +252,7 @@ pub fn build(gpu: &Gpu, scene: SceneId, w: u32, h: u32, rays: Option<u32>, host:
             .collect();
         let frames = (0..STATIC_CYCLE).map(|k| frame_of(&f, k, 0)).collect();
         let gbuffers = vec![upload_gbuffer(gpu, &f, host)];
-        GpuScene { masks, visibility_input: rays.is_some(), checkerboard: false, alias_transient: false, transient_per_light: false, lights_together: false, hard_light: false, shader_overrides: Vec::new(), gbuffers, host, frames, coverage: coverage(&f) }
+        GpuScene { masks, visibility_input: rays.is_some(), checkerboard: false, alias_transient: false, transient_per_light: false, lights_together: false, host_previous: false, hard_light: false, shader_overrides: Vec::new(), gbuffers, host, frames, coverage: coverage(&f) }
     };
     match scene {
         SceneId::PenumbraHeavy => static_scene(1e9, &penumbra),
@@ -260,7 +263,7 @@ pub fn build(gpu: &Gpu, scene: SceneId, w: u32, h: u32, rays: Option<u32>, host:
                 masks: Vec::new(),
                 visibility_input: rays.is_some(),
                 checkerboard: false,
-                alias_transient: false, transient_per_light: false, lights_together: false, hard_light: false, shader_overrides: Vec::new(),
+                alias_transient: false, transient_per_light: false, lights_together: false, host_previous: false, hard_light: false, shader_overrides: Vec::new(),
                 gbuffers: Vec::new(),
                 host,
                 frames: Vec::new(),

@@ -212,6 +212,10 @@ fn handles_codes_and_messages() {
     let together = usage(DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER);
     assert!(together.1 + 2 * 8 * 8 * 4 <= shared.1, "one depth copy for three lights: {} of {}", together.1, shared.1);
     assert_eq!(own.1, shared.1);
+    // The host's previous depth and normals: no depth copy at all, the same bytes in all (each set's frame depth).
+    let host_previous = usage(DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER);
+    assert!(host_previous.1 + 3 * 8 * 8 * 4 <= shared.1, "no depth copy: {} of {}", host_previous.1, shared.1);
+    assert!(host_previous.0 < shared.0, "one frame depth instead of three depth copies: {} of {}", host_previous.0, shared.0);
     // Each set holds what a one-light context holds beyond its persistent images, less its constants.
     let (set, one_light_transient) = ((own.0 - shared.0) / 2, bytes - kept);
     assert!(set > 0 && set <= one_light_transient && one_light_transient - set <= 4096, "a transient set {set}, {one_light_transient}");

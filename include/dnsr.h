@@ -1683,8 +1683,8 @@ typedef struct DnsrDiagnosis {
  * dnsr_shadows_record only where the context has one light; a record with fewer is refused with
  * DNSR_ERROR_INVALID_ARGUMENT): the lights then share one depth copy (this frame's depth and normal, kept for the next
  * frame's reprojection), which only the record's last light writes; the others write theirs to a transient image,
- * for their own later filter passes. Each light after the first keeps 4 B/px less (with a hit mask 6.06 B/px
- * instead of 10.06; dnsr_get_memory_requirements and dnsr_get_persistent_memory_requirements do not count it), with
+ * for their own later filter passes. Each light after the first keeps 4 B/px less (with a hit mask 6.25 B/px
+ * instead of 10.25; dnsr_get_memory_requirements and dnsr_get_persistent_memory_requirements do not count it), with
  * outputs bit for bit the same. At most DNSR_MAX_LIGHTS_PER_RECORD lights. No effect with one light.
  */
 #define DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER (1 << 6)
@@ -1692,7 +1692,7 @@ typedef struct DnsrDiagnosis {
 /**
  * The host gives dnsr its previous frame's depth and normals with every dispatch (DnsrShadowsDispatch::previousDepth
  * and previousNormals, required then), so that dnsr keeps no depth copy of its own: 4 B/px less persistent memory
- * per light (6.06 B/px kept instead of 10.06 with a hit mask; dnsr_get_memory_requirements counts the same bytes,
+ * per light (6.25 B/px kept instead of 10.25 with a hit mask; dnsr_get_memory_requirements counts the same bytes,
  * moved to the transient part, which DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY hands to the host). Where the
  * previous images hold exactly what the host gave as depth and normals last frame (and the projection's depth
  * mapping did not change), every output is bit for bit the one without this flag. Hit-mask input only

@@ -184,28 +184,14 @@ float dnsr_read_history(vec2 uv) {
 void dnsr_write_moments(ivec2 p, vec4 m) { imageStore(dnsr_moments, p + dnsr_get_offset(), uvec4(dnsr_pack_moments(m), floatBitsToUint(m.y), 0u, 0u)); }
 void dnsr_write_reprojection(ivec2 p, vec2 mean_var) { imageStore(dnsr_reprojection, p + dnsr_get_offset(), dnsr_encode_signal(mean_var, dnsr_get_signal_scale())); }
 void dnsr_write_tile_meta(ivec2 tile, uint meta) { imageStore(dnsr_tile_meta_out, tile + dnsr_get_tile_offset(), uvec4(meta)); }
-// Each tile's frames since one of its receivers' samples contradicted last frame's (Settings::hard_tile_frames, at
-// most DNSR_MAX_QUIET_FRAMES: a byte): last frame's, and this frame's, which classification's tile writer stores
-// and its contradicting receivers clear (atomics on the tile's byte: the barriers between order them). A word holds
-// the bytes of DNSR_QUIET_TILES_PER_WORD tiles side by side, the leftmost in the low byte.
+// Each tile's frames since one of its receivers' samples contradicted last frame's (Settings::hard_tile_frames):
+// last frame's, and this frame's, which classification's tile writer stores and its contradicting receivers clear
+// (both atomics on the one word: the barriers between order them).
 layout(set = 0, binding = 20) uniform utexture2D dnsr_previous_tile_quiet;
 layout(set = 0, binding = 63, r32ui) uniform uimage2D dnsr_tile_quiet;
-ivec2 dnsr_quiet_word(ivec2 tile) { return ivec2(tile.x / DNSR_QUIET_TILES_PER_WORD, tile.y); }
-uint dnsr_quiet_shift(ivec2 tile) { return uint(tile.x % DNSR_QUIET_TILES_PER_WORD) * 8u; }
-uint dnsr_read_previous_tile_quiet(ivec2 tile) {
-    ivec2 t = tile + dnsr_get_tile_offset();
-    return (texelFetch(dnsr_previous_tile_quiet, dnsr_quiet_word(t), 0).r >> dnsr_quiet_shift(t)) & 255u;
-}
-void dnsr_write_tile_quiet(ivec2 tile, uint frames) {
-    ivec2 t = tile + dnsr_get_tile_offset();
-    // The byte still holds the count of two frames ago: cleared, then set (one invocation, one word: in order).
-    imageAtomicAnd(dnsr_tile_quiet, dnsr_quiet_word(t), ~(255u << dnsr_quiet_shift(t)));
-    imageAtomicOr(dnsr_tile_quiet, dnsr_quiet_word(t), frames << dnsr_quiet_shift(t));
-}
-void dnsr_clear_tile_quiet(ivec2 tile) {
-    ivec2 t = tile + dnsr_get_tile_offset();
-    imageAtomicAnd(dnsr_tile_quiet, dnsr_quiet_word(t), ~(255u << dnsr_quiet_shift(t)));
-}
+uint dnsr_read_previous_tile_quiet(ivec2 tile) { return texelFetch(dnsr_previous_tile_quiet, tile + dnsr_get_tile_offset(), 0).r; }
+void dnsr_write_tile_quiet(ivec2 tile, uint frames) { imageAtomicExchange(dnsr_tile_quiet, tile + dnsr_get_tile_offset(), frames); }
+void dnsr_clear_tile_quiet(ivec2 tile) { imageAtomicAnd(dnsr_tile_quiet, tile + dnsr_get_tile_offset(), 0u); }
 // Penumbra guidance: the host's distance to the first occluder (read where the mask says the ray hit), and each
 // tile's blocker estimate for the filter (-1: unknown).
 layout(set = 0, binding = 21) uniform texture2D dnsr_hit_distance;

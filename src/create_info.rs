@@ -136,7 +136,7 @@ pub struct ContextCreateInfo {
     /// `record_shadows` only where the context has one light): the lights then share one depth copy (this frame's
     /// depth and normal, kept for the next frame's reprojection), which only the record's last light writes; the
     /// others write theirs to a transient image of their set, for their own later filter passes. Each light after the
-    /// first keeps 4 B/px less (with a hit mask 6.06 B/px instead of 10.06: `persistent_memory_requirements` and
+    /// first keeps 4 B/px less (with a hit mask 6.25 B/px instead of 10.25: `persistent_memory_requirements` and
     /// `memory_requirements` do not count it) and its outputs are bit for bit the same. A record with fewer lights is
     /// refused, and so is a context of more lights than a record holds (`MAX_LIGHTS_PER_RECORD`). No effect with one
     /// light.
@@ -145,7 +145,7 @@ pub struct ContextCreateInfo {
     /// (`ShadowsDispatch::previous_depth`, `previous_normals`: required then), so that dnsr keeps no depth copy of its
     /// own: last frame's linear depth and normal come from those images, and this frame's, which the later filter
     /// passes read as their guide, go to a transient image. 4 B/px less persistent memory per light with a hit mask
-    /// (6.06 B/px kept instead of 10.06; `memory_requirements` counts the same bytes, moved to the transient part).
+    /// (6.25 B/px kept instead of 10.25; `memory_requirements` counts the same bytes, moved to the transient part).
     /// Where the host's previous images hold exactly what it gave dnsr as `depth` and `normals` last frame, and
     /// the projection's depth mapping did not change, every output is bit for bit the one without this option.
     /// Hit-mask input only (a visibility or checkerboard context is refused).

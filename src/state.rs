@@ -64,11 +64,6 @@ pub(crate) const DEPTH_COPY_NORMAL_BITS: u32 = 8;
 /// footprint": 37 and 60 degrees measured alike; faces meet at creases near 90). Generated into GLSL.
 pub(crate) const TURNED_NORMAL_COS_PERCENT: u32 = 80;
 
-/// Tiles whose quiet counts (`Settings::hard_tile_frames`, at most `settings::MAX_QUIET_FRAMES`: a byte each) one
-/// R32_UINT word of the tile-quiet images holds, side by side in a row (`Per::QuietWord`). Generated into GLSL.
-pub(crate) const QUIET_TILES_PER_WORD: u32 = 4;
-const _: () = assert!(crate::settings::MAX_QUIET_FRAMES <= 255 && QUIET_TILES_PER_WORD * 8 == 32);
-
 /// The standard deviation a stored signal's code 1.0 stands for: the variance boost multiplies a variance of at
 /// most 0.5 (an unbiased estimate of 0/1 samples) by up to `variance_boost_samples`.
 pub(crate) fn signal_scale(variance_boost_samples: f32) -> f32 {
@@ -113,7 +108,6 @@ pub(crate) fn image_extent(per: Per, extent: [u32; 2]) -> [u32; 2] {
     match per {
         Per::Pixel => extent,
         Per::Tile => [extent[0].div_ceil(tile[0]), extent[1].div_ceil(tile[1])],
-        Per::QuietWord => [extent[0].div_ceil(tile[0]).div_ceil(QUIET_TILES_PER_WORD), extent[1].div_ceil(tile[1])],
     }
 }
 

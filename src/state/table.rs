@@ -98,19 +98,6 @@ pub enum Per {
     Pixel,
     /// An 8x4 tile (`packing::TILE`), the render size rounded up.
     Tile,
-    /// `state::QUIET_TILES_PER_WORD` tiles side by side in a row (32x4 px), a byte each.
-    QuietWord,
-}
-
-impl Per {
-    /// How many of the units it is counted in (pixels, or 8x4 tiles for `Tile` and `QuietWord`) one texel covers:
-    /// the byte model's bytes per unit are a texel's bytes over this.
-    pub fn units_per_texel(self) -> u32 {
-        match self {
-            Per::Pixel | Per::Tile => 1,
-            Per::QuietWord => crate::state::QUIET_TILES_PER_WORD,
-        }
-    }
 }
 
 /// Who owns an image.
@@ -247,7 +234,7 @@ const fn packed(r: Resource) -> Resource {
 }
 
 use Lifetime::{Persistent, Transient};
-use Per::{Pixel, QuietWord, Tile};
+use Per::{Pixel, Tile};
 use Scope::Light;
 
 /// Every internal image, in `Image` order (which is the order a light creates them in).
@@ -279,9 +266,8 @@ pub const RESOURCES: [Resource; 13] = [
         ..resource(Image::Signal, "filter_signal", SIGNAL, Pixel, Light, 1, Transient, Needed::Always)
     },
     resource(Image::Reconstructed, "reconstructed_visibility", Formats::both(vk::Format::R32_SFLOAT), Pixel, Light, 1, Transient, Needed::Checkerboard),
-    // A byte per tile and frame, four tiles a word (0.0625 B/px for the pair; 0.25 while each tile had a word), so
-    // allocated whatever the settings.
-    packed(resource(Image::TileQuiet, "tile_quiet", Formats::both(vk::Format::R32_UINT), QuietWord, Light, 2, Persistent, Needed::Always)),
+    // 4 bytes per tile and frame (0.25 B/px for the pair), so allocated whatever the settings.
+    resource(Image::TileQuiet, "tile_quiet", Formats::both(vk::Format::R32_UINT), Tile, Light, 2, Persistent, Needed::Always),
     // As the moments.
     Resource {
         fraction_format: Some(vk::Format::R32G32_UINT),

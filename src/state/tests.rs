@@ -30,12 +30,10 @@ fn every_format_has_a_size_and_is_checked() {
 fn memory_follows_the_table() {
     for [w, h] in [[64u32, 32u32], [1921, 1081]] {
         let (px, tiles) = ((w * h) as u64, (w.div_ceil(8) * h.div_ceil(4)) as u64);
-        let quiet_words = (w.div_ceil(8).div_ceil(4) * h.div_ceil(4)) as u64;
         for precision in PRECISIONS {
             for input in INPUTS {
                 // Per light: metadata and blocker (4 B per tile each), with a visibility or checkerboard input
-                // the tile mask and dark mask too, the tiles' quiet counts (a byte per tile, four tiles a word, two
-                // of them); the
+                // the tile mask and dark mask too, the tiles' quiet counts (4 B per tile, two of them); the
                 // reprojection (4 B), the history (2 B: the mean alone), the depth copy (4 B), the kept and this
                 // frame's moments (4 B each, 8 B with fractional samples); the filter's signal between passes (4
                 // B, in the frame moments' memory with a hit mask); a checkerboard input's reconstructed
@@ -45,12 +43,12 @@ fn memory_follows_the_table() {
                 let moments = if input == ShadowInput::HitMask { 4 } else { 8 };
                 let signal = if input == ShadowInput::HitMask { 0 } else { 4 };
                 let tile_images = if input == ShadowInput::HitMask { 2 } else { 4 };
-                let light = tile_images * 4 * tiles + 2 * 4 * quiet_words + px * (4 + 2 + 4 + 2 * moments + signal + reconstructed);
+                let light = tile_images * 4 * tiles + 2 * 4 * tiles + px * (4 + 2 + 4 + 2 * moments + signal + reconstructed);
                 assert_eq!(texel_bytes(Scope::Light, [w, h], precision, input), light, "{precision:?} {input:?}");
                 assert_eq!(texel_bytes(Scope::Context, [w, h], precision, input), 0, "{precision:?} {input:?}");
             }
-            assert_eq!(persistent_texel_bytes([w, h], precision, ShadowInput::HitMask), 10 * px + 8 * quiet_words);
-            assert_eq!(persistent_texel_bytes([w, h], precision, ShadowInput::Visibility), 14 * px + 8 * quiet_words);
+            assert_eq!(persistent_texel_bytes([w, h], precision, ShadowInput::HitMask), 10 * px + 8 * tiles);
+            assert_eq!(persistent_texel_bytes([w, h], precision, ShadowInput::Visibility), 14 * px + 8 * tiles);
         }
     }
 }
@@ -129,7 +127,6 @@ fn performance_doc_states_the_table() {
             let want_per = match r.per {
                 Per::Pixel => "px",
                 Per::Tile => "tile",
-                Per::QuietWord => "4 tiles",
             };
             assert_eq!(per, want_per, "{name}");
             assert_eq!(note.contains("x2, ping-pong"), r.copies == 2, "{name}: {names}");

@@ -346,21 +346,14 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     }
     let prev_depth: Vec<u32> = download(g, before.depth, vk::Format::R32_UINT, w, h);
     let (tw, th) = (w.div_ceil(8), h.div_ceil(4));
-    // Four tiles' bytes a word (state::QUIET_TILES_PER_WORD), unpacked to one count per tile.
-    let quiet_counts = |words: Vec<u32>| -> Vec<u32> {
-        let per = crate::state::QUIET_TILES_PER_WORD;
-        let ww = tw.div_ceil(per);
-        (0..tw * th).map(|i| (words[((i / tw) * ww + (i % tw) / per) as usize] >> (8 * ((i % tw) % per))) & 255).collect()
-    };
-    let tile_quiet_words = |image| download(g, image, vk::Format::R32_UINT, tw.div_ceil(crate::state::QUIET_TILES_PER_WORD), th);
-    let prev_tile_quiet: Vec<u32> = quiet_counts(tile_quiet_words(before.tile_quiet));
+    let prev_tile_quiet: Vec<u32> = download(g, before.tile_quiet, vk::Format::R32_UINT, tw, th);
     let history = download_history(g, before.history, before.history_format, w, h);
 
     let f = random_frame(w, h, seed, frames);
     let d = r.dispatch(&f);
     let out = r.frame(&f, false);
     let after = r.ctx.internals(0);
-    let tile_quiet: Vec<u32> = quiet_counts(tile_quiet_words(after.tile_quiet));
+    let tile_quiet: Vec<u32> = download(g, after.tile_quiet, vk::Format::R32_UINT, tw, th);
     let tile_meta: Vec<u32> = download(g, after.tile_meta, vk::Format::R32_UINT, tw, th);
     let tile_blocker: Vec<f32> = download(g, after.tile_blocker, vk::Format::R32_SFLOAT, tw, th);
     let moments = crate::testing::download_moments(g, after.moments, w, h, info.shadow_input);

@@ -105,21 +105,20 @@ fn timestamps_and_memory_are_reported() {
     // Per pixel: the reprojection (RG16 unorm, 4 B), the history (its mean, R16 unorm, 2 B), the depth copy
     // (R32_UINT, also the later filter passes' guide), the kept and this frame's moments (packed, 4 B each with a
     // hit mask, whose frame moments' memory also holds the filter's signal between passes); per tile: metadata and
-    // blocker (4 B each; a hit mask has no tile mask of dnsr's), and the two quiet counts (a byte each, four tiles
-    // a word). Drivers may pad, never shrink.
+    // blocker and the two quiet counts (4 B each; a hit mask has no tile mask of dnsr's). Drivers may pad, never
+    // shrink.
     let px = (w * h) as u64;
     let tiles = (w.div_ceil(8) * h.div_ceil(4)) as u64;
-    let quiet_words = (w.div_ceil(8).div_ceil(4) * h.div_ceil(4)) as u64;
-    let minimum = px * (4 + 2 + 4 + 4 + 4) + 2 * 4 * tiles + 2 * 4 * quiet_words;
+    let minimum = px * (4 + 2 + 4 + 4 + 4) + 4 * 4 * tiles;
     let bytes = r.ctx.memory_bytes();
     assert!(bytes >= minimum && bytes < minimum * 2 + 65536, "memory_bytes {bytes}, expected about {minimum}");
     let estimate = crate::memory_requirements(w, h, crate::Precision::Fp32, 3, 1).unwrap();
     assert!(estimate >= minimum && estimate <= bytes, "memory_requirements {estimate}, allocated {bytes}");
     // What persists between records: the history (2 B), the depth copy (4 B), the kept moments (4 B; this frame's
-    // are transient); the two quiet counts (a word per four tiles each).
+    // are transient); per tile the two quiet counts (4 B each).
     let persistent = r.ctx.persistent_memory_bytes();
     let persistent_estimate = crate::persistent_memory_requirements(w, h, crate::Precision::Fp32, 1).unwrap();
-    assert_eq!(persistent_estimate, px * (2 + 4 + 4) + 2 * 4 * quiet_words);
+    assert_eq!(persistent_estimate, px * (2 + 4 + 4) + 2 * 4 * tiles);
     assert!(persistent >= persistent_estimate && persistent < bytes, "persistent {persistent} of {bytes}");
     assert_eq!(crate::persistent_memory_requirements(w, h, crate::Precision::Fp32, 3).unwrap(), 3 * persistent_estimate);
     drop(r);

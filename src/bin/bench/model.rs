@@ -101,7 +101,7 @@ fn internal_rows(input: ShadowInput) -> Vec<Row> {
         .filter(|a| applies(a.config))
         .map(|a| {
             let r = resource_of(a.target.image(0));
-            let bytes = |p| format_bytes(r.format_for(p, input)) as f64 / r.per.units_per_texel() as f64;
+            let bytes = |p| format_bytes(r.format_for(p, input)) as f64;
             row(a.pass, &a.target.label_for(input), bytes(Precision::Fp32), bytes(Precision::Fp16), a.access, a.pixels, a.when)
         })
         .collect()

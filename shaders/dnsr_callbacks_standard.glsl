@@ -53,21 +53,22 @@ vec4 dnsr_get_moving_settings() { return dnsr_constants.moving; }
 // in penumbra half-widths.
 vec4 dnsr_get_penumbra_settings() { return dnsr_constants.penumbra; }
 
+// World-space unit normal of a stored one (normalsUnpackMul / Add), or vec3(0) when it is not usable (zero, NaN,
+// Inf): a zero normal matches nothing in the edge stops, so a broken G-buffer texel cannot spread into its
+// neighbours.
+vec3 dnsr_decode_normal(vec3 stored) {
+    vec3 n = stored * dnsr_constants.motion_normals.z + dnsr_constants.motion_normals.w;
+    float len2 = dot(n, n);
+    return (len2 > 1e-12 && len2 < 1e30) ? n * inversesqrt(len2) : vec3(0.0);
+}
+
 // Decoded host G-buffer reads shared by the classification and filter passes.
 #if (defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER) || defined(DNSR_PASS_CLASSIFY)) && !defined(DNSR_ENGINE_DEPTH_NORMALS)
 layout(set = 0, binding = 4) uniform texture2D dnsr_depth;
 layout(set = 0, binding = 6) uniform texture2D dnsr_normals;
 
 float dnsr_read_depth(ivec2 p) { return texelFetch(dnsr_depth, p + dnsr_get_offset(), 0).r; }
-
-// World-space unit normal, or vec3(0) when the stored normal is not usable (zero, NaN, Inf): a zero normal
-// matches nothing in the edge stops, so a broken G-buffer texel cannot spread into its neighbours.
-vec3 dnsr_read_normal(ivec2 p) {
-    vec3 n = texelFetch(dnsr_normals, p + dnsr_get_offset(), 0).xyz * dnsr_constants.motion_normals.z
-           + dnsr_constants.motion_normals.w;
-    float len2 = dot(n, n);
-    return (len2 > 1e-12 && len2 < 1e30) ? n * inversesqrt(len2) : vec3(0.0);
-}
+vec3 dnsr_read_normal(ivec2 p) { return dnsr_decode_normal(texelFetch(dnsr_normals, p + dnsr_get_offset(), 0).xyz); }
 #endif
 
 #ifdef DNSR_PASS_PREPARE
@@ -118,12 +119,7 @@ layout(set = 0, binding = 5) uniform texture2D dnsr_velocity;
 layout(set = 0, binding = 7) uniform texture2D dnsr_previous_depth;
 layout(set = 0, binding = 67) uniform texture2D dnsr_previous_normals;
 float dnsr_read_host_previous_depth(ivec2 p) { return texelFetch(dnsr_previous_depth, p + dnsr_get_offset(), 0).r; }
-vec3 dnsr_read_host_previous_normal(ivec2 p) {
-    vec3 n = texelFetch(dnsr_previous_normals, p + dnsr_get_offset(), 0).xyz * dnsr_constants.motion_normals.z
-           + dnsr_constants.motion_normals.w;
-    float len2 = dot(n, n);
-    return (len2 > 1e-12 && len2 < 1e30) ? n * inversesqrt(len2) : vec3(0.0);
-}
+vec3 dnsr_read_host_previous_normal(ivec2 p) { return dnsr_decode_normal(texelFetch(dnsr_previous_normals, p + dnsr_get_offset(), 0).xyz); }
 #endif
 #else
 layout(set = 0, binding = 7) uniform utexture2D dnsr_previous_depth;

@@ -331,10 +331,10 @@ fn classifier_matches_reference() {
 fn an_engine_classifier_variant_is_what_runs() {
     use super::shader_overrides::{compile, sources};
     let g = super::gpu();
-    let decode = "vec3 n = texelFetch(dnsr_normals, p + dnsr_get_offset(), 0).xyz * dnsr_constants.motion_normals.z\n           + dnsr_constants.motion_normals.w;";
+    let decode = "vec3 n = stored * dnsr_constants.motion_normals.z + dnsr_constants.motion_normals.w;";
     let dir = sources(&|s| {
         assert!(s.contains(decode), "the standard normal decode moved");
-        s.replace(decode, "vec3 n = -(texelFetch(dnsr_normals, p + dnsr_get_offset(), 0).xyz * dnsr_constants.motion_normals.z\n           + dnsr_constants.motion_normals.w);")
+        s.replace(decode, "vec3 n = -(stored * dnsr_constants.motion_normals.z + dnsr_constants.motion_normals.w);")
     });
     let engine = compile(&dir, "classify", &[]);
     let cfg = Config { convention: HitMaskConvention::OccludedBits, taps: 24, cutoff: 0, reject_lit: true, bound: true, inverted: false, array: false, blocker_offset: 0.01 };

@@ -191,8 +191,11 @@ static void create_calls(void)
     CREATE_CASE("create: width 1<<20", DNSR_ERROR_INVALID_EXTENT, "exceeds the device limit", info.width = 1u << 20);
     CREATE_CASE("create: lightCount 0", DNSR_ERROR_INVALID_ARGUMENT, "lightCount is 0", info.lightCount = 0);
     /* Known bits are set next to the unknown one on purpose: the message must name only the unknown bits. */
-    CREATE_CASE("create: unknown flag bits", DNSR_ERROR_INVALID_ARGUMENT, "pCreateInfo->flags has unknown bits 0x80",
-                info.flags = DNSR_CONTEXT_CREATE_DEPTH_INVERTED | (1u << 7));
+    CREATE_CASE("create: unknown flag bits", DNSR_ERROR_INVALID_ARGUMENT, "pCreateInfo->flags has unknown bits 0x100",
+                info.flags = DNSR_CONTEXT_CREATE_DEPTH_INVERTED | (1u << 8));
+    CREATE_CASE("create: host previous G-buffer with a visibility input", DNSR_ERROR_INVALID_ARGUMENT,
+                "DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER) is true with shadow input Visibility",
+                (info.flags = DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER, info.shadowInput = DNSR_SHADOW_INPUT_VISIBILITY));
     CREATE_CASE("create: aliased transient memory without pGpuMemoryCallbacks", DNSR_ERROR_INVALID_ARGUMENT,
                 "DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY) is true; it needs hooks.gpuMemory (pGpuMemoryCallbacks)",
                 info.flags = DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY);

@@ -41,12 +41,13 @@ pub fn memory_requirements_for_input(
     light_count: u32,
     input: ShadowInput,
 ) -> Result<u64> {
-    memory_requirements_with(width, height, precision, filter_passes, light_count, input, false, false, false)
+    memory_requirements_with(width, height, precision, filter_passes, light_count, input, false, false, false).map(|(bytes, _)| bytes)
 }
 
 /// `memory_requirements_for_input` with each light's own transient images where `transient_per_light`
-/// (`ContextCreateInfo::transient_memory_per_light`; without it the lights share one set), and one depth copy for
-/// all lights where `together` (`ContextCreateInfo::lights_recorded_together`).
+/// (`ContextCreateInfo::transient_memory_per_light`; without it the lights share one set), one depth copy for all
+/// lights where `together` (`ContextCreateInfo::lights_recorded_together`) and none where `host_previous`
+/// (`ContextCreateInfo::host_previous_gbuffer`); and the part of them that persists between records.
 #[allow(clippy::too_many_arguments)]
 fn memory_requirements_with(
     width: u32,
@@ -58,7 +59,7 @@ fn memory_requirements_with(
     transient_per_light: bool,
     together: bool,
     host_previous: bool,
-) -> Result<u64> {
+) -> Result<(u64, u64)> {
     validate::extent("render size", width, height, u32::MAX)?;
     check_filter_passes(filter_passes)?;
     validate::light_count(light_count)?;
@@ -78,18 +79,15 @@ fn memory_requirements_with(
     }
     use crate::state::{persistent_texel_bytes, table::Scope, texel_bytes, together_bytes};
     let extent = [width, height];
-    let persistent = persistent_texel_bytes(extent, precision, input);
-    let transient = texel_bytes(Scope::Light, extent, precision, input) - persistent;
-    let sets = transient_sets(light_count, transient_per_light) as u64;
-    let lights = light_count as u64;
-    // Lights recorded together: a frame depth image in each set, and no depth copy of their own after the first
-    // (the frame depth is the depth copy's size).
-    // The host's previous depth and normals: no light keeps a depth copy, and each set has a frame depth.
+    // Which lights keep a depth copy and which sets hold a frame depth (its size): the rules the lights are made by.
+    let c = crate::light::Config { extent, precision, input, together: together && light_count > 1, host_previous };
     let depth = together_bytes(extent, precision, input);
-    let kept_copies = if host_previous { 0 } else if together && light_count > 1 { 1 } else { lights };
-    let frame_depths = if host_previous || (together && light_count > 1) { sets } else { 0 };
-    let images = (persistent - depth) * lights + depth * kept_copies + transient * sets + depth * frame_depths;
-    Ok(images + texel_bytes(Scope::Context, extent, precision, input) + constants_bytes(light_count))
+    let kept_depth = depth * (0..light_count).filter(|&l| c.keeps_depth_copy(l)).count() as u64;
+    let persistent = persistent_texel_bytes(extent, precision, input);
+    let transient = texel_bytes(Scope::Light, extent, precision, input) - persistent + if c.frame_depth() { depth } else { 0 };
+    let sets = transient_sets(light_count, transient_per_light) as u64;
+    let kept = (persistent - depth) * light_count as u64 + kept_depth;
+    Ok((kept + transient * sets + texel_bytes(Scope::Context, extent, precision, input) + constants_bytes(light_count), kept))
 }
 
 /// How many transient image sets a context of `light_count` lights holds.
@@ -100,25 +98,20 @@ fn transient_sets(light_count: u32, transient_per_light: bool) -> u32 {
 /// Bytes of device memory a context created with `info` allocates, before driver padding and alignment, and the part
 /// of them that persists between records: what `Context::memory_bytes` and `Context::persistent_memory_bytes` report
 /// less the padding, with every option of `info` counted (its shadow input, `transient_memory_per_light`,
-/// `lights_recorded_together`). Reads no Vulkan handle of `info`; refuses what `Context::new` would refuse of its
-/// size, light count, filter passes and these options.
+/// `lights_recorded_together`, `host_previous_gbuffer`). Reads no Vulkan handle of `info`; refuses what
+/// `Context::new` would refuse of its size, light count, filter passes and these options.
 pub fn context_memory_requirements(info: &ContextCreateInfo) -> Result<(u64, u64)> {
-    let (size, lights, input) = ([info.width, info.height], info.light_count, info.shadow_input);
-    let bytes = memory_requirements_with(
-        size[0],
-        size[1],
+    memory_requirements_with(
+        info.width,
+        info.height,
         info.precision,
         info.settings.filter_passes,
-        lights,
-        input,
+        info.light_count,
+        info.shadow_input,
         info.transient_memory_per_light,
         info.lights_recorded_together,
         info.host_previous_gbuffer,
-    )?;
-    let depth = crate::state::together_bytes(size, info.precision, input);
-    let kept_copies = if info.host_previous_gbuffer { 0 } else if info.lights_recorded_together { 1 } else { lights as u64 };
-    let persistent = (crate::state::persistent_texel_bytes(size, info.precision, input) - depth) * lights as u64 + depth * kept_copies;
-    Ok((bytes, persistent))
+    )
 }
 
 /// Bytes of the part of `memory_requirements` whose contents must survive from one record of a light to the next
@@ -514,7 +507,7 @@ impl Context {
     pub fn resize(&mut self, width: u32, height: u32) -> Result<()> {
         let props = unsafe { self.vk.instance.get_physical_device_properties(self.vk.physical_device) };
         validate::extent("render size", width, height, props.limits.max_image_dimension2_d)?;
-        let needed = memory_requirements_with(
+        let (needed, _) = memory_requirements_with(
             width,
             height,
             self.precision,

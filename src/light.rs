@@ -84,6 +84,12 @@ impl Config {
     pub(crate) fn frame_depth(&self) -> bool {
         self.together || self.host_previous
     }
+
+    /// Whether light `light` keeps a depth copy: each its own, only the first where the lights are recorded together
+    /// (they share it), none where the host gives its previous depth and normals.
+    pub(crate) fn keeps_depth_copy(&self, light: u32) -> bool {
+        !self.host_previous && (!self.together || light == 0)
+    }
 }
 
 /// Creates the state table's light images of `lifetime` that `keep` keeps (every one or none: what was made is
@@ -124,8 +130,7 @@ impl LightState {
     /// A light's persistent images, every one the state table gives a light (but the depth copy of a light after
     /// the first recorded together with it); its passes use the context's transient set `transient`.
     pub(crate) fn new(vk: &Vk, light: u32, c: Config, transient: usize) -> Result<LightState> {
-        let own_depth = !c.host_previous && (!c.together || light == 0);
-        let keep = |image| own_depth || image != Image::DepthCopy;
+        let keep = |image| c.keeps_depth_copy(light) || image != Image::DepthCopy;
         create_all(vk, &format!("light{light}"), Lifetime::Persistent, c, false, keep, |take| LightState {
             history: take(Image::History, 0).expect(ALWAYS),
             depth_copy: take(Image::DepthCopy, 0),

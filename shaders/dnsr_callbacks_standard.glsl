@@ -112,8 +112,8 @@ layout(set = 0, binding = 3) uniform utexture2D dnsr_tile_mask;
 layout(set = 0, binding = 5) uniform texture2D dnsr_velocity;
 #ifdef DNSR_HOST_PREVIOUS_GBUFFER
 // The host's own previous frame (ContextCreateInfo::host_previous_gbuffer): its depth and normals as it gave them
-// last frame, in the formats of this frame's (dnsr_read_previous_depth and dnsr_read_previous_normal turn them into
-// what a depth copy would hold, in tile_classification.glsl). An engine that reads its G-buffer itself
+// last frame, in the formats of this frame's (dnsr_read_previous_depth and dnsr_read_previous_normal linearise and
+// decode them, in tile_classification.glsl). An engine that reads its G-buffer itself
 // (DNSR_ENGINE_DEPTH_NORMALS) declares these two and their reads as well.
 #ifndef DNSR_ENGINE_DEPTH_NORMALS
 layout(set = 0, binding = 7) uniform texture2D dnsr_previous_depth;

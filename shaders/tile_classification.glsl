@@ -328,21 +328,17 @@ float dnsr_bilinear(float texels[4], vec2 t) {
 }
 
 #ifdef DNSR_HOST_PREVIOUS_GBUFFER
-// Last frame's linear depth and normal from the host's previous depth and normals, rounded as the depth copy would
-// have held them (dnsr_pack_depth_copy; no receiver: depth -1), so that a host whose previous images are last
-// frame's gets the depth copy's output bit for bit. Linearised with this frame's inverse projection, as the
-// reprojected depth they are compared with is (its jitter does not move a linear depth). The normal is read only
-// where last frame had a receiver (the depth test passed there, or its moments hold samples), so it skips the
-// depth copy's vec3(0) for the sky and the depth fetch that would tell it: with it, Quality's classification took
-// 0.820 ms instead of 0.786 at 4K on an H200.
+// Last frame's linear depth (-1: no receiver) and normal from the host's previous depth and normals, as read: a
+// depth copy's rounding of them (its depth code and octahedral normal) cost Quality's classification 0.05 ms of
+// 0.61 at 4K on an H200 under a panning camera, for no gain (docs/bench/h200-2026-11-30-host-previous). Linearised
+// with this frame's inverse projection, as the reprojected depth they are compared with is (its jitter does not
+// move a linear depth). The normal is read only where last frame had a receiver (the depth test passed there, or
+// its moments hold samples), so the sky's normal is never asked for.
 float dnsr_read_previous_depth(ivec2 p) {
     float d = dnsr_read_host_previous_depth(p);
-    float z = dnsr_is_receiver(d) ? dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), d) : -1.0;
-    return dnsr_depth_copy_depth(dnsr_pack_depth_copy(z, vec3(0.0)));
+    return dnsr_is_receiver(d) ? dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), d) : -1.0;
 }
-vec3 dnsr_read_previous_normal(ivec2 p) {
-    return dnsr_depth_copy_normal(dnsr_pack_depth_copy(-1.0, dnsr_read_host_previous_normal(p)));
-}
+vec3 dnsr_read_previous_normal(ivec2 p) { return dnsr_read_host_previous_normal(p); }
 #endif
 
 // Normals a and b (last frame's, this frame's) both known and more than acos(DNSR_TURNED_NORMAL_COS_PERCENT / 100)

@@ -147,7 +147,9 @@ pub struct ContextCreateInfo {
     /// passes read as their guide, go to a transient image. 4 B/px less persistent memory per light with a hit mask
     /// (6.25 B/px kept instead of 10.25; `memory_requirements` counts the same bytes, moved to the transient part).
     /// Where the host's previous images hold exactly what it gave dnsr as `depth` and `normals` last frame, and
-    /// the projection's depth mapping did not change, every output is bit for bit the one without this option.
+    /// the projection's depth mapping did not change, the output is the one without this option but where the
+    /// depth copy's rounding (16-bit depth, 8-bit octahedral normals) would have decided a test the other way: as
+    /// accurate, and no slower (docs/performance.md, State model).
     /// Hit-mask input only (a visibility or checkerboard context is refused).
     pub host_previous_gbuffer: bool,
     /// Host allocators and debug names (all optional).

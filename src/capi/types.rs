@@ -187,7 +187,9 @@ pub const DNSR_CONTEXT_CREATE_LIGHTS_RECORDED_TOGETHER: DnsrContextCreateFlags =
 /// per light (6.25 B/px kept instead of 10.25 with a hit mask; dnsr_get_memory_requirements counts the same bytes,
 /// moved to the transient part, which DNSR_CONTEXT_CREATE_ALIAS_TRANSIENT_MEMORY hands to the host). Where the
 /// previous images hold exactly what the host gave as depth and normals last frame (and the projection's depth
-/// mapping did not change), every output is bit for bit the one without this flag. Hit-mask input only
+/// mapping did not change), the output is the one without this flag but where the depth copy's rounding (16-bit
+/// depth, 8-bit octahedral normals) would have decided a test the other way: as accurate, and no slower. Hit-mask
+/// input only
 /// (DNSR_ERROR_INVALID_ARGUMENT otherwise).
 pub const DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER: DnsrContextCreateFlags = 1 << 7;
 /// Forces 32 bits.

@@ -50,6 +50,8 @@ pub struct Frame {
     pub normals: Vec<DVec3>,
     /// Previous frame's depth copy: words as stored (`storage::pack_depth_copy`).
     pub previous_depth: Vec<u32>,
+    /// The host's previous depth and decoded normals (`set_host_previous`), read instead of `previous_depth`.
+    pub host_previous: Option<(Vec<f64>, Vec<DVec3>)>,
     /// Previous frame's moments.
     pub previous_moments: Vec<DVec4>,
     /// Previous frame's history (filter pass 0 mean).
@@ -121,6 +123,7 @@ impl Frame {
             normals: filled(n, DVec3::ZERO)?,
             // A new depth copy is cleared to 0: the first depth code, the normal +z.
             previous_depth: filled(n, 0)?,
+            host_previous: None,
             previous_moments: filled(n, DVec4::ZERO)?,
             history: filled(n, 0.0)?,
             previous_tile_quiet: filled(tiles, 0)?,
@@ -157,19 +160,19 @@ impl Frame {
     }
 
     /// Takes last frame's depth and normal from the host's previous images (`ContextCreateInfo::
-    /// host_previous_gbuffer`: device depth and decoded normals per pixel) instead of the previous depth copy: each
-    /// pixel's word as a depth copy would hold it, linearised with this frame's `projection_inverse` (set it first).
+    /// host_previous_gbuffer`: device depth and decoded normals per pixel) instead of the previous depth copy, as
+    /// classification reads them: the depth linearised with this frame's `projection_inverse`, neither rounded to a
+    /// depth copy's codes. `advance` then hands this frame's depth and normals on the same way.
     pub fn set_host_previous(&mut self, depth: &[f64], normals: &[DVec3]) {
-        let w = self.extent[0];
-        let words: Vec<u32> = (0..self.previous_depth.len())
-            .map(|i| super::depth_copy(&*self, [i as i32 % w, i as i32 / w], depth[i], normals[i]))
-            .collect();
-        self.previous_depth = words;
+        self.host_previous = Some((depth.to_vec(), normals.to_vec()));
     }
 
     /// Moves this frame's outputs into the next frame's "previous" state (depth, moments, history).
     pub fn advance(&mut self) {
         self.previous_depth = self.depth_copy.clone();
+        if self.host_previous.is_some() {
+            self.host_previous = Some((self.depth.clone(), self.normals.clone()));
+        }
         self.previous_moments = self.moments.clone();
         self.previous_tile_quiet = self.tile_quiet.clone();
         if let Some(h) = self.filter_out.first() {
@@ -256,10 +259,19 @@ impl Read for Frame {
         self.normals[self.px(p)]
     }
     fn read_previous_depth(&self, p: Coord) -> f64 {
-        super::storage::unpack_depth_copy(self.previous_depth[self.px(p)]).0
+        match &self.host_previous {
+            Some((depth, _)) => {
+                let d = depth[self.px(p)];
+                if super::is_receiver(d) { super::linear_depth(self, super::uv_to_ndc(super::pixel_uv(self, p)), d) } else { -1.0 }
+            }
+            None => super::storage::unpack_depth_copy(self.previous_depth[self.px(p)]).0,
+        }
     }
     fn read_previous_normal(&self, p: Coord) -> DVec3 {
-        super::storage::unpack_depth_copy(self.previous_depth[self.px(p)]).1
+        match &self.host_previous {
+            Some((_, normals)) => normals[self.px(p)],
+            None => super::storage::unpack_depth_copy(self.previous_depth[self.px(p)]).1,
+        }
     }
     fn read_previous_moments(&self, p: Coord) -> DVec4 {
         self.previous_moments[self.px(p)]

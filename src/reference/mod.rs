@@ -75,9 +75,11 @@ pub trait Read: Get {
     fn read_velocity(&self, p: Coord) -> DVec2;
     /// Decoded unit world normal, or zero when unusable.
     fn read_normal(&self, p: Coord) -> DVec3;
-    /// Previous frame's linear depth, as its depth copy holds it (`depth_copy`).
+    /// Previous frame's linear depth (-1: no receiver), as its depth copy holds it (`depth_copy`), or as the host's
+    /// previous depth gives it (`ContextCreateInfo::host_previous_gbuffer`: not rounded).
     fn read_previous_depth(&self, p: Coord) -> f64;
-    /// Previous frame's normal (unit, or zero: no receiver), as its depth copy holds it (`depth_copy`).
+    /// Previous frame's normal (unit, or zero: no receiver), as its depth copy holds it (`depth_copy`), or the
+    /// host's previous normal decoded (whatever it holds where there was no receiver).
     fn read_previous_normal(&self, p: Coord) -> DVec3;
     /// Previous frame's moments (mean, Welford sum, sample count).
     fn read_previous_moments(&self, p: Coord) -> DVec4;

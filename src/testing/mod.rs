@@ -65,6 +65,9 @@ pub struct Runner<'g> {
     pub light_position: Option<glam::Vec4>,
     /// `ShadowsDispatch::checkerboard_phase` of `dispatch` (a checkerboard input).
     pub checkerboard_phase: u32,
+    /// Last frame's depth and normals for a context created with `host_previous_gbuffer` (`keep_previous_gbuffer`):
+    /// `dispatch` names them, and each run swaps them with `depth` and `normals`, as an engine with two G-buffers.
+    pub previous_gbuffer: Option<(TestImage, TestImage)>,
     visibility_input: bool,
     staging: Staging,
     cmd: vk::CommandBuffer,
@@ -114,7 +117,7 @@ impl<'g> Runner<'g> {
         let staging = gpu.staging(staging_bytes(info.width, info.height));
         let cmd = gpu.command_buffer();
         let visibility_input = info.shadow_input == crate::ShadowInput::Visibility;
-        Ok(Runner { gpu, ctx, mask, depth, velocity, normals, output, hit_distance, visibility, visibility_input, guidance: None, hard_light: false, light_position: None, checkerboard_phase: 0, staging, cmd })
+        Ok(Runner { gpu, ctx, mask, depth, velocity, normals, output, hit_distance, visibility, visibility_input, guidance: None, hard_light: false, light_position: None, checkerboard_phase: 0, previous_gbuffer: None, staging, cmd })
     }
 
     /// A dispatch for `f` over this runner's images (no reset; penumbra guidance as `guidance` says).
@@ -133,6 +136,8 @@ impl<'g> Runner<'g> {
             hard_light: self.hard_light,
             light_position: self.light_position,
             checkerboard_phase: self.checkerboard_phase,
+            previous_depth: self.previous_gbuffer.as_ref().map(|(d, _)| d.host()).unwrap_or_default(),
+            previous_normals: self.previous_gbuffer.as_ref().map(|(_, n)| n.host()).unwrap_or_default(),
             eye: f.eye,
             projection_inverse: f.projection_inverse,
             reprojection_matrix: f.reprojection,
@@ -202,6 +207,10 @@ impl<'g> Runner<'g> {
             full_barrier(&gpu.device, cmd);
             r
         });
+        if let Some((depth, normals)) = &mut self.previous_gbuffer {
+            std::mem::swap(&mut self.depth, depth);
+            std::mem::swap(&mut self.normals, normals);
+        }
         let raw = self.staging.read(out_offset as usize, n * self.output.texel_bytes as usize);
         let out = match self.output.format {
             vk::Format::R32_SFLOAT => bytemuck::cast_slice::<u8, f32>(&raw).to_vec(),
@@ -237,6 +246,26 @@ impl<'g> Runner<'g> {
         g.destroy_image(&self.normals);
         self.depth = g.image(depth, w, h, depth_layout);
         self.normals = g.image(normals, w, h, READ);
+        if self.previous_gbuffer.is_some() {
+            self.keep_previous_gbuffer();
+        }
+    }
+
+    /// Keeps last frame's depth and normals for a context created with `host_previous_gbuffer`: a second pair of
+    /// images in the current ones' formats (see `previous_gbuffer`). Their first frame's contents are undefined, as
+    /// an engine's are before its first frame: run the first frame with `reset`.
+    pub fn keep_previous_gbuffer(&mut self) {
+        let g = self.gpu;
+        let (w, h) = (self.depth.width, self.depth.height);
+        self.drop_previous_gbuffer();
+        self.previous_gbuffer = Some((g.image(self.depth.format, w, h, self.depth.layout), g.image(self.normals.format, w, h, self.normals.layout)));
+    }
+
+    fn drop_previous_gbuffer(&mut self) {
+        if let Some((depth, normals)) = self.previous_gbuffer.take() {
+            self.gpu.destroy_image(&depth);
+            self.gpu.destroy_image(&normals);
+        }
     }
 
     /// Replaces the visibility image with another format (R8_UNORM, R16_UNORM, R16_SFLOAT or R32_SFLOAT).
@@ -259,6 +288,9 @@ impl<'g> Runner<'g> {
         g.destroy_staging(&self.staging);
         [self.mask, self.depth, self.velocity, self.normals, self.output, self.hit_distance, self.visibility] =
             host_images(g, width, height, format, self.visibility.format);
+        if self.previous_gbuffer.is_some() {
+            self.keep_previous_gbuffer();
+        }
         self.staging = g.staging(staging_bytes(width, height));
         Ok(())
     }
@@ -279,6 +311,7 @@ impl Drop for Runner<'_> {
         let g = self.gpu;
         unsafe { g.device.device_wait_idle().ok() };
         g.free_command_buffer(self.cmd);
+        self.drop_previous_gbuffer();
         for img in self.images() {
             g.destroy_image(img);
         }

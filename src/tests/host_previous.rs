@@ -1,6 +1,6 @@
-//! The host's previous depth and normals (`ContextCreateInfo::host_previous_gbuffer`): no depth copy kept, the same
-//! output bit for bit where those images are last frame's, 4 B/px less persistent memory, and the CPU reference's
-//! model of it (`reference::Frame::set_host_previous`).
+//! The host's previous depth and normals (`ContextCreateInfo::host_previous_gbuffer`): no depth copy kept, the
+//! depth copy's output but for its rounding where those images are last frame's, 4 B/px less persistent memory, and
+//! the CPU reference's model of it (`reference::Frame::set_host_previous`; the GPU against it: tests::parity).
 
 use crate::reference::{self, memory::Frame};
 use crate::testing::gpu::{Gpu, GpuOptions, TestImage};
@@ -24,38 +24,44 @@ fn runner(g: &Gpu, preset: Preset, host_previous: bool) -> Runner<'_> {
 
 /// A panning camera over boxes (faces of several normals, sky, disocclusions): the host keeps two depth and normal
 /// images and swaps them every frame, as an engine with a previous depth buffer does. Quality reads last frame's
-/// normals (turned texels) and Balanced its depth alone.
+/// normals (turned texels) and Balanced its depth alone. The output is the depth copy's but where the copy's
+/// rounding (a 16-bit depth code, 8-bit octahedral normals) would have decided a test the other way, from where the
+/// filter spreads it (lavapipe: Quality 1.8% of the outputs, by up to 6/255; Balanced 5.5%, by up to 10/255), and
+/// as close to the truth (the accuracy bar: within 2% of the depth copy's RMSE; lavapipe: the same to 4 digits).
 #[test]
-fn host_previous_gbuffer_gives_the_depth_copys_output() {
+fn host_previous_gbuffer_gives_the_depth_copys_output_unrounded() {
     let g = Gpu::new(GpuOptions::default());
     for preset in [Preset::Quality, Preset::Balanced] {
         let mut own = runner(&g, preset, false);
         let mut host = runner(&g, preset, true);
-        let mut previous_depth = g.image(host.depth.format, W, H, host.depth.layout);
-        let mut previous_normals = g.image(host.normals.format, W, H, host.normals.layout);
-        let mut changed = 0;
+        host.keep_previous_gbuffer();
+        let (mut changed, mut differ, mut worst) = (0, 0, 0.0f32);
+        let (mut squared, mut receivers) = ([0.0f64; 2], 0);
         for frame in 0..FRAMES {
             let f = typical_frame(W, H, frame, 11 + frame as u64);
-            let expected = own.run(&f, &own.dispatch(&f)).expect("record with the depth copy");
-            let mut d = host.dispatch(&f);
-            d.previous_depth = previous_depth.host();
-            d.previous_normals = previous_normals.host();
-            let got = host.run(&f, &d).expect("record with the host's previous images");
-            let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-            assert!(bits(&got) == bits(&expected), "{preset:?} frame {frame}: outputs differ");
+            let expected = own.frame(&f, frame == 0);
+            let got = host.frame(&f, frame == 0);
+            for (a, b) in got.iter().zip(&expected) {
+                differ += (a != b) as usize;
+                worst = worst.max((a - b).abs());
+            }
+            for (k, out) in [&expected, &got].into_iter().enumerate() {
+                squared[k] += out.iter().zip(&f.truth).zip(&f.receiver).filter(|(_, r)| **r).map(|((o, t), _)| ((o - t) as f64).powi(2)).sum::<f64>();
+            }
+            receivers += f.receiver.iter().filter(|&&r| r).count();
             if frame > 0 {
                 // The history carried something: the output is not this frame's samples alone.
                 changed += got.iter().zip(&f.visibility).filter(|(o, v)| (*o - *v).abs() > 1e-3).count();
             }
-            std::mem::swap(&mut host.depth, &mut previous_depth);
-            std::mem::swap(&mut host.normals, &mut previous_normals);
         }
+        let px = (W * H) as usize;
+        let [own_error, host_error] = squared.map(|e| (e / receivers as f64).sqrt());
+        eprintln!("{preset:?}: {differ} of {} outputs differ from the depth copy's, by at most {worst}; RMSE against the truth {own_error:.5} -> {host_error:.5}", px * FRAMES);
         assert!(changed > 0, "{preset:?}: every output equals its input");
-        let px = (W * H) as u64;
+        assert!(differ * 10 <= px * FRAMES, "{preset:?}: {differ} outputs differ from the depth copy's");
+        assert!(host_error <= 1.02 * own_error, "{preset:?}: error {host_error} against the depth copy's {own_error}");
         let (own_kept, host_kept) = (own.ctx.persistent_memory_bytes(), host.ctx.persistent_memory_bytes());
-        assert!(own_kept >= host_kept + 4 * px, "{preset:?}: kept {own_kept} B with a depth copy, {host_kept} B without");
-        g.destroy_image(&previous_depth);
-        g.destroy_image(&previous_normals);
+        assert!(own_kept >= host_kept + 4 * px as u64, "{preset:?}: kept {own_kept} B with a depth copy, {host_kept} B without");
     }
     g.assert_clean();
 }
@@ -95,10 +101,11 @@ fn host_previous_gbuffer_misuse_is_refused() {
     g.assert_clean();
 }
 
-/// The reference's model: last frame's depth and normals turned into depth copy words with this frame's projection
-/// are the words its own first filter pass stored last frame (the projection does not change).
+/// The reference's model: last frame's depth and normals as classification reads them from the host's images are
+/// the values its own first filter pass rounded into the depth copy last frame (the projection does not change).
 #[test]
-fn reference_host_previous_words_are_the_depth_copy() {
+fn reference_host_previous_reads_are_the_depth_copy_unrounded() {
+    use reference::Read;
     let dmat = |m: Mat4| m.as_dmat4();
     let frame_of = |k: usize| {
         let f = typical_frame(W, H, k, 5);
@@ -116,7 +123,14 @@ fn reference_host_previous_words_are_the_depth_copy() {
     reference::run_frame(&mut last, true);
     let mut next = frame_of(3);
     next.set_host_previous(&last.depth, &last.normals);
-    assert_eq!(next.previous_depth, last.depth_copy);
-    let receivers = last.depth.iter().filter(|&&d| reference::is_receiver(d)).count();
+    let mut receivers = 0;
+    for (i, &word) in last.depth_copy.iter().enumerate() {
+        let p = [i as i32 % W as i32, i as i32 / W as i32];
+        let (depth, normal) = (next.read_previous_depth(p), next.read_previous_normal(p));
+        let receiver = reference::is_receiver(last.depth[i]);
+        receivers += receiver as usize;
+        let rounded = reference::storage::pack_depth_copy(depth, if receiver { normal } else { DVec3::ZERO });
+        assert_eq!(rounded, word, "pixel {p:?}: the host's previous depth {depth} and normal {normal} round to another word");
+    }
     assert!(receivers > 0 && receivers < last.depth.len(), "receivers and sky: {receivers} of {}", last.depth.len());
 }

@@ -14,7 +14,10 @@
  *     through dnsr_ffx_context_set_light (its position behind the receivers, or that it has no size), the same
  *     against dnsr.h dispatches with those bits, after a refused call that must not change the context's light;
  *     given hit distances and the light's size through dnsr_ffx_context_set_penumbra_guidance, the same against
- *     dnsr.h dispatches with DNSR_DISPATCH_USE_HIT_DISTANCE, after a refused call that must not change them;
+ *     dnsr.h dispatches with DNSR_DISPATCH_USE_HIT_DISTANCE, after a refused call that must not change them; with
+ *     DNSR_FFX_CONTEXT_HOST_PREVIOUS_GBUFFER and the previous depth and normals given before every dispatch but the
+ *     first (dnsr_ffx_context_set_previous_gbuffer), the same against dnsr.h with
+ *     DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER, after a dispatch without them that must be refused;
  *   - the depth buffer itself (D32_SFLOAT, reverse-Z, FFX_DENOISER_ENABLE_DEPTH_INVERTED) equals dnsr.h with
  *     DNSR_CONTEXT_CREATE_DEPTH_INVERTED on it;
  *   - misuse the SDK does not catch (NULL pointers, a destroyed or never-created context, a create into a live
@@ -22,7 +25,9 @@
  *     interface not from ffxGetInterfaceVK): each a specific FfxErrorCode with a message, nothing recorded;
  *     dnsr_ffx_context_set_light's (NULL, dead or destroyed context, unknown bits, a missing, zero, non-finite or
  *     non-homogeneous position) and dnsr_ffx_context_set_penumbra_guidance's (NULL, dead or destroyed context,
- *     a null image or view, a non-finite or out-of-range angle): each a specific DnsrResult with a message;
+ *     a null image or view, a non-finite or out-of-range angle) and dnsr_ffx_context_set_previous_gbuffer's (NULL,
+ *     dead, destroyed or flagless context, a NULL description, a null image or view): each a specific DnsrResult
+ *     with a message;
  *   - no validation message from any of it.
  */
 #include <FidelityFX/host/backends/vk/ffx_vk.h>
@@ -242,12 +247,15 @@ static void integrate(Integration &in, uint32_t flags)
 // DNSR_DISPATCH_USE_LIGHT_POSITION) and lightPosition: told to the FFX contexts by dnsr_ffx_context_set_light (after
 // which a refused call must leave them as they were), to the dnsr.h context in each dispatch. guided: the hit
 // distances and lightAngle, told to the FFX contexts by dnsr_ffx_context_set_penumbra_guidance (after which a
-// refused call must leave them as they were), to the dnsr.h context in each dispatch.
+// refused call must leave them as they were), to the dnsr.h context in each dispatch. hostPrevious: the FFX contexts
+// get DNSR_FFX_CONTEXT_HOST_PREVIOUS_GBUFFER and the (static) depth and normals as last frame's before every dispatch
+// but the first, after one dispatch without them that must be refused; the dnsr.h context
+// DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER and the same images in each dispatch.
 static std::vector<float> frames_match_native(bool fidelityfx, uint32_t lightFlags = 0, const float *lightPosition = nullptr,
-                                              bool guided = false, float lightAngle = 0.0f)
+                                              bool guided = false, float lightAngle = 0.0f, bool hostPrevious = false)
 {
     Integration in, in8;
-    uint32_t settings = fidelityfx ? DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS : 0u;
+    uint32_t settings = (fidelityfx ? DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS : 0u) | (hostPrevious ? DNSR_FFX_CONTEXT_HOST_PREVIOUS_GBUFFER : 0u);
     // The sample's flags: shadows, plus the classifier's depth-inverted bit (1 << 3) the denoiser ignores.
     integrate(in, FFX_DENOISER_SHADOWS | (1u << 3) | settings);
     integrate(in8, FFX_DENOISER_SHADOWS | settings);
@@ -255,6 +263,7 @@ static std::vector<float> frames_match_native(bool fidelityfx, uint32_t lightFla
     DnsrSettings balanced;
     DNSR_CHECK(dnsr_settings_init_preset(DNSR_PRESET_BALANCED, &balanced));
     if (fidelityfx) info.pSettings = &balanced;
+    if (hostPrevious) info.flags |= DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER;
     DnsrContext native = nullptr;
     DNSR_CHECK(dnsr_context_create(&info, &native));
     if (lightFlags) {
@@ -279,11 +288,18 @@ static std::vector<float> frames_match_native(bool fidelityfx, uint32_t lightFla
         VkCommandBuffer cmd = host_begin(&host);
         host_cmd_full_barrier(cmd);
         Dispatch fd = ffx_dispatch(cmd, frame);
+        const DnsrHostImage previousDepth = host_image_desc(&depth), previousNormals = host_image_desc(&normals);
+        if (hostPrevious && frame > 0) {
+            if (frame == 1) EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDispatchShadows(in.context.get(), &fd));
+            for (Integration *i : {&in, &in8})
+                DNSR_CHECK(dnsr_ffx_context_set_previous_gbuffer(i->context.get(), &previousDepth, &previousNormals));
+        }
         FFX_CHECK(ffxDenoiserContextDispatchShadows(in.context.get(), &fd));
         Dispatch fd8 = ffx_dispatch(cmd, frame, outFfx8);
         FFX_CHECK(ffxDenoiserContextDispatchShadows(in8.context.get(), &fd8));
         DnsrShadowsDispatch nd = native_dispatch(cmd, frame);
         nd.flags |= lightFlags;
+        if (hostPrevious) nd.previousDepth = previousDepth, nd.previousNormals = previousNormals;
         if (lightPosition) std::memcpy(nd.lightPosition, lightPosition, sizeof nd.lightPosition);
         if (guided) {
             nd.flags |= DNSR_DISPATCH_USE_HIT_DISTANCE;
@@ -302,8 +318,9 @@ static std::vector<float> frames_match_native(bool fidelityfx, uint32_t lightFla
         }
         float lo = a[0], hi = a[0];
         for (float v : a) lo = v < lo ? v : lo, hi = v > hi ? v : hi;
-        std::printf("frame %u (%s settings, light flags 0x%x%s): FFX API == dnsr.h on all %u pixels, output in [%g, %g]\n",
-                    frame, fidelityfx ? "FidelityFX" : "default", lightFlags, guided ? ", hit distances" : "", W * H, lo, hi);
+        std::printf("frame %u (%s settings, light flags 0x%x%s%s): FFX API == dnsr.h on all %u pixels, output in [%g, %g]\n",
+                    frame, fidelityfx ? "FidelityFX" : "default", lightFlags, guided ? ", hit distances" : "",
+                    hostPrevious ? ", host's previous G-buffer" : "", W * H, lo, hi);
         if (frame < 4) CHECK(hi > lo, "frame %u: a noisy mask gave a flat output", frame);
         if (frame == 3) lastNoisy = a;
     }
@@ -573,9 +590,21 @@ static void misuse(void)
     DNSR_CHECK(dnsr_ffx_context_set_penumbra_guidance(in.context.get(), &hits, 0.01f));
     DNSR_CHECK(dnsr_ffx_context_set_penumbra_guidance(in.context.get(), nullptr, NAN)); /* off: the angle is not read */
 
+    // dnsr_ffx_context_set_previous_gbuffer: the context (and its flag), the descriptions and their handles.
+    DnsrHostImage prevDepth = host_image_desc(&depth), prevNormals = host_image_desc(&normals), noDepthView = prevDepth;
+    noDepthView.view = VK_NULL_HANDLE;
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_previous_gbuffer(nullptr, &prevDepth, &prevNormals));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_previous_gbuffer(other, &prevDepth, &prevNormals)); /* never created */
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_previous_gbuffer(in.context.get(), &prevDepth, &prevNormals)); /* no flag */
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_previous_gbuffer(in.context.get(), nullptr, &prevNormals));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_previous_gbuffer(in.context.get(), &prevDepth, nullptr));
+    EXPECT_DNSR(DNSR_ERROR_NULL_HANDLE, dnsr_ffx_context_set_previous_gbuffer(in.context.get(), &noDepthView, &prevNormals));
+    EXPECT_DNSR(DNSR_ERROR_NULL_HANDLE, dnsr_ffx_context_set_previous_gbuffer(in.context.get(), &prevDepth, &noImage));
+
     FFX_CHECK(ffxDenoiserContextDestroy(in.context.get()));
     EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_HARD_LIGHT, nullptr)); /* destroyed */
     EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_penumbra_guidance(in.context.get(), nullptr, 0.0f)); /* destroyed */
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_previous_gbuffer(in.context.get(), &prevDepth, &prevNormals)); /* destroyed */
     EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDestroy(in.context.get())); /* twice */
     cmd = host_begin(&host);
     d = ffx_dispatch(cmd, 1);
@@ -647,6 +676,13 @@ int main(void)
         CHECK(differ > 0, "dnsr_ffx_context_set_penumbra_guidance changed no pixel of frame 3");
         std::printf("dnsr_ffx_context_set_penumbra_guidance: %zu of %u pixels of frame 3 differ from the unguided default's\n",
                     differ, W * H);
+        // The host's previous depth and normals instead of the context's depth copy (the same images every frame:
+        // a still camera).
+        std::vector<float> hostPrevious = frames_match_native(false, 0, nullptr, false, 0.0f, true);
+        differ = 0;
+        for (size_t i = 0; i < quality.size(); i++) differ += quality[i] != hostPrevious[i];
+        std::printf("DNSR_FFX_CONTEXT_HOST_PREVIOUS_GBUFFER: %zu of %u pixels of frame 3 differ from the depth copy's\n",
+                    differ, W * H);
     }
     depth_buffer_reverse_z();
     misuse();
@@ -656,6 +692,6 @@ int main(void)
     for (HostImage *img : {&mask, &depth, &depthBuffer, &velocity, &velocityVarying, &normals, &outFfx, &outFfx8, &outNative, &hitDistance}) host_image_destroy(&host, img);
     host_destroy(&host);
     std::printf("ffx_dropin: layout, versions, 6 frames equal to dnsr.h (R32F and RGBA8 outputs; untold, told the light's "
-                "position, told it has no size, given hit distances), %d misuse cases refused\n", cases);
+                "position, told it has no size, given hit distances, given the previous G-buffer), %d misuse cases refused\n", cases);
     return 0;
 }

@@ -245,6 +245,12 @@ pub const DNSR_PRESET_MAX_ENUM: DnsrPreset = 0x7FFF_FFFF;
 /// Quality preset). The SDK's own denoiser ignores bits it does not know, so an integration may set it and still
 /// build against either library.
 pub const DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS: u32 = 1 << 30;
+/// A bit of `FfxDenoiserContextDescription.flags` that dnsr's FidelityFX layer (include/ffx) reads: the engine gives
+/// the context its previous frame's depth and normals before every dispatch (dnsr_ffx_context_set_previous_gbuffer),
+/// so that it keeps no depth copy of its own (DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER: 4 B/px less persistent
+/// memory, as accurate and no slower). The SDK's own denoiser ignores bits it does not know; an integration that sets
+/// it must call dnsr_ffx_context_set_previous_gbuffer, which only dnsr's layer has.
+pub const DNSR_FFX_CONTEXT_HOST_PREVIOUS_GBUFFER: u32 = 1 << 29;
 
 /// Bit convention of the hit mask.
 pub type DnsrHitMaskConvention = u32;

@@ -15,7 +15,8 @@ pub mod types;
 
 use crate::capi::boundary::set_last_error;
 use crate::capi::types::*;
-use crate::capi::{dnsr_context_create, dnsr_context_destroy, dnsr_shadows_record, FfxContextSetting};
+use crate::capi::boundary::CallError;
+use crate::capi::{dnsr_context_create, dnsr_context_destroy, dnsr_shadows_record, FfxContextSetting, FFX_NOT_LIVE};
 use ash::vk;
 use resources::{host_image, ViewRing};
 use std::collections::BTreeMap;
@@ -273,9 +274,8 @@ struct Denoiser {
     context: DnsrContext,
     device: resources::Device,
     output_format: Option<vk::Format>,
-    depth_inverted: bool,
-    /// DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS: the context runs Preset::Balanced.
-    fidelityfx: bool,
+    /// What the description's flags asked for.
+    options: Options,
     width: u32,
     height: u32,
     views: ViewRing,
@@ -285,6 +285,9 @@ struct Denoiser {
     /// What `dnsr_ffx_context_set_penumbra_guidance` last gave: the hit-distance image and the light's angular
     /// diameter (none by default: the FFX dispatch has no hit distances).
     guidance: Option<(DnsrHostImage, f32)>,
+    /// What `dnsr_ffx_context_set_previous_gbuffer` gave for the next dispatch (taken by it): the host's previous
+    /// depth and normals.
+    previous: Option<(DnsrHostImage, DnsrHostImage)>,
 }
 
 /// The light of a context's dispatches (`dnsr_ffx_context_set_light`): DNSR_DISPATCH_HARD_LIGHT and
@@ -295,17 +298,26 @@ struct FfxLight {
     position: [f32; 4],
 }
 
-/// Gives the live context at `context` a setting of its later dispatches; false when `context` is NULL or holds
-/// no live context. `capi::FFX_SET` for the `dnsr_ffx_context_set_*` functions, which check the setting.
-fn set(context: *mut std::ffi::c_void, setting: FfxContextSetting) -> bool {
-    with_context(context.cast(), |d| {
-        match setting {
-            FfxContextSetting::Light { flags, position } => d.light = FfxLight { flags, position },
-            FfxContextSetting::Guidance(guidance) => d.guidance = guidance,
+/// Gives the live context at `context` a setting of its later dispatches, or says why not (no live context there,
+/// or one that cannot take the setting). `capi::FFX_SET` for the `dnsr_ffx_context_set_*` functions, which check
+/// the setting itself.
+fn set(context: *mut std::ffi::c_void, setting: FfxContextSetting) -> Result<(), CallError> {
+    let not_live = || CallError::InvalidArgument(FFX_NOT_LIVE.into());
+    // SAFETY: the caller's pointer is NULL-checked by capi; a non-NULL one points at an FfxDenoiserContext.
+    let context = unsafe { (context as *const FfxDenoiserContext).as_ref() }.ok_or_else(not_live)?;
+    let mut contexts = lock(&CONTEXTS);
+    let d = contexts.get_mut(&context_id(context)).ok_or_else(not_live)?;
+    match setting {
+        FfxContextSetting::Light { flags, position } => d.light = FfxLight { flags, position },
+        FfxContextSetting::Guidance(guidance) => d.guidance = guidance,
+        FfxContextSetting::PreviousGbuffer { .. } if !d.options.host_previous => {
+            return Err(CallError::InvalidArgument(
+                "pFfxContext was created without DNSR_FFX_CONTEXT_HOST_PREVIOUS_GBUFFER: it keeps last frame's depth and normals itself".into(),
+            ));
         }
-        Ok(())
-    })
-    .is_ok()
+        FfxContextSetting::PreviousGbuffer { depth, normals } => d.previous = Some((depth, normals)),
+    }
+    Ok(())
 }
 
 // SAFETY: the dnsr context is used behind the registry's lock only.
@@ -341,7 +353,7 @@ fn with_context<T>(context: *mut FfxDenoiserContext, f: impl FnOnce(&mut Denoise
 
 /// The dnsr create info for an FFX description: dnsr's default settings (Quality), fp32, one light, R8_UNORM output until a
 /// dispatch names another, dnsr's descriptor sets (the FFX interface does not say which extensions are enabled).
-fn create_info(device: &resources::Device, width: u32, height: u32, depth_inverted: bool, output: vk::Format) -> DnsrContextCreateInfo {
+fn create_info(device: &resources::Device, width: u32, height: u32, flags: DnsrContextCreateFlags, output: vk::Format) -> DnsrContextCreateInfo {
     DnsrContextCreateInfo {
         s_type: DNSR_STRUCTURE_TYPE_CONTEXT_CREATE_INFO,
         p_next: std::ptr::null(),
@@ -357,7 +369,7 @@ fn create_info(device: &resources::Device, width: u32, height: u32, depth_invert
         enabled_features: 0,
         width,
         height,
-        flags: if depth_inverted { DNSR_CONTEXT_CREATE_DEPTH_INVERTED } else { 0 },
+        flags,
         precision: DNSR_PRECISION_FP32,
         output_format: output,
         light_count: 1,
@@ -373,11 +385,24 @@ fn create_info(device: &resources::Device, width: u32, height: u32, depth_invert
     }
 }
 
-/// A dnsr context for an FFX context: `create_info`'s, with the FidelityFX settings where `fidelityfx`.
-fn new_dnsr_context(device: &resources::Device, width: u32, height: u32, depth_inverted: bool, fidelityfx: bool, output: vk::Format) -> Result<DnsrContext, Failure> {
+/// What an FFX description's flags ask of the dnsr context behind it.
+#[derive(Clone, Copy)]
+struct Options {
+    /// FFX_DENOISER_ENABLE_DEPTH_INVERTED.
+    depth_inverted: bool,
+    /// DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS: Preset::Balanced instead of dnsr's default.
+    fidelityfx: bool,
+    /// DNSR_FFX_CONTEXT_HOST_PREVIOUS_GBUFFER.
+    host_previous: bool,
+}
+
+/// A dnsr context for an FFX context: `create_info`'s, with the options its flags ask for.
+fn new_dnsr_context(device: &resources::Device, width: u32, height: u32, options: Options, output: vk::Format) -> Result<DnsrContext, Failure> {
     let settings = crate::capi::convert::settings_to_c(&crate::Settings::preset(crate::Preset::Balanced));
-    let mut info = create_info(device, width, height, depth_inverted, output);
-    if fidelityfx {
+    let flags = (if options.depth_inverted { DNSR_CONTEXT_CREATE_DEPTH_INVERTED } else { 0 })
+        | (if options.host_previous { DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER } else { 0 });
+    let mut info = create_info(device, width, height, flags, output);
+    if options.fidelityfx {
         info.p_settings = &settings;
     }
     let mut context = std::ptr::null_mut();
@@ -406,11 +431,26 @@ pub extern "C" fn ffxDenoiserContextCreate(context: *mut FfxDenoiserContext, des
             return fail(FFX_ERROR_INVALID_ARGUMENT, format!("windowSize is {width}x{height}"));
         }
         let device = resources::Device::new(&scratch.device).map_err(|m| Failure(FFX_ERROR_NULL_DEVICE, Some(m)))?;
-        let depth_inverted = d.flags & FFX_DENOISER_ENABLE_DEPTH_INVERTED != 0;
-        let fidelityfx = d.flags & DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS != 0;
-        let dnsr = new_dnsr_context(&device, width, height, depth_inverted, fidelityfx, vk::Format::R8_UNORM)?;
+        let options = Options {
+            depth_inverted: d.flags & FFX_DENOISER_ENABLE_DEPTH_INVERTED != 0,
+            fidelityfx: d.flags & DNSR_FFX_CONTEXT_FIDELITYFX_SETTINGS != 0,
+            host_previous: d.flags & DNSR_FFX_CONTEXT_HOST_PREVIOUS_GBUFFER != 0,
+        };
+        let dnsr = new_dnsr_context(&device, width, height, options, vk::Format::R8_UNORM)?;
         let id = NEXT_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let denoiser = Denoiser { context: dnsr, device, output_format: None, depth_inverted, fidelityfx, width, height, views: ViewRing::default(), dispatches: 0, light: FfxLight::default(), guidance: None };
+        let denoiser = Denoiser {
+            context: dnsr,
+            device,
+            output_format: None,
+            options,
+            width,
+            height,
+            views: ViewRing::default(),
+            dispatches: 0,
+            light: FfxLight::default(),
+            guidance: None,
+            previous: None,
+        };
         crate::capi::FFX_SET.get_or_init(|| set);
         lock(&CONTEXTS).insert(id, denoiser);
         out.data[1] = id as u32;
@@ -474,7 +514,7 @@ impl Denoiser {
             None if output_format != vk::Format::R8_UNORM => {
                 // Created for R8_UNORM before any dispatch named the output: recreate for this one (its history is
                 // empty either way).
-                let replacement = new_dnsr_context(&self.device, self.width, self.height, self.depth_inverted, self.fidelityfx, output_format)?;
+                let replacement = new_dnsr_context(&self.device, self.width, self.height, self.options, output_format)?;
                 dnsr_context_destroy(self.context);
                 self.context = replacement;
             }
@@ -492,6 +532,19 @@ impl Denoiser {
             image(&d.normal, "normal")?,
             image(&d.shadowMaskOutput, "shadowMaskOutput")?,
         );
+        // The host's previous depth and normals: given for this dispatch, or (the first, whose history is empty:
+        // dnsr reads neither) this frame's in their place.
+        let (previous_depth, previous_normals) = match (self.options.host_previous, self.previous) {
+            (false, _) => (DnsrHostImage::default(), DnsrHostImage::default()),
+            (true, Some(previous)) => previous,
+            (true, None) if self.dispatches == 0 => (depth, normals),
+            (true, None) => {
+                return fail(
+                    FFX_ERROR_INVALID_ARGUMENT,
+                    "this context was created with DNSR_FFX_CONTEXT_HOST_PREVIOUS_GBUFFER: call dnsr_ffx_context_set_previous_gbuffer before every dispatch but the first",
+                );
+            }
+        };
         let dispatch = DnsrShadowsDispatch {
             s_type: DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH,
             p_next: std::ptr::null(),
@@ -533,11 +586,13 @@ impl Denoiser {
             checkerboard_phase: 0,
             // The FFX dispatch has no light: only what dnsr_ffx_context_set_light gave.
             light_position: self.light.position,
-            // The FFX dispatch has no previous depth: the FFX layer's context keeps its own depth copy.
-            previous_depth: DnsrHostImage::default(),
-            previous_normals: DnsrHostImage::default(),
+            // The FFX dispatch has no previous depth: only what dnsr_ffx_context_set_previous_gbuffer gave (else the
+            // context keeps its own depth copy).
+            previous_depth,
+            previous_normals,
         };
         check(dnsr_shadows_record(self.context, &dispatch))?;
+        self.previous = None;
         self.output_format = Some(output_format);
         self.views.commit();
         self.dispatches += 1;

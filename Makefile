@@ -114,6 +114,16 @@ bench-smoke:
 		--out out/bench-smoke-bad 2> out/bench-smoke-bad.log > /dev/null
 	grep -q "not a dnsr shader variant" out/bench-smoke-bad.log
 	@echo "bench smoke: --shader-override runs and refuses an unknown variant"
+	@# --host-previous under validation; its byte model reads the host's previous depth (and with the run features
+	@# its normals) where classification read the depth copy: Quality's classification reads more than without it.
+	env -u VK_LOADER_DEBUG DNSR_DEVICE="$(DNSR_DEVICE)" target/release/dnsr-bench --sizes 64x32 --scenes typical \
+		--presets quality --precisions fp32 --frames 3 --warmup 1 --warmup-ms 0 --copy-mib 8 --copy-runs 1 --validation \
+		--host-previous --out out/bench-smoke-host-previous > /dev/null
+	python3 -c 'import json; \
+		cls = lambda f: [x["passes"][1]["model_read_bytes"] for x in json.load(open(f))["results"] \
+			if x["scene"] == "typical" and x["preset"] == "quality" and x["precision"] == "fp32"][0]; \
+		own, host = cls("out/bench-smoke/bench.json"), cls("out/bench-smoke-host-previous/bench.json"); \
+		assert host > own * 1.05, (own, host); print(f"bench smoke: --host-previous, classification reads {own:.0f} -> {host:.0f} B")'
 
 # Regenerates every generated, committed file: shaders/generated/dnsr_constants.glsl, shaders/spv/*.spv (needs
 # glslc), include/dnsr.h (cbindgen) and capi-tests/generated/layout.h. `make test` fails when any is stale.

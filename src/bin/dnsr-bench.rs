@@ -141,7 +141,7 @@ impl Options {
             (None, true) => ShadowInput::Checkerboard,
             (None, false) => ShadowInput::HitMask,
         };
-        Fed { host: self.host, input, surface_window: false }
+        Fed { host: self.host, input, surface_window: false, host_previous: self.host_previous }
     }
 }
 

@@ -25,6 +25,10 @@ pub struct Fed {
     /// bench feeds no hit distances): classification reads the normals of every pixel of a group with a tile not
     /// cleared (its window's apron from the caches), not only those of its active pixels.
     pub surface_window: bool,
+    /// `--host-previous`: classification reads the host's previous depth (and, with the run features, normals)
+    /// where it read the depth copy (ContextCreateInfo::host_previous_gbuffer; the first filter pass writes the same
+    /// word to the transient frame depth instead).
+    pub host_previous: bool,
 }
 
 impl Fed {
@@ -110,7 +114,17 @@ fn internal_rows(input: ShadowInput) -> Vec<Row> {
 /// The bytes of one frame's passes with the host G-buffer in `host`'s formats. Per pass: the tile state it reads,
 /// the host images it reads, the rest of its internal images (src/state/table.rs), the host image it writes.
 pub fn model(fed: Fed) -> Vec<Row> {
-    let (host, internal) = (host_rows(fed), internal_rows(fed.input));
+    let (mut host, mut internal) = (host_rows(fed), internal_rows(fed.input));
+    if fed.host_previous {
+        let depth_copy = dnsr::state_table::Target::Image(dnsr::state_table::Image::DepthCopy).label_for(fed.input);
+        internal.retain(|r| !(r.pass == TileClassification && r.access == Read && r.resource == depth_copy));
+        let (depth, _, normals) = fed.host.bytes();
+        host.push(row(TileClassification, &format!("previous depth (host, {:?})", fed.host.depth()), depth, depth, Read, Active, Always));
+        if fed.surface_window {
+            // The run features' turned-normal test reads the previous normal where it reads the moments.
+            host.push(row(TileClassification, &format!("previous normals (host, {:?})", fed.host.normals()), normals, normals, Read, Active, Always));
+        }
+    }
     let tile_read = |r: &Row| r.pixels == Tiles && r.access == Read;
     let mut rows = Vec::new();
     for pass in [Prepare, TileClassification, Filter] {

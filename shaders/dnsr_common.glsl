@@ -95,6 +95,11 @@ float dnsr_linear_depth(vec2 ndc, float depth) {
     return abs(v.z / v.w);
 }
 
+// Pixel p's linear depth where `depth` (its device depth) is a receiver's, -1 for sky.
+float dnsr_receiver_linear_depth(ivec2 p, float depth) {
+    return dnsr_is_receiver(depth) ? dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), depth) : -1.0;
+}
+
 // A stored visibility as the passes use it: clamped to [0, 1], NaN read as 0 (shadowed).
 float dnsr_sanitize_visibility(float v) { return v >= 0.0 ? min(v, 1.0) : 0.0; }
 

@@ -21,8 +21,7 @@
 
 // Linear depth of a receiver, -1 for sky.
 float dnsr_tap_depth(ivec2 p) {
-    float depth = dnsr_read_depth(p);
-    return dnsr_is_receiver(depth) ? dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), depth) : -1.0;
+    return dnsr_receiver_linear_depth(p, dnsr_read_depth(p));
 }
 
 // Penumbra guidance: 1 / (2 sigma^2) of the Gaussian over tap distance that keeps the kernel within the penumbra

@@ -334,10 +334,7 @@ float dnsr_bilinear(float texels[4], vec2 t) {
 // with this frame's inverse projection, as the reprojected depth they are compared with is (its jitter does not
 // move a linear depth). The normal is read only where last frame had a receiver (the depth test passed there, or
 // its moments hold samples), so the sky's normal is never asked for.
-float dnsr_read_previous_depth(ivec2 p) {
-    float d = dnsr_read_host_previous_depth(p);
-    return dnsr_is_receiver(d) ? dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), d) : -1.0;
-}
+float dnsr_read_previous_depth(ivec2 p) { return dnsr_receiver_linear_depth(p, dnsr_read_host_previous_depth(p)); }
 vec3 dnsr_read_previous_normal(ivec2 p) { return dnsr_read_host_previous_normal(p); }
 #endif
 

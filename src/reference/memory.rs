@@ -260,10 +260,7 @@ impl Read for Frame {
     }
     fn read_previous_depth(&self, p: Coord) -> f64 {
         match &self.host_previous {
-            Some((depth, _)) => {
-                let d = depth[self.px(p)];
-                if super::is_receiver(d) { super::linear_depth(self, super::uv_to_ndc(super::pixel_uv(self, p)), d) } else { -1.0 }
-            }
+            Some((depth, _)) => super::receiver_linear_depth(self, p, depth[self.px(p)]),
             None => super::storage::unpack_depth_copy(self.previous_depth[self.px(p)]).0,
         }
     }

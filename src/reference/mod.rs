@@ -174,14 +174,18 @@ pub fn linear_depth<G: Get + ?Sized>(io: &G, ndc: DVec2, depth: f64) -> f64 {
     (v.z / v.w).abs()
 }
 
+/// Pixel p's linear depth where `depth` (its device depth) is a receiver's, -1 elsewhere
+/// (`dnsr_receiver_linear_depth`).
+pub fn receiver_linear_depth<G: Get + ?Sized>(io: &G, p: Coord, depth: f64) -> f64 {
+    if is_receiver(depth) { linear_depth(io, uv_to_ndc(pixel_uv(io, p)), depth) } else { -1.0 }
+}
+
 /// The depth copy of pixel p whose depth and normal are these: on a receiver its linear depth and normal (-1 and
 /// zero elsewhere), what the later filter passes and the next frame compare, packed as the GPU stores them
 /// (`storage::pack_depth_copy`).
 pub fn depth_copy<G: Get + ?Sized>(io: &G, p: Coord, depth: f64, normal: DVec3) -> u32 {
-    if !is_receiver(depth) {
-        return storage::pack_depth_copy(-1.0, DVec3::ZERO);
-    }
-    storage::pack_depth_copy(linear_depth(io, uv_to_ndc(pixel_uv(io, p)), depth), normal)
+    let normal = if is_receiver(depth) { normal } else { DVec3::ZERO };
+    storage::pack_depth_copy(receiver_linear_depth(io, p, depth), normal)
 }
 
 /// What turns a blocker distance into a penumbra radius in pixels (the dispatch's penumbra guidance).

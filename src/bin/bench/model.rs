@@ -32,6 +32,11 @@ pub struct Fed {
 }
 
 impl Fed {
+    /// What BENCHMARKS.md's byte model table is of: the default options with these inputs, Balanced.
+    pub fn documented(host: HostFormats, input: ShadowInput) -> Fed {
+        Fed { host, input, surface_window: false, host_previous: false }.with_preset(dnsr::Preset::Balanced)
+    }
+
     /// The same inputs denoised with `preset`.
     pub fn with_preset(self, preset: dnsr::Preset) -> Fed {
         Fed { surface_window: dnsr::Settings::preset(preset).uses_runs() && self.input == ShadowInput::HitMask, ..self }
@@ -116,13 +121,17 @@ fn internal_rows(input: ShadowInput) -> Vec<Row> {
 pub fn model(fed: Fed) -> Vec<Row> {
     let (mut host, mut internal) = (host_rows(fed), internal_rows(fed.input));
     if fed.host_previous {
+        // Classification's read of the depth copy becomes reads of the host's images over the same pixels.
         let depth_copy = dnsr::state_table::Target::Image(dnsr::state_table::Image::DepthCopy).label_for(fed.input);
-        internal.retain(|r| !(r.pass == TileClassification && r.access == Read && r.resource == depth_copy));
+        let is_copy_read = |r: &Row| r.pass == TileClassification && r.access == Read && r.resource == depth_copy;
+        let copy_read = internal.iter().find(|r| is_copy_read(r)).expect("classification reads the depth copy");
+        let (pixels, when) = (copy_read.pixels, copy_read.when);
+        internal.retain(|r| !is_copy_read(r));
         let (depth, _, normals) = fed.host.bytes();
-        host.push(row(TileClassification, &format!("previous depth (host, {:?})", fed.host.depth()), depth, depth, Read, Active, Always));
+        host.push(row(TileClassification, &format!("previous depth (host, {:?})", fed.host.depth()), depth, depth, Read, pixels, when));
         if fed.surface_window {
             // The run features' turned-normal test reads the previous normal where it reads the moments.
-            host.push(row(TileClassification, &format!("previous normals (host, {:?})", fed.host.normals()), normals, normals, Read, Active, Always));
+            host.push(row(TileClassification, &format!("previous normals (host, {:?})", fed.host.normals()), normals, normals, Read, pixels, when));
         }
     }
     let tile_read = |r: &Row| r.pixels == Tiles && r.access == Read;

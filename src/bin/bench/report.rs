@@ -305,7 +305,7 @@ impl Report<'_> {
                     ("runs_ms", c.runs_ms.clone().into()),
                 ]),
             ),
-            ("byte_model", model_json(Fed { host: self.host, input: self.input, surface_window: false, host_previous: false }.with_preset(Preset::Balanced))),
+            ("byte_model", model_json(Fed::documented(self.host, self.input))),
             (
                 "scenes",
                 Json::Arr(
@@ -463,7 +463,7 @@ impl Report<'_> {
             s += &format!("- {}: {}\n", sc.name(), sc.description());
         }
         s += "\n## Byte model\n\nBytes per unit: per pixel of the class named (per tile for tiles), each texel counted once per pass. Filter passes that skip groups of two cleared tiles (pass 1, and a final pass after the first) count \"every pixel\" rows over the pixels of groups with a tile not cleared only.\n\n";
-        s += &model_markdown(Fed { host: self.host, input: self.input, surface_window: false, host_previous: false }.with_preset(Preset::Balanced));
+        s += &model_markdown(Fed::documented(self.host, self.input));
         s += "\nThe table is Balanced's. Fast and Quality (with a hit mask, without hit distances) run classification's surface window: its normals row covers the pixels of groups with a tile not cleared (the window's apron comes from the caches); their rows of the tables above count it so.\n";
         s
     }
@@ -473,7 +473,7 @@ impl Report<'_> {
 fn balanced_model_bpp(r: &Summary, passes: u32, precision: Precision) -> f64 {
     let ids = [PassId::Prepare, PassId::TileClassification].into_iter().chain((0..passes).map(PassId::Filter));
     ids.map(|id| {
-        let (rd, wr) = pass_bytes(id, passes, precision, &r.counts, Fed { host: r.host, input: r.input, surface_window: false, host_previous: false }.with_preset(Preset::Balanced));
+        let (rd, wr) = pass_bytes(id, passes, precision, &r.counts, Fed::documented(r.host, r.input));
         rd + wr
     })
     .sum::<f64>()

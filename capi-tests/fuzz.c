@@ -596,7 +596,7 @@ static bool dispatch_legal(const DnsrShadowsDispatch *d, const FuzzContext *c)
     if (d->lightIndex >= c->lights) return false;
     if (d->flags & ~(DnsrDispatchFlags)(DNSR_DISPATCH_RESET | DNSR_DISPATCH_USE_RENDER_RECT | DNSR_DISPATCH_HARD_LIGHT))
         return false;
-    if (d->hitMaskConvention > DNSR_HIT_MASK_LIT_BITS || d->debugView > DNSR_DEBUG_VIEW_DISOCCLUSION) return false;
+    if (d->hitMaskConvention > DNSR_HIT_MASK_LIT_BITS || d->debugView > DNSR_DEBUG_VIEW_SAMPLE_RUN) return false;
     for (int r = 0; r < ROLES; r++) {
         const DnsrHostImage *img = role_slot((DnsrShadowsDispatch *)d, (enum Role)r);
         if (img->image == VK_NULL_HANDLE || img->view == VK_NULL_HANDLE) return false;
@@ -638,7 +638,7 @@ static void mutate_dispatch(DnsrShadowsDispatch *d, const FuzzContext *c, Call *
         break;
     }
     case 5: d->hitMaskConvention = 2 + rnd(chance(50) ? 8 : 0x7ffffff0u); note(call, true, "hitMaskConvention=%u", d->hitMaskConvention); break;
-    case 6: d->debugView = 5 + rnd(chance(50) ? 8 : 0x7ffffff0u); note(call, true, "debugView=%u", d->debugView); break;
+    case 6: d->debugView = DNSR_DEBUG_VIEW_SAMPLE_RUN + 1 + rnd(chance(50) ? 8 : 0x7ffffff0u); note(call, true, "debugView=%u", d->debugView); break;
     case 7: img->view = VK_NULL_HANDLE; note(call, true, "%s.view=NULL", role_name[role]); break;
     case 8: img->image = VK_NULL_HANDLE; note(call, true, "%s.image=NULL", role_name[role]); break;
     case 9: case 10: img->format = lie_format(role, c->outputFormat); note(call, true, "%s.format=%d", role_name[role], (int)img->format); break;
@@ -739,7 +739,7 @@ static void mutate_dispatch(DnsrShadowsDispatch *d, const FuzzContext *c, Call *
     case 31: d->frameIndex = rnd32(); note(call, false, "frameIndex=%u", d->frameIndex); break;
     case 32: d->hitMaskConvention ^= 1u; note(call, false, "hitMaskConvention=%u", d->hitMaskConvention); break;
     case 33: d->flags ^= DNSR_DISPATCH_RESET; note(call, false, "flags=0x%x", d->flags); break;
-    case 34: d->debugView = rnd(5); note(call, false, "debugView=%u", d->debugView); break;
+    case 34: d->debugView = rnd(DNSR_DEBUG_VIEW_SAMPLE_RUN + 1); note(call, false, "debugView=%u", d->debugView); break;
     case 35: { const PoolImage *p = pool_pick(role, (uint32_t)size_index(c->width, c->height), c->outputFormat);
         if (p && (role == OUTPUT || p->img.image != d->output.image)) { *img = desc_of(p); note(call, false, "%s=fmt %d layout %d", role_name[role], (int)p->img.format, (int)p->img.layout); }
         break; }
@@ -780,7 +780,7 @@ static DnsrShadowsDispatch legal_dispatch(const FuzzContext *c, VkCommandBuffer 
         d.flags |= DNSR_DISPATCH_USE_RENDER_RECT;
         d.renderRect = (DnsrRect){x, y, 1 + rnd(c->width - x), 1 + rnd(c->height - y)};
     }
-    if (chance(10)) d.debugView = rnd(5);
+    if (chance(10)) d.debugView = rnd(DNSR_DEBUG_VIEW_SAMPLE_RUN + 1);
     if (chance(60)) {
         d.sync.inputSrcStages = VK_PIPELINE_STAGE_TRANSFER_BIT;
         d.sync.inputSrcAccess = VK_ACCESS_TRANSFER_WRITE_BIT;

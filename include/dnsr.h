@@ -1859,6 +1859,12 @@ typedef struct DnsrDiagnosis {
 #define DNSR_DEBUG_VIEW_DISOCCLUSION 4
 
 /**
+ * The current run of identical samples / maxHistorySamples, clamped to [0, 1] (1 in cleared tiles, 0 on sky):
+ * where it reaches stableHistorySamples the input is taken to resolve the pixel.
+ */
+#define DNSR_DEBUG_VIEW_SAMPLE_RUN 5
+
+/**
  * Forces 32 bits.
  */
 #define DNSR_DEBUG_VIEW_MAX_ENUM 2147483647

@@ -257,7 +257,7 @@ void dnsr_write_filter_output(ivec2 p, vec2 mean_var) { imageStore(dnsr_filter_o
 #ifdef DNSR_FINAL_PASS
 void dnsr_write_output(ivec2 p, float shadow) { imageStore(dnsr_output, p + dnsr_get_offset(), vec4(shadow)); }
 uint dnsr_get_debug_view() { return dnsr_push.pass.w; }
-vec3 dnsr_read_debug_moments(ivec2 p) { return dnsr_unpack_moments(texelFetch(dnsr_debug_moments, p + dnsr_get_offset(), 0).x).xyz; }
+vec4 dnsr_read_debug_moments(ivec2 p) { return dnsr_unpack_moments(texelFetch(dnsr_debug_moments, p + dnsr_get_offset(), 0).x); }
 #endif
 
 #ifdef DNSR_LIGHT_SLOTS_VARIANT
@@ -330,10 +330,10 @@ void dnsr_write_light_output(int l, ivec2 p, float shadow) {
     else if (l == 2) imageStore(dnsr_output_2, q, vec4(shadow));
     else imageStore(dnsr_output_3, q, vec4(shadow));
 }
-vec3 dnsr_read_light_debug_moments(int l, ivec2 p) {
+vec4 dnsr_read_light_debug_moments(int l, ivec2 p) {
     ivec2 q = p + dnsr_get_offset();
     return dnsr_unpack_moments(DNSR_BY_SLOT(l, texelFetch(dnsr_debug_moments, q, 0), texelFetch(dnsr_debug_moments_1, q, 0),
-                        texelFetch(dnsr_debug_moments_2, q, 0), texelFetch(dnsr_debug_moments_3, q, 0)).x).xyz;
+                        texelFetch(dnsr_debug_moments_2, q, 0), texelFetch(dnsr_debug_moments_3, q, 0)).x);
 }
 #endif
 #endif

@@ -54,7 +54,7 @@ bool dnsr_pass_hard(int l, ivec2 p, float zc) {
 void dnsr_pass_write_filter_output(int l, ivec2 p, vec2 mean_var) { dnsr_write_light_filter_output(l, p, mean_var); }
 #ifdef DNSR_FINAL_PASS
 void dnsr_pass_write_output(int l, ivec2 p, float shadow) { dnsr_write_light_output(l, p, shadow); }
-vec3 dnsr_pass_debug_moments(int l, ivec2 p) { return dnsr_read_light_debug_moments(l, p); }
+vec4 dnsr_pass_debug_moments(int l, ivec2 p) { return dnsr_read_light_debug_moments(l, p); }
 #endif
 #else
 vec2 dnsr_pass_filter_input(int l, ivec2 p) { return dnsr_read_filter_input(p); }
@@ -73,7 +73,7 @@ bool dnsr_pass_hard(int l, ivec2 p, float zc) {
 void dnsr_pass_write_filter_output(int l, ivec2 p, vec2 mean_var) { dnsr_write_filter_output(p, mean_var); }
 #ifdef DNSR_FINAL_PASS
 void dnsr_pass_write_output(int l, ivec2 p, float shadow) { dnsr_write_output(p, shadow); }
-vec3 dnsr_pass_debug_moments(int l, ivec2 p) { return dnsr_read_debug_moments(p); }
+vec4 dnsr_pass_debug_moments(int l, ivec2 p) { return dnsr_read_debug_moments(p); }
 #endif
 #endif
 
@@ -93,12 +93,16 @@ float dnsr_debug_value(int l, uint view, ivec2 p, bool receiver, uint meta, vec2
         return !receiver ? 0.75 : (!cleared ? 0.5 : ((meta & DNSR_TILE_LIT) != 0u ? 1.0 : 0.0));
     }
     if (view == DNSR_DEBUG_VIEW_VARIANCE) return clamp(sqrt(max(result.y, 0.0)), 0.0, 1.0);
-    // A cleared tile's receivers hold a full history (dnsr_cleared_moments): with one filter pass their frame
-    // moments, which this view would read, were not stored.
-    float n = !receiver ? 0.0
-                            : (cleared ? dnsr_unpack_moments(dnsr_pack_moments(dnsr_cleared_moments(true, false))).z
-                                       : dnsr_pass_debug_moments(l, p).z);
+    // A cleared tile's receivers hold a full history and the longest run (dnsr_cleared_moments): with one filter
+    // pass their frame moments, which these views would read, were not stored.
+    vec4 m = !receiver ? vec4(0.0)
+                       : (cleared ? dnsr_unpack_moments(dnsr_pack_moments(dnsr_cleared_moments(true, false)))
+                                  : dnsr_pass_debug_moments(l, p));
+    float n = m.z;
     if (view == DNSR_DEBUG_VIEW_SAMPLE_COUNT) return clamp(n / dnsr_get_temporal_settings().z, 0.0, 1.0);
+    // The run as stored: a run that this frame's sample broke is kept as its length and a half (the flip rule's
+    // mark), shown as its whole samples.
+    if (view == DNSR_DEBUG_VIEW_SAMPLE_RUN) return clamp(floor(abs(m.w)) / dnsr_get_temporal_settings().z, 0.0, 1.0);
     return receiver && !cleared && n <= 1.0 ? 1.0 : 0.0; // DNSR_DEBUG_VIEW_DISOCCLUSION
 }
 #endif

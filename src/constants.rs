@@ -109,6 +109,7 @@ pub(crate) const GLSL_FLAGS: &[(&str, u32)] = &[
     ("DNSR_DEBUG_VIEW_SAMPLE_COUNT", crate::dispatch::DebugView::SampleCount as u32),
     ("DNSR_DEBUG_VIEW_VARIANCE", crate::dispatch::DebugView::Variance as u32),
     ("DNSR_DEBUG_VIEW_DISOCCLUSION", crate::dispatch::DebugView::Disocclusion as u32),
+    ("DNSR_DEBUG_VIEW_SAMPLE_RUN", crate::dispatch::DebugView::SampleRun as u32),
     ("DNSR_CLASSIFY_REJECT_LIT", CLASSIFY_REJECT_LIT),
     ("DNSR_CLASSIFY_BOUND_INTERVAL", CLASSIFY_BOUND_INTERVAL),
     ("DNSR_CLASSIFY_CASCADES_INVERTED", CLASSIFY_CASCADES_INVERTED),

@@ -46,6 +46,11 @@ pub enum DebugView {
     Variance,
     /// 1 where the history restarted this frame (disocclusion, reset or rejection: sample count <= 1), else 0.
     Disocclusion,
+    /// The pixel's current run of identical samples / max_history_samples, clamped to [0, 1] (1 in cleared tiles,
+    /// 0 on sky). Where it reaches `Settings::stable_history_samples` the input is taken to resolve the pixel (a hard
+    /// edge): its history is clamped to the run rather than to its neighbourhood; short runs along an edge that
+    /// the input had exact are where the filter can soften it.
+    SampleRun,
 }
 
 /// A pixel rectangle within the render size.

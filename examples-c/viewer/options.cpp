@@ -49,7 +49,7 @@ const char *kUsage =
     "                          size, frames, light and camera: the run fails if the last frame's depth differs;\n"
     "                          --lights 1)\n"
     "  --view NAME             window mode: first view (noisy, denoised, reference, composite, tiles, or dnsr's\n"
-    "                          debug views classification, samples, variance, disocclusion; keys 1-9)\n"
+    "                          debug views classification, samples, variance, disocclusion, run; keys 1-9, U)\n"
     "  --orbit-speed DEG       headless: camera orbit per frame in degrees, -45..45 (default 0.25; 0 = static)\n"
     "  --pan F                 headless: the camera moves sideways by F x its distance per frame, -0.1..0.1\n"
     "                          (default 0)\n"
@@ -68,7 +68,8 @@ const char *kUsage =
     "  --reverse-rays          hybrid: trace from the light's end of the classifier's interval towards the surface\n"
     "                          (with --hit-distance off: guidance needs the occluder nearest the surface)\n"
     "  --debug-view NAME       headless: the last frame's dnsr output is its debug view NAME (classification,\n"
-    "                          samples, variance or disocclusion; the window's keys 6-9) instead of the shadow:\n"
+    "                          samples, variance, disocclusion or run: each pixel's run of identical samples;\n"
+    "                          the window's keys 6-9 and U) instead of the shadow:\n"
     "                          denoised.png and every denoised figure of report.json (which names the view) then\n"
     "                          show the view. A run without it is the same up to that frame\n"
     "  --preset NAME           dnsr's settings: fast, balanced (the FidelityFX values) or quality (default)\n"
@@ -163,11 +164,11 @@ Options parseOptions(int argc, char **argv)
         } else if (a == "--view") {
             std::string v = value();
             const char *names[] = {"noisy",   "denoised",     "reference", "composite", "tiles", "classification",
-                                   "samples", "variance",     "disocclusion", "hybrid", "traced"};
+                                   "samples", "variance",     "disocclusion", "hybrid", "traced", "run"};
             auto it = std::find(std::begin(names), std::end(names), v);
             if (it == std::end(names))
                 throw UsageError("--view wants noisy, denoised, reference, composite, tiles, classification, samples, "
-                                 "variance, disocclusion, hybrid or traced, got '" + v + "'");
+                                 "variance, disocclusion, hybrid, traced or run, got '" + v + "'");
             o.view = static_cast<View>(it - std::begin(names));
         } else if (a == "--preset") {
             std::string v = value();
@@ -177,11 +178,14 @@ Options parseOptions(int argc, char **argv)
             o.preset = static_cast<DnsrPreset>(it - std::begin(names));
         } else if (a == "--debug-view") {
             std::string v = value();
-            const char *names[] = {"classification", "samples", "variance", "disocclusion"};  // View::DnsrTiles..
+            const char *names[] = {"classification", "samples", "variance", "disocclusion", "run"};
+            const View views[] = {View::DnsrTiles, View::DnsrSampleCount, View::DnsrVariance, View::DnsrDisocclusion,
+                                  View::DnsrSampleRun};
             auto it = std::find(std::begin(names), std::end(names), v);
             if (it == std::end(names))
-                throw UsageError("--debug-view wants classification, samples, variance or disocclusion, got '" + v + "'");
-            o.debugView = static_cast<View>(uint32_t(View::DnsrTiles) + uint32_t(it - std::begin(names)));
+                throw UsageError("--debug-view wants classification, samples, variance, disocclusion or run, got '" + v +
+                                 "'");
+            o.debugView = views[it - std::begin(names)];
         } else if (a == "--set") {
             std::string list = value();
             for (size_t at = 0; at <= list.size();) {
@@ -279,7 +283,7 @@ Options parseOptions(int argc, char **argv)
     if (o.headless && !o.screenshot.empty()) throw UsageError("--screenshot is for window mode (headless writes PNGs)");
     if (!o.screenshot.empty() && !o.frames) throw UsageError("--screenshot needs --frames N");
     if (!o.headless && o.debugView != View::Composite)
-        throw UsageError("--debug-view is for --headless (the window shows the debug views on keys 6-9, or --view)");
+        throw UsageError("--debug-view is for --headless (the window shows the debug views on keys 6-9 and U, or --view)");
     if (!o.headless && !(o.saveReference.empty() && o.loadReference.empty()))
         throw UsageError("--save-reference and --load-reference are for --headless");
     if (!o.saveReference.empty() && !o.loadReference.empty())

@@ -39,7 +39,7 @@ struct Options {
     DnsrPreset preset = DNSR_PRESET_QUALITY;
     std::vector<std::pair<std::string, double>> settings;  // --set: DnsrSettings fields changed after the preset
     View view = View::Composite;  // window mode: the view shown first
-    // Headless: the last frame's dnsr output is this debug view (View::DnsrTiles..DnsrDisocclusion) instead of the
+    // Headless: the last frame's dnsr output is this debug view (View::DnsrTiles..DnsrDisocclusion, DnsrSampleRun) instead of the
     // shadow; Composite: none.
     View debugView = View::Composite;
     // Hybrid shadows (RendererSettings::hybrid): start in hybrid mode, and its settings.

@@ -555,12 +555,8 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
         }
         l.output = &lights_[i].denoised;
     }
-    // Views 5..8 map in order onto DNSR_DEBUG_VIEW_TILE_CLASSIFICATION .. DNSR_DEBUG_VIEW_DISOCCLUSION.
-    bool dnsrView = in.display >= View::DnsrTiles && in.display <= View::DnsrDisocclusion;
-    denoiser_.recordDenoise(frame, lights,
-                            dnsrView ? DNSR_DEBUG_VIEW_TILE_CLASSIFICATION +
-                                           (uint32_t(in.display) - uint32_t(View::DnsrTiles))
-                                     : DNSR_DEBUG_VIEW_NONE);
+    bool dnsrView = dnsrDebugView(in.display) != DNSR_DEBUG_VIEW_NONE;
+    denoiser_.recordDenoise(frame, lights, dnsrDebugView(in.display));
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, kAfterDnsr);
 
     // dnsr's debug views land in its output images: shown like the denoised shadow (composite mode 1).

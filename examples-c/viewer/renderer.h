@@ -32,8 +32,8 @@
 // At most this many lights (shaders/common.glsl's kMaxLights, with their own bindings for each light's images).
 constexpr uint32_t kMaxLights = 2;
 
-// Views 5..8 ask dnsr itself for a debug view of its internal state (DnsrShadowsDispatch::debugView), shown
-// like the denoised shadow.
+// Views 5..8 and 11 ask dnsr itself for a debug view of its internal state (DnsrShadowsDispatch::debugView),
+// shown like the denoised shadow.
 enum class View : uint32_t {
     Noisy = 0,
     Denoised = 1,
@@ -46,7 +46,16 @@ enum class View : uint32_t {
     DnsrDisocclusion = 8,
     Hybrid = 9,       // what decided each pixel: the cascades or a ray (hybrid mode)
     TracedTiles = 10, // the fraction of each tile's pixels traced this frame
+    DnsrSampleRun = 11, // dnsr's debug view of each pixel's run of identical samples
 };
+
+// dnsr's debug views among the views, and the DnsrDebugView each asks for (DNSR_DEBUG_VIEW_NONE for the others).
+inline DnsrDebugView dnsrDebugView(View v) {
+    if (v == View::DnsrSampleRun) return DNSR_DEBUG_VIEW_SAMPLE_RUN;
+    if (v >= View::DnsrTiles && v <= View::DnsrDisocclusion)
+        return DNSR_DEBUG_VIEW_TILE_CLASSIFICATION + (uint32_t(v) - uint32_t(View::DnsrTiles));
+    return DNSR_DEBUG_VIEW_NONE;
+}
 
 // Hybrid shadows: the cascades, dnsr's classifier and the trace of the pixels it lists.
 struct HybridSettings {

@@ -187,6 +187,7 @@ private:
         case GLFW_KEY_7: view_ = View::DnsrSampleCount; break;
         case GLFW_KEY_8: view_ = View::DnsrVariance; break;
         case GLFW_KEY_9: view_ = View::DnsrDisocclusion; break;
+        case GLFW_KEY_U: view_ = View::DnsrSampleRun; break;
         case GLFW_KEY_L: s_.light.moving = !s_.light.moving; break;
         case GLFW_KEY_H: s_.light.hitDistance = !s_.light.hitDistance; break;
         case GLFW_KEY_N: shownLight_ = (shownLight_ + 1) % s_.opt.lights; break;

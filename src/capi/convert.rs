@@ -269,6 +269,7 @@ pub(crate) fn dispatch_from_c(c: &DnsrShadowsDispatch) -> Result<(vk::CommandBuf
         DNSR_DEBUG_VIEW_SAMPLE_COUNT => DebugView::SampleCount,
         DNSR_DEBUG_VIEW_VARIANCE => DebugView::Variance,
         DNSR_DEBUG_VIEW_DISOCCLUSION => DebugView::Disocclusion,
+        DNSR_DEBUG_VIEW_SAMPLE_RUN => DebugView::SampleRun,
         other => return Err(CallError::InvalidArgument(format!("pDispatch->debugView {other} is not a DnsrDebugView"))),
     };
     let r = c.render_rect;

@@ -291,6 +291,9 @@ pub const DNSR_DEBUG_VIEW_SAMPLE_COUNT: DnsrDebugView = 2;
 pub const DNSR_DEBUG_VIEW_VARIANCE: DnsrDebugView = 3;
 /// 1 where the history restarted this frame (disocclusion, reset or rejection), else 0.
 pub const DNSR_DEBUG_VIEW_DISOCCLUSION: DnsrDebugView = 4;
+/// The current run of identical samples / maxHistorySamples, clamped to [0, 1] (1 in cleared tiles, 0 on sky):
+/// where it reaches stableHistorySamples the input is taken to resolve the pixel.
+pub const DNSR_DEBUG_VIEW_SAMPLE_RUN: DnsrDebugView = 5;
 /// Forces 32 bits.
 pub const DNSR_DEBUG_VIEW_MAX_ENUM: DnsrDebugView = 0x7FFF_FFFF;
 

@@ -462,6 +462,14 @@ fn debug_views_show_the_internal_state() {
     let counts = view(&mut r, &mixed, DebugView::SampleCount, true);
     let max = r.ctx.settings().max_history_samples;
     assert!(counts.iter().all(|&n| (n - 1.0 / max).abs() < 1e-6), "{:?}", &counts[..4]);
+    // Every pixel's run is its one sample; the same samples three frames more make it four.
+    let runs = view(&mut r, &mixed, DebugView::SampleRun, true);
+    assert!(runs.iter().all(|&n| (n - 1.0 / max).abs() < 1e-6), "{:?}", &runs[..4]);
+    for _ in 0..2 {
+        view(&mut r, &mixed, DebugView::None, false);
+    }
+    let runs = view(&mut r, &mixed, DebugView::SampleRun, false);
+    assert!(runs.iter().all(|&n| (n - 4.0 / max).abs() < 1e-6), "{:?}", &runs[..4]);
     // Static frames accumulate: no restarts, counts grow, variance stays a valid standard deviation.
     for frame in 0..12 {
         view(&mut r, &render(w, h, &cam, &cam, 1e9, &|_, _| 0.5, 10 + frame), DebugView::None, false);

@@ -419,24 +419,26 @@ status=0
 echo "--set: takes all $(wc -w <<<"$fields") DnsrSettings fields, changes the output, refuses unknown names and values out of range"
 
 # ---- --debug-view: the last frame's dnsr output is a debug view; the frames before it are the same run ----
-status=0
-"$viewer" --headless --validate --preset quality --hit-distance off --frames 4 --size 64x48 --out "$tmp/debug-view" \
-  --load-reference "$tmp/quality.ref" --debug-view variance > "$tmp/debug-view.log" 2>&1 || status=$?
-(( status == 0 )) || { cat "$tmp/debug-view.log"; fail "--debug-view variance exited with status $status"; }
-python3 - "$tmp/quality/report.json" "$tmp/debug-view/report.json" <<'PY' || fail "--debug-view check failed"
+for name in variance run; do
+  status=0
+  "$viewer" --headless --validate --preset quality --hit-distance off --frames 4 --size 64x48 --out "$tmp/debug-$name" \
+    --load-reference "$tmp/quality.ref" --debug-view "$name" > "$tmp/debug-view.log" 2>&1 || status=$?
+  (( status == 0 )) || { cat "$tmp/debug-view.log"; fail "--debug-view $name exited with status $status"; }
+  python3 - "$tmp/quality/report.json" "$tmp/debug-$name/report.json" "$name" <<'PY' || fail "--debug-view $name check failed"
 import json, sys
-plain, view = (json.load(open(p)) for p in sys.argv[1:])
-assert plain["debug_view"] is None and view["debug_view"] == "variance", (plain["debug_view"], view["debug_view"])
+plain, view = (json.load(open(p)) for p in sys.argv[1:3])
+assert plain["debug_view"] is None and view["debug_view"] == sys.argv[3], (plain["debug_view"], view["debug_view"])
 assert view["per_light"][0]["hit_mask_fnv1a"] == plain["per_light"][0]["hit_mask_fnv1a"], "not the same frames"
 assert view["per_light"][0]["denoised_fnv1a"] != plain["per_light"][0]["denoised_fnv1a"], "the view is the shadow"
 PY
+done
 for bad in "--headless --debug-view shadows" "--debug-view variance"; do
   status=0
   # shellcheck disable=SC2086
   "$viewer" $bad --frames 1 --size 16x16 --out "$tmp/bad-view" > /dev/null 2> "$tmp/view.err" || status=$?
   (( status == 2 )) && grep -qF -- "--debug-view" "$tmp/view.err" || fail "$bad: status $status, message: $(cat "$tmp/view.err")"
 done
-echo "--debug-view: the last frame's output is the view (same frames before it); a bad name and window mode refused"
+echo "--debug-view variance and run: the last frame's output is the view (same frames before it); a bad name and window mode refused"
 
 # ---- Do no harm: a fixed subset of the procedural scene family (family.py; make viewer-accuracy runs 100) ----
 # Ten seeded scenes (with and without a ground plane, hard and soft lights, point lights), a still camera, the

@@ -83,8 +83,9 @@ const char *kUsage =
     "window keys: left-drag orbit, scroll zoom, R reset view (a camera cut: dnsr's history restarts),\n"
     "             1 noisy, 2 denoised, 3 reference (accumulates while nothing moves), 4 composite,\n"
     "             5 hit-mask density per tile, 6 dnsr tile classification, 7 dnsr sample count,\n"
-    "             8 dnsr variance, 9 dnsr disocclusion, L toggle light motion, H toggle penumbra guidance\n"
-    "             (hit distances), N the other light in views 1-3, 5-9 (--lights 2), C toggle hybrid mode,\n"
+    "             8 dnsr variance, 9 dnsr disocclusion, U dnsr run of identical samples, L toggle light\n"
+    "             motion, H toggle penumbra guidance (hit distances), N the other light in views 1-3, 5-9\n"
+    "             and U (--lights 2), C toggle hybrid mode,\n"
     "             0 hybrid: what decided each pixel, T hybrid: pixels traced per tile, Esc/Q quit\n"
     "exit status: 0 success, 1 a Vulkan/dnsr failure or (with --validate) a validation message,\n"
     "             2 a bad command line, or a scene or reference file the viewer cannot load\n";

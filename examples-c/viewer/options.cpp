@@ -179,14 +179,12 @@ Options parseOptions(int argc, char **argv)
             o.preset = static_cast<DnsrPreset>(it - std::begin(names));
         } else if (a == "--debug-view") {
             std::string v = value();
-            const char *names[] = {"classification", "samples", "variance", "disocclusion", "run"};
-            const View views[] = {View::DnsrTiles, View::DnsrSampleCount, View::DnsrVariance, View::DnsrDisocclusion,
-                                  View::DnsrSampleRun};
-            auto it = std::find(std::begin(names), std::end(names), v);
-            if (it == std::end(names))
+            auto it = std::find_if(std::begin(kDnsrViews), std::end(kDnsrViews),
+                                   [&](const DnsrViewName &d) { return v == d.name; });
+            if (it == std::end(kDnsrViews))
                 throw UsageError("--debug-view wants classification, samples, variance, disocclusion or run, got '" + v +
                                  "'");
-            o.debugView = views[it - std::begin(names)];
+            o.debugView = it->view;
         } else if (a == "--set") {
             std::string list = value();
             for (size_t at = 0; at <= list.size();) {

@@ -49,11 +49,22 @@ enum class View : uint32_t {
     DnsrSampleRun = 11, // dnsr's debug view of each pixel's run of identical samples
 };
 
-// dnsr's debug views among the views, and the DnsrDebugView each asks for (DNSR_DEBUG_VIEW_NONE for the others).
+// dnsr's debug views in DnsrDebugView order from DNSR_DEBUG_VIEW_TILE_CLASSIFICATION: the name --debug-view and
+// report.json's "debug_view" give each, and the view that shows it.
+struct DnsrViewName {
+    const char *name;
+    View view;
+};
+constexpr DnsrViewName kDnsrViews[] = {{"classification", View::DnsrTiles}, {"samples", View::DnsrSampleCount},
+                                       {"variance", View::DnsrVariance},     {"disocclusion", View::DnsrDisocclusion},
+                                       {"run", View::DnsrSampleRun}};
+constexpr uint32_t kDnsrViewCount = sizeof(kDnsrViews) / sizeof(kDnsrViews[0]);
+
+// The DnsrDebugView that view v asks dnsr for (DNSR_DEBUG_VIEW_NONE for the viewer's own views).
 inline DnsrDebugView dnsrDebugView(View v) {
-    if (v == View::DnsrSampleRun) return DNSR_DEBUG_VIEW_SAMPLE_RUN;
-    if (v >= View::DnsrTiles && v <= View::DnsrDisocclusion)
-        return DNSR_DEBUG_VIEW_TILE_CLASSIFICATION + (uint32_t(v) - uint32_t(View::DnsrTiles));
+    for (uint32_t i = 0; i < kDnsrViewCount; ++i) {
+        if (kDnsrViews[i].view == v) return DNSR_DEBUG_VIEW_TILE_CLASSIFICATION + i;
+    }
     return DNSR_DEBUG_VIEW_NONE;
 }
 

@@ -63,9 +63,9 @@ void writeReport(const std::string &path, const Session &session, const Measurem
     const char *presets[] = {"fast", "balanced", "quality"};
     r["preset"] = presets[opt.preset];
     // --debug-view: the last frame's dnsr output, and every "denoised" figure below, is this view, not the shadow.
-    const char *views[] = {"classification", "samples", "variance", "disocclusion", "run"};  // DnsrDebugView - 1
     DnsrDebugView debug = dnsrDebugView(opt.debugView);
-    r["debug_view"] = debug != DNSR_DEBUG_VIEW_NONE ? Json(views[debug - 1]) : Json(nullptr);
+    r["debug_view"] = debug != DNSR_DEBUG_VIEW_NONE ? Json(kDnsrViews[debug - DNSR_DEBUG_VIEW_TILE_CLASSIFICATION].name)
+                                                   : Json(nullptr);
     if (!opt.settings.empty()) {
         auto &set = r["settings"];
         for (const auto &[name, value] : opt.settings) set[name] = value;

@@ -63,6 +63,14 @@ pub(crate) const DEPTH_COPY_NORMAL_BITS: u32 = 8;
 /// last frame holds another surface: it leaves the history footprint (docs/do-no-harm.md, "normal-agreeing
 /// footprint": 37 and 60 degrees measured alike; faces meet at creases near 90). Generated into GLSL.
 pub(crate) const TURNED_NORMAL_COS_PERCENT: u32 = 80;
+/// A history texel of this surface lies within the disocclusion test's depth range widened, per pixel of distance
+/// from the history position, by this percentage of what a plane at the surface's angle to the view changes over
+/// a pixel: 100 let thin fins over the ground keep the ground's history (seed 1040), 0 rejected grazing ground's
+/// own texels (docs/do-no-harm.md, "Footprint texels at this depth"). Generated into GLSL.
+pub(crate) const FOOTPRINT_SLOPE_PERCENT: u32 = 50;
+/// The largest tan of the surface's angle to the view that the widening takes (86 degrees; beyond, the same).
+/// Generated into GLSL.
+pub(crate) const FOOTPRINT_MAX_SLOPE: u32 = 16;
 
 /// The standard deviation a stored signal's code 1.0 stands for: the variance boost multiplies a variance of at
 /// most 0.5 (an unbiased estimate of 0/1 samples) by up to `variance_boost_samples`.

@@ -447,6 +447,12 @@ echo "--debug-view variance and run: the last frame's output is the view (same f
 python3 examples-c/viewer/family.py "$viewer" "$tmp/family" --first 1000 --count 10 --presets quality \
   --camera still --check quality > "$tmp/family.out" 2>&1 || fail "do no harm: $(tail -n 20 "$tmp/family.out")"
 echo "do no harm: $(tail -n 1 "$tmp/family.out")"
+# One of them with its own camera, an orbit: a staircase whose lit tops stand above the shadowed ground, both facing
+# up, so that a young pixel's history footprint holds both (the footprint leaves out texels at another depth:
+# docs/do-no-harm.md, "Footprint texels at this depth"; before it, RMSE 0.0025 where the input is exact).
+python3 examples-c/viewer/family.py "$viewer" "$tmp/family-orbit" --first 1005 --count 1 --presets quality \
+  --check quality > "$tmp/family-orbit.out" 2>&1 || fail "do no harm, orbit: $(tail -n 20 "$tmp/family-orbit.out")"
+echo "do no harm, orbit: $(tail -n 1 "$tmp/family-orbit.out")"
 
 # ---- --validate counts validation messages, not the Vulkan loader's notices ----
 # With VK_INSTANCE_LAYERS naming the layer, the loader warns through the same debug messenger that it adds the

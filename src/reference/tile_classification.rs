@@ -233,6 +233,15 @@ fn run_value(run: f64) -> f64 {
     if run > 0.0 { 1.0 } else { 0.0 }
 }
 
+/// How much of its linear depth a footprint texel of this surface may differ by per pixel of distance from the
+/// history position, beyond the disocclusion test's threshold: `state::FOOTPRINT_SLOPE_PERCENT` of a plane's change
+/// at the surface's angle to the view (its tan, at most `state::FOOTPRINT_MAX_SLOPE`; `dnsr_texel_depth_slope`).
+fn texel_depth_slope<Io: Read + ?Sized>(io: &Io, depth: f64, n_dot_v: f64) -> f64 {
+    let tan_angle = ((1.0 - n_dot_v * n_dot_v).max(0.0).sqrt() / n_dot_v.max(1e-3)).min(crate::state::FOOTPRINT_MAX_SLOPE as f64);
+    let pixel = super::Penumbra::new(0.0, io.projection_inverse(), io.extent()[1]).footprint(depth);
+    crate::state::FOOTPRINT_SLOPE_PERCENT as f64 / 100.0 * pixel * tan_angle
+}
+
 /// Normals `a` and `b` (last frame's, this frame's) both known and further apart than
 /// `state::TURNED_NORMAL_COS_PERCENT` allows (`dnsr_normal_turned`).
 fn normal_turned(a: DVec3, b: DVec3) -> bool {
@@ -411,9 +420,10 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, q
     let on_screen = finite(prev_uv) && finite(history_uv) && prev_clip.w > 0.0 && in01(prev_uv) && in01(history_uv);
     let clamp_px = |v: DVec2| [((v.x * e[0] as f64) as i32).clamp(0, e[0] - 1), ((v.y * e[1] as f64) as i32).clamp(0, e[1] - 1)];
     let mut disoccluded = io.is_reset() || !on_screen;
+    // Last frame's depth of this surface point.
+    let expected = linear_depth(io, prev_ndc.truncate(), prev_ndc.z);
     if !disoccluded {
         let previous = io.read_previous_depth(clamp_px(prev_uv));
-        let expected = linear_depth(io, prev_ndc.truncate(), prev_ndc.z);
         disoccluded = !((previous - expected).abs() < threshold * expected);
     }
 
@@ -449,6 +459,9 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, q
         if s.uses_runs() {
             let t = DVec2::new(history_uv.x * e[0] as f64 - 0.5, history_uv.y * e[1] as f64 - 0.5);
             let f = t - t.floor();
+            // A footprint texel of this surface lies within the disocclusion test's depth range, widened per pixel
+            // of its distance from the history position (`texel_depth_slope`).
+            let slope = texel_depth_slope(io, expected, n_dot_v);
             let (mut agree, mut all, mut receivers) = (DVec2::ZERO, 0.0, DVec2::ZERO);
             // Texels weighed at 1/16 or more: one where the camera stood still.
             let mut texels = 0;
@@ -475,8 +488,13 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, q
                 texels += 1;
                 // Texels without a receiver (sky: no samples) leave the blend too: their lit sky signal would
                 // brighten a shadowed receiver along every silhouette against the background. So do texels whose
-                // normal turned: they hold another surface.
-                if !(mq.z > 0.0) || normal_turned(io.read_previous_normal(q), normal) {
+                // normal turned, or whose depth is not this surface point's (the disocclusion test's): they hold
+                // another surface.
+                if !(mq.z > 0.0)
+                    || normal_turned(io.read_previous_normal(q), normal)
+                    || !((io.read_previous_depth(q) - expected).abs()
+                        < threshold * expected + (DVec2::new(q[0] as f64, q[1] as f64) - t).length() * slope)
+                {
                     continue;
                 }
                 if weight > kept_weight {

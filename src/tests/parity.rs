@@ -26,7 +26,12 @@ fn random_frame(w: u32, h: u32, seed: u64, frame: u64) -> FrameInputs {
             let r = |k: u64| hash01(seed ^ (k * 0x9E37), x, y);
             let sky = (x / 6 + y / 5) % 7 == 3;
             let jump = frame >= 3 && x < 12 && y >= h / 2;
-            f.depth[i] = if sky { 1.0 } else { (0.9 + 0.09 * r(1)) as f32 * if jump { 0.99 } else { 1.0 } };
+            // Under sub-pixel motion (below) in 4x4 blocks of one depth: a history footprint inside a block holds
+            // this surface point's depth, one across a block's border other depths too (classification leaves
+            // those texels out, as it does sky).
+            let moving = matches!(seed, 5 | 6 | 12 | 13 | 15);
+            let depth = if moving { hash01(seed ^ 0x9E37, x / 4, y / 4) } else { r(1) };
+            f.depth[i] = if sky { 1.0 } else { (0.9 + 0.09 * depth) as f32 * if jump { 0.99 } else { 1.0 } };
             // A band of surfaces facing -y slides one pixel left per frame over the others: at its left edge
             // pixels turn, and under sub-pixel motion (seeds 5, 6, 12) their footprints hold texels that were in
             // the band last frame beside ones that were not. Classification leaves turned texels out, and where
@@ -43,7 +48,7 @@ fn random_frame(w: u32, h: u32, seed: u64, frame: u64) -> FrameInputs {
             f.receiver[i] = !sky;
             // Some cases move their surfaces by a fraction of a pixel: history falls between texels, where stable
             // runs pick the texel to read (seeds 5 and 6 keep stable history; 13 is a light of no size).
-            if seed == 5 || seed == 6 || seed == 12 || seed == 13 || seed == 15 {
+            if moving {
                 f.velocity[i] = [0.37 / w as f32, -0.41 / h as f32];
             }
             // Hit distances for penumbra guidance, with unusable values (zero, negative, NaN, infinite) mixed in.

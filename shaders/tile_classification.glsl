@@ -327,6 +327,11 @@ float dnsr_bilinear(float texels[4], vec2 t) {
     return mix(mix(texels[0], texels[1], f.x), mix(texels[2], texels[3], f.x), f.y);
 }
 
+// Texel k of the bilinear footprint whose top-left texel is `footprint` (k & 1: the right column, k & 2: the lower
+// row), clamped to the rectangle, and its bilinear weight at fraction f of the history position past that texel.
+ivec2 dnsr_footprint_texel(ivec2 footprint, int k) { return clamp(footprint + ivec2(k & 1, k >> 1), ivec2(0), dnsr_get_extent() - 1); }
+float dnsr_footprint_weight(vec2 f, int k) { return ((k & 1) != 0 ? f.x : 1.0 - f.x) * ((k & 2) != 0 ? f.y : 1.0 - f.y); }
+
 #ifdef DNSR_HOST_PREVIOUS_GBUFFER
 // Last frame's linear depth (-1: no receiver) and normal from the host's previous depth and normals, as read: a
 // depth copy's rounding of them (its depth code and octahedral normal) cost Quality's classification 0.05 ms of
@@ -843,7 +848,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     float texel_history[4];
     if (!DNSR_SPEC_STABLE_HISTORY) {
         [[unroll]] for (int k = 0; k < 4; ++k) {
-            texel_history[k] = dnsr_read_history_texel(clamp(footprint + ivec2(k & 1, k >> 1), ivec2(0), last_texel));
+            texel_history[k] = dnsr_read_history_texel(dnsr_footprint_texel(footprint, k));
         }
     }
     // The history footprint's texels that hold another surface, one bit each (with the run features): turned, or
@@ -862,9 +867,9 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             float slope = dnsr_texel_depth_slope(expected, n_dot_v);
             vec2 f = t - floor(t);
             [[unroll]] for (int k = 0; k < 4; ++k) {
-                float weight = ((k & 1) != 0 ? f.x : 1.0 - f.x) * ((k & 2) != 0 ? f.y : 1.0 - f.y);
+                float weight = dnsr_footprint_weight(f, k);
                 if (weight < 1.0 / 16.0) continue;
-                ivec2 q = clamp(footprint + ivec2(k & 1, k >> 1), ivec2(0), last_texel);
+                ivec2 q = dnsr_footprint_texel(footprint, k);
                 bool other = dnsr_normal_turned(dnsr_read_previous_normal(q), normal)
                     || !(abs(dnsr_read_previous_depth(q) - expected) < threshold * expected + length(vec2(q) - t) * slope);
                 other_surface |= other ? 1u << k : 0u;
@@ -934,8 +939,8 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             // Unrolled: classification 0.866 -> 0.851 ms at 4K on an H200 (64 registers either way; the same hint
             // on the 9- and 16-texel loops changed nothing).
             [[unroll]] for (int k = 0; k < 4; ++k) {
-                float weight = ((k & 1) != 0 ? f.x : 1.0 - f.x) * ((k & 2) != 0 ? f.y : 1.0 - f.y);
-                ivec2 q = clamp(footprint + ivec2(k & 1, k >> 1), ivec2(0), last_texel);
+                float weight = dnsr_footprint_weight(f, k);
+                ivec2 q = dnsr_footprint_texel(footprint, k);
                 if (weight < 1.0 / 16.0) continue;
                 vec4 mq = dnsr_read_previous_moments(q);
                 all_weight += weight;

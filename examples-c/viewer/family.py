@@ -7,6 +7,7 @@ and the error on the pixel classes of metrics.h (exact pixels, silhouettes, crea
 
 usage: family.py VIEWER OUT_DIR [--first SEED] [--count N] [--size WxH] [--frames N] [--presets a,b] [--md FILE]
                  [--check PRESET] [--camera KIND] [--references DIR] [--jobs N] [--set NAME=VALUE,...]
+                 [--viewer-args "ARG ..."]
 
 A preset is a dnsr preset name, run without penumbra guidance, or NAME+guided: with it (hit distances given), or
 NAME+untold: without guidance, without telling dnsr that a light of no size has none (--hard-light off) and without
@@ -193,6 +194,8 @@ def main():
     ap.add_argument("--references", help="where each scene's reference is kept (default OUT_DIR/references)")
     ap.add_argument("--jobs", type=int, default=1, help="scenes run at once")
     ap.add_argument("--set", help="dnsr settings for every run, NAME=VALUE[,...] (the viewer's --set)")
+    ap.add_argument("--viewer-args", default="",
+                    help="more viewer options for every scene, e.g. \"--normal-detail 0.5\" (the references follow them)")
     a = ap.parse_args()
     presets = a.presets.split(",")
     out = Path(a.out)
@@ -206,6 +209,8 @@ def main():
             args = s["viewer_args"]
             cut = min(i for i, x in enumerate(args) if x == "--orbit-speed")
             s["viewer_args"], s["camera"] = args[:cut] + make_family.CAMERAS[a.camera], a.camera
+    for s in scenes:
+        s["viewer_args"] = s["viewer_args"] + a.viewer_args.split()
     references = Path(a.references) if a.references else out / "references"
     references.mkdir(parents=True, exist_ok=True)
     viewer_hash = hashlib.sha1(Path(a.viewer).read_bytes()).hexdigest()

@@ -22,6 +22,9 @@ struct Options {
     std::string screenshot;
     bool pointLight = false;
     bool packedGbuffer = false;
+    // Normal-map-like detail on the shading normals (RendererSettings::normalDetail), 0..1.
+    float normalDetail = 0.0f;
+    bool normalDetailDnsrOnly = false;  // --normal-detail-for dnsr: in dnsr's packed normals alone
     uint32_t rays = 1;  // shadow rays per pixel (more than 1: DNSR_SHADOW_INPUT_VISIBILITY)
     bool checkerboard = false;  // half a ray per pixel (DNSR_SHADOW_INPUT_CHECKERBOARD)
     uint32_t lights = 1;  // more than 1: the others derived from the first, all denoised by one dnsr_lights_record

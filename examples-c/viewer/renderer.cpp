@@ -44,6 +44,7 @@ struct FrameConstants {
     float skyColor[4];
     float cascadeOrigin[kMaxCascades][4], cascadeAxisU[kMaxCascades][4], cascadeAxisV[kMaxCascades][4];
     float cascadeParams[4];
+    float surfaceDetail[4];
 };
 
 // The shaders' binding numbers (shaders/common.glsl).
@@ -484,6 +485,9 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
     }
     c.cascadeParams[0] = cascadeSet_.depthRange;
     c.cascadeParams[1] = float(cascadeSize_);
+    c.surfaceDetail[0] = settings_.normalDetail;
+    c.surfaceDetail[1] = 0.04f * settings_.sceneRadius;
+    c.surfaceDetail[2] = settings_.normalDetailDnsrOnly ? 1.0f : 0.0f;
     std::memcpy(frameConstants_.mapped, &c, sizeof c);
 
     vkCmdResetQueryPool(cmd, timestamps_, 0, kCount);

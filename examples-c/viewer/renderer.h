@@ -88,6 +88,10 @@ struct RendererSettings {
     std::vector<std::pair<std::string, double>> settingOverrides;  // then these (DenoiserSettings::overrides)
     // Linear depth and octahedral normals, read by dnsr through custom callbacks (examples-c/custom_gbuffer).
     bool packedGbuffer = false;
+    // Normal-map-like detail (--normal-detail): the shading normal tilted by up to this x 60 degrees in a world-space
+    // pattern whose period is 4% of the scene's radius; 0 keeps the interpolated normal.
+    float normalDetail = 0.0f;
+    bool normalDetailDnsrOnly = false;  // the detail in dnsr's packed normals alone (packedGbuffer)
     // Shadow rays per pixel: 1 packs them into the hit mask; more go to dnsr as per-pixel visibility.
     uint32_t rays = 1;
     // Half a ray per pixel (DNSR_SHADOW_INPUT_CHECKERBOARD, with rays 1): each frame only the pixels with

@@ -39,6 +39,8 @@ void Session::createRenderer()
     rs.preset = opt.preset;
     rs.settingOverrides = opt.settings;
     rs.packedGbuffer = opt.packedGbuffer;
+    rs.normalDetail = opt.normalDetail;
+    rs.normalDetailDnsrOnly = opt.normalDetailDnsrOnly;
     rs.rays = opt.rays;
     rs.checkerboard = opt.checkerboard;
     rs.lights = opt.lights;

@@ -308,6 +308,30 @@ for bad in "--point-light:--hybrid takes the directional light" "--lights 2:--hy
     fail "--hybrid ${bad%%:*}: status $status, message: $(cat "$tmp/hybrid.err")"
 done
 
+# ---- --normal-detail: normal-map-like bumps. With --normal-detail-for dnsr only dnsr's packed normals get them: the
+# shadow rays (the noisy image) stay those of the smooth normals bit for bit, and dnsr's output changes; with all,
+# the rays' facing test takes them too. Validation clean; bad values are usage errors ----
+for mode in "--gbuffer packed" "--gbuffer packed --normal-detail 0.5 --normal-detail-for dnsr" "--normal-detail 0.5"; do
+  name=$(echo "$mode" | tr -dc 'a-z0-9')
+  # $mode unquoted: several words.
+  "$viewer" --headless --validate $mode --frames 4 --size 96x64 --out "$tmp/$name" > "$tmp/detail.log" 2>&1 ||
+    { cat "$tmp/detail.log"; fail "$mode failed"; }
+done
+cmp -s "$tmp/gbufferpacked/noisy.png" "$tmp/gbufferpackednormaldetail05normaldetailfordnsr/noisy.png" ||
+  fail "--normal-detail-for dnsr changed the shadow rays"
+cmp -s "$tmp/gbufferpacked/denoised.png" "$tmp/gbufferpackednormaldetail05normaldetailfordnsr/denoised.png" &&
+  fail "--normal-detail-for dnsr did not reach dnsr's normals"
+cmp -s "$tmp/gbufferpacked/noisy.png" "$tmp/normaldetail05/noisy.png" && fail "--normal-detail 0.5 left the rays' facing test alone"
+for bad in "--normal-detail 2:--normal-detail wants" "--normal-detail-for dnsr:--normal-detail-for dnsr takes --gbuffer packed" \
+           "--normal-detail-for some:--normal-detail-for wants all or dnsr"; do
+  status=0
+  # ${bad%%:*} unquoted: two words.
+  "$viewer" --headless ${bad%%:*} --frames 1 --size 16x16 --out "$tmp/bad-detail" > /dev/null 2> "$tmp/detail.err" || status=$?
+  (( status == 2 )) && grep -qF -- "${bad#*:}" "$tmp/detail.err" ||
+    fail "${bad%%:*}: status $status, message: $(cat "$tmp/detail.err")"
+done
+echo "normal detail: the shadow rays kept with --normal-detail-for dnsr, dnsr's output changed"
+
 # ---- --lights 2: a second light (the first turned 100 degrees about the up axis), both denoised by one
 # dnsr_lights_record call. For the default inputs, --rays 2 (a visibility image per light), --gbuffer packed and
 # --checkerboard (both lights' masks traced for the same half of the pixels, one phase in the shared dispatch),

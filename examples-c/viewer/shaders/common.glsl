@@ -23,6 +23,8 @@ layout(set = 0, binding = 0, std140) uniform FrameConstants {
     vec4 cascadeAxisU[kMaxCascades];
     vec4 cascadeAxisV[kMaxCascades];
     vec4 cascadeParams;  // x: world distance along the light that depth 0..1 spans; y: texels per side
+    vec4 surfaceDetail;  // x: normal detail (--normal-detail, 0: none); y: its world period; z: 1: in dnsr's
+                         // packed normals alone (--normal-detail-for dnsr)
 } frame;
 
 // ---- Scene: the BVH and its triangles (storage buffers; host structs in bvh.h / renderer.cpp) ----

@@ -41,6 +41,7 @@ void main()
     vec3 p = hit ? nearP + dir * t : farP;
     float depth = 1.0;
     vec3 normal = vec3(0.0);
+    vec3 bumped = vec3(0.0);
     vec4 albedo = vec4(0.0);
     vec4 rayOrigin = vec4(0.0);
     if (hit) {
@@ -54,6 +55,17 @@ void main()
         vec4 n0 = triShading[3 * tri], n1 = triShading[3 * tri + 1], n2 = triShading[3 * tri + 2];
         normal = normalize(n0.xyz * (1.0 - bary.x - bary.y) + n1.xyz * bary.x + n2.xyz * bary.y);
         if (dot(normal, geometric) < 0.0) normal = -normal;
+        // --normal-detail: what a normal map does to an engine's G-buffer, bumps of a world-space pattern that
+        // tilt the shading normal (up to 60 degrees at detail 1); the geometry, and so the shadows cast, stay.
+        // With --normal-detail-for dnsr only dnsr's packed normals get them (below).
+        bumped = normal;
+        if (frame.surfaceDetail.x > 0.0) {
+            vec3 q = p * (6.2831853 / frame.surfaceDetail.y);
+            vec3 bump = vec3(sin(q.y + 1.7 * sin(q.z)), sin(q.z + 1.3 * sin(q.x)), sin(q.x + 1.1 * sin(q.y)));
+            bump -= normal * dot(normal, bump);
+            bumped = normalize(normal + 1.7 * frame.surfaceDetail.x * bump);
+            if (frame.surfaceDetail.z == 0.0) normal = bumped;
+        }
         albedo = unpackUnorm4x8(floatBitsToUint(n0.w));
 
         // The shadow ray starts slightly off the surface (along the geometric normal, on the camera's side) so
@@ -78,6 +90,6 @@ void main()
     vec4 centreH = frame.invViewProj * vec4(0.0, 0.0, 1.0, 1.0);
     vec3 forward = normalize(centreH.xyz / centreH.w - frame.eye.xyz);
     imageStore(linearDepthImage, pixel, vec4(hit ? dot(p - frame.eye.xyz, forward) : 0.0));
-    imageStore(octNormalImage, pixel, vec4(hit ? octEncode(normal) : vec2(0.0), 0.0, 0.0));
+    imageStore(octNormalImage, pixel, vec4(hit ? octEncode(bumped) : vec2(0.0), 0.0, 0.0));
 #endif
 }

@@ -31,6 +31,7 @@ setting against the same build, run the family with and without it, sharing --re
 import argparse
 import hashlib
 import json
+import shlex
 import statistics
 import subprocess
 import sys
@@ -210,7 +211,7 @@ def main():
             cut = min(i for i, x in enumerate(args) if x == "--orbit-speed")
             s["viewer_args"], s["camera"] = args[:cut] + make_family.CAMERAS[a.camera], a.camera
     for s in scenes:
-        s["viewer_args"] = s["viewer_args"] + a.viewer_args.split()
+        s["viewer_args"] = s["viewer_args"] + shlex.split(a.viewer_args)
     references = Path(a.references) if a.references else out / "references"
     references.mkdir(parents=True, exist_ok=True)
     viewer_hash = hashlib.sha1(Path(a.viewer).read_bytes()).hexdigest()

@@ -30,7 +30,7 @@ const char *kUsage =
     "                          output; both are denoised in one dnsr_lights_record call and light the composite.\n"
     "                          Headless: also {noisy,denoised,reference}_light1.png and report.json's per_light\n"
     "  --normal-detail A       bumps on every surface's shading normal, as a normal map gives: tilted by up to\n"
-    "                          A x 60 degrees in a pattern of 4% of the scene's radius (default 0: none). The\n"
+    "                          A x 60 degrees, in a pattern whose period is 4% of the scene's radius (default 0). The\n"
     "                          shadow rays' facing test uses them too, as engines' do; dnsr sees them in its normals\n"
     "  --normal-detail-for all|dnsr  dnsr: the bumps go to dnsr's normals alone (--gbuffer packed: its RG16 normals),\n"
     "                          the shadows and the reference keep the smooth ones (default: all)\n"
@@ -280,8 +280,8 @@ Options parseOptions(int argc, char **argv)
         o.height = o.headless ? 192 : 540;
     }
     if (o.headless && !o.frames) o.frames = 16;
-    // The packed build's classification variants read the hit mask (examples-c/custom_gbuffer overrides those only).
     if (o.normalDetailDnsrOnly && !o.packedGbuffer) throw UsageError("--normal-detail-for dnsr takes --gbuffer packed");
+    // The packed build's classification variants read the hit mask (examples-c/custom_gbuffer overrides those only).
     if (o.packedGbuffer && o.rays > 1) throw UsageError("--gbuffer packed takes one ray per pixel (--rays 1)");
     if (o.checkerboard && o.rays > 1)
         throw UsageError("--checkerboard takes --rays 1 (it traces half a ray per pixel into the hit mask; several "

@@ -13,13 +13,56 @@ fn receiver_depth<Io: Read + ?Sized>(io: &Io, p: Coord) -> Option<f64> {
     is_receiver(d).then(|| linear_depth(io, uv_to_ndc(pixel_uv(io, p)), d))
 }
 
+/// World-space position of pixel q at device depth `depth`.
+fn world_position<Io: Read + ?Sized>(io: &Io, q: Coord, depth: f64) -> DVec3 {
+    let h = io.view_projection_inverse() * uv_to_ndc(pixel_uv(io, q)).extend(depth).extend(1.0);
+    h.truncate() / h.w
+}
+
+/// From world position w of pixel q to that of the nearer of its receiver neighbours along `axis`, signed as +axis;
+/// zero where neither is a receiver (`dnsr_surface_tangent`; the first of two as near, -axis).
+fn surface_tangent<Io: Read + ?Sized>(io: &Io, q: Coord, w: DVec3, axis: Coord) -> DVec3 {
+    let mut best: Option<DVec3> = None;
+    for s in [-1, 1] {
+        let r = [q[0] + axis[0] * s, q[1] + axis[1] * s];
+        if !inside(io, r) || !is_receiver(io.read_depth(r)) {
+            continue;
+        }
+        let t = (world_position(io, r, io.read_depth(r)) - w) * s as f64;
+        if best.is_none_or(|b| t.length_squared() < b.length_squared()) {
+            best = Some(t);
+        }
+    }
+    best.unwrap_or(DVec3::ZERO)
+}
+
+/// The normal the first pass weighs receiver q's taps by (`dnsr_geometric_normal`): the plane through its nearer
+/// neighbour along each axis, on the side of the G-buffer's normal `shading`, where it lies within
+/// acos(`state::GEOMETRIC_NORMAL_COS_PERCENT` / 100) of it; `shading` elsewhere and where an axis has no receiver.
+pub fn geometric_normal<Io: Read + ?Sized>(io: &Io, q: Coord, depth: f64, shading: DVec3) -> DVec3 {
+    let w = world_position(io, q, depth);
+    let n = surface_tangent(io, q, w, [1, 0]).cross(surface_tangent(io, q, w, [0, 1]));
+    let l = n.length_squared();
+    if !(l > 0.0) || l.is_infinite() {
+        return shading;
+    }
+    let n = n / l.sqrt();
+    let c = n.dot(shading);
+    if c.abs() >= crate::state::GEOMETRIC_NORMAL_COS_PERCENT as f64 / 100.0 {
+        if c < 0.0 { -n } else { n }
+    } else {
+        shading
+    }
+}
+
 /// A receiver's (linear depth, normal) as the pass of step `step` reads them, or None for sky and pixels outside the
-/// rectangle: the first pass from the G-buffer, the later ones from this frame's depth copy as stored (their guide).
+/// rectangle: the first pass from the G-buffer (`geometric_normal`), the later ones from this frame's depth copy as
+/// stored (their guide).
 fn guide<Io: Read + ?Sized>(io: &Io, p: Coord, step: i32) -> Option<(f64, DVec3)> {
     let z = receiver_depth(io, p)?;
     let n = io.read_normal(p);
     if step == 1 {
-        return Some((z, n));
+        return Some((z, geometric_normal(io, p, io.read_depth(p), n)));
     }
     Some(super::storage::unpack_depth_copy(super::depth_copy(io, p, io.read_depth(p), n)))
 }

@@ -318,7 +318,14 @@ fn embed(f: &FrameInputs, w: u32, h: u32, rect: crate::Rect) -> FrameInputs {
             big.mask[((ty + rect.y / 4) * big_tw + tx + rect.x / 8) as usize] = f.mask[(ty * tw + tx) as usize];
         }
     }
-    FrameInputs { projection_inverse: f.projection_inverse, reprojection: f.reprojection, ..big }
+    // The camera of `f`'s size: every matrix (the first filter pass's geometric normals take world positions).
+    FrameInputs {
+        projection_inverse: f.projection_inverse,
+        reprojection: f.reprojection,
+        view_projection_inverse: f.view_projection_inverse,
+        eye: f.eye,
+        ..big
+    }
 }
 
 #[test]

@@ -895,7 +895,8 @@ typedef struct DnsrShadowsDispatch {
    */
   float reprojectionMatrix[16];
   /**
-   * Current clip -> world.
+   * Current clip -> world. Classification takes receivers' world positions from it (their view direction and
+   * their side of the light), and the first filter pass their geometric normals (from neighbouring depths).
    */
   float viewProjectionInverse[16];
   /**

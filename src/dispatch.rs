@@ -168,7 +168,9 @@ pub struct ShadowsDispatch {
     pub projection_inverse: Mat4,
     /// Current clip space -> previous frame's clip space.
     pub reprojection_matrix: Mat4,
-    /// Current clip space -> world space.
+    /// Current clip space -> world space. Classification takes receivers' world positions from it (their view
+    /// direction and their side of the light), and the first filter pass their geometric normals (from
+    /// neighbouring depths).
     pub view_projection_inverse: Mat4,
     /// Depth edge-stop scale: weight exp(-|z_center - z_tap| / sigma) on linear depth. FFX default 1.0.
     pub depth_similarity_sigma: f32,

@@ -690,7 +690,8 @@ pub struct DnsrShadowsDispatch {
     pub projection_inverse: [f32; 16],
     /// Current clip -> previous clip.
     pub reprojection_matrix: [f32; 16],
-    /// Current clip -> world.
+    /// Current clip -> world. Classification takes receivers' world positions from it (their view direction and
+    /// their side of the light), and the first filter pass their geometric normals (from neighbouring depths).
     pub view_projection_inverse: [f32; 16],
     /// Depth edge stop of the filter: a tap's weight is multiplied by exp(-|z_center - z_tap| / sigma), z the
     /// linear view-space depth from projectionInverse, in your view-space units (metres if your world is in

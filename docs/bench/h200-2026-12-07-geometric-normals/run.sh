@@ -1,11 +1,12 @@
 #!/bin/bash
-# Geometric normals in the first filter pass: its SPIR-V before (main, 2260bb1) and after (geo), alternating, one
-# bench binary. Quality's first pass is `filter`, Fast's (one pass, the final) `filter_final_r16f`.
+# Geometric normals in the first filter pass: its SPIR-V before (main, 2260bb1), after (geo: each apron pixel
+# fetches its neighbours' depths) and after with the apron's world positions in shared memory first (opt),
+# alternating, one bench binary. Quality's first pass is `filter`, Fast's (one pass, the final) `filter_final_r16f`.
 for f in .gl/*.deb; do dpkg -x $f / >/dev/null; done; ldconfig; for z in .gl/*.gz; do gunzip -f $z; chmod +x ${z%.gz}; done
 export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json DNSR_DEVICE=NVIDIA
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader > $OUT/device.txt 2>&1
-A="--sizes 3840x2160 --scenes penumbra-heavy,typical,all-lit --presets quality,fast --precisions fp32 --frames 100 --copy-runs 1 --warmup-ms 300"
-for v in main geo main geo; do
+A="--sizes 3840x2160 --scenes penumbra-heavy,typical --presets quality,fast --precisions fp32 --frames 100 --copy-runs 1 --warmup-ms 300"
+for v in main geo opt main geo opt; do
   n=b-$v
   timeout 100 .gl/bench $A --shader-override filter=.gl/$v-filter.spv --shader-override filter_final_r16f=.gl/$v-filter_final_r16f.spv \
     --out /tmp/$n > /dev/null 2>&1 || echo "bench $n failed"

@@ -150,11 +150,14 @@ vec3 dnsr_surface_tangent(ivec2 q, vec3 w, ivec2 axis) {
     }
     return best;
 }
+// The cosine within which the first pass takes geometric normals (Settings::geometric_normal_degrees; above 1:
+// off, the G-buffer's normals).
+float dnsr_geometric_normal_min_cos() { return dnsr_get_moving_settings().w; }
 // The normal the first pass weighs receiver q's taps by (device depth `depth`, G-buffer normal `shading`): the
 // plane through its nearer neighbour along each axis, on the side of `shading`, where that lies within
-// acos(DNSR_GEOMETRIC_NORMAL_COS_PERCENT / 100) of `shading` (a normal map's tilt: the depth knows one plane);
-// `shading` where it does not (a feature of 1-2 px, whose neighbours are another surface, or a crease) or where an
-// axis has no receiver neighbour.
+// acos(dnsr_geometric_normal_min_cos()) of `shading` (a normal map's tilt: the depth knows one plane); `shading`
+// where it does not (a feature of 1-2 px, whose neighbours are another surface, or a crease) or where an axis has
+// no receiver neighbour.
 vec3 dnsr_geometric_normal(ivec2 q, float depth, vec3 shading) {
     vec3 w = dnsr_world_position(q, depth);
     vec3 n = cross(dnsr_surface_tangent(q, w, ivec2(1, 0)), dnsr_surface_tangent(q, w, ivec2(0, 1)));
@@ -162,7 +165,7 @@ vec3 dnsr_geometric_normal(ivec2 q, float depth, vec3 shading) {
     if (!(l > 0.0) || isinf(l)) return shading;
     n *= inversesqrt(l);
     float c = dot(n, shading);
-    return abs(c) >= float(DNSR_GEOMETRIC_NORMAL_COS_PERCENT) / 100.0 ? (c < 0.0 ? -n : n) : shading;
+    return abs(c) >= dnsr_geometric_normal_min_cos() ? (c < 0.0 ? -n : n) : shading;
 }
 
 // The first pass (step 1) reads its group's pixels and a one-pixel apron into shared memory once: every pixel's
@@ -182,7 +185,8 @@ void dnsr_load_apron(ivec2 origin, int invocation) {
         dnsr_apron_signal[i] = inside ? dnsr_read_filter_input(q) : DNSR_SKY_SIGNAL;
         float z = inside ? dnsr_tap_depth(q) : -1.0;
         dnsr_apron_depth[i] = z;
-        dnsr_apron_normal[i] = z >= 0.0 ? dnsr_geometric_normal(q, dnsr_read_depth(q), dnsr_read_normal(q)) : vec3(0.0);
+        vec3 normal = z >= 0.0 ? dnsr_read_normal(q) : vec3(0.0);
+        dnsr_apron_normal[i] = z >= 0.0 && dnsr_geometric_normal_min_cos() <= 1.0 ? dnsr_geometric_normal(q, dnsr_read_depth(q), normal) : normal;
     }
 }
 

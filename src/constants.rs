@@ -47,7 +47,8 @@ gpu_block! {
         runs: [f32; 4],
         /// A shadow that moved over a still surface (the run features' pipelines): x: the neighbourhood's change, in
         /// standard deviations, that counts as moved (0: never); y: the history clamp's width there, in sigmas; z:
-        /// the quiet frames that make a tile hard (`Settings::hard_tile_frames`, 0: never); w: unused.
+        /// the quiet frames that make a tile hard (`Settings::hard_tile_frames`, 0: never). w: the cosine within which
+        /// the first filter pass takes geometric normals (`Settings::geometric_normal_min_cos`, 2: off).
         moving: [f32; 4],
         /// Penumbra guidance (the pipelines specialized with DNSR_SPEC_PENUMBRA_GUIDED): x: tan(light angular diameter / 2); yz: a pixel's
         /// world-space size at linear view depth z is y + z * z; w: the kernel's sigma in penumbra half-widths.
@@ -76,7 +77,7 @@ impl FrameConstants {
         self.runs = [s.stable_history_samples, s.history_flip_samples, s.converged_samples, s.hard_penumbra_pixels];
         self.temporal = [s.full_history_samples, s.min_current_weight, s.max_history_samples, s.spatial_falloff];
         self.filtering = [s.kernel_cross_weight, s.normal_power, s.output_contrast, s.min_shadow_sigma];
-        self.moving = [s.moving_shadow_sigmas, s.moving_history_clamp_sigmas, s.hard_tile_frames, 0.0];
+        self.moving = [s.moving_shadow_sigmas, s.moving_history_clamp_sigmas, s.hard_tile_frames, s.geometric_normal_min_cos()];
     }
 }
 
@@ -141,7 +142,6 @@ pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
     ("DNSR_DEPTH_CODE_OFFSET", crate::state::DEPTH_CODE_OFFSET),
     ("DNSR_DEPTH_COPY_NORMAL_BITS", crate::state::DEPTH_COPY_NORMAL_BITS),
     ("DNSR_TURNED_NORMAL_COS_PERCENT", crate::state::TURNED_NORMAL_COS_PERCENT),
-    ("DNSR_GEOMETRIC_NORMAL_COS_PERCENT", crate::state::GEOMETRIC_NORMAL_COS_PERCENT),
     ("DNSR_FOOTPRINT_SLOPE_PERCENT", crate::state::FOOTPRINT_SLOPE_PERCENT),
     ("DNSR_FOOTPRINT_MAX_SLOPE", crate::state::FOOTPRINT_MAX_SLOPE),
     ("DNSR_MOMENTS_MEAN_BITS", crate::packing::MOMENTS_MEAN_BITS),

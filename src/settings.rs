@@ -140,6 +140,13 @@ declare_settings! {
     output_contrast: f32 = 1.0, [1.0, 4.0] "[1, 4]";
     /// Floor of the shadow edge stop's standard deviation, keeps exp(-|c - n| / sigma) finite.
     min_shadow_sigma: f32 = 1e-4, [1e-6, 1.0] "[1e-6, 1]";
+    /// The first filter pass weighs its taps by each receiver's geometric normal (the plane through its nearer
+    /// neighbour along each axis, from the depth and `view_projection_inverse`) where that lies within this many
+    /// degrees of the G-buffer's normal: a normal map tilts normals by tens of degrees within a few pixels of one
+    /// plane, and the normal edge stop then stops the filter. Past it, and where an axis has no receiver neighbour,
+    /// the G-buffer's normal stays (a feature of 1-2 px, whose neighbours' depths give another surface's plane; a
+    /// crease). 0 turns this off (the FidelityFX behaviour). docs/do-no-harm.md, "Normal-mapped normals".
+    geometric_normal_degrees: f32 = 53.0, [0.0, 89.0] "[0, 89]";
 }
 
 /// Named settings chosen from the accuracy measurements in docs/accuracy.md (`make accuracy`) and the scene family
@@ -183,6 +190,7 @@ impl Settings {
             hard_penumbra_pixels: 0.0,
             hard_tile_frames: 0.0,
             moving_shadow_sigmas: 0.0,
+            geometric_normal_degrees: 0.0,
             ..quality
         };
         match preset {
@@ -194,6 +202,16 @@ impl Settings {
 }
 
 impl Settings {
+    /// The cosine `geometric_normal_degrees` allows, as the first filter pass reads it (2: off, no normal is that
+    /// close).
+    pub(crate) fn geometric_normal_min_cos(&self) -> f32 {
+        if self.geometric_normal_degrees > 0.0 {
+            self.geometric_normal_degrees.to_radians().cos()
+        } else {
+            2.0
+        }
+    }
+
     /// Whether a feature built on runs of identical samples is on (stable history or converged pixels): the
     /// classification pipelines specialized with DNSR_SPEC_STABLE_HISTORY run them (and, with a hit mask and without
     /// penumbra guidance, the surface window). Public (hidden) for dnsr-bench's byte model only.

@@ -63,12 +63,6 @@ pub(crate) const DEPTH_COPY_NORMAL_BITS: u32 = 8;
 /// last frame holds another surface: it leaves the history footprint (docs/do-no-harm.md, "normal-agreeing
 /// footprint": 37 and 60 degrees measured alike; faces meet at creases near 90). Generated into GLSL.
 pub(crate) const TURNED_NORMAL_COS_PERCENT: u32 = 80;
-/// The first filter pass weighs its taps by the receivers' geometric normals (from the depth of their neighbours,
-/// `dnsr_geometric_normal`) where one lies within acos(this / 100) (53 degrees) of the G-buffer's normal: the tilt
-/// of a normal map, which on one plane stopped the filter (docs/do-no-harm.md, "Normal-mapped normals"). Past it
-/// the G-buffer's normal stays: a feature of 1-2 px, whose neighbours' depths give another surface's normal, or a
-/// crease. Generated into GLSL.
-pub(crate) const GEOMETRIC_NORMAL_COS_PERCENT: u32 = 60;
 /// A history texel of this surface lies within the disocclusion test's depth range widened, per pixel of distance
 /// from the history position, by this percentage of what a plane at the surface's angle to the view changes over
 /// a pixel: 100 let thin fins over the ground keep the ground's history (seed 1040), 0 rejected grazing ground's

@@ -65,6 +65,7 @@ DNSR_STATIC_ASSERT(offsetof(DnsrSettings, hardPenumbraPixels) == 92, "offsetof(D
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, movingShadowSigmas) == 96, "offsetof(DnsrSettings, movingShadowSigmas)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, movingHistoryClampSigmas) == 100, "offsetof(DnsrSettings, movingHistoryClampSigmas)");
 DNSR_STATIC_ASSERT(offsetof(DnsrSettings, hardTileFrames) == 104, "offsetof(DnsrSettings, hardTileFrames)");
+DNSR_STATIC_ASSERT(offsetof(DnsrSettings, geometricNormalDegrees) == 108, "offsetof(DnsrSettings, geometricNormalDegrees)");
 
 DNSR_STATIC_ASSERT(sizeof(DnsrContextCreateInfo) == 160, "sizeof(DnsrContextCreateInfo)");
 DNSR_STATIC_ASSERT(DNSR_ALIGNOF(DnsrContextCreateInfo) == 8, "alignof(DnsrContextCreateInfo)");

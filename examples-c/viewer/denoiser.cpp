@@ -58,6 +58,7 @@ const SettingField kSettingFields[] = {
     DNSR_VIEWER_SETTING(historyFlipSamples),          DNSR_VIEWER_SETTING(convergedSamples),
     DNSR_VIEWER_SETTING(hardPenumbraPixels),          DNSR_VIEWER_SETTING(movingShadowSigmas),
     DNSR_VIEWER_SETTING(movingHistoryClampSigmas),    DNSR_VIEWER_SETTING(hardTileFrames),
+    DNSR_VIEWER_SETTING(geometricNormalDegrees),
 };
 #undef DNSR_VIEWER_SETTING
 

@@ -474,6 +474,12 @@ pub struct DnsrSettings {
     /// penumbra shows no contradiction the output is the input, never worse). Needs stableHistorySamples or
     /// convergedSamples > 0. Range [0, 255]; 0 disables (the FidelityFX behaviour). Default 6 (FidelityFX 0).
     pub hard_tile_frames: f32,
+    /// The first filter pass weighs its taps by each receiver's geometric normal (the plane through its nearer
+    /// neighbour along each axis, from the depth and DnsrShadowsDispatch::viewProjectionInverse) where it lies within
+    /// this many degrees of your normal: a normal map's tilt would otherwise stop the normal edge stop on one plane.
+    /// Past it (a feature of 1-2 px, a crease), and where an axis has no receiver neighbour, your normal stays.
+    /// Range [0, 89]; 0 disables (the FidelityFX behaviour). Default 53 (FidelityFX 0).
+    pub geometric_normal_degrees: f32,
 }
 
 /// Everything needed to create a context. Read during `dnsr_context_create` only (callback structs are copied;

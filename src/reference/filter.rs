@@ -38,8 +38,13 @@ fn surface_tangent<Io: Read + ?Sized>(io: &Io, q: Coord, w: DVec3, axis: Coord) 
 
 /// The normal the first pass weighs receiver q's taps by (`dnsr_geometric_normal`): the plane through its nearer
 /// neighbour along each axis, on the side of the G-buffer's normal `shading`, where it lies within
-/// acos(`state::GEOMETRIC_NORMAL_COS_PERCENT` / 100) of it; `shading` elsewhere and where an axis has no receiver.
+/// acos(`Settings::geometric_normal_min_cos`) of it; `shading` elsewhere, where an axis has no receiver, and with
+/// `Settings::geometric_normal_degrees` 0.
 pub fn geometric_normal<Io: Read + ?Sized>(io: &Io, q: Coord, depth: f64, shading: DVec3) -> DVec3 {
+    let min_cos = io.settings().geometric_normal_min_cos() as f64;
+    if min_cos > 1.0 {
+        return shading;
+    }
     let w = world_position(io, q, depth);
     let n = surface_tangent(io, q, w, [1, 0]).cross(surface_tangent(io, q, w, [0, 1]));
     let l = n.length_squared();
@@ -48,7 +53,7 @@ pub fn geometric_normal<Io: Read + ?Sized>(io: &Io, q: Coord, depth: f64, shadin
     }
     let n = n / l.sqrt();
     let c = n.dot(shading);
-    if c.abs() >= crate::state::GEOMETRIC_NORMAL_COS_PERCENT as f64 / 100.0 {
+    if c.abs() >= min_cos {
         if c < 0.0 { -n } else { n }
     } else {
         shading

@@ -244,7 +244,7 @@ fn generated_layout_header() -> String {
         history_rejection_min_sigma, variance_boost_samples, full_history_samples, min_current_weight,
         max_history_samples, kernel_cross_weight, normal_power, output_contrast, min_shadow_sigma, stable_history_samples,
         history_flip_samples, converged_samples, hard_penumbra_pixels, moving_shadow_sigmas, moving_history_clamp_sigmas,
-        hard_tile_frames,
+        hard_tile_frames, geometric_normal_degrees,
     });
     check!(DnsrContextCreateInfo {
         s_type, p_next, instance, physical_device, device, vulkan_functions, api_version, queue_family_index,

@@ -2,10 +2,11 @@
 
 use super::{gpu, mae, static_frame};
 use crate::testing::gpu::Gpu;
-use crate::testing::scene::{render, Camera, FrameInputs};
+use crate::testing::scene::{hash01, render, Camera, FrameInputs};
 use crate::testing::Runner;
 use crate::Precision;
 use ash::vk;
+use glam::DVec3;
 
 /// A smooth penumbra-like field in world units (the view spans about 10 x 7 units).
 pub(crate) fn smooth(x: f64, z: f64) -> f64 {
@@ -567,5 +568,40 @@ fn a_hard_light_outputs_its_rays_under_a_moving_camera() {
             assert!(hard_light || changed > 0, "{preset:?}: without hard_light the rays pass through unchanged");
         }
     }
+    g.assert_clean();
+}
+
+#[test]
+fn normal_mapped_normals_filter_like_the_plane_they_lie_on() {
+    // A normal map tilts a plane's normals by up to 15 degrees from pixel to pixel. The first filter pass weighs its
+    // taps by the plane the depth gives (Settings::geometric_normal_degrees), so Fast (that pass alone) outputs what
+    // it outputs for the plane's own normals; without (0, the FidelityFX behaviour) the normal edge stop keeps the
+    // noise that the tilts cut off.
+    let g = gpu();
+    let (w, h) = (48, 32);
+    let run = |degrees: f32, bumps: bool| -> Vec<f32> {
+        let settings = crate::Settings { geometric_normal_degrees: degrees, ..crate::Settings::preset(crate::Preset::Fast) };
+        let mut r = runner_with(&g, w, h, Precision::Fp32, settings);
+        let mut out = Vec::new();
+        for frame in 0..6 {
+            let mut f = static_frame(w, h, &smooth, frame + 30);
+            if bumps {
+                for (i, n) in f.normals.iter_mut().enumerate() {
+                    let (x, y) = (i as u32 % w, i as u32 / w);
+                    let (tilt, turn) = (15f64.to_radians() * hash01(7, x, y), std::f64::consts::TAU * hash01(8, x, y));
+                    let t = DVec3::new(tilt.sin() * turn.cos(), tilt.cos(), tilt.sin() * turn.sin());
+                    *n = [t.x as f32, t.y as f32, t.z as f32, 0.0];
+                }
+            }
+            out = r.frame(&f, frame == 0);
+        }
+        out
+    };
+    let largest = |a: &[f32], b: &[f32]| a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0f32, f32::max);
+    let with = largest(&run(53.0, false), &run(53.0, true));
+    let without = largest(&run(0.0, false), &run(0.0, true));
+    eprintln!("largest difference bumps / plane's normals: {with:.2e} with geometric normals, {without:.2e} without");
+    assert!(with <= 1e-6, "with geometric normals the bumps changed the output by {with}");
+    assert!(without > 0.01, "without geometric normals the bumps should stop the filter (changed by {without} only)");
     g.assert_clean();
 }

@@ -45,8 +45,7 @@ DnsrVerdict dnsr_classify_pixel(ivec2 p) {
         return v;
     }
     v.kind = DNSR_VERDICT_TRACE;
-    vec4 h = dnsr_get_view_projection_inverse() * vec4(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), depth, 1.0);
-    vec3 world = h.xyz / h.w;
+    vec3 world = dnsr_world_position(p, depth);
     int cascade = -1;
     vec3 s = vec3(0.0);
     for (int c = 0; c < dnsr_get_cascade_count(); ++c) {

@@ -95,6 +95,12 @@ float dnsr_linear_depth(vec2 ndc, float depth) {
     return abs(v.z / v.w);
 }
 
+// World-space position of pixel q at device depth `depth`.
+vec3 dnsr_world_position(ivec2 q, float depth) {
+    vec4 h = dnsr_get_view_projection_inverse() * vec4(dnsr_uv_to_ndc(dnsr_pixel_uv(q)), depth, 1.0);
+    return h.xyz / h.w;
+}
+
 // Pixel p's linear depth where `depth` (its device depth) is a receiver's, -1 for sky.
 float dnsr_receiver_linear_depth(ivec2 p, float depth) {
     return dnsr_is_receiver(depth) ? dnsr_linear_depth(dnsr_uv_to_ndc(dnsr_pixel_uv(p)), depth) : -1.0;

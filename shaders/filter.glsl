@@ -126,11 +126,6 @@ vec2 dnsr_cleared_value(bool receiver, uint meta) {
 }
 
 #ifndef DNSR_LATER_PASS
-// World-space position of pixel q at device depth `depth`.
-vec3 dnsr_world_position(ivec2 q, float depth) {
-    vec4 h = dnsr_get_view_projection_inverse() * vec4(dnsr_uv_to_ndc(dnsr_pixel_uv(q)), depth, 1.0);
-    return h.xyz / h.w;
-}
 // From world position w of pixel q to that of the nearer (in world space) of its receiver neighbours along `axis`,
 // signed as +axis; vec3(0) where neither neighbour is a receiver.
 vec3 dnsr_surface_tangent(ivec2 q, vec3 w, ivec2 axis) {

@@ -1,6 +1,6 @@
 //! filter (shaders/filter.glsl): one pass of the edge-avoiding a-trous filter, 3x3 taps at +-step.
 
-use super::{inside, SKY_SIGNAL, is_receiver, linear_depth, pixel_uv, uv_to_ndc, Coord, Read, Write, PENUMBRA_SIGMA_SCALE, TILE};
+use super::{inside, SKY_SIGNAL, is_receiver, linear_depth, pixel_uv, uv_to_ndc, world_position, Coord, Read, Write, PENUMBRA_SIGMA_SCALE, TILE};
 use crate::passes::{TILE_CLEARED, TILE_LIT};
 use glam::{DVec2, DVec3};
 
@@ -11,12 +11,6 @@ fn receiver_depth<Io: Read + ?Sized>(io: &Io, p: Coord) -> Option<f64> {
     }
     let d = io.read_depth(p);
     is_receiver(d).then(|| linear_depth(io, uv_to_ndc(pixel_uv(io, p)), d))
-}
-
-/// World-space position of pixel q at device depth `depth`.
-fn world_position<Io: Read + ?Sized>(io: &Io, q: Coord, depth: f64) -> DVec3 {
-    let h = io.view_projection_inverse() * uv_to_ndc(pixel_uv(io, q)).extend(depth).extend(1.0);
-    h.truncate() / h.w
 }
 
 /// From world position w of pixel q to that of the nearer of its receiver neighbours along `axis`, signed as +axis;

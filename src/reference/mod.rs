@@ -174,6 +174,12 @@ pub fn linear_depth<G: Get + ?Sized>(io: &G, ndc: DVec2, depth: f64) -> f64 {
     (v.z / v.w).abs()
 }
 
+/// World-space position of pixel p at device depth `depth` (`dnsr_world_position`).
+pub fn world_position<G: Get + ?Sized>(io: &G, p: Coord, depth: f64) -> DVec3 {
+    let h = io.view_projection_inverse() * uv_to_ndc(pixel_uv(io, p)).extend(depth).extend(1.0);
+    h.truncate() / h.w
+}
+
 /// Pixel p's linear depth where `depth` (its device depth) is a receiver's, -1 elsewhere
 /// (`dnsr_receiver_linear_depth`).
 pub fn receiver_linear_depth<G: Get + ?Sized>(io: &G, p: Coord, depth: f64) -> f64 {

@@ -411,8 +411,8 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, q
     let prev_clip = io.reprojection_matrix() * DVec4::new(ndc.x, ndc.y, depth, 1.0);
     let prev_ndc = prev_clip.truncate() / prev_clip.w;
     let prev_uv = prev_ndc.truncate() * 0.5 + 0.5;
-    let world = io.view_projection_inverse() * DVec4::new(ndc.x, ndc.y, depth, 1.0);
-    let view_dir = (io.eye() - world.truncate() / world.w).normalize();
+    let world = super::world_position(io, p, depth);
+    let view_dir = (io.eye() - world).normalize();
     let normal = io.read_normal(p);
     let n_dot_v = normal.dot(view_dir).clamp(0.0, 1.0);
     let threshold = thr_facing + (thr_grazing - thr_facing) * (1.0 - n_dot_v).powf(angle_exp);
@@ -640,7 +640,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, q
     let quiet = quiet && io.penumbra().is_none() && !contradicted;
     // A receiver turned away from the light whose ray hit keeps its sample (`ShadowsDispatch::light_position`;
     // shaders/tile_classification.glsl says why). With the run features only: Balanced keeps the FidelityFX behaviour.
-    let to_light = |l: DVec4| l.truncate() - l.w * (world.truncate() / world.w);
+    let to_light = |l: DVec4| l.truncate() - l.w * world;
     let turned_away = s.uses_runs() && x == 0.0 && io.light_position().is_some_and(|l| normal.dot(to_light(l)) < 0.0);
     if !untraced && (quiet || turned_away || super::filter::hard_penumbra(io, [p[0] / TILE[0], p[1] / TILE[1]], linear_depth(io, ndc, depth))) {
         return (m, DVec2::new(x, 0.0), contradicted);

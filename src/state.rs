@@ -63,6 +63,10 @@ pub(crate) const DEPTH_COPY_NORMAL_BITS: u32 = 8;
 /// last frame holds another surface: it leaves the history footprint (docs/do-no-harm.md, "normal-agreeing
 /// footprint": 37 and 60 degrees measured alike; faces meet at creases near 90). Generated into GLSL.
 pub(crate) const TURNED_NORMAL_COS_PERCENT: u32 = 80;
+/// A receiver lies inside a plane (classification's test of normal-mapped normals, `dnsr_plane_normal`) where its
+/// neighbours on either side along each axis lie on one line through it: the squared cosine between the two steps at
+/// least this / 100 (about 8 degrees). Generated into GLSL.
+pub(crate) const PLANE_LINE_COS2_PERCENT: u32 = 98;
 /// A history texel of this surface lies within the disocclusion test's depth range widened, per pixel of distance
 /// from the history position, by this percentage of what a plane at the surface's angle to the view changes over
 /// a pixel: 100 let thin fins over the ground keep the ground's history (seed 1040), 0 rejected grazing ground's

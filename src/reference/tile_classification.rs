@@ -1,7 +1,7 @@
 //! tile classification (shaders/tile_classification.glsl): uniform-tile skip, reprojection, disocclusion,
 //! temporal moments and the history blend, pixel by pixel in f64.
 
-use super::{inside, SKY_SIGNAL, is_receiver, linear_depth, pixel_uv, tile_bit, uv_to_ndc, Coord, Read, Write, TILE};
+use super::{inside, SKY_SIGNAL, is_receiver, linear_depth, pixel_uv, tile_bit, uv_to_ndc, world_position, Coord, Read, Write, TILE};
 use crate::passes::{RUN_CLAMP_SAMPLES, TILE_CLEARED, TILE_LIT};
 use crate::settings::MAX_SAMPLE_RUN;
 use glam::{DVec2, DVec3, DVec4, IVec3};
@@ -33,6 +33,78 @@ fn sample<Io: Read + ?Sized>(io: &Io, p: Coord) -> f64 {
     }
     let word = io.read_tile_mask([p[0].div_euclid(8), p[1].div_euclid(4)]);
     ((word >> tile_bit(p)) & 1) as f64
+}
+
+/// The normal of the plane that receiver q (device depth `depth`) lies inside, on the side of its G-buffer normal
+/// `shading` (`dnsr_plane_normal`): its neighbours on either side along each axis are receivers on one line through
+/// it (`state::PLANE_LINE_COS2_PERCENT`); zero elsewhere (an edge, a crease, a feature of 1-2 px).
+fn plane_normal<Io: Read + ?Sized>(io: &Io, q: Coord, depth: f64, shading: DVec3) -> DVec3 {
+    let w = world_position(io, q, depth);
+    let mut tangent = [DVec3::ZERO; 2];
+    for (a, t) in tangent.iter_mut().enumerate() {
+        let axis = [1 - a as i32, a as i32];
+        let (r0, r1) = ([q[0] - axis[0], q[1] - axis[1]], [q[0] + axis[0], q[1] + axis[1]]);
+        if !inside(io, r0) || !inside(io, r1) {
+            return DVec3::ZERO;
+        }
+        let (d0, d1) = (io.read_depth(r0), io.read_depth(r1));
+        if !is_receiver(d0) || !is_receiver(d1) {
+            return DVec3::ZERO;
+        }
+        let (back, ahead) = (w - world_position(io, r0, d0), world_position(io, r1, d1) - w);
+        let c = back.dot(ahead);
+        let min_cos2 = crate::state::PLANE_LINE_COS2_PERCENT as f64 / 100.0;
+        if !(c > 0.0) || c * c < min_cos2 * back.length_squared() * ahead.length_squared() {
+            return DVec3::ZERO;
+        }
+        *t = back + ahead;
+    }
+    let n = tangent[0].cross(tangent[1]);
+    let l = n.length_squared();
+    if !(l > 0.0) || l.is_infinite() {
+        return DVec3::ZERO;
+    }
+    let n = n / l.sqrt();
+    if n.dot(shading) < 0.0 { -n } else { n }
+}
+
+/// Receiver p, whose G-buffer normal `shading` faces away from the light at `to_light`, lies inside a plane that
+/// faces it (`dnsr_plane_faces_light`): a normal map tilted its normal past the light.
+fn plane_faces_light<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, shading: DVec3, to_light: DVec3) -> bool {
+    plane_normal(io, p, depth, shading).dot(to_light) > 0.0
+}
+
+/// The vector from world point `world` to the light at homogeneous position `light`
+/// (`ShadowsDispatch::light_position`).
+fn to_light(light: DVec4, world: DVec3) -> DVec3 {
+    light.truncate() - light.w * world
+}
+
+/// Per group of `passes::WIDE_GROUP` pixels (row by row): whether a receiver whose G-buffer normal faces away from
+/// the light, inside a plane that faces it, has a lit sample this frame (`s_lit_against_normal`): the host's rays do
+/// not test its normals, and a shadowed sample of such a receiver is not exact. Only with the run features and a
+/// light position (`DNSR_SPEC_STABLE_HISTORY`); an untraced pixel of a checkerboard input has no sample.
+fn lit_against_normal<Io: Read + ?Sized>(io: &Io) -> Vec<bool> {
+    let e = io.extent();
+    let g = crate::passes::WIDE_GROUP.map(|v| v as i32);
+    let groups = [(e[0] + g[0] - 1) / g[0], (e[1] + g[1] - 1) / g[1]];
+    let mut found = vec![false; (groups[0] * groups[1]) as usize];
+    let Some(light) = io.light_position().filter(|_| io.settings().uses_runs()) else { return found };
+    for y in 0..e[1] {
+        for x in 0..e[0] {
+            let p = [x, y];
+            let depth = io.read_depth(p);
+            if !is_receiver(depth) || sample(io, p) != 1.0 || !io.is_traced(p) {
+                continue;
+            }
+            let l = to_light(light, world_position(io, p, depth));
+            let shading = io.read_normal(p);
+            if shading.dot(l) < 0.0 && plane_faces_light(io, p, depth, shading, l) {
+                found[((y / g[1]) * groups[0] + x / g[0]) as usize] = true;
+            }
+        }
+    }
+    found
 }
 
 /// A sample that is exactly lit or exactly shadowed: only those extend runs of identical samples (always so for
@@ -374,7 +446,7 @@ fn contradicts<Io: Read + ?Sized>(io: &Io, t: DVec2, x: f64, texels: u32, other:
 /// The temporal part for one receiver pixel of a mixed tile: returns (moments, (shadow, variance), whether its
 /// sample contradicts last frame's: `contradicts`). `moved`: the shadow moved over its tile's neighbourhood
 /// (`shadow_moved`); `quiet`: its tile is hard by time (`quiet_tiles`).
-pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, quiet: bool) -> (DVec4, DVec2, bool) {
+pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, quiet: bool, lit_against_normal: bool) -> (DVec4, DVec2, bool) {
     let s = io.settings();
     let (thr_facing, thr_grazing, angle_exp, clamp_k) = (
         s.disocclusion_threshold_facing as f64,
@@ -639,9 +711,15 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, q
     // counts go on.
     let quiet = quiet && io.penumbra().is_none() && !contradicted;
     // A receiver turned away from the light whose ray hit keeps its sample (`ShadowsDispatch::light_position`;
-    // shaders/tile_classification.glsl says why). With the run features only: Balanced keeps the FidelityFX behaviour.
-    let to_light = |l: DVec4| l.truncate() - l.w * world;
-    let turned_away = s.uses_runs() && x == 0.0 && io.light_position().is_some_and(|l| normal.dot(to_light(l)) < 0.0);
+    // shaders/tile_classification.glsl says why), unless a normal map tilted its normal past the light in a group
+    // where such a receiver's ray reached it (`lit_against_normal`). With the run features only: Balanced keeps the
+    // FidelityFX behaviour.
+    let turned_away = s.uses_runs()
+        && x == 0.0
+        && io.light_position().is_some_and(|l| {
+            let l = to_light(l, world);
+            normal.dot(l) < 0.0 && !(lit_against_normal && plane_faces_light(io, p, depth, normal, l))
+        });
     if !untraced && (quiet || turned_away || super::filter::hard_penumbra(io, [p[0] / TILE[0], p[1] / TILE[1]], linear_depth(io, ndc, depth))) {
         return (m, DVec2::new(x, 0.0), contradicted);
     }
@@ -697,6 +775,9 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
     // The run features' pipelines tell a shadow that moved (`shadow_moved`), from last frame's moments.
     let tells = io.settings().tells_moving_shadows();
     let moved: Vec<bool> = (0..tiles[0] * tiles[1]).map(|i| tells && shadow_moved(io, [i % tiles[0], i / tiles[0]])).collect();
+    let lit_against = lit_against_normal(io);
+    let group = crate::passes::WIDE_GROUP.map(|v| v as i32);
+    let groups_across = (e[0] + group[0] - 1) / group[0];
     for ty in 0..tiles[1] {
         for tx in 0..tiles[0] {
             let tile = [tx, ty];
@@ -729,7 +810,9 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
                     } else if !receiver {
                         (DVec4::ZERO, SKY_SIGNAL)
                     } else {
-                        let (m, r, contradicted) = temporal(io, p, depth, moved[(ty * tiles[0] + tx) as usize], quiet);
+                        let lit_against_normal = lit_against[((y / group[1]) * groups_across + x / group[0]) as usize];
+                        let (m, r, contradicted) =
+                            temporal(io, p, depth, moved[(ty * tiles[0] + tx) as usize], quiet, lit_against_normal);
                         if contradicted {
                             count = 0;
                         }

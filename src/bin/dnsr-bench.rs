@@ -58,6 +58,8 @@ const USAGE: &str = "usage: dnsr-bench [options]
                               host_previous_gbuffer): dnsr keeps no depth copy
   --hard-light                every light has no size (ShadowsDispatch::hard_light): the output is each pixel's
                               ray, and one filter pass runs (not with a non-zero --light-angle)
+  --light-position X,Y,Z,W   give the light (ShadowsDispatch::light_position: a direction towards it with W 0,
+                              a point with W 1): receivers turned away from it keep their shadowed samples
   --shader-override V=FILE    run the SPIR-V in FILE for shader variant V (ContextCreateInfo::shader_overrides;
                               repeatable): a shader change or an engine's callbacks timed by the same binary as
                               dnsr's own (the variants: dnsr::shader_variants; fp32 contexts with the bench's R16F
@@ -130,6 +132,7 @@ struct Options {
     lights_together: bool,
     host_previous: bool,
     hard_light: bool,
+    light_position: Option<glam::Vec4>,
     shader_overrides: Vec<dnsr::ShaderOverride>,
 }
 
@@ -169,6 +172,7 @@ fn parse_args() -> Options {
         lights_together: false,
         host_previous: false,
         hard_light: false,
+        light_position: None,
         shader_overrides: Vec::new(),
     };
     let mut args = std::env::args().skip(1);
@@ -194,6 +198,13 @@ fn parse_args() -> Options {
             "--lights-together" => o.lights_together = true,
             "--host-previous" => o.host_previous = true,
             "--hard-light" => o.hard_light = true,
+            "--light-position" => {
+                let v: Vec<f32> = args.next().map_or(Vec::new(), |v| v.split(',').filter_map(|c| c.parse().ok()).collect());
+                if v.len() != 4 || !v.iter().all(|c| c.is_finite()) {
+                    usage("--light-position needs X,Y,Z,W (four finite numbers)");
+                }
+                o.light_position = Some(glam::Vec4::from_slice(&v));
+            }
             "--shader-override" => {
                 let value = args.next().unwrap_or_else(|| usage("--shader-override needs VARIANT=FILE"));
                 let (variant, file) = value.split_once('=').unwrap_or_else(|| usage("--shader-override needs VARIANT=FILE"));
@@ -264,6 +275,7 @@ fn main() {
             gpu_scene.lights_together = opts.lights_together;
             gpu_scene.host_previous = opts.host_previous;
             gpu_scene.hard_light = opts.hard_light;
+            gpu_scene.light_position = opts.light_position;
             gpu_scene.shader_overrides = opts.shader_overrides.clone();
             eprintln!("dnsr-bench: {}x{} {}: {} frames generated in {:.1} s", size.0, size.1, scene.id(), gpu_scene.frames.len(), t.elapsed().as_secs_f64());
             for &precision in &precisions {

@@ -128,6 +128,7 @@ fn light(scene: &GpuScene, index: usize, k: usize, output: &TestImage, guidance:
         light_angular_size: guidance.map_or(0.0, |g| g.light_angular_size),
         reset: index == 0,
         hard_light: scene.hard_light,
+        light_position: scene.light_position,
         ..Default::default()
     }
 }
@@ -166,6 +167,7 @@ fn dispatch(scene: &GpuScene, index: usize, output: &TestImage, guidance: Option
         reset: index == 0,
         checkerboard_phase: if scene.checkerboard { index as u32 % 2 } else { 0 },
         hard_light: scene.hard_light,
+        light_position: scene.light_position,
         ..Default::default()
     }
 }

@@ -155,6 +155,8 @@ pub struct GpuScene {
     pub shader_overrides: Vec<dnsr::ShaderOverride>,
     /// `--hard-light`: every light has no size (`ShadowsDispatch::hard_light`).
     pub hard_light: bool,
+    /// `--light-position`: every light's `ShadowsDispatch::light_position`.
+    pub light_position: Option<glam::Vec4>,
     pub gbuffers: Vec<GBuffer>,
     /// The formats of `gbuffers`.
     pub host: HostFormats,
@@ -252,7 +254,7 @@ pub fn build(gpu: &Gpu, scene: SceneId, w: u32, h: u32, rays: Option<u32>, host:
             .collect();
         let frames = (0..STATIC_CYCLE).map(|k| frame_of(&f, k, 0)).collect();
         let gbuffers = vec![upload_gbuffer(gpu, &f, host)];
-        GpuScene { masks, visibility_input: rays.is_some(), checkerboard: false, alias_transient: false, transient_per_light: false, lights_together: false, host_previous: false, hard_light: false, shader_overrides: Vec::new(), gbuffers, host, frames, coverage: coverage(&f) }
+        GpuScene { masks, visibility_input: rays.is_some(), checkerboard: false, alias_transient: false, transient_per_light: false, lights_together: false, host_previous: false, hard_light: false, light_position: None, shader_overrides: Vec::new(), gbuffers, host, frames, coverage: coverage(&f) }
     };
     match scene {
         SceneId::PenumbraHeavy => static_scene(1e9, &penumbra),
@@ -263,7 +265,7 @@ pub fn build(gpu: &Gpu, scene: SceneId, w: u32, h: u32, rays: Option<u32>, host:
                 masks: Vec::new(),
                 visibility_input: rays.is_some(),
                 checkerboard: false,
-                alias_transient: false, transient_per_light: false, lights_together: false, host_previous: false, hard_light: false, shader_overrides: Vec::new(),
+                alias_transient: false, transient_per_light: false, lights_together: false, host_previous: false, hard_light: false, light_position: None, shader_overrides: Vec::new(),
                 gbuffers: Vec::new(),
                 host,
                 frames: Vec::new(),

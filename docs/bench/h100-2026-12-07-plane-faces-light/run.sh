@@ -12,7 +12,7 @@ nvidia-smi --query-gpu=name,driver_version --format=csv,noheader > $OUT/device.t
 A="--sizes 3840x2160 --scenes penumbra-heavy,typical --presets quality --precisions fp32 --frames 100 --copy-runs 1 --warmup-ms 300"
 for light in none lit; do
   L=""; [ $light = lit ] && L="--light-position 0.3,1,0.2,0"
-  for v in old new win old new win; do
+  for v in old new win; do
     n=b-$light-$v
     timeout 60 .gl/bench $A $L --shader-override tile_classification_r16f=.gl/$v-tile_classification_r16f.spv \
       --out /tmp/$n > /dev/null 2>&1 || echo "bench $n failed"

@@ -150,7 +150,10 @@ pub struct ShadowsDispatch {
     /// sphere light. With it, a receiver whose normal faces away from the light (N.L < 0, the normals as given)
     /// and whose ray hit keeps its sample as its output: it cannot see the light, and the history and the filter
     /// would only blend it with the lit face beside it (a pole's or a sphere's dark side against the sky, the far
-    /// face of a fin). Its ray that missed is filtered as any other (a normal-mapped face may see the light).
+    /// face of a fin). Its ray that missed is filtered as any other (a normal-mapped face may see the light); so is
+    /// one that hit where a normal map tilts the normal past the light inside a plane that faces it, in a 16x16
+    /// group where such a receiver's ray reached the light (the host's rays do not test the mapped normals there,
+    /// and the hit is a penumbra's).
     /// Fast and Quality (the run features) only: Balanced keeps the FidelityFX behaviour. `None`: not given (the
     /// FidelityFX layer, whose dispatch has no light).
     pub light_position: Option<Vec4>,

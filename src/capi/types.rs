@@ -746,8 +746,10 @@ pub struct DnsrShadowsDispatch {
     /// normal faces away from the light (N.L < 0, the normals as decoded) and whose ray hit keeps that result as
     /// its output: it cannot see the light, and the history and the filter would only blend it with the lit face
     /// beside it (a pole's or a sphere's dark side against the sky, the far face of a fin). A ray that reached the
-    /// light is filtered as any other (a normal-mapped face may see it). Fast and Quality only (Balanced keeps the
-    /// FidelityFX behaviour). NaN/Inf: DNSR_ERROR_NON_FINITE; w other than 0 or 1, or a direction of length 0:
+    /// light is filtered as any other (a normal-mapped face may see it); so is one that hit where a normal map tilts
+    /// the normal past the light inside a plane that faces it, in a 16x16 group where such a receiver's ray reached
+    /// the light (the rays do not test the mapped normals, so the hit is a penumbra's). Fast and Quality only
+    /// (Balanced keeps the FidelityFX behaviour). NaN/Inf: DNSR_ERROR_NON_FINITE; w other than 0 or 1, or a direction of length 0:
     /// DNSR_ERROR_INVALID_ARGUMENT.
     pub light_position: [f32; 4],
     /// Required with DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER, all zero otherwise: the image the host gave as depth

@@ -371,12 +371,14 @@ vec3 dnsr_plane_normal(ivec2 q, float depth, vec3 shading) {
     return dot(n, shading) < 0.0 ? -n : n;
 }
 
-// Receiver p (device depth `depth`, world position `world`), whose G-buffer normal `shading` faces away from the
-// light at `to_light`, lies inside a plane that faces it: its ray left from a surface that sees the light, and the
+// Receiver p (device depth `depth`), whose G-buffer normal `shading` faces away from the light at `to_light`, lies inside a plane that faces it: its ray left from a surface that sees the light, and the
 // G-buffer's normal is tilted past the light by a normal map.
 bool dnsr_plane_faces_light(ivec2 p, float depth, vec3 shading, vec3 to_light) {
     return dot(dnsr_plane_normal(p, depth, shading), to_light) > 0.0;
 }
+
+// From world point `world` to the light at homogeneous position `light` (ShadowsDispatch::light_position).
+vec3 dnsr_to_light(vec4 light, vec3 world) { return light.xyz - light.w * world; }
 
 // Normals a and b (last frame's, this frame's) both known and more than acos(DNSR_TURNED_NORMAL_COS_PERCENT / 100)
 // apart.
@@ -644,8 +646,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
         bool lit = dnsr_window_lit(p, g_window_base) == 1.0;
 #endif
         if (lit) {
-            vec4 light = dnsr_get_light_position();
-            vec3 to_light = light.xyz - light.w * dnsr_world_position(p, depth);
+            vec3 to_light = dnsr_to_light(dnsr_get_light_position(), dnsr_world_position(p, depth));
             vec3 shading = dnsr_read_normal(p);
             if (dot(shading, to_light) < 0.0 && dnsr_plane_faces_light(p, depth, shading, to_light)) s_lit_against_normal = 1u;
         }
@@ -875,8 +876,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     // The receiver faces away from the light (ShadowsDispatch::light_position): decided here, where its position
     // and normal are at hand, and used at the end (keeping them live until then cost Quality's classification
     // 16% at 4K on an H200). (NaN, where a point light sits on the surface, turns nothing away.)
-    vec4 light = dnsr_get_light_position();
-    vec3 to_light = light.xyz - light.w * (world.xyz / world.w);
+    vec3 to_light = dnsr_to_light(dnsr_get_light_position(), world.xyz / world.w);
     bool faces_away = DNSR_SPEC_STABLE_HISTORY && dnsr_get_has_light_position() && dot(normal, to_light) < 0.0
         && !(x == 0.0 && s_lit_against_normal != 0u && dnsr_plane_faces_light(p, depth, normal, to_light));
     float threshold = mix(disocc.x, disocc.y, pow(1.0 - n_dot_v, disocc.z));

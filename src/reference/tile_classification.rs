@@ -86,9 +86,7 @@ fn to_light(light: DVec4, world: DVec3) -> DVec3 {
 /// light position (`DNSR_SPEC_STABLE_HISTORY`); an untraced pixel of a checkerboard input has no sample.
 fn lit_against_normal<Io: Read + ?Sized>(io: &Io) -> Vec<bool> {
     let e = io.extent();
-    let g = crate::passes::WIDE_GROUP.map(|v| v as i32);
-    let groups = [(e[0] + g[0] - 1) / g[0], (e[1] + g[1] - 1) / g[1]];
-    let mut found = vec![false; (groups[0] * groups[1]) as usize];
+    let mut found = vec![false; group_index(e, [e[0] - 1, e[1] - 1]) + 1];
     let Some(light) = io.light_position().filter(|_| io.settings().uses_runs()) else { return found };
     for y in 0..e[1] {
         for x in 0..e[0] {
@@ -100,11 +98,17 @@ fn lit_against_normal<Io: Read + ?Sized>(io: &Io) -> Vec<bool> {
             let l = to_light(light, world_position(io, p, depth));
             let shading = io.read_normal(p);
             if shading.dot(l) < 0.0 && plane_faces_light(io, p, depth, shading, l) {
-                found[((y / g[1]) * groups[0] + x / g[0]) as usize] = true;
+                found[group_index(e, p)] = true;
             }
         }
     }
     found
+}
+
+/// The index of pixel p's group of `passes::WIDE_GROUP` pixels (row by row) in an image of extent `e`.
+fn group_index(e: Coord, p: Coord) -> usize {
+    let g = crate::passes::WIDE_GROUP.map(|v| v as i32);
+    ((p[1] / g[1]) * ((e[0] + g[0] - 1) / g[0]) + p[0] / g[0]) as usize
 }
 
 /// A sample that is exactly lit or exactly shadowed: only those extend runs of identical samples (always so for
@@ -776,8 +780,6 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
     let tells = io.settings().tells_moving_shadows();
     let moved: Vec<bool> = (0..tiles[0] * tiles[1]).map(|i| tells && shadow_moved(io, [i % tiles[0], i / tiles[0]])).collect();
     let lit_against = lit_against_normal(io);
-    let group = crate::passes::WIDE_GROUP.map(|v| v as i32);
-    let groups_across = (e[0] + group[0] - 1) / group[0];
     for ty in 0..tiles[1] {
         for tx in 0..tiles[0] {
             let tile = [tx, ty];
@@ -810,7 +812,7 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
                     } else if !receiver {
                         (DVec4::ZERO, SKY_SIGNAL)
                     } else {
-                        let lit_against_normal = lit_against[((y / group[1]) * groups_across + x / group[0]) as usize];
+                        let lit_against_normal = lit_against[group_index(e, p)];
                         let (m, r, contradicted) =
                             temporal(io, p, depth, moved[(ty * tiles[0] + tx) as usize], quiet, lit_against_normal);
                         if contradicted {

@@ -236,7 +236,6 @@ pub fn render_scene(width: u32, height: u32, cam: &Camera, prev: &Camera, ground
     let vp = proj * cam.view(origin);
     let vp_prev = prev.projection(aspect) * prev.view(origin);
     let vp_inv = vp.inverse();
-    let tw = width.div_ceil(8);
     let sky_depth = if cam.inverted { 0.0 } else { 1.0 };
     let mut f = FrameInputs::blank(width, height, sky_depth, proj, vp, vp_prev, (cam.eye - origin).as_vec3());
     for y in 0..height {
@@ -279,7 +278,7 @@ pub fn render_scene(width: u32, height: u32, cam: &Camera, prev: &Camera, ground
                 }
             }
             if !lit {
-                f.mask[((y / 4) * tw + x / 8) as usize] |= 1 << ((y % 4) * 8 + (x % 8));
+                f.set_hit(x, y);
             }
             f.visibility[i] = lit as u32 as f32;
         }
@@ -288,6 +287,23 @@ pub fn render_scene(width: u32, height: u32, cam: &Camera, prev: &Camera, ground
 }
 
 impl FrameInputs {
+    /// The hit mask's word and bit of pixel (x, y) (8x4 tiles, bit (y % 4) * 8 + x % 8).
+    fn mask_bit(&self, x: u32, y: u32) -> (usize, u32) {
+        (((y / 4) * self.width.div_ceil(8) + x / 8) as usize, 1 << ((y % 4) * 8 + (x % 8)))
+    }
+
+    /// Whether pixel (x, y)'s ray hit (its mask bit is set).
+    pub fn hit(&self, x: u32, y: u32) -> bool {
+        let (word, bit) = self.mask_bit(x, y);
+        self.mask[word] & bit != 0
+    }
+
+    /// Marks pixel (x, y)'s ray as hit.
+    pub fn set_hit(&mut self, x: u32, y: u32) {
+        let (word, bit) = self.mask_bit(x, y);
+        self.mask[word] |= bit;
+    }
+
     /// Makes `visibility` the mean of `rays` shadow rays per receiver: the mask's ray (drawn with `seed`, so one
     /// ray equals the mask) and `rays - 1` more, each hitting with probability 1 - truth.
     pub fn trace_rays(&mut self, rays: u32, seed: u64) {
@@ -297,7 +313,7 @@ impl FrameInputs {
                 if !self.receiver[i] {
                     continue;
                 }
-                let first = (self.mask[((y / 4) * self.width.div_ceil(8) + x / 8) as usize] >> ((y % 4) * 8 + (x % 8))) & 1 == 0;
+                let first = !self.hit(x, y);
                 let more = (1..rays).filter(|&r| hash01(seed ^ (r as u64).wrapping_mul(0xA24B_AED4_963E_E407), x, y) < self.truth[i] as f64);
                 self.visibility[i] = (first as u32 + more.count() as u32) as f32 / rays as f32;
             }

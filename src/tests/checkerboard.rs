@@ -61,7 +61,7 @@ fn a_static_soft_shadow_converges_at_half_a_ray_per_pixel() {
         full_err = mae(&full.frame(&f, false), &f);
         half_err = mae(&half.frame(&f, false), &f);
         let noisy: Vec<f32> = (0..(W * H) as usize)
-            .map(|i| ((f.mask[(i as u32 / W / 4 * W.div_ceil(8) + i as u32 % W / 8) as usize] >> (i as u32 / W % 4 * 8 + i as u32 % W % 8)) & 1 == 0) as u32 as f32)
+            .map(|i| !f.hit(i as u32 % W, i as u32 / W) as u32 as f32)
             .collect();
         input_err = mae(&noisy, &f);
     }

@@ -8,6 +8,14 @@ use crate::Precision;
 use ash::vk;
 use glam::DVec3;
 
+/// A normal-map-like normal of the plane y = 0 at pixel (x, y): tilted from +Y by up to `max_degrees`, in a
+/// direction drawn with `seed`.
+fn bumped_normal(max_degrees: f64, seed: u64, x: u32, y: u32) -> [f32; 4] {
+    let (tilt, turn) = (max_degrees.to_radians() * hash01(seed, x, y), std::f64::consts::TAU * hash01(seed + 1, x, y));
+    let t = DVec3::new(tilt.sin() * turn.cos(), tilt.cos(), tilt.sin() * turn.sin());
+    [t.x as f32, t.y as f32, t.z as f32, 0.0]
+}
+
 /// A smooth penumbra-like field in world units (the view spans about 10 x 7 units).
 pub(crate) fn smooth(x: f64, z: f64) -> f64 {
     (0.5 + 0.3 * (x * 0.6).sin() * (z * 0.45).cos() + 0.15 * (x * 0.25 + z * 0.3).sin()).clamp(0.0, 1.0)
@@ -582,7 +590,6 @@ fn normal_mapped_normals_tilted_past_the_light_keep_their_penumbra() {
     let (w, h) = (48u32, 32u32);
     let light = glam::Vec4::new(1.0, 0.25, 0.0, 0.0);
     let away = |n: &[f32; 4]| n[0] * light.x + n[1] * light.y + n[2] * light.z < 0.0;
-    let bit = |x: u32, y: u32| (((y / 4) * w.div_ceil(8) + x / 8) as usize, 1u32 << ((y % 4) * 8 + (x % 8)));
     // Over the receivers turned away whose last sample was shadowed: the mean output, the mean truth and their count.
     let run = |host_tests_normals: bool| -> (f64, f64, usize) {
         let mut r = runner_with(&g, w, h, Precision::Fp32, crate::Settings::preset(crate::Preset::Quality));
@@ -591,20 +598,19 @@ fn normal_mapped_normals_tilted_past_the_light_keep_their_penumbra() {
         for frame in 0..8 {
             let mut f = static_frame(w, h, &smooth, frame + 50);
             for (i, n) in f.normals.iter_mut().enumerate() {
-                let (x, y) = (i as u32 % w, i as u32 / w);
-                let (tilt, turn) = (40f64.to_radians() * hash01(9, x, y), std::f64::consts::TAU * hash01(10, x, y));
-                let t = DVec3::new(tilt.sin() * turn.cos(), tilt.cos(), tilt.sin() * turn.sin());
-                *n = [t.x as f32, t.y as f32, t.z as f32, 0.0];
-                if host_tests_normals && away(n) {
-                    let (word, mask) = bit(x, y);
-                    f.mask[word] |= mask;
+                *n = bumped_normal(40.0, 9, i as u32 % w, i as u32 / w);
+            }
+            if host_tests_normals {
+                for i in 0..f.normals.len() {
+                    if away(&f.normals[i]) {
+                        f.set_hit(i as u32 % w, i as u32 / w);
+                    }
                 }
             }
             let out = r.frame(&f, frame == 0);
             (sum, truth, count) = (0.0, 0.0, 0);
             for (i, n) in f.normals.iter().enumerate() {
-                let (word, mask) = bit(i as u32 % w, i as u32 / w);
-                if f.receiver[i] && away(n) && f.mask[word] & mask != 0 {
+                if f.receiver[i] && away(n) && f.hit(i as u32 % w, i as u32 / w) {
                     sum += out[i] as f64;
                     truth += f.truth[i] as f64;
                     count += 1;
@@ -640,10 +646,7 @@ fn normal_mapped_normals_filter_like_the_plane_they_lie_on() {
             let mut f = static_frame(w, h, &smooth, frame + 30);
             if bumps {
                 for (i, n) in f.normals.iter_mut().enumerate() {
-                    let (x, y) = (i as u32 % w, i as u32 / w);
-                    let (tilt, turn) = (15f64.to_radians() * hash01(7, x, y), std::f64::consts::TAU * hash01(8, x, y));
-                    let t = DVec3::new(tilt.sin() * turn.cos(), tilt.cos(), tilt.sin() * turn.sin());
-                    *n = [t.x as f32, t.y as f32, t.z as f32, 0.0];
+                    *n = bumped_normal(15.0, 7, i as u32 % w, i as u32 / w);
                 }
             }
             out = r.frame(&f, frame == 0);

@@ -85,7 +85,7 @@ fn random_frame(w: u32, h: u32, seed: u64, frame: u64) -> FrameInputs {
                 hash01(seed ^ frame.wrapping_mul(0xD1B5_4A32_D192_ED03), x, y) < p
             };
             if !lit {
-                f.mask[((y / 4) * tw + x / 8) as usize] |= 1 << ((y % 4) * 8 + (x % 8));
+                f.set_hit(x, y);
             }
             // A visibility input: exact where the mask regions are uniform, else the mean of 1 to 4 rays, and a
             // few stored values outside [0, 1] (clamped; NaN reads as 0).

@@ -269,8 +269,8 @@ static std::vector<float> frames_match_native(bool fidelityfx, uint32_t lightFla
     if (lightFlags) {
         const float behind[4] = {0.0f, 0.0f, NAN, 0.0f};
         for (Integration *i : {&in, &in8}) {
-            DNSR_CHECK(dnsr_ffx_context_set_light(i->context.get(), lightFlags, lightPosition));
-            EXPECT_DNSR(DNSR_ERROR_NON_FINITE, dnsr_ffx_context_set_light(i->context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, behind));
+            DNSR_CHECK(dnsr_ffx_context_set_light(i->context.get(), lightFlags, lightPosition, lightAngle));
+            EXPECT_DNSR(DNSR_ERROR_NON_FINITE, dnsr_ffx_context_set_light(i->context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, behind, 0.0f));
         }
     }
     const DnsrHostImage hits = host_image_desc(&hitDistance);
@@ -301,10 +301,10 @@ static std::vector<float> frames_match_native(bool fidelityfx, uint32_t lightFla
         nd.flags |= lightFlags;
         if (hostPrevious) nd.previousDepth = previousDepth, nd.previousNormals = previousNormals;
         if (lightPosition) std::memcpy(nd.lightPosition, lightPosition, sizeof nd.lightPosition);
+        nd.lightAngularSize = lightAngle;  // read with the light's position or hit distances
         if (guided) {
             nd.flags |= DNSR_DISPATCH_USE_HIT_DISTANCE;
             nd.hitDistance = hits;
-            nd.lightAngularSize = lightAngle;
         }
         DNSR_CHECK(dnsr_shadows_record(native, &nd));
         host_submit(&host, cmd);
@@ -562,19 +562,24 @@ static void misuse(void)
     EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDispatchShadows(in.context.get(), &bad));
     host_submit(&host, cmd);
 
-    // dnsr_ffx_context_set_light: the context, the bits and the position.
+    // dnsr_ffx_context_set_light: the context, the bits, the position and the light's size.
     const float sun[4] = {0.3f, 0.8f, 0.2f, 0.0f}, zero[4] = {0.0f, 0.0f, 0.0f, 0.0f}, half[4] = {1.0f, 2.0f, 3.0f, 0.5f};
     const float inf[4] = {INFINITY, 0.0f, 1.0f, 1.0f};
-    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(nullptr, DNSR_DISPATCH_HARD_LIGHT, nullptr));
-    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(other, DNSR_DISPATCH_HARD_LIGHT, nullptr)); /* never created */
-    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_RESET, nullptr));
-    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), 1u << 31, nullptr));
-    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, nullptr));
-    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, zero));
-    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, half));
-    EXPECT_DNSR(DNSR_ERROR_NON_FINITE, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, inf));
-    DNSR_CHECK(dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION | DNSR_DISPATCH_HARD_LIGHT, sun));
-    DNSR_CHECK(dnsr_ffx_context_set_light(in.context.get(), 0, nullptr));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(nullptr, DNSR_DISPATCH_HARD_LIGHT, nullptr, 0.0f));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(other, DNSR_DISPATCH_HARD_LIGHT, nullptr, 0.0f)); /* never created */
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_RESET, nullptr, 0.0f));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), 1u << 31, nullptr, 0.0f));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, nullptr, 0.0f));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, zero, 0.0f));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, half, 0.0f));
+    EXPECT_DNSR(DNSR_ERROR_NON_FINITE, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, inf, 0.0f));
+    EXPECT_DNSR(DNSR_ERROR_NON_FINITE, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, sun, NAN));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, sun, -0.1f));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, sun, 4.0f));
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT,
+                dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION | DNSR_DISPATCH_HARD_LIGHT, sun, 0.01f));
+    DNSR_CHECK(dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION | DNSR_DISPATCH_HARD_LIGHT, sun, 0.0f));
+    DNSR_CHECK(dnsr_ffx_context_set_light(in.context.get(), 0, nullptr, 0.0f));
 
     // dnsr_ffx_context_set_penumbra_guidance: the context, the image's handles and the angle.
     DnsrHostImage hits = host_image_desc(&hitDistance), noImage = hits, noView = hits;
@@ -588,6 +593,13 @@ static void misuse(void)
     EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_penumbra_guidance(in.context.get(), &hits, -0.01f));
     EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_penumbra_guidance(in.context.get(), &hits, 3.5f));
     DNSR_CHECK(dnsr_ffx_context_set_penumbra_guidance(in.context.get(), &hits, 0.01f));
+    // One light, one size: a dispatch refuses two different ones from the two calls, and records nothing.
+    DNSR_CHECK(dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_USE_LIGHT_POSITION, sun, 0.02f));
+    cmd = host_begin(&host);
+    d = ffx_dispatch(cmd, 1);
+    EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDispatchShadows(in.context.get(), &d));
+    host_submit(&host, cmd);
+    DNSR_CHECK(dnsr_ffx_context_set_light(in.context.get(), 0, nullptr, 0.0f));
     DNSR_CHECK(dnsr_ffx_context_set_penumbra_guidance(in.context.get(), nullptr, NAN)); /* off: the angle is not read */
 
     // dnsr_ffx_context_set_previous_gbuffer: the context (and its flag), the descriptions and their handles.
@@ -602,7 +614,7 @@ static void misuse(void)
     EXPECT_DNSR(DNSR_ERROR_NULL_HANDLE, dnsr_ffx_context_set_previous_gbuffer(in.context.get(), &prevDepth, &noImage));
 
     FFX_CHECK(ffxDenoiserContextDestroy(in.context.get()));
-    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_HARD_LIGHT, nullptr)); /* destroyed */
+    EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_light(in.context.get(), DNSR_DISPATCH_HARD_LIGHT, nullptr, 0.0f)); /* destroyed */
     EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_penumbra_guidance(in.context.get(), nullptr, 0.0f)); /* destroyed */
     EXPECT_DNSR(DNSR_ERROR_INVALID_ARGUMENT, dnsr_ffx_context_set_previous_gbuffer(in.context.get(), &prevDepth, &prevNormals)); /* destroyed */
     EXPECT_FFX(FFX_ERROR_INVALID_ARGUMENT, ffxDenoiserContextDestroy(in.context.get())); /* twice */

@@ -939,10 +939,11 @@ typedef struct DnsrShadowsDispatch {
    */
   struct DnsrHostImage hitDistance;
   /**
-   * Read when DNSR_DISPATCH_USE_HIT_DISTANCE is set. The light's angular diameter seen from the receivers, in
-   * radians, in [0, pi) (the sun: about 0.0093; a sphere light of radius r at distance D: 2 asin(r / D)); 0 is
-   * a point light (hard shadows: no spatial filtering). NaN/Inf: DNSR_ERROR_NON_FINITE; out of range:
-   * DNSR_ERROR_INVALID_ARGUMENT.
+   * Read when DNSR_DISPATCH_USE_HIT_DISTANCE or DNSR_DISPATCH_USE_LIGHT_POSITION is set. The light's angular
+   * diameter seen from the receivers, in radians, in [0, pi) (the sun: about 0.0093; a sphere light of radius r at
+   * distance D: 2 asin(r / D)); 0 is a point light (with hit distances: hard shadows, no spatial filtering; with
+   * the light's position: a receiver turned away from its centre sees none of it). NaN/Inf:
+   * DNSR_ERROR_NON_FINITE; out of range: DNSR_ERROR_INVALID_ARGUMENT.
    */
   float lightAngularSize;
   /**
@@ -977,8 +978,11 @@ typedef struct DnsrShadowsDispatch {
    * beside it (a pole's or a sphere's dark side against the sky, the far face of a fin). A ray that reached the
    * light is filtered as any other (a normal-mapped face may see it); so is one that hit where a normal map tilts
    * the normal past the light inside a plane that faces it, in a 16x16 group where such a receiver's ray reached
-   * the light (the rays do not test the mapped normals, so the hit is a penumbra's). Fast and Quality only
-   * (Balanced keeps the FidelityFX behaviour). NaN/Inf: DNSR_ERROR_NON_FINITE; w other than 0 or 1, or a direction of length 0:
+   * the light (the rays do not test the mapped normals, so the hit is a penumbra's). Where the normal is turned
+   * away from the whole light (N.L below -sin(lightAngularSize / 2): give the light's size, or a large light's
+   * penumbrae on faces turned just past its centre are lost), that output is final: no filter pass blends it
+   * with its neighbours or them with it, so a shadowed dot a pixel wide (a bump turned away, where the rays test
+   * the mapped normals) stays one. Fast and Quality only (Balanced keeps the FidelityFX behaviour). NaN/Inf: DNSR_ERROR_NON_FINITE; w other than 0 or 1, or a direction of length 0:
    * DNSR_ERROR_INVALID_ARGUMENT.
    */
   float lightPosition[4];
@@ -1039,7 +1043,8 @@ typedef struct DnsrLightDispatch {
    */
   struct DnsrHostImage hitDistance;
   /**
-   * Read with DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE: this light's angular diameter in radians, in [0, pi).
+   * Read with DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE or DNSR_LIGHT_DISPATCH_USE_LIGHT_POSITION: this light's angular
+   * diameter in radians, in [0, pi).
    */
   float lightAngularSize;
   /**
@@ -1382,7 +1387,8 @@ typedef struct DnsrReferenceFrameInfo {
    */
   float viewProjectionInverse[16];
   /**
-   * With DNSR_REFERENCE_USE_HIT_DISTANCE: the light's angular diameter in radians, in [0, pi).
+   * With DNSR_REFERENCE_USE_HIT_DISTANCE or DNSR_REFERENCE_USE_LIGHT_POSITION: the light's angular diameter in
+   * radians, in [0, pi).
    */
   float lightAngularSize;
   /**
@@ -1544,8 +1550,8 @@ typedef struct DnsrDiagnosis {
 #define DNSR_REFERENCE_HARD_LIGHT (1 << 7)
 
 /**
- * `lightPosition` is used, as DNSR_DISPATCH_USE_LIGHT_POSITION: receivers turned away from the light keep their
- * shadowed samples.
+ * `lightPosition` and `lightAngularSize` are used, as DNSR_DISPATCH_USE_LIGHT_POSITION: receivers turned away from
+ * the light keep their shadowed samples.
  */
 #define DNSR_REFERENCE_USE_LIGHT_POSITION (1 << 8)
 
@@ -1834,8 +1840,8 @@ typedef struct DnsrDiagnosis {
 #define DNSR_DISPATCH_HARD_LIGHT (1 << 3)
 
 /**
- * `lightPosition` is read: receivers turned away from the light keep their shadowed rays' result
- * (ShadowsDispatch::light_position in the Rust API).
+ * `lightPosition` and `lightAngularSize` are read: receivers turned away from the light keep their shadowed rays'
+ * result (ShadowsDispatch::light_position in the Rust API).
  */
 #define DNSR_DISPATCH_USE_LIGHT_POSITION (1 << 4)
 
@@ -2103,9 +2109,13 @@ DnsrResult dnsr_context_get_classifier_timings(DnsrContext context,
  * ffxDenoiserContextCreate filled. `flags` holds DNSR_DISPATCH_HARD_LIGHT (the light has no size: every receiver's
  * output is its ray, which is exact) and DNSR_DISPATCH_USE_LIGHT_POSITION (where the light is, in the world space of
  * the dispatches' viewProjectionInverse: `pLightPosition` points at 4 floats, read as DnsrShadowsDispatch::
- * lightPosition); every other bit is refused. 0 returns the context to knowing nothing of its light. Each later
- * ffxDenoiserContextDispatchShadows records as dnsr_shadows_record does with these bits and this position, so a
- * point light or a moving sun calls it before each dispatch whose light moved; the values are copied.
+ * lightPosition, and `lightAngularSize` is the light's angular diameter in radians, read as DnsrShadowsDispatch::
+ * lightAngularSize: 0 for a point light, the light's size otherwise, or faces turned just past a large light's
+ * centre lose their penumbrae); every other bit is refused. 0 returns the context to knowing nothing of its light.
+ * Each later ffxDenoiserContextDispatchShadows records as dnsr_shadows_record does with these bits, this position
+ * and this size, so a point light or a moving sun calls it before each dispatch whose light moved; the values are
+ * copied. With penumbra guidance too (`dnsr_ffx_context_set_penumbra_guidance`), both must give the same size: a
+ * dispatch that finds them different refuses it with FFX_ERROR_INVALID_ARGUMENT.
  *
  * What it changes (docs/do-no-harm.md): on the 100 scenes of `make viewer-accuracy`, dnsr's default settings are
  * worse than their 1-spp input on 25 scenes without it and on 11 with both bits (docs/viewer-family.md: quality+untold
@@ -2114,12 +2124,14 @@ DnsrResult dnsr_context_get_classifier_timings(DnsrContext context,
  *
  * Errors: DNSR_ERROR_INVALID_ARGUMENT for a NULL `pFfxContext`, a context that is not live (never created, or
  * destroyed), an unknown bit, or DNSR_DISPATCH_USE_LIGHT_POSITION with a NULL `pLightPosition` or a position that
- * is neither a direction (w 0, non-zero xyz) nor a point (w 1); DNSR_ERROR_NON_FINITE for a NaN or infinite
- * coordinate. On error the context keeps the light it had.
+ * is neither a direction (w 0, non-zero xyz) nor a point (w 1), or a `lightAngularSize` outside [0, pi) (or other
+ * than 0 with DNSR_DISPATCH_HARD_LIGHT); DNSR_ERROR_NON_FINITE for a NaN or infinite coordinate or size. On error
+ * the context keeps the light it had.
  */
 DnsrResult dnsr_ffx_context_set_light(void *pFfxContext,
                                       DnsrDispatchFlags flags,
-                                      const float *pLightPosition);
+                                      const float *pLightPosition,
+                                      float lightAngularSize);
 
 /**
  * Gives dnsr's FidelityFX layer penumbra guidance for a shadow denoiser context's later dispatches, which the FFX

@@ -38,6 +38,8 @@ bool dnsr_get_is_checkerboard() { return (dnsr_constants.flags.x & DNSR_FLAG_CHE
 // Whether the host gave the light's position (ShadowsDispatch::light_position), and that homogeneous point.
 bool dnsr_get_has_light_position() { return (dnsr_constants.flags.x & DNSR_FLAG_LIGHT_POSITION) != 0u; }
 vec4 dnsr_get_light_position() { return dnsr_constants.light_position; }
+// With it: the sine of the light's angular radius (0: a light of no size).
+float dnsr_get_light_sin_radius() { return dnsr_constants.light_extent.x; }
 int dnsr_get_checkerboard_phase() { return int(dnsr_constants.flags.y); }
 // Whether pixel p (render-rectangle coordinates: its offset is a whole number of tiles, so the parity is the
 // image's) was traced this frame by a checkerboard input.

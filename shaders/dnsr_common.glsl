@@ -42,6 +42,10 @@ bool dnsr_is_receiver(float depth) { return depth > 0.0 && depth < 1.0; }
 // are never negative.
 const vec2 DNSR_SKY_SIGNAL = vec2(1.0, -1.0);
 bool dnsr_is_receiver_signal(vec2 signal) { return signal.y >= 0.0; }
+// A final receiver's variance: its value is exact (a receiver turned away from the whole light whose ray hit, see
+// tile_classification.glsl), so every filter pass returns it as it is and leaves it out of its neighbours' taps and
+// variance blur, as it does the sky. Its variance is DNSR_FINAL_VARIANCE (dnsr_storage.glsl).
+bool dnsr_final_signal(vec2 signal) { return signal.y < -1.5; }
 // With converged pixels on (Settings::converged_samples, dnsr_get_run_settings().z > 0): a converged pixel's signal
 // has variance exactly 0 (the filter may pass it through, see dnsr_passes_through); every other receiver stores at
 // least DNSR_MIN_UNCONVERGED_VARIANCE, so that float rounding cannot make it look converged.

@@ -118,20 +118,25 @@ vec3 dnsr_depth_copy_normal(uint v) { return dnsr_unpack_octahedral(v >> DNSR_DE
 // The filter's signal (mean, variance) between its passes and as the next frame's history. The fp32 path stores
 // it in R16G16_UNORM: the mean, and the standard deviation over `scale` (dnsr_get_signal_scale: it covers the
 // largest variance the settings' boost can reach); the sky's variance -1 is the code 65535 (1.0, which every
-// implementation writes exactly). A unorm write may take either code next to the value (Vulkan leaves the
-// rounding open), so deviations stay at or below DNSR_SIGNAL_MAX_DEVIATION_CODE, far from the sky's code. Variance 0 (converged)
-// is code 0, exactly. The fp16 path stores both as float16 (R16G16_SFLOAT).
+// implementation writes exactly) and a final receiver's -2 the code DNSR_SIGNAL_FINAL_CODE. A unorm write may take
+// either code next to the value (Vulkan leaves the rounding open), so deviations stay at or below
+// DNSR_SIGNAL_MAX_DEVIATION_CODE, far from both. Variance 0 (converged) is code 0, exactly. The fp16 path stores
+// both as float16 (R16G16_SFLOAT), where -1 and -2 are exact.
+// A final receiver's variance (dnsr_final_signal in dnsr_common.glsl); the sky's is -1.
+const float DNSR_FINAL_VARIANCE = -2.0;
 #ifdef DNSR_FP16
 vec4 dnsr_encode_signal(vec2 mean_var, float scale) { return vec4(mean_var, 0.0, 0.0); }
 float dnsr_decode_variance(float stored, float scale) { return stored; }
 #else
 vec4 dnsr_encode_signal(vec2 mean_var, float scale) {
-    float deviation = mean_var.y < 0.0 ? 1.0 : min(sqrt(mean_var.y) / scale, float(DNSR_SIGNAL_MAX_DEVIATION_CODE) / 65535.0);
+    float deviation = mean_var.y < 0.0 ? (mean_var.y < -1.5 ? float(DNSR_SIGNAL_FINAL_CODE) / 65535.0 : 1.0)
+                                        : min(sqrt(mean_var.y) / scale, float(DNSR_SIGNAL_MAX_DEVIATION_CODE) / 65535.0);
     return vec4(mean_var.x, deviation, 0.0, 0.0);
 }
 float dnsr_decode_variance(float stored, float scale) {
     float d = stored * scale;
-    return stored > float(DNSR_SIGNAL_SKY_CODE_ABOVE) / 65535.0 ? -1.0 : d * d;
+    return stored > float(DNSR_SIGNAL_SKY_CODE_ABOVE) / 65535.0 ? -1.0
+         : stored > float(DNSR_SIGNAL_FINAL_CODE_ABOVE) / 65535.0 ? DNSR_FINAL_VARIANCE : d * d;
 }
 #endif
 vec2 dnsr_decode_signal(vec2 stored, float scale) { return vec2(stored.x, dnsr_decode_variance(stored.y, scale)); }

@@ -267,13 +267,16 @@ bool dnsr_passes_through(vec2 c, float v[9]) {
 }
 vec2 dnsr_run_signal(vec2 c) { return vec2(c.x >= 0.5 ? 1.0 : 0.0, 0.0); }
 
-// The filtered (mean, variance) of receiver p (linear depth zc, normal nc) in a tile that is not cleared.
+// The filtered (mean, variance) of receiver p (linear depth zc, normal nc) in a tile that is not cleared. A final
+// pixel (dnsr_final_signal) is its own result and no neighbour's tap: its lit neighbours would grey it, and it them
+// (bumps turned away from the light under a host that tests its rays against them: docs/do-no-harm.md,
+// "Normal-mapped normals").
 vec2 dnsr_filter_receiver(int l, ivec2 p, ivec2 lid, int step, float zc, vec3 nc) {
     vec4 settings = dnsr_get_filter_settings();
     float kernel[2] = float[2](1.0, settings.x);
     float normal_power = settings.y;
     vec2 c = dnsr_center_signal(l, p, lid);
-    if (dnsr_converged_signal(c) && dnsr_pass_hard(l, p, zc)) return c;
+    if (dnsr_final_signal(c) || (dnsr_converged_signal(c) && dnsr_pass_hard(l, p, zc))) return c;
     float v[9];
     dnsr_variance_neighbourhood(l, p, lid, c, v);
     if (dnsr_passes_through(c, v)) return dnsr_run_signal(c);
@@ -291,7 +294,7 @@ vec2 dnsr_filter_receiver(int l, ivec2 p, ivec2 lid, int step, float zc, vec3 nc
             vec4 g;
             dnsr_tap(l, p, lid, i, j, step, n, g);
             float zq = g.x;
-            if (zq < 0.0) continue;
+            if (zq < 0.0 || dnsr_final_signal(n)) continue;
             // The shadow and depth edge stops and the penumbra kernel share one exp.
             float w = kernel[abs(i)] * kernel[abs(j)]
                     * exp(-(abs(c.x - n.x) * inv_sigma + abs(zc - zq) * inv_depth_sigma
@@ -471,9 +474,9 @@ void dnsr_filter_lights(ivec2 gid, ivec2 lid) {
         inv_sigma[l] = falloff[l] = 0.0;
         if (!filtering[l]) continue;
         c[l] = dnsr_center_signal(l, p, lid);
-        // As in dnsr_filter_receiver: a hard penumbra's sample (flagged converged), or a converged pixel among
-        // converged ones, is the result alone.
-        if (dnsr_converged_signal(c[l]) && dnsr_pass_hard(l, p, zc)) {
+        // As in dnsr_filter_receiver: a final pixel, a hard penumbra's sample (flagged converged), or a converged
+        // pixel among converged ones, is the result alone.
+        if (dnsr_final_signal(c[l]) || (dnsr_converged_signal(c[l]) && dnsr_pass_hard(l, p, zc))) {
             filtering[l] = false;
             passes[l] = true;
             continue;
@@ -509,6 +512,7 @@ void dnsr_filter_lights(ivec2 gid, ivec2 lid) {
             [[unroll]] for (int l = 0; l < DNSR_LIGHT_SLOTS; ++l) {
                 if (!filtering[l]) continue;
                 vec2 n = dnsr_pass_filter_input(l, q);
+                if (dnsr_final_signal(n)) continue;
                 float w = kernel_weight * exp(-(abs(c[l].x - n.x) * inv_sigma[l] + depth_term + distance2 * falloff[l]))
                         * normal_weight;
                 weight_sum[l] += w;

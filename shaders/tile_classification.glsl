@@ -72,6 +72,10 @@ shared uint s_quiet[DNSR_WINDOW_TILES.y][DNSR_WINDOW_TILES.x];
 // (dnsr_plane_normal), has a lit sample this frame: the host's rays do not test its normals (normal-mapped ones),
 // so a shadowed sample of such a receiver is not exact (dnsr_plane_faces_light).
 shared uint s_lit_against_normal;
+// Whether a receiver of the group whose G-buffer normal faces away from the whole light (N.L below -sin of its
+// angular radius) has a lit sample this frame: the host's rays do not test those normals, so no shadowed sample of
+// the group is made final (a wrong normal would keep it from the filter).
+shared uint s_lit_away_from_disc;
 
 // Penumbra guidance: every window tile's (sum, count) of usable hit distances over its shadowed pixels, summed
 // from DNSR_HIT_PARTS partial sums of DNSR_HIT_PIXELS pixels each. The partial sums borrow s_hsum before the
@@ -610,7 +614,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     }
 #endif
     if (tile_writer) s_tile_has_receiver[own_tile.y][own_tile.x] = 0u;
-    if (thread == 0) s_lit_against_normal = 0u;
+    if (thread == 0) s_lit_against_normal = s_lit_away_from_disc = 0u;
 
     float depth = inside ? dnsr_read_depth(p) : 0.0;
     bool receiver = inside && dnsr_is_receiver(depth);
@@ -649,6 +653,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             vec3 to_light = dnsr_to_light(dnsr_get_light_position(), dnsr_world_position(p, depth));
             vec3 shading = dnsr_read_normal(p);
             if (dot(shading, to_light) < 0.0 && dnsr_plane_faces_light(p, depth, shading, to_light)) s_lit_against_normal = 1u;
+            if (dot(shading, to_light) < -dnsr_get_light_sin_radius() * length(to_light)) s_lit_away_from_disc = 1u;
         }
     }
     if (DNSR_SPEC_MOVING_SHADOWS) dnsr_sum_previous_moments(thread);
@@ -879,6 +884,9 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     vec3 to_light = dnsr_to_light(dnsr_get_light_position(), world.xyz / world.w);
     bool faces_away = DNSR_SPEC_STABLE_HISTORY && dnsr_get_has_light_position() && dot(normal, to_light) < 0.0
         && !(x == 0.0 && s_lit_against_normal != 0u && dnsr_plane_faces_light(p, depth, normal, to_light));
+    // ... and away from every point of the light's disc: N.L below -sin(angular radius).
+    bool faces_away_from_disc = faces_away && s_lit_away_from_disc == 0u
+        && dot(normal, to_light) < -dnsr_get_light_sin_radius() * length(to_light);
     float threshold = mix(disocc.x, disocc.y, pow(1.0 - n_dot_v, disocc.z));
     bool on_screen = dnsr_finite(prev_uv) && dnsr_finite(history_uv) && prev_clip.w > 0.0
         && all(greaterThanEqual(prev_uv, vec2(0.0))) && all(lessThan(prev_uv, vec2(1.0)))
@@ -1194,12 +1202,19 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     // host may test them, and the sample is exact: normal-mapped scene family, bumps in the shadows too, mean RMSE
     // 0.0348 -> 0.0427 with the plane alone; docs/do-no-harm.md, "Normal-mapped normals".) With the run features
     // only: Balanced keeps the FidelityFX behaviour.
+    // Turned away from the whole disc, it is final (not in a quiet tile, whose samples pass through anyway): the
+    // filter returns it as it is and leaves it out of its neighbours' taps, where its lit neighbours would grey it
+    // (the host tests its rays against normal-mapped normals: every bump turned away is a shadowed dot). Turned
+    // away from the light's centre only, part of the disc still reaches it, and it is filtered as now (a fin
+    // under a 10-degree light). Nor in a group where a receiver turned away from the whole disc has a lit sample
+    // (s_lit_away_from_disc): the host's rays do not test the normals there, and a wrong normal would keep the
+    // pixel from the filter (bumps in dnsr's normals alone: docs/do-no-harm.md, "Normal-mapped normals").
     bool turned_away = faces_away && x == 0.0;
     if (own_sample && (quiet || turned_away || DNSR_SPEC_HARD_LIGHT
                        || dnsr_hard_penumbra(blocker, dnsr_get_penumbra_settings(), dnsr_linear_depth(ndc, depth))
                        || dnsr_no_blocker(blocker))) {
         shadow = x;
-        variance = 0.0;
+        variance = turned_away && faces_away_from_disc && !quiet ? DNSR_FINAL_VARIANCE : 0.0;
     }
     dnsr_write_moments(p, m);
     dnsr_write_reprojection(p, vec2(shadow, variance));

@@ -56,6 +56,9 @@ gpu_block! {
         /// With DNSR_FLAG_LIGHT_POSITION: the light as a homogeneous world-space point (xyz: direction toward it,
         /// w 0; or its centre, w 1).
         light_position: [f32; 4],
+        /// With DNSR_FLAG_LIGHT_POSITION: x: sin of the light's angular radius (`ShadowsDispatch::light_angular_size`
+        /// / 2; 0: a light of no size); yzw: unused.
+        light_extent: [f32; 4],
     }
 }
 
@@ -136,6 +139,8 @@ pub(crate) const GLSL_INTS: &[(&str, u32)] = &[
     ("DNSR_UNCONVERGED_VARIANCE_INV_FP16", crate::passes::UNCONVERGED_VARIANCE_INV_FP16),
     ("DNSR_SIGNAL_MAX_DEVIATION_CODE", crate::state::SIGNAL_MAX_DEVIATION_CODE),
     ("DNSR_SIGNAL_SKY_CODE_ABOVE", crate::state::SIGNAL_SKY_CODE_ABOVE),
+    ("DNSR_SIGNAL_FINAL_CODE", crate::state::SIGNAL_FINAL_CODE),
+    ("DNSR_SIGNAL_FINAL_CODE_ABOVE", crate::state::SIGNAL_FINAL_CODE_ABOVE),
     ("DNSR_DEPTH_CODE_BITS", crate::state::DEPTH_CODE_BITS),
     ("DNSR_DEPTH_CODE_MANTISSA_BITS", crate::state::DEPTH_CODE_MANTISSA_BITS),
     ("DNSR_DEPTH_CODE_SHIFT", crate::state::DEPTH_CODE_SHIFT),

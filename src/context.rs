@@ -1077,6 +1077,7 @@ impl Context {
             inv_extent: [1.0 / rect.width as f32, 1.0 / rect.height as f32, 1.0 / self.size[0] as f32, 1.0 / self.size[1] as f32],
             penumbra: penumbra_constants(d, rect.height),
             light_position: d.light_position.unwrap_or_default().to_array(),
+            light_extent: [if d.light_position.is_some() { crate::reference::light_sin_radius(d.light_angular_size as f64) as f32 } else { 0.0 }, 0.0, 0.0, 0.0],
             ..Default::default()
         };
         c.set_settings(&self.settings);

@@ -133,8 +133,10 @@ pub struct ShadowsDispatch {
     /// of a tile has a known distance (its shadowed pixels face away from the light): give every ray that hit its
     /// distance. `None`: no guidance.
     pub hit_distance: Option<HostImage>,
-    /// Angular diameter of the light seen from the receivers, in radians (the sun: about 0.0093), in [0, pi).
-    /// Used only with `hit_distance`; 0 means a point light (every penumbra hard, no spatial filtering).
+    /// Angular diameter of the light seen from the receivers, in radians (the sun: about 0.0093; a sphere light of
+    /// radius r at distance D: 2 asin(r / D)), in [0, pi). Used only with `hit_distance` or `light_position`; 0 means
+    /// a point light (with `hit_distance`: every penumbra hard, no spatial filtering; with `light_position`: a receiver
+    /// turned away from the light's centre sees none of it).
     pub light_angular_size: f32,
     /// The light has no size (a point light, or a directional light of angular size 0): every shadow it casts is
     /// hard, so each pixel's ray already is that pixel's exact visibility, and no filter can make it better. With
@@ -153,7 +155,11 @@ pub struct ShadowsDispatch {
     /// face of a fin). Its ray that missed is filtered as any other (a normal-mapped face may see the light); so is
     /// one that hit where a normal map tilts the normal past the light inside a plane that faces it, in a 16x16
     /// group where such a receiver's ray reached the light (the host's rays do not test the mapped normals there,
-    /// and the hit is a penumbra's).
+    /// and the hit is a penumbra's). Where the normal is turned away from the whole light (N.L below
+    /// -sin(`light_angular_size` / 2): give the light's size, or its larger shadows lose their penumbrae on faces
+    /// turned just past its centre), that output is final: no filter pass blends it with its neighbours or them
+    /// with it, so a shadowed dot a pixel wide (a bump of a normal-mapped face turned away, where the host tests its
+    /// rays against the mapped normals) stays one.
     /// Fast and Quality (the run features) only: Balanced keeps the FidelityFX behaviour. `None`: not given (the
     /// FidelityFX layer, whose dispatch has no light).
     pub light_position: Option<Vec4>,
@@ -263,7 +269,8 @@ pub struct LightDispatch {
     pub output: HostImage,
     /// This light's penumbra guidance, as `ShadowsDispatch::hit_distance`. Optional.
     pub hit_distance: Option<HostImage>,
-    /// This light's angular diameter in radians, as `ShadowsDispatch::light_angular_size`.
+    /// This light's angular diameter in radians, as `ShadowsDispatch::light_angular_size` (read with `hit_distance`
+    /// or `light_position`).
     pub light_angular_size: f32,
     /// This light has no size, as `ShadowsDispatch::hard_light`.
     pub hard_light: bool,

@@ -36,6 +36,14 @@ pub(crate) fn history_format(precision: Precision) -> vk::Format {
 pub(crate) const SIGNAL_MAX_DEVIATION_CODE: u32 = 65000;
 /// A stored deviation above this code is the sky's (variance -1). Generated into GLSL.
 pub(crate) const SIGNAL_SKY_CODE_ABOVE: u32 = 65500;
+/// The code a final receiver's deviation is stored as (variance -2: its value is exact, and the filter passes it
+/// through and leaves it out of its neighbours' taps); halfway between the largest deviation and the sky's code, so
+/// that a unorm write's rounding keeps the three apart. Generated into GLSL.
+pub(crate) const SIGNAL_FINAL_CODE: u32 = 65250;
+/// A stored deviation above this code (and not above `SIGNAL_SKY_CODE_ABOVE`) is a final receiver's. Generated into GLSL.
+pub(crate) const SIGNAL_FINAL_CODE_ABOVE: u32 = 65125;
+const _: () = assert!(SIGNAL_MAX_DEVIATION_CODE < SIGNAL_FINAL_CODE_ABOVE && SIGNAL_FINAL_CODE_ABOVE < SIGNAL_FINAL_CODE);
+const _: () = assert!(SIGNAL_FINAL_CODE < SIGNAL_SKY_CODE_ABOVE);
 /// The depth copy's depth code: its word's low this many bits; the normal takes the rest
 /// (`DEPTH_COPY_NORMAL_BITS` a component). Generated into GLSL.
 pub(crate) const DEPTH_CODE_BITS: u32 = 16;

@@ -247,6 +247,9 @@ pub(crate) fn dispatch(vk: &Vk, d: &ShadowsDispatch, rules: &DispatchRules) -> R
     host_image(vk, ImageRole::Output, &d.output, &[output_format], OUTPUT_LAYOUTS, size, vk::FormatFeatureFlags::STORAGE_IMAGE)?;
     if let Some(hit_distance) = &d.hit_distance {
         host_image(vk, ImageRole::HitDistance, hit_distance, decoded(HIT_DISTANCE_FORMATS), SAMPLED_LAYOUTS, size, sampled)?;
+    }
+    // The light's size is read with either.
+    if d.hit_distance.is_some() || d.light_position.is_some() {
         light_angular_size(d.light_angular_size)?;
         if d.hard_light {
             hard_light_size(d.light_angular_size)?;

@@ -215,11 +215,10 @@ void Denoiser::recordDenoise(const DenoiserFrame &frame, const std::vector<Denoi
         l.hitMask = hostImage(lights[i].hitMask);
         l.visibility = hostImage(lights[i].visibility);
         l.output = hostImage(lights[i].output);
-        if (lights[i].hitDistance) {
-            // Written by the shadow pass like the hit mask: the same input barrier (sync) covers it.
-            l.hitDistance = hostImage(lights[i].hitDistance);
-            l.lightAngularSize = lights[i].lightAngularSize;
-        }
+        // Written by the shadow pass like the hit mask: the same input barrier (sync) covers it.
+        if (lights[i].hitDistance) l.hitDistance = hostImage(lights[i].hitDistance);
+        // Read with hit distances or the light's position (receivers turned away from the whole light are final).
+        if (lights[i].hitDistance || lights[i].useLightPosition) l.lightAngularSize = lights[i].lightAngularSize;
     }
     DnsrShadowsDispatch d = frameDispatch(frame);
     d.debugView = debugView;  // one setting for the whole call: every light's output gets the debug view

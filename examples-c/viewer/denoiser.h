@@ -69,7 +69,7 @@ struct DenoiserLight {
     const GpuImage *hitMask = nullptr;      // DNSR_SHADOW_INPUT_HIT_MASK and _CHECKERBOARD
     const GpuImage *visibility = nullptr;   // DNSR_SHADOW_INPUT_VISIBILITY
     const GpuImage *hitDistance = nullptr;  // penumbra guidance; null: off
-    float lightAngularSize = 0.0f;          // with hitDistance: the light's angular diameter, radians
+    float lightAngularSize = 0.0f;          // with hitDistance or useLightPosition: the light's angular diameter, radians
     bool hardLight = false;                 // the light has no size: its rays are exact (DNSR_DISPATCH_HARD_LIGHT)
     bool useLightPosition = false;          // lightPosition is given (DNSR_DISPATCH_USE_LIGHT_POSITION)
     float lightPosition[4] = {};            // world space: {direction to the light, 0} or {centre, 1}

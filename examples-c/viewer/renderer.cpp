@@ -549,7 +549,8 @@ void Renderer::recordFrame(VkCommandBuffer cmd, const FrameInput &in)
         DenoiserLight &l = lights[i];
         if (settings_.rays > 1) l.visibility = &lights_[i].visibility;
         else l.hitMask = &lights_[i].hitMask;
-        if (guidance) l.hitDistance = &lights_[i].hitDistance, l.lightAngularSize = in.lightAngularSize;
+        if (guidance) l.hitDistance = &lights_[i].hitDistance;
+        l.lightAngularSize = in.lightAngularSize;  // read with hit distances or the light's position
         l.hardLight = in.hardLight;
         if (in.lightPosition) {
             l.useLightPosition = true;

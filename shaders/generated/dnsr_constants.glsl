@@ -19,6 +19,7 @@ struct DnsrFrameConstants {
     vec4 moving;
     vec4 penumbra;
     vec4 light_position;
+    vec4 light_extent;
 };
 
 struct DnsrFilterPush {
@@ -75,6 +76,8 @@ struct DnsrClassifyConstants {
 #define DNSR_UNCONVERGED_VARIANCE_INV_FP16 16384
 #define DNSR_SIGNAL_MAX_DEVIATION_CODE 65000
 #define DNSR_SIGNAL_SKY_CODE_ABOVE 65500
+#define DNSR_SIGNAL_FINAL_CODE 65250
+#define DNSR_SIGNAL_FINAL_CODE_ABOVE 65125
 #define DNSR_DEPTH_CODE_BITS 16
 #define DNSR_DEPTH_CODE_MANTISSA_BITS 10
 #define DNSR_DEPTH_CODE_SHIFT 13

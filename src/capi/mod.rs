@@ -287,8 +287,8 @@ pub extern "C" fn dnsr_context_get_classifier_timings(context: DnsrContext, p_ti
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum FfxContextSetting {
     /// `dnsr_ffx_context_set_light`: DNSR_DISPATCH_HARD_LIGHT and DNSR_DISPATCH_USE_LIGHT_POSITION bits, and the
-    /// position that the second reads.
-    Light { flags: DnsrDispatchFlags, position: [f32; 4] },
+    /// position and angular diameter that the second reads.
+    Light { flags: DnsrDispatchFlags, position: [f32; 4], angular_size: f32 },
     /// `dnsr_ffx_context_set_penumbra_guidance`: the hit-distance image and the light's angular diameter; None
     /// turns guidance off.
     Guidance(Option<(DnsrHostImage, f32)>),
@@ -327,9 +327,13 @@ fn set_ffx(
 /// ffxDenoiserContextCreate filled. `flags` holds DNSR_DISPATCH_HARD_LIGHT (the light has no size: every receiver's
 /// output is its ray, which is exact) and DNSR_DISPATCH_USE_LIGHT_POSITION (where the light is, in the world space of
 /// the dispatches' viewProjectionInverse: `pLightPosition` points at 4 floats, read as DnsrShadowsDispatch::
-/// lightPosition); every other bit is refused. 0 returns the context to knowing nothing of its light. Each later
-/// ffxDenoiserContextDispatchShadows records as dnsr_shadows_record does with these bits and this position, so a
-/// point light or a moving sun calls it before each dispatch whose light moved; the values are copied.
+/// lightPosition, and `lightAngularSize` is the light's angular diameter in radians, read as DnsrShadowsDispatch::
+/// lightAngularSize: 0 for a point light, the light's size otherwise, or faces turned just past a large light's
+/// centre lose their penumbrae); every other bit is refused. 0 returns the context to knowing nothing of its light.
+/// Each later ffxDenoiserContextDispatchShadows records as dnsr_shadows_record does with these bits, this position
+/// and this size, so a point light or a moving sun calls it before each dispatch whose light moved; the values are
+/// copied. With penumbra guidance too (`dnsr_ffx_context_set_penumbra_guidance`), both must give the same size: a
+/// dispatch that finds them different refuses it with FFX_ERROR_INVALID_ARGUMENT.
 ///
 /// What it changes (docs/do-no-harm.md): on the 100 scenes of `make viewer-accuracy`, dnsr's default settings are
 /// worse than their 1-spp input on 25 scenes without it and on 11 with both bits (docs/viewer-family.md: quality+untold
@@ -338,10 +342,16 @@ fn set_ffx(
 ///
 /// Errors: DNSR_ERROR_INVALID_ARGUMENT for a NULL `pFfxContext`, a context that is not live (never created, or
 /// destroyed), an unknown bit, or DNSR_DISPATCH_USE_LIGHT_POSITION with a NULL `pLightPosition` or a position that
-/// is neither a direction (w 0, non-zero xyz) nor a point (w 1); DNSR_ERROR_NON_FINITE for a NaN or infinite
-/// coordinate. On error the context keeps the light it had.
+/// is neither a direction (w 0, non-zero xyz) nor a point (w 1), or a `lightAngularSize` outside [0, pi) (or other
+/// than 0 with DNSR_DISPATCH_HARD_LIGHT); DNSR_ERROR_NON_FINITE for a NaN or infinite coordinate or size. On error
+/// the context keeps the light it had.
 #[unsafe(no_mangle)]
-pub extern "C" fn dnsr_ffx_context_set_light(p_ffx_context: *mut std::ffi::c_void, flags: DnsrDispatchFlags, p_light_position: *const f32) -> DnsrResult {
+pub extern "C" fn dnsr_ffx_context_set_light(
+    p_ffx_context: *mut std::ffi::c_void,
+    flags: DnsrDispatchFlags,
+    p_light_position: *const f32,
+    light_angular_size: f32,
+) -> DnsrResult {
     guard(|_| set_ffx(p_ffx_context, || {
         const KNOWN: DnsrDispatchFlags = DNSR_DISPATCH_HARD_LIGHT | DNSR_DISPATCH_USE_LIGHT_POSITION;
         if flags & !KNOWN != 0 {
@@ -349,13 +359,18 @@ pub extern "C" fn dnsr_ffx_context_set_light(p_ffx_context: *mut std::ffi::c_voi
                 "flags 0x{flags:x}: a FidelityFX context's light takes DNSR_DISPATCH_HARD_LIGHT and DNSR_DISPATCH_USE_LIGHT_POSITION only"
             )));
         }
-        let mut position = [0.0; 4];
+        let (mut position, mut angular_size) = ([0.0; 4], 0.0);
         if flags & DNSR_DISPATCH_USE_LIGHT_POSITION != 0 {
             let p: &[f32; 4] = required(p_light_position.cast(), "pLightPosition")?;
             crate::validate::light_position(glam::Vec4::from_array(*p))?;
+            crate::validate::light_angular_size(light_angular_size)?;
+            if flags & DNSR_DISPATCH_HARD_LIGHT != 0 {
+                crate::validate::hard_light_size(light_angular_size)?;
+            }
             position = *p;
+            angular_size = light_angular_size;
         }
-        Ok(FfxContextSetting::Light { flags, position })
+        Ok(FfxContextSetting::Light { flags, position, angular_size })
     }))
 }
 

@@ -29,8 +29,8 @@ pub const DNSR_REFERENCE_CHECKERBOARD_PHASE_1: DnsrReferenceFlags = 1 << 6;
 /// The light has no size (DNSR_DISPATCH_HARD_LIGHT): every receiver's output is its own sample. With
 /// DNSR_REFERENCE_USE_HIT_DISTANCE, `lightAngularSize` must be 0.
 pub const DNSR_REFERENCE_HARD_LIGHT: DnsrReferenceFlags = 1 << 7;
-/// `lightPosition` is used, as DNSR_DISPATCH_USE_LIGHT_POSITION: receivers turned away from the light keep their
-/// shadowed samples.
+/// `lightPosition` and `lightAngularSize` are used, as DNSR_DISPATCH_USE_LIGHT_POSITION: receivers turned away from
+/// the light keep their shadowed samples.
 pub const DNSR_REFERENCE_USE_LIGHT_POSITION: DnsrReferenceFlags = 1 << 8;
 /// Forces 32 bits.
 pub const DNSR_REFERENCE_MAX_ENUM: DnsrReferenceFlags = 0x7FFF_FFFF;
@@ -78,7 +78,8 @@ pub struct DnsrReferenceFrameInfo {
     pub reprojection_matrix: [f32; 16],
     /// Current clip -> world (column-major).
     pub view_projection_inverse: [f32; 16],
-    /// With DNSR_REFERENCE_USE_HIT_DISTANCE: the light's angular diameter in radians, in [0, pi).
+    /// With DNSR_REFERENCE_USE_HIT_DISTANCE or DNSR_REFERENCE_USE_LIGHT_POSITION: the light's angular diameter in
+    /// radians, in [0, pi).
     pub light_angular_size: f32,
     /// With DNSR_REFERENCE_USE_LIGHT_POSITION: where the light is, as DnsrShadowsDispatch::lightPosition.
     pub light_position: [f32; 4],
@@ -165,7 +166,7 @@ fn checked<'a>(
         normals_unpack: [info.normals_unpack_mul, info.normals_unpack_add],
         depth_similarity_sigma: info.depth_similarity_sigma,
     })?;
-    if info.flags & DNSR_REFERENCE_USE_HIT_DISTANCE != 0 {
+    if info.flags & (DNSR_REFERENCE_USE_HIT_DISTANCE | DNSR_REFERENCE_USE_LIGHT_POSITION) != 0 {
         crate::validate::light_angular_size(info.light_angular_size)?;
         if info.flags & DNSR_REFERENCE_HARD_LIGHT != 0 {
             crate::validate::hard_light_size(info.light_angular_size)?;
@@ -277,6 +278,7 @@ pub extern "C" fn dnsr_reference_run_frame(
         f.hard_light = info.flags & DNSR_REFERENCE_HARD_LIGHT != 0;
         let light = info.light_position.map(|v| v as f64);
         f.light_position = (info.flags & DNSR_REFERENCE_USE_LIGHT_POSITION != 0).then(|| glam::DVec4::from_array(light));
+        f.light_angular_size = if f.light_position.is_some() { info.light_angular_size as f64 } else { 0.0 };
         if guided {
             f.penumbra = Some(crate::reference::Penumbra::new(info.light_angular_size as f64, f.projection_inverse, h));
         }

@@ -273,8 +273,8 @@ pub const DNSR_DISPATCH_USE_HIT_DISTANCE: DnsrDispatchFlags = 1 << 2;
 /// own ray's result, with or without hit distances, and only the first filter pass runs for it
 /// (ShadowsDispatch::hard_light in the Rust API). With DNSR_DISPATCH_USE_HIT_DISTANCE, `lightAngularSize` must be 0.
 pub const DNSR_DISPATCH_HARD_LIGHT: DnsrDispatchFlags = 1 << 3;
-/// `lightPosition` is read: receivers turned away from the light keep their shadowed rays' result
-/// (ShadowsDispatch::light_position in the Rust API).
+/// `lightPosition` and `lightAngularSize` are read: receivers turned away from the light keep their shadowed rays'
+/// result (ShadowsDispatch::light_position in the Rust API).
 pub const DNSR_DISPATCH_USE_LIGHT_POSITION: DnsrDispatchFlags = 1 << 4;
 /// Forces 32 bits.
 pub const DNSR_DISPATCH_MAX_ENUM: DnsrDispatchFlags = 0x7FFF_FFFF;
@@ -720,10 +720,11 @@ pub struct DnsrShadowsDispatch {
     /// of a tile has a known distance (its shadowed pixels face away from the light): write every hit's distance.
     /// Sampled layouts as for the hit mask.
     pub hit_distance: DnsrHostImage,
-    /// Read when DNSR_DISPATCH_USE_HIT_DISTANCE is set. The light's angular diameter seen from the receivers, in
-    /// radians, in [0, pi) (the sun: about 0.0093; a sphere light of radius r at distance D: 2 asin(r / D)); 0 is
-    /// a point light (hard shadows: no spatial filtering). NaN/Inf: DNSR_ERROR_NON_FINITE; out of range:
-    /// DNSR_ERROR_INVALID_ARGUMENT.
+    /// Read when DNSR_DISPATCH_USE_HIT_DISTANCE or DNSR_DISPATCH_USE_LIGHT_POSITION is set. The light's angular
+    /// diameter seen from the receivers, in radians, in [0, pi) (the sun: about 0.0093; a sphere light of radius r at
+    /// distance D: 2 asin(r / D)); 0 is a point light (with hit distances: hard shadows, no spatial filtering; with
+    /// the light's position: a receiver turned away from its centre sees none of it). NaN/Inf:
+    /// DNSR_ERROR_NON_FINITE; out of range: DNSR_ERROR_INVALID_ARGUMENT.
     pub light_angular_size: f32,
     /// Number of entries in pEngineImages (0 without engine-compiled shader variants).
     pub engine_image_count: u32,
@@ -748,8 +749,11 @@ pub struct DnsrShadowsDispatch {
     /// beside it (a pole's or a sphere's dark side against the sky, the far face of a fin). A ray that reached the
     /// light is filtered as any other (a normal-mapped face may see it); so is one that hit where a normal map tilts
     /// the normal past the light inside a plane that faces it, in a 16x16 group where such a receiver's ray reached
-    /// the light (the rays do not test the mapped normals, so the hit is a penumbra's). Fast and Quality only
-    /// (Balanced keeps the FidelityFX behaviour). NaN/Inf: DNSR_ERROR_NON_FINITE; w other than 0 or 1, or a direction of length 0:
+    /// the light (the rays do not test the mapped normals, so the hit is a penumbra's). Where the normal is turned
+    /// away from the whole light (N.L below -sin(lightAngularSize / 2): give the light's size, or a large light's
+    /// penumbrae on faces turned just past its centre are lost), that output is final: no filter pass blends it
+    /// with its neighbours or them with it, so a shadowed dot a pixel wide (a bump turned away, where the rays test
+    /// the mapped normals) stays one. Fast and Quality only (Balanced keeps the FidelityFX behaviour). NaN/Inf: DNSR_ERROR_NON_FINITE; w other than 0 or 1, or a direction of length 0:
     /// DNSR_ERROR_INVALID_ARGUMENT.
     pub light_position: [f32; 4],
     /// Required with DNSR_CONTEXT_CREATE_HOST_PREVIOUS_GBUFFER, all zero otherwise: the image the host gave as depth
@@ -800,7 +804,8 @@ pub struct DnsrLightDispatch {
     pub output: DnsrHostImage,
     /// Read with DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE: this light's hit distances.
     pub hit_distance: DnsrHostImage,
-    /// Read with DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE: this light's angular diameter in radians, in [0, pi).
+    /// Read with DNSR_LIGHT_DISPATCH_USE_HIT_DISTANCE or DNSR_LIGHT_DISPATCH_USE_LIGHT_POSITION: this light's angular
+    /// diameter in radians, in [0, pi).
     pub light_angular_size: f32,
     /// Read with DNSR_LIGHT_DISPATCH_USE_LIGHT_POSITION: where this light is, as DnsrShadowsDispatch::lightPosition.
     pub light_position: [f32; 4],

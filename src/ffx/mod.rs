@@ -291,11 +291,13 @@ struct Denoiser {
 }
 
 /// The light of a context's dispatches (`dnsr_ffx_context_set_light`): DNSR_DISPATCH_HARD_LIGHT and
-/// DNSR_DISPATCH_USE_LIGHT_POSITION bits, and the position that the second reads. Checked by the caller.
+/// DNSR_DISPATCH_USE_LIGHT_POSITION bits, and the position and angular diameter that the second reads. Checked by
+/// the caller.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct FfxLight {
     flags: u32,
     position: [f32; 4],
+    angular_size: f32,
 }
 
 /// Gives the live context at `context` a setting of its later dispatches, or says why not (no live context there,
@@ -308,7 +310,7 @@ fn set(context: *mut std::ffi::c_void, setting: FfxContextSetting) -> Result<(),
     let mut contexts = lock(&CONTEXTS);
     let d = contexts.get_mut(&context_id(context)).ok_or_else(not_live)?;
     match setting {
-        FfxContextSetting::Light { flags, position } => d.light = FfxLight { flags, position },
+        FfxContextSetting::Light { flags, position, angular_size } => d.light = FfxLight { flags, position, angular_size },
         FfxContextSetting::Guidance(guidance) => d.guidance = guidance,
         FfxContextSetting::PreviousGbuffer { .. } if !d.options.host_previous => {
             return Err(CallError::InvalidArgument(
@@ -545,6 +547,21 @@ impl Denoiser {
                 );
             }
         };
+        // One size for the light, whichever of dnsr_ffx_context_set_light and _set_penumbra_guidance gave it.
+        let light_angular_size = match (self.guidance, self.light.flags & DNSR_DISPATCH_USE_LIGHT_POSITION != 0) {
+            (Some((_, guided)), true) if guided != self.light.angular_size => {
+                return fail(
+                    FFX_ERROR_INVALID_ARGUMENT,
+                    format!(
+                        "the light's angular size differs between dnsr_ffx_context_set_light ({}) and dnsr_ffx_context_set_penumbra_guidance ({guided}): give both the same",
+                        self.light.angular_size
+                    ),
+                );
+            }
+            (Some((_, guided)), _) => guided,
+            (None, true) => self.light.angular_size,
+            (None, false) => 0.0,
+        };
         let dispatch = DnsrShadowsDispatch {
             s_type: DNSR_STRUCTURE_TYPE_SHADOWS_DISPATCH,
             p_next: std::ptr::null(),
@@ -579,7 +596,7 @@ impl Denoiser {
             debug_view: DNSR_DEBUG_VIEW_NONE,
             // Nor hit distances: only what dnsr_ffx_context_set_penumbra_guidance gave.
             hit_distance: self.guidance.map_or(DnsrHostImage::default(), |(image, _)| image),
-            light_angular_size: self.guidance.map_or(0.0, |(_, angle)| angle),
+            light_angular_size,
             engine_image_count: 0,
             p_engine_images: std::ptr::null(),
             visibility: DnsrHostImage::default(),

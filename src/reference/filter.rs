@@ -77,7 +77,7 @@ fn converged_neighbourhood<Io: Read + ?Sized>(io: &Io, p: Coord) -> bool {
     for j in -1..=1i32 {
         for i in -1..=1i32 {
             let q = [p[0] + i, p[1] + j];
-            if (i == 0 && j == 0) || receiver_depth(io, q).is_none() {
+            if (i == 0 && j == 0) || receiver_depth(io, q).is_none() || super::final_signal(io.read_filter_input(q)) {
                 continue;
             }
             receivers += 1;
@@ -109,6 +109,9 @@ fn blurred_variance<Io: Read + ?Sized>(io: &Io, p: Coord) -> f64 {
                 continue;
             }
             let v = io.read_filter_input(q).y;
+            if v < 0.0 {
+                continue;
+            }
             let w = 1.0 / (4 << (i.abs() + j.abs())) as f64;
             sum += w * v;
             weight += w;
@@ -144,9 +147,9 @@ pub fn filter_pixel<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64, nc: DVec3) ->
     let kernel = [1.0, s.kernel_cross_weight as f64];
     let step = io.filter_step();
     let c = io.read_filter_input(p);
-    // Under a hard penumbra the sample (flagged converged by the temporal part) passes through (shaders/filter.glsl,
-    // dnsr_pass_hard).
-    if converged_signal(c) && hard_penumbra(io, [p[0] / TILE[0], p[1] / TILE[1]], zc) {
+    // A final pixel is its own result and no neighbour's tap (shaders/filter.glsl says why). Under a hard penumbra
+    // the sample (flagged converged by the temporal part) passes through (dnsr_pass_hard).
+    if super::final_signal(c) || (converged_signal(c) && hard_penumbra(io, [p[0] / TILE[0], p[1] / TILE[1]], zc)) {
         return c;
     }
     // A converged pixel (Settings::converged_samples) among converged receivers passes through
@@ -166,6 +169,9 @@ pub fn filter_pixel<Io: Read + ?Sized>(io: &Io, p: Coord, zc: f64, nc: DVec3) ->
             let q = [p[0] + i * step, p[1] + j * step];
             let Some((zq, nq)) = guide(io, q, step) else { continue };
             let n = io.read_filter_input(q);
+            if super::final_signal(n) {
+                continue;
+            }
             let w = kernel[i.unsigned_abs() as usize]
                 * kernel[j.unsigned_abs() as usize]
                 * (-(c.x - n.x).abs() * inv_sigma).exp()

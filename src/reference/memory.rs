@@ -33,6 +33,8 @@ pub struct Frame {
     pub hard_light: bool,
     /// Where the light is (`ShadowsDispatch::light_position`); None: not given.
     pub light_position: Option<DVec4>,
+    /// The light's angular diameter in radians (`ShadowsDispatch::light_angular_size`), read with a light position.
+    pub light_angular_size: f64,
     /// Host hit distance per pixel (read only with penumbra guidance).
     pub hit_distance: Vec<f64>,
     /// Host hit mask (FidelityFX convention), one word per tile.
@@ -114,6 +116,7 @@ impl Frame {
             penumbra: None,
             hard_light: false,
             light_position: None,
+            light_angular_size: 0.0,
             hit_distance: filled(n, 0.0)?,
             hit_mask: filled(tiles, 0)?,
             visibility: None,
@@ -230,6 +233,9 @@ impl Get for Frame {
     }
     fn light_position(&self) -> Option<DVec4> {
         self.light_position
+    }
+    fn light_sin_radius(&self) -> f64 {
+        super::light_sin_radius(self.light_angular_size)
     }
     fn checkerboard_phase(&self) -> Option<u32> {
         self.checkerboard_phase

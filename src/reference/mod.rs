@@ -50,6 +50,9 @@ pub trait Get {
     fn hard_light(&self) -> bool;
     /// Where the light is (`ShadowsDispatch::light_position`), a homogeneous world-space point; None: not given.
     fn light_position(&self) -> Option<DVec4>;
+    /// With a light position: the sine of the light's angular radius (`light_sin_radius` of
+    /// `ShadowsDispatch::light_angular_size`; 0: a light of no size).
+    fn light_sin_radius(&self) -> f64;
     /// The shadow input is per-pixel visibility (`read_visibility`) instead of the hit mask; a checkerboard input
     /// is one too, from prepare on (prepare writes the visibility classification reads).
     fn visibility_input(&self) -> bool;
@@ -137,6 +140,22 @@ pub trait Write {
 /// The (mean, variance) every pass stores for sky and non-receivers: lit, with a negative variance that marks
 /// "no receiver" so that the filter's variance blur needs no depth read to tell receivers apart.
 pub const SKY_SIGNAL: glam::DVec2 = glam::DVec2::new(1.0, -1.0);
+
+/// A final receiver's variance: its value is exact (turned away from the whole light, its ray hit), and every
+/// filter pass returns it as it is and leaves it out of its neighbours' taps and variance blur
+/// (shaders/dnsr_common.glsl, dnsr_final_signal).
+pub const FINAL_VARIANCE: f64 = -2.0;
+
+/// Whether signal `c` is a final receiver's (`FINAL_VARIANCE`).
+pub fn final_signal(c: glam::DVec2) -> bool {
+    c.y < -1.5
+}
+
+/// The sine of the angular radius of a light of angular diameter `angular_size` (radians): a receiver whose normal
+/// is turned further than this from the light's centre (N.L below its negative) sees none of its disc.
+pub fn light_sin_radius(angular_size: f64) -> f64 {
+    (angular_size * 0.5).sin()
+}
 
 /// Tile size in pixels.
 pub const TILE: Coord = [crate::packing::TILE[0] as i32, crate::packing::TILE[1] as i32];

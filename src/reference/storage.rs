@@ -133,12 +133,13 @@ pub fn stored_moments(m: DVec4, keep_sum: bool) -> DVec4 {
 }
 
 /// The filter's signal (mean, variance) as the fp32 path stores it (R16G16_UNORM: the mean, and the standard
-/// deviation over `scale`, `state::signal_scale` of the settings; the sky's variance -1 as the code 65535),
-/// read back. A device's unorm write may take the other code next to the value: parity allows one code.
+/// deviation over `scale`, `state::signal_scale` of the settings; the sky's variance -1 as the code 65535, a final
+/// receiver's -2 as `state::SIGNAL_FINAL_CODE`), read back. A device's unorm write may take the other code next to
+/// the value: parity allows one code.
 pub fn stored_signal(v: DVec2, scale: f64) -> DVec2 {
     let mean = from_unorm16(unorm16(v.x));
     if v.y < 0.0 {
-        return DVec2::new(mean, -1.0);
+        return DVec2::new(mean, if super::final_signal(v) { super::FINAL_VARIANCE } else { -1.0 });
     }
     let max = crate::state::SIGNAL_MAX_DEVIATION_CODE as f64 / 65535.0;
     decode_signal([unorm16(mean), unorm16((v.y.sqrt() / scale).min(max))], scale)
@@ -147,7 +148,12 @@ pub fn stored_signal(v: DVec2, scale: f64) -> DVec2 {
 /// A stored signal's two unorm16 codes read back as (mean, variance), as the shaders' dnsr_decode_signal does.
 pub fn decode_signal(codes: [u32; 2], scale: f64) -> DVec2 {
     let d = from_unorm16(codes[1]) * scale;
-    DVec2::new(from_unorm16(codes[0]), if codes[1] > crate::state::SIGNAL_SKY_CODE_ABOVE { -1.0 } else { d * d })
+    let variance = match codes[1] {
+        c if c > crate::state::SIGNAL_SKY_CODE_ABOVE => -1.0,
+        c if c > crate::state::SIGNAL_FINAL_CODE_ABOVE => super::FINAL_VARIANCE,
+        _ => d * d,
+    };
+    DVec2::new(from_unorm16(codes[0]), variance)
 }
 
 /// The code of the zero normal (no usable normal) with `bits` a component: both codes at their minimum, which snorm

@@ -80,13 +80,23 @@ fn to_light(light: DVec4, world: DVec3) -> DVec3 {
     light.truncate() - light.w * world
 }
 
-/// Per group of `passes::WIDE_GROUP` pixels (row by row): whether a receiver whose G-buffer normal faces away from
-/// the light, inside a plane that faces it, has a lit sample this frame (`s_lit_against_normal`): the host's rays do
-/// not test its normals, and a shadowed sample of such a receiver is not exact. Only with the run features and a
-/// light position (`DNSR_SPEC_STABLE_HISTORY`); an untraced pixel of a checkerboard input has no sample.
-fn lit_against_normal<Io: Read + ?Sized>(io: &Io) -> Vec<bool> {
+/// What a group of `passes::WIDE_GROUP` pixels' lit samples tell of the host's rays this frame: whether they test
+/// the G-buffer's normals. Only with the run features and a light position (`DNSR_SPEC_STABLE_HISTORY`); an untraced
+/// pixel of a checkerboard input has no sample.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct GroupEvidence {
+    /// A receiver whose G-buffer normal faces away from the light, inside a plane that faces it, has a lit sample
+    /// (`s_lit_against_normal`): a shadowed sample of such a receiver is not exact.
+    pub lit_against_normal: bool,
+    /// A receiver whose G-buffer normal faces away from the whole light has a lit sample (`s_lit_away_from_disc`):
+    /// no shadowed sample of the group is final.
+    pub lit_away_from_disc: bool,
+}
+
+/// Every group's `GroupEvidence`, row by row (`group_index`).
+fn group_evidence<Io: Read + ?Sized>(io: &Io) -> Vec<GroupEvidence> {
     let e = io.extent();
-    let mut found = vec![false; group_index(e, [e[0] - 1, e[1] - 1]) + 1];
+    let mut found = vec![GroupEvidence::default(); group_index(e, [e[0] - 1, e[1] - 1]) + 1];
     let Some(light) = io.light_position().filter(|_| io.settings().uses_runs()) else { return found };
     for y in 0..e[1] {
         for x in 0..e[0] {
@@ -97,9 +107,9 @@ fn lit_against_normal<Io: Read + ?Sized>(io: &Io) -> Vec<bool> {
             }
             let l = to_light(light, world_position(io, p, depth));
             let shading = io.read_normal(p);
-            if shading.dot(l) < 0.0 && plane_faces_light(io, p, depth, shading, l) {
-                found[group_index(e, p)] = true;
-            }
+            let group = &mut found[group_index(e, p)];
+            group.lit_against_normal |= shading.dot(l) < 0.0 && plane_faces_light(io, p, depth, shading, l);
+            group.lit_away_from_disc |= shading.dot(l) < -io.light_sin_radius() * l.length();
         }
     }
     found
@@ -450,7 +460,7 @@ fn contradicts<Io: Read + ?Sized>(io: &Io, t: DVec2, x: f64, texels: u32, other:
 /// The temporal part for one receiver pixel of a mixed tile: returns (moments, (shadow, variance), whether its
 /// sample contradicts last frame's: `contradicts`). `moved`: the shadow moved over its tile's neighbourhood
 /// (`shadow_moved`); `quiet`: its tile is hard by time (`quiet_tiles`).
-pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, quiet: bool, lit_against_normal: bool) -> (DVec4, DVec2, bool) {
+pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, quiet: bool, group: GroupEvidence) -> (DVec4, DVec2, bool) {
     let s = io.settings();
     let (thr_facing, thr_grazing, angle_exp, clamp_k) = (
         s.disocclusion_threshold_facing as f64,
@@ -704,10 +714,6 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, q
     let shadow = clamped + (x - clamped) * alpha;
     // A sample that is not exact contradicts nothing (its tile is no hard one anyway); nor does an untraced one.
     let contradicted = contradiction && is_exact(x) && !untraced;
-    // A resolved pixel is this sample, flagged converged.
-    if resolved {
-        return (m, DVec2::new(x, 0.0), contradicted);
-    }
     // Under a light of no size, a hard penumbra (Settings::hard_penumbra_pixels) or in a tile hard by time
     // (Settings::hard_tile_frames) where the pixel does not contradict (disoccluded or not: the shader says why),
     // this sample is the output; the moments go on. Not on an untraced pixel of a checkerboard input (its value is
@@ -716,16 +722,28 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, q
     let quiet = quiet && io.penumbra().is_none() && !contradicted;
     // A receiver turned away from the light whose ray hit keeps its sample (`ShadowsDispatch::light_position`;
     // shaders/tile_classification.glsl says why), unless a normal map tilted its normal past the light in a group
-    // where such a receiver's ray reached it (`lit_against_normal`). With the run features only: Balanced keeps the
-    // FidelityFX behaviour.
-    let turned_away = s.uses_runs()
-        && x == 0.0
-        && io.light_position().is_some_and(|l| {
-            let l = to_light(l, world);
-            normal.dot(l) < 0.0 && !(lit_against_normal && plane_faces_light(io, p, depth, normal, l))
-        });
+    // where such a receiver's ray reached it (`GroupEvidence::lit_against_normal`). With the run features only:
+    // Balanced keeps the FidelityFX behaviour. Turned away from the whole disc (N.L below -sin of its angular
+    // radius), it is final, not in a quiet tile nor in a group whose rays do not test the normals
+    // (`GroupEvidence::lit_away_from_disc`): the filter returns it as it is and leaves it out of its neighbours' taps
+    // (shaders/tile_classification.glsl says why).
+    let (mut turned_away, mut final_here) = (false, false);
+    if let Some(l) = io.light_position().filter(|_| s.uses_runs() && x == 0.0) {
+        let l = to_light(l, world);
+        turned_away = normal.dot(l) < 0.0 && !(group.lit_against_normal && plane_faces_light(io, p, depth, normal, l));
+        final_here = turned_away
+            && !quiet
+            && !untraced
+            && !group.lit_away_from_disc
+            && normal.dot(l) < -io.light_sin_radius() * l.length();
+    }
+    let exact = DVec2::new(x, if final_here { super::FINAL_VARIANCE } else { 0.0 });
+    // A resolved pixel is this sample, flagged converged (or final).
+    if resolved {
+        return (m, exact, contradicted);
+    }
     if !untraced && (quiet || turned_away || super::filter::hard_penumbra(io, [p[0] / TILE[0], p[1] / TILE[1]], linear_depth(io, ndc, depth))) {
-        return (m, DVec2::new(x, 0.0), contradicted);
+        return (m, exact, contradicted);
     }
     // Converged (Settings::converged_samples, on a stable pixel): variance 0 tells the filter that the input may
     // resolve this pixel; the value stays the temporal one; not where the shadow moved over this still pixel
@@ -779,7 +797,7 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
     // The run features' pipelines tell a shadow that moved (`shadow_moved`), from last frame's moments.
     let tells = io.settings().tells_moving_shadows();
     let moved: Vec<bool> = (0..tiles[0] * tiles[1]).map(|i| tells && shadow_moved(io, [i % tiles[0], i / tiles[0]])).collect();
-    let lit_against = lit_against_normal(io);
+    let evidence = group_evidence(io);
     for ty in 0..tiles[1] {
         for tx in 0..tiles[0] {
             let tile = [tx, ty];
@@ -812,9 +830,8 @@ pub fn run<Io: Read + Write>(io: &mut Io) {
                     } else if !receiver {
                         (DVec4::ZERO, SKY_SIGNAL)
                     } else {
-                        let lit_against_normal = lit_against[group_index(e, p)];
-                        let (m, r, contradicted) =
-                            temporal(io, p, depth, moved[(ty * tiles[0] + tx) as usize], quiet, lit_against_normal);
+                        let group = evidence[group_index(e, p)];
+                        let (m, r, contradicted) = temporal(io, p, depth, moved[(ty * tiles[0] + tx) as usize], quiet, group);
                         if contradicted {
                             count = 0;
                         }

@@ -63,6 +63,8 @@ pub struct Runner<'g> {
     pub hard_light: bool,
     /// `ShadowsDispatch::light_position` of `dispatch`.
     pub light_position: Option<glam::Vec4>,
+    /// The light's angular diameter that `dispatch` gives with `light_position` (`guidance` gives its own).
+    pub light_angular_size: f32,
     /// `ShadowsDispatch::checkerboard_phase` of `dispatch` (a checkerboard input).
     pub checkerboard_phase: u32,
     /// Last frame's depth and normals for a context created with `host_previous_gbuffer` (`keep_previous_gbuffer`):
@@ -117,7 +119,7 @@ impl<'g> Runner<'g> {
         let staging = gpu.staging(staging_bytes(info.width, info.height));
         let cmd = gpu.command_buffer();
         let visibility_input = info.shadow_input == crate::ShadowInput::Visibility;
-        Ok(Runner { gpu, ctx, mask, depth, velocity, normals, output, hit_distance, visibility, visibility_input, guidance: None, hard_light: false, light_position: None, checkerboard_phase: 0, previous_gbuffer: None, staging, cmd })
+        Ok(Runner { gpu, ctx, mask, depth, velocity, normals, output, hit_distance, visibility, visibility_input, guidance: None, hard_light: false, light_position: None, light_angular_size: 0.0, checkerboard_phase: 0, previous_gbuffer: None, staging, cmd })
     }
 
     /// A dispatch for `f` over this runner's images (no reset; penumbra guidance as `guidance` says).
@@ -132,7 +134,7 @@ impl<'g> Runner<'g> {
             normals: self.normals.host(),
             output: self.output.host(),
             hit_distance: self.guidance.map(|_| self.hit_distance.host()),
-            light_angular_size: self.guidance.unwrap_or(0.0),
+            light_angular_size: self.guidance.unwrap_or(if self.light_position.is_some() { self.light_angular_size } else { 0.0 }),
             hard_light: self.hard_light,
             light_position: self.light_position,
             checkerboard_phase: self.checkerboard_phase,

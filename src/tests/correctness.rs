@@ -631,6 +631,63 @@ fn normal_mapped_normals_tilted_past_the_light_keep_their_penumbra() {
 }
 
 #[test]
+fn bumps_turned_away_from_the_whole_light_stay_exact_dots() {
+    // A host that tests its rays against normal-mapped normals (an engine's N.L test) on a lit plane: every bump
+    // turned away from the whole light (N.L below -sin of its angular radius) is a shadowed dot, which the input
+    // has exact. Such a dot is final: no filter pass greys it, nor it its lit neighbours. Where a dot's ray reached
+    // the light (the host does not test the normals there), its group has no final pixel and the dots are filtered.
+    // Each frame resets the history (a camera cut every frame): with a history of exact samples the edge stop alone
+    // would keep the dots apart. Converged pixels off: a run of identical samples among converged neighbours would
+    // pass through either way.
+    let g = gpu();
+    let (w, h) = (48u32, 32u32);
+    let light = glam::Vec4::new(1.0, 0.25, 0.0, 0.0);
+    let size = 0.0f32;
+    let to_light = light.truncate().as_dvec3().normalize();
+    let dot = |n: &[f32; 4]| DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64).normalize().dot(to_light) < -(size as f64 * 0.5).sin();
+    // The last frame's outputs of the dots and of the other receivers.
+    let run = |some_dots_lit: bool| -> (Vec<f32>, Vec<f32>) {
+        let settings = crate::Settings { converged_samples: 0.0, ..crate::Settings::preset(crate::Preset::Quality) };
+        let mut r = runner_with(&g, w, h, Precision::Fp32, settings);
+        r.light_position = Some(light);
+        r.light_angular_size = size;
+        let (mut dots, mut others) = (Vec::new(), Vec::new());
+        for frame in 0..8 {
+            let mut f = static_frame(w, h, &|_, _| 1.0, frame + 70);
+            for (i, n) in f.normals.iter_mut().enumerate() {
+                *n = bumped_normal(40.0, 9, i as u32 % w, i as u32 / w);
+            }
+            for i in 0..f.normals.len() {
+                let (x, y) = (i as u32 % w, i as u32 / w);
+                if dot(&f.normals[i]) && !(some_dots_lit && (x + y + frame as u32) % 2 == 0) {
+                    f.set_hit(x, y);
+                }
+            }
+            let out = r.frame(&f, true);
+            (dots, others) = (Vec::new(), Vec::new());
+            for (i, n) in f.normals.iter().enumerate().filter(|&(i, _)| f.receiver[i]) {
+                if dot(n) { &mut dots } else { &mut others }.push(out[i]);
+            }
+        }
+        (dots, others)
+    };
+    let (dots, others) = run(false);
+    let greyed = dots.iter().filter(|&&o| o != 0.0).count();
+    let dimmed = others.iter().filter(|&&o| o < 0.99).count();
+    eprintln!("{} dots, {greyed} not 0; {} other receivers, {dimmed} under 0.99", dots.len(), others.len());
+    assert!(dots.len() > 40, "too few bumps turned away from the whole light: {}", dots.len());
+    assert_eq!(greyed, 0, "dots turned away from the whole light were filtered");
+    // Without the dots in their taps most lit receivers stay at 1 (the rest take the dots' share of the local mean
+    // that a reset history starts from); with them, 1165 of 1209 read under 0.99.
+    assert!(dimmed < others.len() / 2, "lit receivers were greyed by the dots beside them: {dimmed} of {} under 0.99", others.len());
+    let (dots, _) = run(true);
+    let filtered = dots.iter().filter(|&&o| o != 0.0 && o != 1.0).count();
+    eprintln!("where some dots' rays reach the light: {filtered} of {} dots filtered", dots.len());
+    assert!(filtered > dots.len() / 4, "dots were final where their group's rays do not test the normals");
+    g.assert_clean();
+}
+
+#[test]
 fn normal_mapped_normals_filter_like_the_plane_they_lie_on() {
     // A normal map tilts a plane's normals by up to 15 degrees from pixel to pixel. The first filter pass weighs its
     // taps by the plane the depth gives (Settings::geometric_normal_degrees), so Fast (that pass alone) outputs what

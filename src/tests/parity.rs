@@ -84,6 +84,13 @@ fn random_frame(w: u32, h: u32, seed: u64, frame: u64) -> FrameInputs {
             } else {
                 hash01(seed ^ frame.wrapping_mul(0xD1B5_4A32_D192_ED03), x, y) < p
             };
+            // Seed 3's host tests its rays against the normals (its light is given, 0.6 rad wide): no receiver
+            // turned away from the whole light (with a margin) sees it, so no lit sample vetoes the final ones, which
+            // the filter then returns as they are and leaves out of its taps. Not in the lit region, whose tiles
+            // stay cleared (its lit samples there keep their own groups from final pixels).
+            let to_light = DVec3::new(1.0, 0.2, -0.3);
+            let away = seed == 3 && !(x < lit_w && y < lit_h) && nrm.dot(to_light) < -(0.3f64.sin() + 0.05) * to_light.length();
+            let lit = lit && !away;
             if !lit {
                 f.set_hit(x, y);
             }
@@ -93,7 +100,7 @@ fn random_frame(w: u32, h: u32, seed: u64, frame: u64) -> FrameInputs {
             let rays = 1 + (x + 2 * y) % 4;
             let hits = (0..rays).filter(|&k| hash01(seed ^ frame ^ (k as u64 + 7) * 0x51_7CC1, x, y) < p).count();
             f.visibility[i] = match (x * 5 + y * 11) % 37 {
-                _ if uniform => lit as u32 as f32,
+                _ if uniform || away => lit as u32 as f32,
                 0 => f32::NAN,
                 1 => -0.25,
                 2 => 1.5,
@@ -313,6 +320,10 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
         12 => Some(glam::Vec4::new(3.0, 20.0, -4.0, 1.0)),
         _ => None,
     };
+    // Seed 3's light has a size: the receivers turned less than its angular radius (0.3 rad) past its centre are
+    // filtered, those turned further are final (its host tests its rays against the normals: random_frame). Seed
+    // 12's is a point, and lit samples on its band of normals turned away keep its groups from final pixels.
+    r.light_angular_size = if seed == 3 { 0.6 } else { 0.0 };
     // Some cases guide the filter by the hit distances (penumbrae from under a pixel to tens of pixels wide).
     r.guidance = match seed {
         2 | 6 => Some(0.5),
@@ -391,6 +402,7 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
     cpu.hit_distance = f.hit_distance.iter().map(|&v| v as f64).collect();
     cpu.hard_light = d.hard_light;
     cpu.light_position = d.light_position.map(|l| l.as_dvec4());
+    cpu.light_angular_size = d.light_angular_size as f64;
     cpu.penumbra = d.hit_distance.map(|_| reference::Penumbra::new(d.light_angular_size as f64, cpu.projection_inverse, h as i32));
     cpu.depth = f.depth.iter().map(|&v| v as f64).collect();
     cpu.velocity = f.velocity.iter().map(|v| DVec2::new(v[0] as f64, v[1] as f64)).collect();
@@ -463,6 +475,10 @@ fn parity(g: &Gpu, precision: Precision, passes: u32, w: u32, h: u32, seed: u64)
             }
             assert_converged_flags_match(name, gpu_signal, cpu_signal, precision, &info.settings);
         }
+    }
+    // A light of some size whose host tests the normals (seed 3): the case has final pixels to compare.
+    if d.light_position.is_some() && d.light_angular_size > 0.0 {
+        assert!(cpu.reprojection_out.iter().any(|&c| reference::final_signal(c)), "no final pixel");
     }
     let mut results = vec![
         worst("history (filter 0)", history_out.iter().copied(), cpu.filter_out[0].iter().map(|v| v.x)),

@@ -304,6 +304,16 @@ fn bad_dispatches_record_nothing() {
             |e| matches!(e, Error::InvalidValue { field: "light_angular_size", .. }),
         ),
         (
+            "NaN light angular size with a light position alone",
+            |d| (d.hit_distance, d.light_position, d.light_angular_size) = (None, Some(glam::Vec4::Y), f32::NAN),
+            |e| *e == Error::NonFinite("light_angular_size"),
+        ),
+        (
+            "a hard light of non-zero angular size with a light position",
+            |d| (d.hit_distance, d.light_position, d.hard_light, d.light_angular_size) = (None, Some(glam::Vec4::Y), true, 0.01),
+            |e| matches!(e, Error::InvalidValue { field: "light_angular_size", allowed, .. } if allowed.contains("hard_light")),
+        ),
+        (
             "NaN light position",
             |d| d.light_position = Some(glam::Vec4::new(0.0, f32::NAN, 1.0, 0.0)),
             |e| *e == Error::NonFinite("light_position"),

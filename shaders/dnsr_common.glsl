@@ -17,10 +17,11 @@ const int DNSR_WIDE_GROUP_INVOCATIONS = DNSR_WIDE_GROUP_WIDTH * DNSR_WIDE_GROUP_
 #if defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER)
 // Penumbra guidance: the dispatch has hit distances.
 layout(constant_id = DNSR_SPEC_ID_PENUMBRA_GUIDED) const bool DNSR_SPEC_PENUMBRA_GUIDED = false;
+// The run features: Settings::stable_history_samples > 0 (dnsr_get_run_settings().x) or converged_samples > 0 (.z).
+// The filter passes look for final pixels (dnsr_final_signal) only with them: classification writes none without.
+layout(constant_id = DNSR_SPEC_ID_STABLE_HISTORY) const bool DNSR_SPEC_STABLE_HISTORY = false;
 #endif
 #ifdef DNSR_PASS_TILE_CLASSIFICATION
-// The run features: Settings::stable_history_samples > 0 (dnsr_get_run_settings().x) or converged_samples > 0 (.z).
-layout(constant_id = DNSR_SPEC_ID_STABLE_HISTORY) const bool DNSR_SPEC_STABLE_HISTORY = false;
 // A shadow moving over a still surface is told (Settings::moving_shadow_sigmas > 0, with the run features).
 layout(constant_id = DNSR_SPEC_ID_MOVING_SHADOWS) const bool DNSR_SPEC_MOVING_SHADOWS = false;
 #endif
@@ -44,8 +45,12 @@ const vec2 DNSR_SKY_SIGNAL = vec2(1.0, -1.0);
 bool dnsr_is_receiver_signal(vec2 signal) { return signal.y >= 0.0; }
 // A final receiver's variance: its value is exact (a receiver turned away from the whole light whose ray hit, see
 // tile_classification.glsl), so every filter pass returns it as it is and leaves it out of its neighbours' taps and
-// variance blur, as it does the sky. Its variance is DNSR_FINAL_VARIANCE (dnsr_storage.glsl).
-bool dnsr_final_signal(vec2 signal) { return signal.y < -1.5; }
+// variance blur, as it does the sky. Its variance is DNSR_FINAL_VARIANCE (dnsr_storage.glsl). Only with the run
+// features: the tests cost each later filter pass 0.014 ms at 4K on an H200 (docs/bench/h200-2026-12-07-final-pixels),
+// which Balanced, which never has a final pixel, must not pay.
+#if defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER)
+bool dnsr_final_signal(vec2 signal) { return DNSR_SPEC_STABLE_HISTORY && signal.y < -1.5; }
+#endif
 // With converged pixels on (Settings::converged_samples, dnsr_get_run_settings().z > 0): a converged pixel's signal
 // has variance exactly 0 (the filter may pass it through, see dnsr_passes_through); every other receiver stores at
 // least DNSR_MIN_UNCONVERGED_VARIANCE, so that float rounding cannot make it look converged.

@@ -95,13 +95,13 @@ fn reflected_interfaces_match_what_the_host_binds() {
             "filter",
             &[Constants, Depth, DepthCopy, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide, FrameMoments, KeptMoments, HistoryOut],
             48,
-            (1 << GUIDED) | (1 << HARD),
+            (1 << GUIDED) | (1 << STABLE) | (1 << HARD),
         ),
         (
             "filter_later",
             &[Constants, Depth, Normals, TileMeta, TileBlocker, FilterInput, FilterOutput, Guide],
             48,
-            1 << GUIDED,
+            (1 << GUIDED) | (1 << STABLE),
         ),
         (
             "filter_final_r16f_fp16",
@@ -110,7 +110,7 @@ fn reflected_interfaces_match_what_the_host_binds() {
                 FrameMoments, KeptMoments, HistoryOut,
             ],
             48,
-            (1 << GUIDED) | (1 << HARD),
+            (1 << GUIDED) | (1 << STABLE) | (1 << HARD),
         ),
         (
             "filter_later_lights_final_r16f",
@@ -120,7 +120,7 @@ fn reflected_interfaces_match_what_the_host_binds() {
                 FilterOutput2, Output2, DebugMoments2, TileMeta3, TileBlocker3, FilterInput3, FilterOutput3, Output3, DebugMoments3,
             ],
             48,
-            1 << GUIDED,
+            (1 << GUIDED) | (1 << STABLE),
         ),
     ];
     for (name, resources, push, specializes) in expect {

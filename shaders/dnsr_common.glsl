@@ -46,8 +46,8 @@ bool dnsr_is_receiver_signal(vec2 signal) { return signal.y >= 0.0; }
 // A final receiver's variance: its value is exact (a receiver turned away from the whole light whose ray hit, see
 // tile_classification.glsl), so every filter pass returns it as it is and leaves it out of its neighbours' taps and
 // variance blur, as it does the sky. Its variance is DNSR_FINAL_VARIANCE (dnsr_storage.glsl). Only with the run
-// features: the tests cost each later filter pass 0.014 ms at 4K on an H200 (docs/bench/h200-2026-12-07-final-pixels),
-// which Balanced, which never has a final pixel, must not pay.
+// features: Balanced never has a final pixel, and with the tests it took 1.067 -> 1.099 ms at 4K on an H100, without
+// them 1.089 (docs/bench/h200-2026-12-07-final-pixels).
 #if defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER)
 bool dnsr_final_signal(vec2 signal) { return DNSR_SPEC_STABLE_HISTORY && signal.y < -1.5; }
 #endif

@@ -2145,7 +2145,8 @@ DnsrResult dnsr_ffx_context_set_light(void *pFfxContext,
  * calls this before each dispatch. NULL `pHitDistance` turns guidance off again (`lightAngularSize` is not read).
  * The image itself (its format, layout and size) is checked by each dispatch, which refuses one that does not fit
  * with FFX_ERROR_INVALID_ARGUMENT and a message; so is the pair with `dnsr_ffx_context_set_light`'s
- * DNSR_DISPATCH_HARD_LIGHT, which needs `lightAngularSize` 0.
+ * DNSR_DISPATCH_HARD_LIGHT, which needs `lightAngularSize` 0, and with its DNSR_DISPATCH_USE_LIGHT_POSITION, whose
+ * light's size must be this `lightAngularSize`.
  *
  * What it changes (docs/do-no-harm.md): on the 100 scenes of `make viewer-accuracy`, dnsr's default settings are
  * worse than their 1-spp input on 25 scenes told nothing of the light, on 11 told where it is and whether it has a

@@ -49,7 +49,7 @@ bool dnsr_is_receiver_signal(vec2 signal) { return signal.y >= 0.0; }
 // features: Balanced never has a final pixel, and with the tests it took 1.067 -> 1.099 ms at 4K on an H100, without
 // them 1.089 (docs/bench/h200-2026-12-07-final-pixels).
 #if defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER)
-bool dnsr_final_signal(vec2 signal) { return DNSR_SPEC_STABLE_HISTORY && signal.y < -1.5; }
+bool dnsr_final_signal(vec2 signal) { return DNSR_SPEC_STABLE_HISTORY && dnsr_is_final_variance(signal.y); }
 #endif
 // With converged pixels on (Settings::converged_samples, dnsr_get_run_settings().z > 0): a converged pixel's signal
 // has variance exactly 0 (the filter may pass it through, see dnsr_passes_through); every other receiver stores at

@@ -124,12 +124,13 @@ vec3 dnsr_depth_copy_normal(uint v) { return dnsr_unpack_octahedral(v >> DNSR_DE
 // both as float16 (R16G16_SFLOAT), where -1 and -2 are exact.
 // A final receiver's variance (dnsr_final_signal in dnsr_common.glsl); the sky's is -1.
 const float DNSR_FINAL_VARIANCE = -2.0;
+bool dnsr_is_final_variance(float variance) { return variance < -1.5; }
 #ifdef DNSR_FP16
 vec4 dnsr_encode_signal(vec2 mean_var, float scale) { return vec4(mean_var, 0.0, 0.0); }
 float dnsr_decode_variance(float stored, float scale) { return stored; }
 #else
 vec4 dnsr_encode_signal(vec2 mean_var, float scale) {
-    float deviation = mean_var.y < 0.0 ? (mean_var.y < -1.5 ? float(DNSR_SIGNAL_FINAL_CODE) / 65535.0 : 1.0)
+    float deviation = mean_var.y < 0.0 ? (dnsr_is_final_variance(mean_var.y) ? float(DNSR_SIGNAL_FINAL_CODE) / 65535.0 : 1.0)
                                         : min(sqrt(mean_var.y) / scale, float(DNSR_SIGNAL_MAX_DEVIATION_CODE) / 65535.0);
     return vec4(mean_var.x, deviation, 0.0, 0.0);
 }

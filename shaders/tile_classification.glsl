@@ -384,6 +384,9 @@ bool dnsr_plane_faces_light(ivec2 p, float depth, vec3 shading, vec3 to_light) {
 // From world point `world` to the light at homogeneous position `light` (ShadowsDispatch::light_position).
 vec3 dnsr_to_light(vec4 light, vec3 world) { return light.xyz - light.w * world; }
 
+// Normal `n` faces away from every point of the light's disc seen along `to_light`: N.L below -sin(angular radius).
+bool dnsr_faces_away_from_disc(vec3 n, vec3 to_light) { return dot(n, to_light) < -dnsr_get_light_sin_radius() * length(to_light); }
+
 // Normals a and b (last frame's, this frame's) both known and more than acos(DNSR_TURNED_NORMAL_COS_PERCENT / 100)
 // apart.
 bool dnsr_normal_turned(vec3 a, vec3 b) {
@@ -653,7 +656,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
             vec3 to_light = dnsr_to_light(dnsr_get_light_position(), dnsr_world_position(p, depth));
             vec3 shading = dnsr_read_normal(p);
             if (dot(shading, to_light) < 0.0 && dnsr_plane_faces_light(p, depth, shading, to_light)) s_lit_against_normal = 1u;
-            if (dot(shading, to_light) < -dnsr_get_light_sin_radius() * length(to_light)) s_lit_away_from_disc = 1u;
+            if (dnsr_faces_away_from_disc(shading, to_light)) s_lit_away_from_disc = 1u;
         }
     }
     if (DNSR_SPEC_MOVING_SHADOWS) dnsr_sum_previous_moments(thread);
@@ -885,8 +888,7 @@ void dnsr_tile_classification(ivec2 gid, ivec2 lid) {
     bool faces_away = DNSR_SPEC_STABLE_HISTORY && dnsr_get_has_light_position() && dot(normal, to_light) < 0.0
         && !(x == 0.0 && s_lit_against_normal != 0u && dnsr_plane_faces_light(p, depth, normal, to_light));
     // ... and away from every point of the light's disc: N.L below -sin(angular radius).
-    bool faces_away_from_disc = faces_away && s_lit_away_from_disc == 0u
-        && dot(normal, to_light) < -dnsr_get_light_sin_radius() * length(to_light);
+    bool faces_away_from_disc = faces_away && s_lit_away_from_disc == 0u && dnsr_faces_away_from_disc(normal, to_light);
     float threshold = mix(disocc.x, disocc.y, pow(1.0 - n_dot_v, disocc.z));
     bool on_screen = dnsr_finite(prev_uv) && dnsr_finite(history_uv) && prev_clip.w > 0.0
         && all(greaterThanEqual(prev_uv, vec2(0.0))) && all(lessThan(prev_uv, vec2(1.0)))

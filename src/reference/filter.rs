@@ -108,10 +108,11 @@ fn blurred_variance<Io: Read + ?Sized>(io: &Io, p: Coord) -> f64 {
             if receiver_depth(io, q).is_none() {
                 continue;
             }
-            let v = io.read_filter_input(q).y;
-            if v < 0.0 {
+            let v = io.read_filter_input(q);
+            if super::final_signal(v) {
                 continue;
             }
+            let v = v.y;
             let w = 1.0 / (4 << (i.abs() + j.abs())) as f64;
             sum += w * v;
             weight += w;

@@ -80,6 +80,11 @@ fn to_light(light: DVec4, world: DVec3) -> DVec3 {
     light.truncate() - light.w * world
 }
 
+/// Normal `n` faces away from every point of the light's disc seen along `to_light` (`dnsr_faces_away_from_disc`).
+fn faces_away_from_disc<Io: Read + ?Sized>(io: &Io, n: DVec3, to_light: DVec3) -> bool {
+    n.dot(to_light) < -io.light_sin_radius() * to_light.length()
+}
+
 /// What a group of `passes::WIDE_GROUP` pixels' lit samples tell of the host's rays this frame: whether they test
 /// the G-buffer's normals. Only with the run features and a light position (`DNSR_SPEC_STABLE_HISTORY`); an untraced
 /// pixel of a checkerboard input has no sample.
@@ -109,7 +114,7 @@ fn group_evidence<Io: Read + ?Sized>(io: &Io) -> Vec<GroupEvidence> {
             let shading = io.read_normal(p);
             let group = &mut found[group_index(e, p)];
             group.lit_against_normal |= shading.dot(l) < 0.0 && plane_faces_light(io, p, depth, shading, l);
-            group.lit_away_from_disc |= shading.dot(l) < -io.light_sin_radius() * l.length();
+            group.lit_away_from_disc |= faces_away_from_disc(io, shading, l);
         }
     }
     found
@@ -735,7 +740,7 @@ pub fn temporal<Io: Read + ?Sized>(io: &Io, p: Coord, depth: f64, moved: bool, q
             && !quiet
             && !untraced
             && !group.lit_away_from_disc
-            && normal.dot(l) < -io.light_sin_radius() * l.length();
+            && faces_away_from_disc(io, normal, l);
     }
     let exact = DVec2::new(x, if final_here { super::FINAL_VARIANCE } else { 0.0 });
     // A resolved pixel is this sample, flagged converged (or final).

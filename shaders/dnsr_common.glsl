@@ -10,25 +10,7 @@ const ivec2 DNSR_GROUP_SIZE = ivec2(DNSR_GROUP_WIDTH, DNSR_GROUP_HEIGHT);
 // blocks are cleared and return at once.
 const ivec2 DNSR_WIDE_GROUP_SIZE = ivec2(DNSR_WIDE_GROUP_WIDTH, DNSR_WIDE_GROUP_HEIGHT);
 const int DNSR_WIDE_GROUP_INVOCATIONS = DNSR_WIDE_GROUP_WIDTH * DNSR_WIDE_GROUP_HEIGHT;
-// Features only some frames use are specialization constants (ids generated from src/passes/mod.rs, which says
-// why): the host binds the pipeline specialized for what the frame uses, and the others run without that code.
-// Each is declared only by the passes that use it: the host reads from the SPIR-V which ones a pass has and
-// compiles a pipeline per combination.
-#if defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER)
-// Penumbra guidance: the dispatch has hit distances.
-layout(constant_id = DNSR_SPEC_ID_PENUMBRA_GUIDED) const bool DNSR_SPEC_PENUMBRA_GUIDED = false;
-// The run features: Settings::stable_history_samples > 0 (dnsr_get_run_settings().x) or converged_samples > 0 (.z).
-// The filter passes look for final pixels (dnsr_final_signal) only with them: classification writes none without.
-layout(constant_id = DNSR_SPEC_ID_STABLE_HISTORY) const bool DNSR_SPEC_STABLE_HISTORY = false;
-#endif
-#ifdef DNSR_PASS_TILE_CLASSIFICATION
-// A shadow moving over a still surface is told (Settings::moving_shadow_sigmas > 0, with the run features).
-layout(constant_id = DNSR_SPEC_ID_MOVING_SHADOWS) const bool DNSR_SPEC_MOVING_SHADOWS = false;
-#endif
-#if defined(DNSR_PASS_TILE_CLASSIFICATION) || (defined(DNSR_PASS_FILTER) && !defined(DNSR_LATER_PASS))
-// The light has no size (ShadowsDispatch::hard_light): every receiver's own sample is its output.
-layout(constant_id = DNSR_SPEC_ID_HARD_LIGHT) const bool DNSR_SPEC_HARD_LIGHT = false;
-#endif
+#include "dnsr_specialization.glsl"
 
 uint dnsr_tile_bit(ivec2 p) { return uint((p.y % DNSR_TILE_HEIGHT) * DNSR_TILE_WIDTH + (p.x % DNSR_TILE_WIDTH)); }
 
@@ -49,7 +31,7 @@ bool dnsr_is_receiver_signal(vec2 signal) { return signal.y >= 0.0; }
 // features: Balanced never has a final pixel, and with the tests it took 1.067 -> 1.099 ms at 4K on an H100, without
 // them 1.089 (docs/bench/h200-2026-12-07-final-pixels).
 #if defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER)
-bool dnsr_final_signal(vec2 signal) { return DNSR_SPEC_STABLE_HISTORY && dnsr_is_final_variance(signal.y); }
+bool dnsr_final_signal(vec2 signal) { return dnsr_stores_finals() && dnsr_is_final_variance(signal.y); }
 #endif
 // With converged pixels on (Settings::converged_samples, dnsr_get_run_settings().z > 0): a converged pixel's signal
 // has variance exactly 0 (the filter may pass it through, see dnsr_passes_through); every other receiver stores at

@@ -6,6 +6,7 @@
 #define DNSR_STORAGE_GLSL
 
 #include "generated/dnsr_constants.glsl"
+#include "dnsr_specialization.glsl"
 
 // v >= 0 rounded to the nearest float16 value (ties to even), in float32: exact through packHalf2x16 on any
 // implementation. Below the smallest normal float16 (2^-14) it is 0 (no subnormals, which a driver may flush);
@@ -130,14 +131,14 @@ vec4 dnsr_encode_signal(vec2 mean_var, float scale) { return vec4(mean_var, 0.0,
 float dnsr_decode_variance(float stored, float scale) { return stored; }
 #else
 vec4 dnsr_encode_signal(vec2 mean_var, float scale) {
-    float deviation = mean_var.y < 0.0 ? (dnsr_is_final_variance(mean_var.y) ? float(DNSR_SIGNAL_FINAL_CODE) / 65535.0 : 1.0)
+    float deviation = mean_var.y < 0.0 ? (dnsr_stores_finals() && dnsr_is_final_variance(mean_var.y) ? float(DNSR_SIGNAL_FINAL_CODE) / 65535.0 : 1.0)
                                         : min(sqrt(mean_var.y) / scale, float(DNSR_SIGNAL_MAX_DEVIATION_CODE) / 65535.0);
     return vec4(mean_var.x, deviation, 0.0, 0.0);
 }
 float dnsr_decode_variance(float stored, float scale) {
     float d = stored * scale;
     return stored > float(DNSR_SIGNAL_SKY_CODE_ABOVE) / 65535.0 ? -1.0
-         : stored > float(DNSR_SIGNAL_FINAL_CODE_ABOVE) / 65535.0 ? DNSR_FINAL_VARIANCE : d * d;
+         : dnsr_stores_finals() && stored > float(DNSR_SIGNAL_FINAL_CODE_ABOVE) / 65535.0 ? DNSR_FINAL_VARIANCE : d * d;
 }
 #endif
 vec2 dnsr_decode_signal(vec2 stored, float scale) { return vec2(stored.x, dnsr_decode_variance(stored.y, scale)); }

@@ -187,7 +187,7 @@ pub(crate) fn check_override(name: &str, spirv: &[u8], offers: DeviceOffers) -> 
     }
     if theirs.specializes != ours.specializes {
         return Err(fail(format!(
-            "declares specialization constants (mask) {:#b}; dnsr's variant declares {:#b} (keep dnsr_common.glsl's declarations)",
+            "declares specialization constants (mask) {:#b}; dnsr's variant declares {:#b} (keep dnsr_specialization.glsl's declarations)",
             theirs.specializes, ours.specializes
         )));
     }

@@ -55,12 +55,17 @@ test: deps
 # seeded scenes, each with its own light and camera, every preset without penumbra guidance and Quality with it, as
 # distributions -> docs/viewer-family.md.
 FAMILY_SCENES ?= 100
+# The same checks on objects the methods were not developed on (make_family.py's `unseen` vocabulary, seeds from
+# 5000): docs/viewer-family-unseen.md. A check of whether the methods carry over; never tune on it.
+UNSEEN_SCENES ?= 50
 # The viewer's committed scenes (default, thin fins, thin shells) against their 1024-ray reference, every preset,
 # directional and point light, still and orbiting camera: writes docs/viewer-accuracy.md (a few minutes on lavapipe).
 viewer-accuracy: viewer
 	examples-c/viewer/accuracy.py build/viewer/dnsr_viewer docs/viewer-accuracy.md
 	python3 examples-c/viewer/family.py build/viewer/dnsr_viewer build/family --count $(FAMILY_SCENES) \
 		--presets fast,balanced,quality,quality+untold,quality+guided --md docs/viewer-family.md
+	python3 examples-c/viewer/family.py build/viewer/dnsr_viewer build/family-unseen --first 5000 --count $(UNSEEN_SCENES) \
+		--objects unseen --presets fast,balanced,quality,quality+untold,quality+guided --md docs/viewer-family-unseen.md
 
 # Hybrid shadows against full tracing on the viewer's committed scenes (examples-c/viewer/hybrid.py): rays traced,
 # rays saved, GPU ms and RMSE against a 1024-ray reference, into out/hybrid/hybrid.md. docs/hybrid-shadows.md has the

@@ -107,7 +107,7 @@ def quat_x(degrees):
     return [math.sin(a), 0.0, 0.0, math.cos(a)]
 
 
-def place_unseen(rng, add_mesh, node, has_ground, kind, children):
+def place_unseen(rng, add_mesh, node, kind, children):
     """One object of the `unseen` vocabulary into children (its root's frame: y up, resting on y = 0)."""
     if kind == "torus":
         major = rng.uniform(0.2, 0.6)
@@ -170,7 +170,7 @@ def place_objects(rng, add_mesh, node, has_ground, objects="seen"):
             x, z = rng.uniform(-2, 2), rng.uniform(-2, 2)
             y = 0.0 if has_ground else rng.uniform(-1, 1)
             children = []
-            place_unseen(rng, add_mesh, node, has_ground, kind, children)
+            place_unseen(rng, add_mesh, node, kind, children)
             roots.append(node(name=f"{kind}_{i}", translation=[x, y, z], rotation=quat_y(rng.uniform(0, 360)),
                               children=children))
         return roots, kinds

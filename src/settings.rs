@@ -145,7 +145,10 @@ declare_settings! {
     /// degrees of the G-buffer's normal: a normal map tilts normals by tens of degrees within a few pixels of one
     /// plane, and the normal edge stop then stops the filter. Past it, and where an axis has no receiver neighbour,
     /// the G-buffer's normal stays (a feature of 1-2 px, whose neighbours' depths give another surface's plane; a
-    /// crease). 0 turns this off (the FidelityFX behaviour). docs/do-no-harm.md, "Normal-mapped normals".
+    /// crease). 0 turns this off (the FidelityFX behaviour). Only with the run features (`stable_history_samples` or
+    /// `converged_samples` > 0, as in Fast and Quality): the first pass compiles the code under the specialization
+    /// constant that gates them, so that Balanced does not pay its registers. docs/do-no-harm.md, "Normal-mapped
+    /// normals".
     geometric_normal_degrees: f32 = 53.0, [0.0, 89.0] "[0, 89]";
 }
 
@@ -203,9 +206,9 @@ impl Settings {
 
 impl Settings {
     /// The cosine `geometric_normal_degrees` allows, as the first filter pass reads it (2: off, no normal is that
-    /// close).
+    /// close; also without the run features, whose specialization constant compiles the code in).
     pub(crate) fn geometric_normal_min_cos(&self) -> f32 {
-        if self.geometric_normal_degrees > 0.0 {
+        if self.geometric_normal_degrees > 0.0 && self.uses_runs() {
             self.geometric_normal_degrees.to_radians().cos()
         } else {
             2.0

@@ -478,7 +478,8 @@ pub struct DnsrSettings {
     /// neighbour along each axis, from the depth and DnsrShadowsDispatch::viewProjectionInverse) where it lies within
     /// this many degrees of your normal: a normal map's tilt would otherwise stop the normal edge stop on one plane.
     /// Past it (a feature of 1-2 px, a crease), and where an axis has no receiver neighbour, your normal stays.
-    /// Range [0, 89]; 0 disables (the FidelityFX behaviour). Default 53 (FidelityFX 0).
+    /// Needs stableHistorySamples or convergedSamples > 0. Range [0, 89]; 0 disables (the FidelityFX behaviour).
+    /// Default 53 (FidelityFX 0).
     pub geometric_normal_degrees: f32,
 }
 

@@ -1,5 +1,5 @@
 #!/bin/bash
-# The final-code gate (cbd2fe4) and the geometric-normal gate (this change), one dnsr-bench binary (the new SPIR-V
+# The final-code gate (cbd2fe4) and the geometric-normal gate (6d408d2), one dnsr-bench binary (the new SPIR-V
 # built in): cbc7ed4's SPIR-V of the four passes ("a": neither gate), 1049354's ("b": the final-code gate), the
 # binary's own ("c": both), alternating, two rounds. 4K fp32, Balanced and Quality.
 for f in .gl/*.deb; do dpkg -x $f / >/dev/null; done; ldconfig; gunzip -f .gl/bench.gz; chmod +x .gl/bench

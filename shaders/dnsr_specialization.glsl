@@ -28,7 +28,8 @@ layout(constant_id = DNSR_SPEC_ID_HARD_LIGHT) const bool DNSR_SPEC_HARD_LIGHT = 
 // Whether a stored signal can hold a final receiver's code: classification writes final receivers only with the run
 // features, so every other pipeline (Balanced's) compiles its signal codec and filter without the test. Balanced
 // paid 0.022 ms at 4K on an H100 for final pixels it never has while the codec tested for them whatever the constant
-// (docs/bench/h200-2026-12-07-final-pixels); what this gate gives back is not measured yet.
+// (docs/bench/h200-2026-12-07-final-pixels); with this gate its later passes took 0.013 ms less each
+// (docs/bench/h100-2026-12-08-spec-gates).
 bool dnsr_stores_finals() {
 #if defined(DNSR_PASS_TILE_CLASSIFICATION) || defined(DNSR_PASS_FILTER)
     return DNSR_SPEC_STABLE_HISTORY;

@@ -115,8 +115,9 @@ pub(crate) fn light_group(n: usize, k: usize) -> std::ops::Range<usize> {
 /// `DNSR_SPEC_PENUMBRA_GUIDED`: the dispatch has hit distances.
 pub(crate) const SPEC_PENUMBRA_GUIDED: u32 = 0;
 /// `DNSR_SPEC_STABLE_HISTORY`: the run features are on (`Settings::uses_runs`: stable history or converged pixels).
-/// Classification and every filter pass: the filter looks for final pixels only with them (Balanced, which never has
-/// one, took 1.067 -> 1.099 ms at 4K on an H100 with the tests, 1.089 without).
+/// Classification and every filter pass: the filter looks for final pixels only with them, and the first pass takes
+/// geometric normals only with them (Balanced, which has neither, took 1.090 ms at 4K on an H100 with both behind
+/// runtime tests, 1.055 with both behind this constant: docs/bench/h100-2026-12-08-spec-gates).
 pub(crate) const SPEC_STABLE_HISTORY: u32 = 1;
 /// `DNSR_SPEC_HARD_LIGHT`: the light has no size (`ShadowsDispatch::hard_light`); classification and the first
 /// filter pass only. A runtime test of a flag in either, in every form tried, made lavapipe (Mesa 22.3) leak JIT

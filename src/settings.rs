@@ -265,4 +265,15 @@ mod tests {
         let b = Settings::preset(Preset::Balanced);
         assert!(!b.uses_runs() && b.hard_penumbra_pixels == 0.0 && b.hard_tile_frames == 0.0 && b.moving_shadow_sigmas == 0.0 && b.output_contrast == 1.2);
     }
+
+    /// The first pass compiles geometric normals under the run features' specialization constant, so the setting the
+    /// shader and the CPU reference read must say "off" without them, whatever `geometric_normal_degrees` asks.
+    #[test]
+    fn geometric_normals_need_the_run_features() {
+        let quality = Settings::preset(Preset::Quality);
+        assert!(quality.uses_runs() && quality.geometric_normal_min_cos() <= 1.0);
+        let balanced = Settings { geometric_normal_degrees: 53.0, ..Settings::preset(Preset::Balanced) };
+        assert!(!balanced.uses_runs());
+        assert!(balanced.geometric_normal_min_cos() > 1.0);
+    }
 }
